@@ -1,0 +1,3 @@
+from rapidgen.cli import main
+
+raise SystemExit(main())

@@ -1,0 +1,139 @@
+"""Command line: argument handling only; the work lives in the pipeline modules.
+
+Exit codes: 0 success, 1 errors in the input (diagnostics on stderr), 2 usage errors,
+3 an internal error (a bug: please report it).
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from typing import Sequence
+
+from rapidgen import __version__
+from rapidgen.diagnostics import DiagnosticSink, FileLineCache, Severity, render
+
+
+def _common_idl_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("-I", dest="include", action="append", default=[], metavar="DIR",
+                   help="add DIR to the #include search path (repeatable)")
+    p.add_argument("-D", dest="define", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="define a preprocessor macro (repeatable)")
+
+
+def _diag_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("-W", dest="warn", action="append", default=[], metavar="no-CODE|error",
+                   help="-W no-RG0501 silences a warning code; -W error turns warnings into errors")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="rapidgen", description=(
+        "Compile RAPID IDL and asset descriptors into DDS bindings; check assets against the protocol."))
+    parser.add_argument("--version", action="version", version=f"rapidgen {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+
+    ir_p = sub.add_parser("ir", help="print the resolved model of IDL files as JSON")
+    ir_p.add_argument("files", nargs="+", metavar="FILE", help="IDL files")
+    _common_idl_args(ir_p)
+    _diag_args(ir_p)
+    ir_p.add_argument("--no-loc", action="store_true", help="omit source locations from the JSON")
+    ir_p.add_argument("-o", "--output", metavar="FILE", help="write the JSON to FILE instead of stdout")
+
+    sum_p = sub.add_parser("summary", help="parse IDL files and print a one-line-per-module summary")
+    sum_p.add_argument("files", nargs="+", metavar="FILE")
+    _common_idl_args(sum_p)
+    _diag_args(sum_p)
+    return parser
+
+
+def _sink(args: argparse.Namespace) -> DiagnosticSink:
+    silenced = frozenset(w[3:] for w in args.warn if w.startswith("no-"))
+    return DiagnosticSink(silenced=silenced, warnings_as_errors="error" in args.warn)
+
+
+def _defines(items: list[str]) -> dict[str, str]:
+    out = {}
+    for item in items:
+        name, _, value = item.partition("=")
+        out[name] = value
+    return out
+
+
+def report(sink: DiagnosticSink, stream=None) -> None:
+    """Print every diagnostic, then a count."""
+    stream = stream or sys.stderr
+    lines = FileLineCache()
+    for d in sink.sorted():
+        print(render(d, lines), file=stream)
+    errors = sum(1 for d in sink.diagnostics if d.severity is Severity.ERROR)
+    warnings = sum(1 for d in sink.diagnostics if d.severity is Severity.WARNING)
+    if errors or warnings:
+        parts = [f"{errors} error{'s' * (errors != 1)}"] if errors else []
+        parts += [f"{warnings} warning{'s' * (warnings != 1)}"] if warnings else []
+        print(f"rapidgen: {', '.join(parts)}", file=stream)
+
+
+def _cmd_ir(args: argparse.Namespace) -> int:
+    from rapidgen.frontend import load_idl
+    from rapidgen.model.to_json import model_to_json
+
+    sink = _sink(args)
+    model, _ = load_idl(args.files, args.include, sink, _defines(args.define))
+    report(sink)
+    if model is None:
+        return 1
+    text = model_to_json(model, loc=not args.no_loc)
+    if args.output:
+        from rapidgen.writer import write_text_atomic
+        write_text_atomic(args.output, text)
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def _cmd_summary(args: argparse.Namespace) -> int:
+    from rapidgen.frontend import load_idl
+
+    sink = _sink(args)
+    model, pre = load_idl(args.files, args.include, sink, _defines(args.define))
+    report(sink)
+    if model is None:
+        return 1
+    counts: dict[str, dict[str, int]] = {}
+    for d in model.declarations:
+        module = d.scoped_name.rsplit("::", 1)[0] if "::" in d.scoped_name else "(global)"
+        counts.setdefault(module, {}).setdefault(d.kind, 0)
+        counts[module][d.kind] += 1
+    lines = sum(len(t.splitlines()) for t in pre.sources.values())
+    print(f"{len(pre.files)} files, {lines} lines, {len(model.declarations)} declarations")
+    for module in sorted(counts):
+        kinds = ", ".join(f"{n} {k}{'s' * (n != 1)}" for k, n in sorted(counts[module].items()))
+        print(f"  {module}: {kinds}")
+    keyed = [d for d in model.declarations if getattr(d, "keys", ())]
+    print(f"  keyed types: {len(keyed)}")
+    return 0
+
+
+_COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return _COMMANDS[args.command](args)
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:
+        return 0
+    except Exception as exc:  # a bug: report it briefly; RAPIDGEN_DEBUG=1 shows the traceback
+        if os.environ.get("RAPIDGEN_DEBUG"):
+            raise
+        print(f"rapidgen: internal error: {type(exc).__name__}: {exc}\n"
+              "  please report this with the input; RAPIDGEN_DEBUG=1 shows the traceback", file=sys.stderr)
+        return 3
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
