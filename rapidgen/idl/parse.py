@@ -6,6 +6,7 @@ original file:line:col and a hint.
 """
 from __future__ import annotations
 
+import copy
 import functools
 import re
 from dataclasses import replace
@@ -127,10 +128,21 @@ def _unescape(body: str) -> str:
 
 @v_args(meta=True)
 class _ToAst(Transformer):
-    def __init__(self, loc: _Locator, key_comments: dict[int, int]) -> None:
+    def __init__(self, loc: _Locator, key_comments: dict[int, int], sink: DiagnosticSink) -> None:
         super().__init__()
         self.loc = loc
         self.key_comments = key_comments  # output line -> column of a //@key comment
+        self.sink = sink
+
+    def _name(self, tok: Token) -> str:
+        """A declared name; `_name` escapes a keyword (IDL 7.2.3.1), a bare keyword is warned about."""
+        text = str(tok)
+        if text.startswith("_"):
+            return text[1:]
+        if text in _keywords():
+            self.sink.warning("RG0313", f"'{text}' is an IDL keyword used as a name", self.loc.token(tok),
+                              f"write '_{text}' to escape it")
+        return text
 
     # -- helpers
     def _m(self, meta) -> SourceLoc:
@@ -152,11 +164,11 @@ class _ToAst(Transformer):
 
     def module_dcl(self, meta, items):
         name, *defs = items
-        return ast.ModuleDecl(str(name), tuple(defs), (), self.loc.token(name))
+        return ast.ModuleDecl(self._name(name), tuple(defs), (), self.loc.token(name))
 
     def const_dcl(self, meta, items):
         type_spec, name, value = items
-        return ast.ConstDecl(type_spec, str(name), value, (), self.loc.token(name))
+        return ast.ConstDecl(type_spec, self._name(name), value, (), self.loc.token(name))
 
     def __default__(self, data, children, meta):
         raise NotImplementedError(f"no transformer rule for '{data}'")
@@ -269,7 +281,7 @@ class _ToAst(Transformer):
     def struct_dcl(self, meta, items):
         name, *rest = items
         base = rest.pop(0) if rest and isinstance(rest[0], ast.ScopedName) else None
-        return ast.StructDecl(str(name), base, tuple(rest), (), self.loc.token(name))
+        return ast.StructDecl(self._name(name), base, tuple(rest), (), self.loc.token(name))
 
     def struct_forward_dcl(self, meta, items):
         return ast.ForwardDecl("struct", str(items[0]), (), self.loc.token(items[0]))
@@ -300,7 +312,7 @@ class _ToAst(Transformer):
 
     def declarator(self, meta, items):
         name, *dims = items
-        return ast.Declarator(str(name), tuple(dims), self.loc.token(name))
+        return ast.Declarator(self._name(name), tuple(dims), self.loc.token(name))
 
     def fixed_array_size(self, meta, items):
         return items[0]
@@ -310,7 +322,7 @@ class _ToAst(Transformer):
         anns = self._anns(rest)
         disc = rest[len(anns)]
         cases = tuple(rest[len(anns) + 1:])
-        return ast.UnionDecl(str(name), disc, anns, cases, (), self.loc.token(name))
+        return ast.UnionDecl(self._name(name), disc, anns, cases, (), self.loc.token(name))
 
     def case_label(self, meta, items):
         return _Label(items[0])
@@ -328,12 +340,12 @@ class _ToAst(Transformer):
 
     def enum_dcl(self, meta, items):
         name, *enumerators = items
-        return ast.EnumDecl(str(name), tuple(enumerators), (), self.loc.token(name))
+        return ast.EnumDecl(self._name(name), tuple(enumerators), (), self.loc.token(name))
 
     def enumerator(self, meta, items):
         anns = self._anns(items)
         name, *value = items[len(anns):]
-        return ast.EnumeratorDecl(str(name), value[0] if value else None, anns, self.loc.token(name))
+        return ast.EnumeratorDecl(self._name(name), value[0] if value else None, anns, self.loc.token(name))
 
     def native_dcl(self, meta, items):
         return ast.NativeDecl(str(items[0]), (), self.loc.token(items[0]))
@@ -344,7 +356,7 @@ class _ToAst(Transformer):
     def bitset_dcl(self, meta, items):
         name, *rest = items
         base = rest.pop(0) if rest and isinstance(rest[0], ast.ScopedName) else None
-        return ast.BitsetDecl(str(name), base, tuple(rest), (), self.loc.token(name))
+        return ast.BitsetDecl(self._name(name), base, tuple(rest), (), self.loc.token(name))
 
     def bitfield(self, meta, items):
         anns = self._anns(items)
@@ -354,12 +366,12 @@ class _ToAst(Transformer):
 
     def bitmask_dcl(self, meta, items):
         name, *values = items
-        return ast.BitmaskDecl(str(name), tuple(values), (), self.loc.token(name))
+        return ast.BitmaskDecl(self._name(name), tuple(values), (), self.loc.token(name))
 
     def bit_value(self, meta, items):
         anns = self._anns(items)
         name = items[len(anns)]
-        return ast.BitValueDecl(str(name), anns, self.loc.token(name))
+        return ast.BitValueDecl(self._name(name), anns, self.loc.token(name))
 
     # -- value types (RTI dialect)
     def value_dcl(self, meta, items):
@@ -367,7 +379,7 @@ class _ToAst(Transformer):
         base = rest.pop(0) if rest and isinstance(rest[0], ast.ScopedName) else None
         members = tuple(r for r in rest if isinstance(r, ast.MemberDecl))
         exports = tuple(r for r in rest if not isinstance(r, ast.MemberDecl))
-        return ast.StructDecl(str(name), base, members, (), self.loc.token(name), "valuetype", exports)
+        return ast.StructDecl(self._name(name), base, members, (), self.loc.token(name), "valuetype", exports)
 
     def value_export(self, meta, items):
         *anns, definition = items
@@ -410,13 +422,56 @@ class _ToAst(Transformer):
         return (".".join(str(t) for t in items), self._m(meta))
 
 
+# Big families of tokens are named as one thing: (tokens that show the family, its members, name).
+_TOKEN_FAMILIES = (
+    ({"'struct'", "'module'", "'const'"},
+     {"'#pragma keylist'", "'@'", "'@annotation'", "'bitmask'", "'bitset'", "'const'", "'enum'", "'module'",
+      "'native'", "'struct'", "'typedef'", "'union'", "'valuetype'"},
+     "a definition (struct, union, enum, typedef, const, module, ...)"),
+    ({"an integer", "'('", "an identifier"},
+     {"'('", "'+'", "'-'", "'~'", "'::'", "'TRUE'", "'FALSE'", "an integer", "a number", "a fixed-point number",
+      "a character literal", "a string literal", "an identifier"},
+     "a constant expression"),
+)
+
+
 def _describe_expected(expected: set[str], limit: int = 6) -> str:
     names = sorted({_terminal_text().get(e, e.lower()) for e in expected})
+    for marks, members, label in _TOKEN_FAMILIES:
+        if marks <= set(names):
+            names = [label] + [n for n in names if n not in members]
     if len(names) > limit:
         return ", ".join(names[:limit]) + ", ..."
     if len(names) == 1:
         return names[0]
     return ", ".join(names[:-1]) + " or " + names[-1]
+
+
+def _viable(exc: UnexpectedInput, fallback) -> set[str]:
+    """Terminals that really let the parse go on where it stopped.
+
+    LALR merges look-ahead sets, so lark's `expected` can list tokens that would fail a
+    few reductions later (e.g. ')' after a member's type); each candidate is tried on a
+    copy of the parser state and kept only when it is shifted.
+    """
+    fallback = set(fallback or ())
+    state = getattr(exc, "state", None)
+    try:
+        conf = copy.copy(state.parse_conf)  # type: ignore[union-attr]
+        conf.callbacks = {}
+        candidates = [t for t in conf.states[state.position] if t.isupper()]  # type: ignore[union-attr]
+    except Exception:  # no parser state to try (other lark versions): keep lark's answer
+        return fallback
+    out: set[str] = set()
+    for term in candidates:
+        probe = state.copy(deepcopy_values=False)  # type: ignore[union-attr]
+        probe.parse_conf = conf
+        try:
+            probe.feed_token(Token(term, ""), is_end=term == "$END")
+        except Exception:  # UnexpectedToken: not viable here
+            continue
+        out.add(term)
+    return out or fallback
 
 
 def _prev_token_end(lines: list[str], line: int, col: int) -> tuple[int, int] | None:
@@ -447,11 +502,11 @@ def _syntax_error(exc: UnexpectedInput, text: str, locator: _Locator, sink: Diag
         else:
             shown = repr(ch)[1:-1] if ch.isprintable() is False else ch
             sink.error("RG0202", f"unexpected character '{shown}'", loc,
-                       f"expected {_describe_expected(set(exc.allowed or ()))}" if exc.allowed else None)
+                       f"expected {_describe_expected(_viable(exc, exc.allowed))}" if exc.allowed else None)
         return
     if isinstance(exc, UnexpectedToken) and exc.token.type != "$END":
         tok = exc.token
-        expected = set(exc.expected)
+        expected = _viable(exc, exc.expected)
         found = str(tok)
         loc = locator.token(tok)
         if "SEMICOLON" in expected and tok.type != "SEMICOLON":
@@ -471,13 +526,29 @@ def _syntax_error(exc: UnexpectedInput, text: str, locator: _Locator, sink: Diag
         sink.error("RG0201", f"unexpected '{found}'; expected {_describe_expected(expected)}", loc)
         return
     # End of input.
-    expected = set(getattr(exc, "expected", ()) or ())
-    file, oline = locator.pre.origin(max(1, len(lines) - 1))
-    last = locator.pre.line_map[-1] if locator.pre.line_map else (file, 1)
-    loc = SourceLoc(last[0], last[1], 1)
+    expected = _viable(exc, getattr(exc, "expected", ()))
+    opened = _unclosed_brace(text)
+    if "RBRACE" in expected and opened is not None:
+        sink.error("RG0201", "unexpected end of input: this '{' is never closed",
+                   locator.at(opened[0], opened[1], opened[0], opened[1] + 1), "add the missing '};'")
+        return
+    last_line = max(1, len(text.rstrip("\n").split("\n")))
+    loc = locator.at(last_line, max(1, len(lines[last_line - 1]) + 1 if last_line <= len(lines) else 1))
     sink.error("RG0201", f"unexpected end of input; expected {_describe_expected(expected)}" if expected
                else "unexpected end of input", loc,
-               "a '}' or ';' is probably missing" if {"RBRACE", "SEMICOLON"} & expected else None)
+               "a ';' is probably missing" if "SEMICOLON" in expected else None)
+
+
+def _unclosed_brace(text: str) -> tuple[int, int] | None:
+    """(line, col) of the innermost '{' left open, skipping comments and strings."""
+    stack: list[tuple[int, int]] = []
+    for tok in re.finditer(r'//[^\n]*|/\*.*?\*/|"(?:[^"\\\n]|\\.)*"|[{}]', text, re.S):
+        if tok.group(0) == "{":
+            line = text.count("\n", 0, tok.start()) + 1
+            stack.append((line, tok.start() - text.rfind("\n", 0, tok.start())))
+        elif tok.group(0) == "}" and stack:
+            stack.pop()
+    return stack[-1] if stack else None
 
 
 def parse(pre: PreprocessResult, sink: DiagnosticSink) -> ast.Specification | None:
@@ -496,7 +567,7 @@ def parse(pre: PreprocessResult, sink: DiagnosticSink) -> ast.Specification | No
         return None
     key_comments = dict(_key_comments)
     try:
-        definitions = _ToAst(locator, key_comments).transform(tree)
+        definitions = _ToAst(locator, key_comments, sink).transform(tree)
     except (VisitError, RecursionError) as exc:  # never let a transformer problem escape raw
         sink.error("RG0299", f"internal error while reading the syntax tree: {getattr(exc, 'orig_exc', exc)}",
                    SourceLoc(pre.files[0] if pre.files else "<input>", 1, 1),

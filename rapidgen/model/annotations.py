@@ -79,6 +79,7 @@ class AnnotationChecker:
     def __init__(self, sink: DiagnosticSink, evaluator: ConstEvaluator) -> None:
         self.sink = sink
         self.evaluator = evaluator
+        self.declared: set[str] = set()  # names from `@annotation X { ... }` in the input
 
     def check(self, anns: tuple[ast.AnnotationAppl, ...], where: str, lookup: NameLookup,
               value_target: Callable[[], Target] | None = None) -> Checked:
@@ -86,6 +87,10 @@ class AnnotationChecker:
         values: dict[str, dict[str, object]] = {}
         for appl in anns:
             name = appl.name.lstrip(":")
+            if name not in KNOWN and name.rsplit("::", 1)[-1] in self.declared:
+                params = {p or "value": self.evaluator.evaluate(e, Target("any"), lookup) for p, e in appl.params}
+                out.append(ir.Annotation(name, tuple(params.items()), appl.loc))
+                continue
             if name not in KNOWN:
                 self.sink.warning("RG0501", f"unknown annotation '@{appl.name}' is ignored", appl.loc,
                                   did_you_mean(name, KNOWN))

@@ -7,6 +7,7 @@ on the wrong kind of operand and type mismatches are errors with locations.
 """
 from __future__ import annotations
 
+import operator
 from dataclasses import dataclass
 from decimal import Decimal
 from typing import Callable, NoReturn
@@ -16,6 +17,8 @@ from rapidgen.idl import ast
 from rapidgen.model.ir import CHAR_TYPES, FLOAT_TYPES, IDL_SPELLING, INTEGER_RANGES, EnumValue
 
 _I64_MIN, _U64_MAX = -2**63, 2**64 - 1
+_INT_OPS = {"+": operator.add, "-": operator.sub, "*": operator.mul, "<<": operator.lshift,
+            ">>": operator.rshift, "&": operator.and_, "|": operator.or_, "^": operator.xor}
 
 
 @dataclass(frozen=True, slots=True)
@@ -128,7 +131,7 @@ class ConstEvaluator:
             cat = "float"
         if op == "/" and y == 0:
             self._fail("RG0403", "division by zero", loc)
-        result = {"+": lambda: x + y, "-": lambda: x - y, "*": lambda: x * y, "/": lambda: x / y}[op]()
+        result = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}[op](x, y)
         return Typed(cat, result)
 
     def _int_op(self, op: str, x: int, y: int, loc: SourceLoc) -> int:
@@ -142,8 +145,7 @@ class ConstEvaluator:
         if op == "%":
             r = abs(x) % abs(y)
             return r if x >= 0 else -r
-        return {"+": x + y, "-": x - y, "*": x * y, "<<": x << y, ">>": x >> y,
-                "&": x & y, "|": x | y, "^": x ^ y}[op]
+        return _INT_OPS[op](x, y)
 
     # -- conversion to the target type ------------------------------------------------
     def _convert(self, val: Typed, target: Target, loc: SourceLoc) -> object:

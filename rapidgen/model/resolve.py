@@ -104,6 +104,8 @@ class Resolver:
                 self._add(_Sym("native", _join(scope + (d.name,)), d, scope, d.loc))
             elif isinstance(d, ast.KeylistPragma):
                 self.pragmas.append((d, scope))
+            elif isinstance(d, ast.AnnotationDecl):
+                self.annotations.declared.add(d.name)
 
     # == lookup ===========================================================================
     def lookup(self, name: ast.ScopedName, scope: tuple[str, ...]) -> _Sym | None:
