@@ -14,14 +14,14 @@ from decimal import Decimal, InvalidOperation
 from importlib import resources
 
 import lark
-from lark import Lark, Token, Transformer, v_args
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken, VisitError
+from lark import Lark, Token, Transformer
+from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.idl import ast
+from rapidgen.idl.lexer import IdlLexer
 from rapidgen.idl.preprocess import PreprocessResult
 
-_KEY_COMMENT = re.compile(r"//\s*@key\b")
 
 # Friendly names for the grammar's named terminals in "expected ..." messages.
 _TERMINAL_NAMES = {
@@ -34,29 +34,15 @@ _TERMINAL_NAMES = {
 }
 
 
-# The parser is built once, so its comment callback writes to whichever dict the
-# current parse() installed here (the front end runs one parse at a time per process).
-_key_comments: dict[int, int] = {}
-
-
-def _on_line_comment(tok: Token) -> Token:
-    if tok.startswith("//") and _KEY_COMMENT.match(tok):
-        _key_comments[tok.line] = tok.column
-    return tok
-
-
-_CALLBACKS = {"LINE_COMMENT": _on_line_comment}
-
-
 @functools.lru_cache(maxsize=1)
 def _parser() -> Lark:
+    """The LALR parser, with the syntax-tree builder applied inline as rules reduce."""
     grammar = resources.files("rapidgen.idl").joinpath("grammar.lark").read_text(encoding="utf-8")
+    options = dict(parser="lalr", lexer=IdlLexer, maybe_placeholders=False, transformer=_TRANSFORMER)
     try:
-        return Lark(grammar, parser="lalr", lexer="contextual", propagate_positions=True,
-                    maybe_placeholders=False, lexer_callbacks=_CALLBACKS, cache=True)
+        return Lark(grammar, cache=True, **options)
     except OSError:  # unwritable temp dir: build without the on-disk cache
-        return Lark(grammar, parser="lalr", lexer="contextual", propagate_positions=True,
-                    maybe_placeholders=False, lexer_callbacks=_CALLBACKS)
+        return Lark(grammar, **options)
 
 
 @functools.lru_cache(maxsize=1)
@@ -92,20 +78,16 @@ class _Locator:
             return SourceLoc(file, oline, col, oline, end_col)
         return SourceLoc(file, oline, col, oline, col + 1)
 
-    def meta(self, meta, fallback: SourceLoc | None = None) -> SourceLoc:
-        if getattr(meta, "empty", True):
-            return fallback or SourceLoc(self.pre.files[0] if self.pre.files else "<input>", 1, 1)
-        return self.at(meta.line, meta.column, meta.end_line, meta.end_column)
-
     def token(self, tok: Token) -> SourceLoc:
         return self.at(tok.line, tok.column, tok.end_line, tok.end_column)
 
 
 class _Label:
-    __slots__ = ("expr",)
+    __slots__ = ("expr", "loc")
 
-    def __init__(self, expr: ast.Expr | None) -> None:
+    def __init__(self, expr: ast.Expr | None, loc: SourceLoc) -> None:
         self.expr = expr
+        self.loc = loc
 
 
 def _unescape(body: str) -> str:
@@ -126,86 +108,100 @@ def _unescape(body: str) -> str:
     return re.sub(r"\\(x[0-9a-fA-F]{1,2}|u[0-9a-fA-F]{1,4}|[0-7]{1,3}|.)", repl, body)
 
 
-@v_args(meta=True)
 class _ToAst(Transformer):
-    def __init__(self, loc: _Locator, key_comments: dict[int, int], sink: DiagnosticSink) -> None:
+    """Builds the syntax tree while the LALR parser reduces (no intermediate lark tree).
+
+    Lark gives inline transformers no position metadata, so locations come from tokens:
+    names, literals and the type keywords, which the grammar keeps as named terminals.
+    Per-parse state (the locator, //@key comments, the sink) is set in `ctx` by parse().
+    """
+
+    def __init__(self) -> None:
         super().__init__()
-        self.loc = loc
-        self.key_comments = key_comments  # output line -> column of a //@key comment
-        self.sink = sink
+        self.loc: _Locator
+        self.key_comments: dict[tuple[str, int], int] = {}
+        self.sink: DiagnosticSink
 
     def _name(self, tok: Token) -> str:
-        """A declared name; `_name` escapes a keyword (IDL 7.2.3.1), a bare keyword is warned about."""
+        """A declared name; a leading underscore escapes a keyword (IDL 7.2.3.1) and is dropped."""
         text = str(tok)
         if text.startswith("_"):
             return text[1:]
-        if text in _keywords():
-            self.sink.warning("RG0313", f"'{text}' is an IDL keyword used as a name", self.loc.token(tok),
-                              f"write '_{text}' to escape it")
         return text
-
-    # -- helpers
-    def _m(self, meta) -> SourceLoc:
-        return self.loc.meta(meta)
 
     @staticmethod
     def _anns(items) -> tuple[ast.AnnotationAppl, ...]:
         return tuple(i for i in items if isinstance(i, ast.AnnotationAppl))
 
+    def _is_key(self, decl: ast.Declarator) -> bool:
+        col = self.key_comments.get((decl.loc.file, decl.loc.line))
+        return col is not None and col > decl.loc.col
+
     # -- top level
-    def start(self, meta, items):
+    def start(self, items):
         return list(items)
 
-    def annotated_definition(self, meta, items):
+    def annotated_definition(self, items):
         *anns, definition = items
         if anns and hasattr(definition, "annotations"):
             definition = replace(definition, annotations=tuple(anns) + definition.annotations)
         return definition
 
-    def module_dcl(self, meta, items):
+    def module_dcl(self, items):
         name, *defs = items
         return ast.ModuleDecl(self._name(name), tuple(defs), (), self.loc.token(name))
 
-    def const_dcl(self, meta, items):
+    def const_dcl(self, items):
         type_spec, name, value = items
         return ast.ConstDecl(type_spec, self._name(name), value, (), self.loc.token(name))
 
-    def __default__(self, data, children, meta):
-        raise NotImplementedError(f"no transformer rule for '{data}'")
-
     # -- names and expressions
-    def rel_name(self, meta, items):
+    def rel_name(self, items):
         (ident,) = items
         return ast.ScopedName((str(ident),), False, self.loc.token(ident))
 
-    def abs_name(self, meta, items):
+    def abs_name(self, items):
         (ident,) = items
-        return ast.ScopedName((str(ident),), True, self._m(meta))
+        loc = self.loc.token(ident)
+        return ast.ScopedName((str(ident),), True, replace(loc, col=max(1, loc.col - 2)))
 
-    def sub_name(self, meta, items):
+    def sub_name(self, items):
         base, ident = items
-        return ast.ScopedName(base.parts + (str(ident),), base.absolute, self._m(meta))
+        end = self.loc.token(ident)
+        loc = replace(base.loc, end_line=end.end_line, end_col=end.end_col) if end.line == base.loc.line else end
+        return ast.ScopedName(base.parts + (str(ident),), base.absolute, loc)
 
-    def name_expr(self, meta, items):
+    def name_expr(self, items):
         return ast.NameRef(items[0], items[0].loc)
 
-    def _bin(op):  # noqa: N805 - builds methods
-        def method(self, meta, items):
-            return ast.Binary(op, items[0], items[1], self._m(meta))
-        return method
+    def const_expr(self, items):
+        """Apply IDL operator precedence to the flat `operand (op operand)*` list."""
+        if len(items) == 1:
+            return items[0]
+        operands: list[ast.Expr] = [items[0]]
+        pending: list[str] = []
+        for op_tok, rhs in zip(items[1::2], items[2::2]):
+            op = str(op_tok)
+            while pending and _PRECEDENCE[pending[-1]] >= _PRECEDENCE[op]:
+                _fold(operands, pending.pop())
+            pending.append(op)
+            operands.append(rhs)
+        while pending:
+            _fold(operands, pending.pop())
+        return operands[0]
 
-    bin_or, bin_xor, bin_and = _bin("|"), _bin("^"), _bin("&")
-    bin_shr, bin_shl = _bin(">>"), _bin("<<")
-    bin_add, bin_sub, bin_mul, bin_div, bin_mod = _bin("+"), _bin("-"), _bin("*"), _bin("/"), _bin("%")
-
-    def _un(op):  # noqa: N805
-        def method(self, meta, items):
-            return ast.Unary(op, items[0], self._m(meta))
+    def _un(op):  # noqa: N805 - builds methods
+        def method(self, items):
+            operand = items[-1]
+            loc = self.loc.token(items[0]) if isinstance(items[0], Token) else \
+                replace(operand.loc, col=max(1, operand.loc.col - 1))
+            return ast.Unary(op, operand, replace(loc, end_line=operand.loc.end_line, end_col=operand.loc.end_col)
+                             if loc.line == operand.loc.line else loc)
         return method
 
     neg, pos, inv = _un("-"), _un("+"), _un("~")
 
-    def int_lit(self, meta, items):
+    def int_lit(self, items):
         text = str(items[0])
         if text.lower().startswith("0x"):
             value = int(text, 16)
@@ -215,37 +211,38 @@ class _ToAst(Transformer):
             value = int(text)
         return ast.Literal("int", value, self.loc.token(items[0]))
 
-    def float_lit(self, meta, items):
+    def float_lit(self, items):
         return ast.Literal("float", float(str(items[0]).rstrip("fF")), self.loc.token(items[0]))
 
-    def fixed_lit(self, meta, items):
+    def fixed_lit(self, items):
         try:
             value = Decimal(str(items[0])[:-1])
         except InvalidOperation:
             value = Decimal(0)
         return ast.Literal("fixed", value, self.loc.token(items[0]))
 
-    def char_lit(self, meta, items):
+    def char_lit(self, items):
         text = str(items[0])
         wide = text.startswith("L")
         return ast.Literal("wchar" if wide else "char", _unescape(text[2 if wide else 1:-1]),
                            self.loc.token(items[0]))
 
-    def string_lit(self, meta, items):
+    def string_lit(self, items):
         wide = any(str(t).startswith("L") for t in items)
         value = "".join(_unescape(str(t)[2 if str(t).startswith("L") else 1:-1]) for t in items)
-        return ast.Literal("wstring" if wide else "string", value, self._m(meta))
+        return ast.Literal("wstring" if wide else "string", value, self.loc.token(items[0]))
 
-    def true_lit(self, meta, items):
-        return ast.Literal("bool", True, self._m(meta))
+    def true_lit(self, items):
+        return ast.Literal("bool", True, self.loc.token(items[0]))
 
-    def false_lit(self, meta, items):
-        return ast.Literal("bool", False, self._m(meta))
+    def false_lit(self, items):
+        return ast.Literal("bool", False, self.loc.token(items[0]))
 
     # -- types
     def _base(name):  # noqa: N805
-        def method(self, meta, items):
-            return ast.BaseType(name, self._m(meta))
+        def method(self, items):
+            first, last = self.loc.token(items[0]), self.loc.token(items[-1])
+            return ast.BaseType(name, replace(first, end_col=last.end_col) if first.line == last.line else first)
         return method
 
     t_int8, t_uint8, t_int16, t_uint16 = _base("int8"), _base("uint8"), _base("int16"), _base("uint16")
@@ -253,176 +250,191 @@ class _ToAst(Transformer):
     t_float32, t_float64, t_float128 = _base("float32"), _base("float64"), _base("float128")
     t_char, t_wchar, t_boolean, t_octet = _base("char8"), _base("char16"), _base("boolean"), _base("octet")
 
-    def named_type(self, meta, items):
+    def named_type(self, items):
         return ast.NamedType(items[0], items[0].loc)
 
-    def sequence_type(self, meta, items):
-        return ast.SequenceType(items[0], items[1] if len(items) > 1 else None, self._m(meta))
+    def sequence_type(self, items):
+        kw, elem, *bound = items
+        return ast.SequenceType(elem, bound[0] if bound else None, self.loc.token(kw))
 
-    def string_type(self, meta, items):
-        return ast.StringType(items[0] if items else None, False, self._m(meta))
+    def string_type(self, items):
+        kw, *bound = items
+        return ast.StringType(bound[0] if bound else None, False, self.loc.token(kw))
 
-    def wide_string_type(self, meta, items):
-        return ast.StringType(items[0] if items else None, True, self._m(meta))
+    def wide_string_type(self, items):
+        kw, *bound = items
+        return ast.StringType(bound[0] if bound else None, True, self.loc.token(kw))
 
-    def fixed_pt_type(self, meta, items):
-        return ast.FixedType(items[0], items[1], self._m(meta))
+    def fixed_pt_type(self, items):
+        kw, digits, scale = items
+        return ast.FixedType(digits, scale, self.loc.token(kw))
 
-    def fixed_pt_const_type(self, meta, items):
-        return ast.FixedType(None, None, self._m(meta))
+    def fixed_pt_const_type(self, items):
+        return ast.FixedType(None, None, self.loc.token(items[0]))
 
-    def map_type(self, meta, items):
-        return ast.MapType(items[0], items[1], items[2] if len(items) > 2 else None, self._m(meta))
+    def map_type(self, items):
+        kw, key, value, *bound = items
+        return ast.MapType(key, value, bound[0] if bound else None, self.loc.token(kw))
 
     # -- constructed types
-    def struct_inheritance(self, meta, items):
+    def struct_inheritance(self, items):
         return items[0]
 
-    def struct_dcl(self, meta, items):
+    def struct_dcl(self, items):
         name, *rest = items
         base = rest.pop(0) if rest and isinstance(rest[0], ast.ScopedName) else None
         return ast.StructDecl(self._name(name), base, tuple(rest), (), self.loc.token(name))
 
-    def struct_forward_dcl(self, meta, items):
-        return ast.ForwardDecl("struct", str(items[0]), (), self.loc.token(items[0]))
+    def struct_forward_dcl(self, items):
+        return ast.ForwardDecl("struct", self._name(items[0]), (), self.loc.token(items[0]))
 
-    def union_forward_dcl(self, meta, items):
-        return ast.ForwardDecl("union", str(items[0]), (), self.loc.token(items[0]))
+    def union_forward_dcl(self, items):
+        return ast.ForwardDecl("union", self._name(items[0]), (), self.loc.token(items[0]))
 
-    def value_forward_dcl(self, meta, items):
-        return ast.ForwardDecl("valuetype", str(items[0]), (), self.loc.token(items[0]))
+    def value_forward_dcl(self, items):
+        return ast.ForwardDecl("valuetype", self._name(items[0]), (), self.loc.token(items[0]))
 
-    def _is_key(self, meta) -> bool:
-        if getattr(meta, "empty", True):
-            return False
-        col = self.key_comments.get(meta.end_line)
-        return col is not None and col >= meta.end_column
-
-    def member(self, meta, items):
+    def member(self, items):
         *anns, type_spec, decls = items
-        return ast.MemberDecl(tuple(anns), type_spec, decls, self._m(meta), self._is_key(meta))
+        return ast.MemberDecl(tuple(anns), type_spec, decls, decls[0].loc, self._is_key(decls[-1]))
 
-    def state_member(self, meta, items):
+    def state_member(self, items):
         anns = self._anns(items)
         vis, type_spec, decls = items[len(anns):]
-        return ast.MemberDecl(anns, type_spec, decls, self._m(meta), self._is_key(meta), str(vis))
+        return ast.MemberDecl(anns, type_spec, decls, decls[0].loc, self._is_key(decls[-1]), str(vis))
 
-    def declarators(self, meta, items):
+    def declarators(self, items):
         return tuple(items)
 
-    def declarator(self, meta, items):
+    def declarator(self, items):
         name, *dims = items
         return ast.Declarator(self._name(name), tuple(dims), self.loc.token(name))
 
-    def fixed_array_size(self, meta, items):
+    def fixed_array_size(self, items):
         return items[0]
 
-    def union_dcl(self, meta, items):
+    def union_dcl(self, items):
         name, *rest = items
         anns = self._anns(rest)
         disc = rest[len(anns)]
         cases = tuple(rest[len(anns) + 1:])
         return ast.UnionDecl(self._name(name), disc, anns, cases, (), self.loc.token(name))
 
-    def case_label(self, meta, items):
-        return _Label(items[0])
+    def case_label(self, items):
+        return _Label(items[0], items[0].loc)
 
-    def default_label(self, meta, items):
-        return _Label(None)
+    def default_label(self, items):
+        return _Label(None, self.loc.token(items[0]))
 
-    def case(self, meta, items):
-        labels = tuple(i.expr for i in items if isinstance(i, _Label))
+    def case(self, items):
+        labels = [i for i in items if isinstance(i, _Label)]
         rest = [i for i in items if not isinstance(i, _Label)]
         anns = self._anns(rest)
         type_spec, decl = rest[len(anns):]
-        member = ast.MemberDecl(anns, type_spec, (decl,), decl.loc, self._is_key(meta))
-        return ast.CaseDecl(labels, member, self._m(meta))
+        member = ast.MemberDecl(anns, type_spec, (decl,), decl.loc, self._is_key(decl))
+        return ast.CaseDecl(tuple(lb.expr for lb in labels), member, labels[0].loc)
 
-    def enum_dcl(self, meta, items):
+    def enum_dcl(self, items):
         name, *enumerators = items
         return ast.EnumDecl(self._name(name), tuple(enumerators), (), self.loc.token(name))
 
-    def enumerator(self, meta, items):
+    def enumerator(self, items):
         anns = self._anns(items)
         name, *value = items[len(anns):]
         return ast.EnumeratorDecl(self._name(name), value[0] if value else None, anns, self.loc.token(name))
 
-    def native_dcl(self, meta, items):
-        return ast.NativeDecl(str(items[0]), (), self.loc.token(items[0]))
+    def native_dcl(self, items):
+        return ast.NativeDecl(self._name(items[0]), (), self.loc.token(items[0]))
 
-    def typedef_dcl(self, meta, items):
-        return ast.TypedefDecl(items[0], items[1], (), self._m(meta))
+    def typedef_dcl(self, items):
+        return ast.TypedefDecl(items[0], items[1], (), items[1][0].loc)
 
-    def bitset_dcl(self, meta, items):
+    def bitset_dcl(self, items):
         name, *rest = items
         base = rest.pop(0) if rest and isinstance(rest[0], ast.ScopedName) else None
         return ast.BitsetDecl(self._name(name), base, tuple(rest), (), self.loc.token(name))
 
-    def bitfield(self, meta, items):
+    def bitfield(self, items):
         anns = self._anns(items)
         width, *rest = items[len(anns):]
         type_spec = rest.pop(0) if rest and not isinstance(rest[0], Token) else None
-        return ast.BitfieldDecl(width, type_spec, tuple(str(t) for t in rest), anns, self._m(meta))
+        return ast.BitfieldDecl(width, type_spec, tuple(self._name(t) for t in rest), anns, width.loc)
 
-    def bitmask_dcl(self, meta, items):
+    def bitmask_dcl(self, items):
         name, *values = items
         return ast.BitmaskDecl(self._name(name), tuple(values), (), self.loc.token(name))
 
-    def bit_value(self, meta, items):
+    def bit_value(self, items):
         anns = self._anns(items)
         name = items[len(anns)]
         return ast.BitValueDecl(self._name(name), anns, self.loc.token(name))
 
     # -- value types (RTI dialect)
-    def value_dcl(self, meta, items):
+    def value_dcl(self, items):
         name, *rest = items
         base = rest.pop(0) if rest and isinstance(rest[0], ast.ScopedName) else None
         members = tuple(r for r in rest if isinstance(r, ast.MemberDecl))
         exports = tuple(r for r in rest if not isinstance(r, ast.MemberDecl))
         return ast.StructDecl(self._name(name), base, members, (), self.loc.token(name), "valuetype", exports)
 
-    def value_export(self, meta, items):
+    def value_export(self, items):
         *anns, definition = items
         return replace(definition, annotations=tuple(anns))
 
     # -- annotations
-    def annotation_appl(self, meta, items):
+    def annotation_appl(self, items):
         name, *args = items
+        loc = replace(name.loc, col=max(1, name.loc.col - 1))  # include the '@'
         return ast.AnnotationAppl("::".join(name.parts) if not name.absolute else str(name),
-                                  args[0] if args else (), self._m(meta))
+                                  args[0] if args else (), loc)
 
-    def default_name(self, meta, items):
-        return ast.ScopedName(("default",), False, self._m(meta))
+    def default_name(self, items):
+        return ast.ScopedName(("default",), False, self.loc.token(items[0]))
 
-    def annotation_args(self, meta, items):
+    def annotation_args(self, items):
         if len(items) == 1 and not isinstance(items[0], tuple):
             return ((None, items[0]),)
         return tuple(items)
 
-    def annotation_param(self, meta, items):
+    def annotation_param(self, items):
         return (str(items[0]), items[1])
 
-    def annotation_dcl(self, meta, items):
+    def annotation_dcl(self, items):
         return ast.AnnotationDecl(str(items[1]), self.loc.token(items[1]))
 
-    def annotation_member(self, meta, items):
+    def annotation_member(self, items):
         return None
 
-    def annotation_export(self, meta, items):
+    def annotation_export(self, items):
         return None
 
-    def any_type(self, meta, items):
+    def any_type(self, items):
         return None
 
-    def pragma_keylist(self, meta, items):
-        _kw, type_name, *members = items
-        return ast.KeylistPragma(type_name, tuple(members), self._m(meta))
+    def pragma_keylist(self, items):
+        kw, type_name, *members = items
+        return ast.KeylistPragma(type_name, tuple(members), self.loc.token(kw))
 
-    def keylist_member(self, meta, items):
-        return (".".join(str(t) for t in items), self._m(meta))
+    def keylist_member(self, items):
+        return (".".join(str(t) for t in items), self.loc.token(items[0]))
 
 
-# Big families of tokens are named as one thing: (tokens that show the family, its members, name).
+_PRECEDENCE = {"|": 1, "^": 2, "&": 3, ">>": 4, "<<": 4, "+": 5, "-": 5, "*": 6, "/": 6, "%": 6}
+
+
+def _fold(operands: list[ast.Expr], op: str) -> None:
+    """Replace the last two operands with their left-associative combination."""
+    right = operands.pop()
+    left = operands.pop()
+    loc = left.loc
+    if right.loc.line == loc.line and right.loc.file == loc.file:
+        loc = replace(loc, end_line=right.loc.end_line, end_col=right.loc.end_col)
+    operands.append(ast.Binary(op, left, right, loc))
+
+
+_TRANSFORMER = _ToAst()
+
+
 _TOKEN_FAMILIES = (
     ({"'struct'", "'module'", "'const'"},
      {"'#pragma keylist'", "'@'", "'@annotation'", "'bitmask'", "'bitset'", "'const'", "'enum'", "'module'",
@@ -523,7 +535,9 @@ def _syntax_error(exc: UnexpectedInput, text: str, locator: _Locator, sink: Diag
             sink.error("RG0201", f"'{found}' is a reserved word in IDL and cannot be used as a name", loc,
                        f"rename it, e.g. '{found}_'")
             return
-        sink.error("RG0201", f"unexpected '{found}'; expected {_describe_expected(expected)}", loc)
+        stray = found == "}" and _unclosed_brace(text[:tok.start_pos or 0]) is None
+        sink.error("RG0201", f"unexpected '{found}'; expected {_describe_expected(expected)}", loc,
+                   "this '}' has no matching '{'" if stray else None)
         return
     # End of input.
     expected = _viable(exc, getattr(exc, "expected", ()))
@@ -555,22 +569,14 @@ def parse(pre: PreprocessResult, sink: DiagnosticSink) -> ast.Specification | No
     """Parse preprocessed text; on a syntax error report it and return None."""
     locator = _Locator(pre)
     parser = _parser()
-    _key_comments.clear()
+    _TRANSFORMER.loc, _TRANSFORMER.key_comments, _TRANSFORMER.sink = locator, pre.key_comments, sink
     try:
-        tree = parser.parse(pre.text)
+        definitions = parser.parse(pre.text)
     except UnexpectedInput as exc:
         _syntax_error(exc, pre.text, locator, sink)
         return None
     except RecursionError:
         sink.error("RG0201", "input is nested too deeply",
                    SourceLoc(pre.files[0] if pre.files else "<input>", 1, 1))
-        return None
-    key_comments = dict(_key_comments)
-    try:
-        definitions = _ToAst(locator, key_comments, sink).transform(tree)
-    except (VisitError, RecursionError) as exc:  # never let a transformer problem escape raw
-        sink.error("RG0299", f"internal error while reading the syntax tree: {getattr(exc, 'orig_exc', exc)}",
-                   SourceLoc(pre.files[0] if pre.files else "<input>", 1, 1),
-                   "please report this with the input file")
         return None
     return ast.Specification(tuple(d for d in definitions if d is not None), tuple(pre.files))

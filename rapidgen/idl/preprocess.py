@@ -35,6 +35,8 @@ class PreprocessResult:
     line_map: list[tuple[str, int]]
     sources: dict[str, str] = field(default_factory=dict)  # display path -> text
     files: list[str] = field(default_factory=list)  # display paths, in reading order
+    # (file, line) -> column of a trailing `//@key` comment (RTI's key marker)
+    key_comments: dict[tuple[str, int], int] = field(default_factory=dict)
 
     def origin(self, out_line: int) -> tuple[str, int]:
         """(file, line) of a 1-based output line."""
@@ -78,6 +80,7 @@ class Preprocessor:
         self.line_map: list[tuple[str, int]] = []
         self.sources: dict[str, str] = {}
         self.files: list[str] = []
+        self.key_comments: dict[tuple[str, int], int] = {}
         self._done: set[str] = set()
         self._stack: list[str] = []  # real paths being read, for cycle detection
 
@@ -85,7 +88,8 @@ class Preprocessor:
     def run(self, paths: list[str]) -> PreprocessResult:
         for p in paths:
             self._read_file(p, None)
-        return PreprocessResult("\n".join(self.out) + "\n", self.line_map, self.sources, self.files)
+        return PreprocessResult("\n".join(self.out) + "\n", self.line_map, self.sources, self.files,
+                                self.key_comments)
 
     def _load(self, path: str, shown: str, at: SourceLoc | None) -> str | None:
         where = at or SourceLoc(shown, 1, 1)
@@ -115,7 +119,8 @@ class Preprocessor:
             text = data.decode("utf-8")
         except UnicodeDecodeError as exc:
             line = data.count(b"\n", 0, exc.start) + 1
-            col = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
+            # Columns count characters, as everywhere else (the line's start decodes fine).
+            col = len(data[data.rfind(b"\n", 0, exc.start) + 1:exc.start].decode("utf-8")) + 1
             self.sink.error("RG0003", f"file is not valid UTF-8 (byte 0x{data[exc.start]:02x})",
                             SourceLoc(shown, line, col, line, col + 1),
                             "re-save the file as UTF-8")
@@ -187,7 +192,9 @@ class Preprocessor:
                 elif kept:
                     self._emit(kept, file, lineno)
                 continue
-            in_comment, code = _scan_line(raw, in_comment, file, lineno)
+            in_comment, key_col = _scan_line(raw, in_comment, file, lineno)
+            if active and key_col is not None:
+                self.key_comments[(file, lineno)] = key_col
             if active:
                 self._emit(self._expand(raw) if self._has_values() else raw, file, lineno)
             else:
@@ -345,32 +352,40 @@ def _segments(line: str):
         yield line[start:], True
 
 
+_INTERESTING = re.compile(r'["\']|//|/\*')
+_KEY_DIRECTIVE = re.compile(r"//\s*@key\b")
+
+
 def _scan_line(line: str, in_comment: SourceLoc | None, file: str, lineno: int):
-    """Track block-comment state across a line; returns (state after, code seen)."""
+    """Track block-comment state across a line and find a trailing `//@key` directive.
+
+    Returns (comment state after the line, 1-based column of a `//@key` comment or None).
+    Jumps between quotes and comment markers with a regex: most lines have none.
+    """
     i, n = 0, len(line)
-    code = False
     while i < n:
         if in_comment is not None:
             j = line.find("*/", i)
             if j < 0:
-                return in_comment, code
+                return in_comment, None
             in_comment, i = None, j + 2
             continue
-        c = line[i]
-        if c in "\"'":
-            j = i + 1
-            while j < n and line[j] != c:
-                j += 2 if line[j] == "\\" else 1
-            i, code = j + 1, True
-        elif line.startswith("//", i):
-            return None, code
-        elif line.startswith("/*", i):
+        m = _INTERESTING.search(line, i)
+        if m is None:
+            return None, None
+        i = m.start()
+        tok = m.group(0)
+        if tok == "//":
+            return None, (i + 1 if _KEY_DIRECTIVE.match(line, i) else None)
+        if tok == "/*":
             in_comment = SourceLoc(file, lineno, i + 1, lineno, i + 3)
             i += 2
-        else:
-            code = code or not c.isspace()
-            i += 1
-    return in_comment, code
+            continue
+        j = i + 1  # a string or char literal: skip to its closing quote
+        while j < n and line[j] != tok:
+            j += 2 if line[j] == "\\" else 1
+        i = j + 1
+    return in_comment, None
 
 
 def _strip_comments(text: str) -> str:
@@ -407,6 +422,8 @@ def _eval_condition(expr: str, macros: dict[str, str], depth: int = 0) -> int:
         tok = m.group(0)
         if tok.isspace():
             continue
+        if tok[0].isdigit() and not _INT.fullmatch(tok):
+            raise ValueError(f"invalid integer '{tok}'")
         if _INT.fullmatch(tok):
             digits = tok.rstrip("uUlL")
             tokens.append(str(int(digits, 0) if not re.fullmatch(r"0[0-7]+", digits) else int(digits, 8)))
@@ -421,11 +438,58 @@ def _eval_condition(expr: str, macros: dict[str, str], depth: int = 0) -> int:
         raise ValueError("empty expression")
     if "?" in py or ":" in py:
         raise ValueError("the ?: operator is not supported")
-    tree = ast.parse(py, mode="eval")
+    try:
+        tree = ast.parse(py, mode="eval")
+    except (SyntaxError, MemoryError):
+        raise ValueError(f"malformed expression '{expr.strip()}'") from None
     for node in ast.walk(tree):
         if not isinstance(node, _ALLOWED):
             raise ValueError(f"unsupported syntax in '{expr.strip()}'")
-    return int(eval(compile(tree, "<#if>", "eval"), {"__builtins__": {}}, {}))  # checked AST
+    return _c_value(tree.body)
+
+
+_COMPARE = {ast.Eq: lambda a, b: a == b, ast.NotEq: lambda a, b: a != b, ast.Lt: lambda a, b: a < b,
+            ast.LtE: lambda a, b: a <= b, ast.Gt: lambda a, b: a > b, ast.GtE: lambda a, b: a >= b}
+
+
+def _c_value(node: ast.expr) -> int:
+    """Evaluate a checked #if AST with C semantics: 0/1 logic, truncating division, 64-bit range."""
+    if isinstance(node, ast.Constant):
+        return int(node.value)
+    if isinstance(node, ast.UnaryOp):
+        v = _c_value(node.operand)
+        if isinstance(node.op, ast.Not):
+            return int(not v)
+        return ~v if isinstance(node.op, ast.Invert) else -v if isinstance(node.op, ast.USub) else v
+    if isinstance(node, ast.BoolOp):  # short-circuit, like C
+        if isinstance(node.op, ast.And):
+            return int(all(_c_value(v) for v in node.values))
+        return int(any(_c_value(v) for v in node.values))
+    if isinstance(node, ast.Compare):  # C compares left to right: a < b < c is (a < b) < c
+        left = _c_value(node.left)
+        for op, right in zip(node.ops, node.comparators):
+            left = int(_COMPARE[type(op)](left, _c_value(right)))
+        return left
+    if isinstance(node, ast.BinOp):
+        a, b = _c_value(node.left), _c_value(node.right)
+        op = node.op
+        if isinstance(op, (ast.LShift, ast.RShift)) and not 0 <= b < 64:
+            raise ValueError(f"shift count {b} is outside 0..63")
+        if isinstance(op, (ast.FloorDiv, ast.Mod)) and b == 0:
+            raise ValueError("division by zero")
+        if isinstance(op, ast.FloorDiv):
+            q = abs(a) // abs(b)
+            result = q if (a >= 0) == (b >= 0) else -q
+        elif isinstance(op, ast.Mod):
+            result = abs(a) % abs(b) * (1 if a >= 0 else -1)
+        else:
+            result = {ast.Add: int.__add__, ast.Sub: int.__sub__, ast.Mult: int.__mul__,
+                      ast.LShift: int.__lshift__, ast.RShift: int.__rshift__, ast.BitAnd: int.__and__,
+                      ast.BitOr: int.__or__, ast.BitXor: int.__xor__}[type(op)](a, b)
+        if not -2**63 <= result < 2**64:
+            raise ValueError("integer overflow (the value does not fit in 64 bits)")
+        return result
+    raise ValueError("unsupported syntax")
 
 
 def preprocess(paths: list[str], include_dirs: list[str], sink: DiagnosticSink,

@@ -75,6 +75,9 @@ class Checked:
         return name in self.values
 
 
+_NONE = Checked((), {})
+
+
 class AnnotationChecker:
     def __init__(self, sink: DiagnosticSink, evaluator: ConstEvaluator) -> None:
         self.sink = sink
@@ -83,6 +86,8 @@ class AnnotationChecker:
 
     def check(self, anns: tuple[ast.AnnotationAppl, ...], where: str, lookup: NameLookup,
               value_target: Callable[[], Target] | None = None) -> Checked:
+        if not anns:  # the common case: nothing to check
+            return _NONE
         out: list[ir.Annotation] = []
         values: dict[str, dict[str, object]] = {}
         for appl in anns:

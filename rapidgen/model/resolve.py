@@ -46,7 +46,7 @@ class Resolver:
         self.modules: dict[str, ir.Module] = {}
         self.pragmas: list[tuple[ast.KeylistPragma, tuple[str, ...]]] = []
         self.done: dict[str, ir.Declaration | None] = {}
-        self.busy: set[str] = set()
+        self.busy: dict[str, None] = {}  # being resolved, in order (an ordered set)
         self.evaluator = ConstEvaluator(sink)
         self.annotations = AnnotationChecker(sink, self.evaluator)
 
@@ -84,8 +84,12 @@ class Resolver:
                 self._add(_Sym("union", _join(scope + (d.name,)), d, scope + (d.name,), d.loc))
             elif isinstance(d, ast.EnumDecl):
                 self._add(_Sym("enum", _join(scope + (d.name,)), d, scope, d.loc))
+                seen: set[str] = set()
                 for i, e in enumerate(d.enumerators):
                     enum_name = _join(scope + (d.name,))
+                    if e.name in seen:
+                        continue  # reported once, as a duplicate enumerator, by _resolve_enum
+                    seen.add(e.name)
                     # IDL puts enumerators in the enclosing scope; E::X is accepted too.
                     self._add(_Sym("enumerator", _join(scope + (e.name,)), e, scope, e.loc, extra=(enum_name, i)))
                     self.syms.setdefault(_join(scope + (d.name, e.name)),
@@ -133,7 +137,10 @@ class Resolver:
                 enum = self.declaration(self.syms[sym.extra[0]])  # type: ignore[index]
                 if not isinstance(enum, ir.Enum):
                     return None
-                e = enum.enumerators[sym.extra[1]]  # type: ignore[index]
+                # By name: enumerators with errors are left out of the IR, so indexes shift.
+                e = next((x for x in enum.enumerators if x.name == sym.decl.name), None)  # type: ignore[attr-defined]
+                if e is None:  # this enumerator's own error is already reported
+                    return None
                 return Typed("enum", ir.EnumValue(enum.scoped_name, e.name, e.value))
             if sym.kind != "const":
                 self.sink.error("RG0405", f"'{name}' is a {sym.kind}, not a constant", name.loc)
@@ -245,15 +252,16 @@ class Resolver:
             return self.done[sym.scoped]
         if sym.scoped in self.busy:
             what = "inheritance" if sym.kind in ("struct", "bitset") else "definition"
-            self.sink.error("RG0302", f"circular {what}: '{sym.scoped}' depends on itself", sym.loc)
+            chain = list(self.busy)[list(self.busy).index(sym.scoped):] + [sym.scoped]
+            self.sink.error("RG0302", f"circular {what}: {' -> '.join(chain)}", sym.loc)
             self.done[sym.scoped] = None
             return None
-        self.busy.add(sym.scoped)
+        self.busy[sym.scoped] = None
         try:
             method = getattr(self, f"_resolve_{sym.kind}", None)
             result = method(sym) if method else None
         finally:
-            self.busy.discard(sym.scoped)
+            self.busy.pop(sym.scoped, None)
         self.done.setdefault(sym.scoped, result)
         return self.done[sym.scoped]
 
@@ -318,7 +326,11 @@ class Resolver:
                 if isinstance(base, ir.Struct):
                     base_name = base.scoped_name
                     inherited = self._all_members(base)
-                elif sym.scoped not in self.done:  # not already reported as a cycle
+                elif bsym.kind == "forward":
+                    self.sink.error("RG0309", f"'{bsym.scoped}' is declared but never defined", d.base.loc,
+                                    f"define it after its forward declaration at {bsym.loc}")
+                elif sym.scoped not in self.done and not (base is None and bsym.kind == "struct"):
+                    # (a struct that resolves to nothing is part of a cycle, already reported)
                     kind = bsym.kind if base is None else base.kind
                     self.sink.error("RG0301", f"base of '{sym.scoped}' must be a struct or valuetype, "
                                     f"but '{d.base}' is {_article(kind)}", d.base.loc)
@@ -462,6 +474,8 @@ class Resolver:
             base = self.declaration(bsym) if bsym else None
             if bsym is None:
                 self._unknown(d.base, sym.scope, "base bitset", frozenset({"bitset"}))
+            elif base is None and bsym.kind == "bitset":
+                pass  # part of an inheritance cycle, already reported
             elif not isinstance(base, ir.Bitset):
                 self.sink.error("RG0301", f"base of bitset '{sym.scoped}' must be a bitset", d.base.loc)
             else:

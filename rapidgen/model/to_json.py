@@ -75,4 +75,8 @@ def model_to_dict(model: ir.Model, loc: bool = True) -> dict:
 
 
 def model_to_json(model: ir.Model, loc: bool = True) -> str:
-    return json.dumps(model_to_dict(model, loc), indent=2, ensure_ascii=False) + "\n"
+    """One declaration per line: readable diffs, and the C JSON encoder (indent= is pure Python)."""
+    data = model_to_dict(model, loc)
+    decls = ",\n".join("    " + json.dumps(d, ensure_ascii=False) for d in data["declarations"])
+    return ('{\n  "modules": ' + json.dumps(data["modules"], ensure_ascii=False) +
+            ',\n  "declarations": [\n' + decls + ("\n" if decls else "") + "  ]\n}\n")

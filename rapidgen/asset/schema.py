@@ -1,0 +1,151 @@
+"""JSON Schema check of a descriptor, with every error turned into a located diagnostic.
+
+jsonschema's own messages quote whole instances and schema fragments; operators need
+"unknown key 'rat' (did you mean 'rate'?)" at the key's line and column instead. Each
+validator keyword we use has a translation below; the rest fall back to a short
+generic message, never the raw text.
+"""
+from __future__ import annotations
+
+import json
+from functools import lru_cache
+from importlib import resources
+
+import jsonschema
+from jsonschema.exceptions import ValidationError
+
+from rapidgen.asset.yamlread import YamlDoc
+from rapidgen.diagnostics import DiagnosticSink, did_you_mean
+
+_NAMES = {dict: "a mapping", list: "a list", str: "a string", bool: "true or false",
+          int: "a number", float: "a number", type(None): "nothing"}
+_SCHEMA_TYPES = {"object": "a mapping", "array": "a list", "string": "a string",
+                 "boolean": "true or false", "integer": "a whole number", "number": "a number",
+                 "null": "nothing"}
+
+
+@lru_cache(maxsize=1)
+def schema() -> dict:
+    text = resources.files("rapidgen.asset").joinpath("asset.schema.json").read_text("utf-8")
+    return json.loads(text)
+
+
+@lru_cache(maxsize=1)
+def _validator() -> jsonschema.Draft202012Validator:
+    return jsonschema.Draft202012Validator(schema())
+
+
+def _what(path) -> str:
+    """A readable name for a path: telemetry[2].rate."""
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
+    return out or "the descriptor"
+
+
+def _shown(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (dict, list)) or value is None:
+        return _NAMES[type(value)]
+    text = str(value)
+    return repr(text if len(text) <= 40 else text[:37] + "...") if isinstance(value, str) else text
+
+
+def _leaves(errors):
+    """Descend into if/then and allOf wrappers: report the innermost errors."""
+    for e in errors:
+        if e.validator in ("anyOf", "oneOf") and e.context and \
+                not all(set(s) == {"required"} for s in e.validator_value):
+            # anyOf over (enum | string) never fails; other anyOfs: best branch
+            best = jsonschema.exceptions.best_match(e.context)
+            yield from _leaves([best]) if best is not None else [e]
+        else:
+            yield e
+
+
+def check_schema(doc: YamlDoc, sink: DiagnosticSink) -> bool:
+    """True when the document satisfies the schema; diagnostics for every violation."""
+    if doc.data is None:
+        sink.error("RG1020", "the descriptor is empty", doc.loc(()),
+                   "start with 'version: 1' and an 'asset:' section")
+        return False
+    errors = sorted(_validator().iter_errors(doc.data), key=lambda e: list(map(str, e.absolute_path)))
+    seen: set[tuple] = set()
+    for err in _leaves(errors):
+        for code, msg, loc, hint in _translate(err, doc):
+            key = (code, msg, loc.line, loc.col)
+            if key not in seen:
+                seen.add(key)
+                sink.error(code, msg, loc, hint)
+    return not errors
+
+
+def _translate(e: ValidationError, doc: YamlDoc):
+    path = tuple(e.absolute_path)
+    where = _what(path)
+    inst, kw, val, sch = e.instance, e.validator, e.validator_value, e.schema
+    loc = doc.loc(path)
+    hint = sch.get("x-hint") if isinstance(sch, dict) else None
+    if kw == "required":
+        missing = [k for k in val if isinstance(inst, dict) and k not in inst]
+        for k in missing:
+            yield ("RG1020", f"{where} needs '{k}'" if path else f"the descriptor needs '{k}'",
+                   doc.key_loc(path) if path else loc, _required_hint(k))
+    elif kw == "additionalProperties":
+        allowed = list(sch.get("properties", {}))
+        for k in (k for k in inst if k not in allowed):
+            yield ("RG1021", f"unknown key '{k}' in {where}", doc.key_loc(path + (k,)),
+                   did_you_mean(k, allowed) or f"allowed here: {', '.join(allowed)}")
+    elif kw == "type":
+        want = " or ".join(_SCHEMA_TYPES.get(t, t) for t in (val if isinstance(val, list) else [val]))
+        got = _NAMES.get(type(inst), "a value")
+        if not isinstance(inst, (dict, list)) and inst is not None:
+            got += f" ({_shown(inst)})"
+        if val == "string" and isinstance(inst, (int, float, bool)):
+            hint = f"quote it: '{_shown(inst)}'"
+        yield "RG1022", f"{where} must be {want}, not {got}", loc, hint
+    elif kw in ("enum", "const"):
+        options = [str(v) for v in (val if kw == "enum" else [val])]
+        close = did_you_mean(inst, options) if isinstance(inst, str) else None
+        listed = " or ".join(options) if len(options) < 3 else "one of: " + ", ".join(options)
+        yield "RG1023", f"{where} cannot be {_shown(inst)}", loc, close or f"expected {listed}"
+    elif kw in ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum"):
+        rel = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">", "exclusiveMaximum": "<"}[kw]
+        yield "RG1024", f"{where} is {_shown(inst)}; it must be {rel} {val}", loc, hint
+    elif kw == "pattern":
+        yield "RG1025", f"{where} {_shown(inst)} is not valid here", loc, hint
+    elif kw in ("minItems", "maxItems", "minLength", "maxLength", "minProperties", "uniqueItems"):
+        yield "RG1026", _size_message(kw, val, where, inst), loc, hint
+    elif kw == "anyOf" and all(set(s) == {"required"} for s in val):
+        names = [s["required"][0] for s in val]
+        yield ("RG1020", f"{where} needs at least one of: {', '.join(names)}",
+               doc.key_loc(path) if path else loc, None)
+    else:  # a keyword the schema may grow later: short and located, never jsonschema's dump
+        yield "RG1029", f"{where} is not valid here ({kw})", loc, hint
+
+
+def _size_message(kw: str, val, where: str, inst) -> str:
+    if kw == "minItems":
+        return f"{where} needs at least {val} item{'s' * (val != 1)}"
+    if kw == "maxItems":
+        return f"{where} has {len(inst)} items; at most {val} are allowed"
+    if kw == "minLength":
+        return f"{where} must not be empty"
+    if kw == "maxLength":
+        return f"{where} is longer than {val} characters"
+    if kw == "minProperties":
+        return f"{where} must not be empty"
+    dupes = sorted({str(x) for x in inst if inst.count(x) > 1}) if isinstance(inst, list) else []
+    return f"{where} repeats {', '.join(repr(d) for d in dupes)}" if dupes else f"{where} has repeated items"
+
+
+_REQUIRED_HINTS = {
+    "version": "add 'version: 1' at the top",
+    "type": "a RAPID DataType such as RAPID_DOUBLE, RAPID_STRING or RAPID_VEC3d",
+    "kind": "one of position, joint, agent, image, text, custom",
+}
+
+
+def _required_hint(key: str) -> str | None:
+    return _REQUIRED_HINTS.get(key)

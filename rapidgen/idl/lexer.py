@@ -1,0 +1,71 @@
+"""A fast lexer for the IDL grammar, plugged into lark's LALR parser.
+
+Lark's contextual lexer tries each parser state's terminals in turn; for IDL one master
+regex (alternatives in a fixed order) plus a keyword table after each identifier match
+is about twice as fast. Keywords are reserved everywhere, as IDL 4.2 (7.2.4) says: a
+keyword used as a name is a syntax error with its own message (parse.py).
+"""
+from __future__ import annotations
+
+import re
+from typing import Iterator
+
+from lark.exceptions import UnexpectedCharacters
+from lark.lexer import Lexer, PatternStr, Token
+
+# Regex terminals tried before punctuation, in this order: comments before '/', wide
+# literals before identifiers (L'x'), fixed before float before integer literals.
+_ORDER = ("WS", "LINE_COMMENT", "BLOCK_COMMENT", "PRAGMA_KEYLIST", "ANNOTATION_KW", "WCHAR_LIT",
+          "WSTRING_LIT", "FIXED_LIT", "FLOAT_LIT", "INT_LIT", "CHAR_LIT", "STRING_LIT", "IDENT")
+_WORD_ALTERNATION = re.compile(r"\(\?:([A-Za-z_][A-Za-z0-9_|]*)\)")
+
+
+class IdlLexer(Lexer):
+    def __init__(self, lexer_conf) -> None:
+        self.ignore = frozenset(lexer_conf.ignore)
+        self.keywords: dict[str, str] = {}
+        ordered: list[tuple[str, str]] = []
+        rest: list[tuple[int, str, str]] = []
+        by_name = {t.name: t for t in lexer_conf.terminals}
+        for term in lexer_conf.terminals:
+            pattern = term.pattern
+            if isinstance(pattern, PatternStr) and pattern.value.isidentifier():
+                self.keywords[pattern.value] = term.name
+                continue
+            words = _WORD_ALTERNATION.fullmatch(pattern.to_regexp())
+            if words and not isinstance(pattern, PatternStr):
+                for word in words.group(1).split("|"):
+                    self.keywords[word] = term.name
+                continue
+            if term.name not in _ORDER:
+                rest.append((pattern.max_width, term.name, pattern.to_regexp()))
+        for name in _ORDER:
+            if name in by_name:
+                ordered.append((name, by_name[name].pattern.to_regexp()))
+        # Punctuation: longest first, so '::' wins over ':' and '>>' over '>'.
+        ordered += [(name, regex) for _, name, regex in sorted(rest, key=lambda r: (-r[0], r[1]))]
+        self.master = re.compile("|".join(f"(?P<{name}>{regex})" for name, regex in ordered))
+
+    def lex(self, text: str) -> Iterator[Token]:  # lark's custom-lexer interface (whole text)
+        match = self.master.match
+        ignore, keywords = self.ignore, self.keywords
+        line, line_start, pos, n = 1, 0, 0, len(text)
+        while pos < n:
+            m = match(text, pos)
+            if m is None:
+                raise UnexpectedCharacters(text, pos, line, pos - line_start + 1)
+            kind = m.lastgroup
+            end = m.end()
+            if kind in ignore:
+                newlines = text.count("\n", pos, end)
+                if newlines:
+                    line += newlines
+                    line_start = text.rfind("\n", pos, end) + 1
+                pos = end
+                continue
+            value = m.group()
+            if kind == "IDENT":
+                kind = keywords.get(value, "IDENT")
+            col = pos - line_start + 1
+            yield Token(kind, value, pos, line, col, line, col + end - pos, end)  # type: ignore[arg-type]
+            pos = end
