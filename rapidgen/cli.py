@@ -40,10 +40,34 @@ def build_parser() -> argparse.ArgumentParser:
     ir_p.add_argument("--no-loc", action="store_true", help="omit source locations from the JSON")
     ir_p.add_argument("-o", "--output", metavar="FILE", help="write the JSON to FILE instead of stdout")
 
+    gen_p = sub.add_parser("generate", help="generate bindings from an asset descriptor or IDL files")
+    gen_p.add_argument("inputs", nargs="+", metavar="ASSET.yaml|FILE.idl")
+    _common_idl_args(gen_p)
+    _diag_args(gen_p)
+    gen_p.add_argument("--lang", default="python", metavar="LANG[,LANG...]",
+                       help="targets to generate (default: python)")
+    gen_p.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder")
+    gen_p.add_argument("--package", metavar="NAME", help="package/crate name (default: from the asset or 'rapid')")
+
+    chk_p = sub.add_parser("check", help="regenerate the project's targets in memory and report stale output")
+    chk_p.add_argument("--project", default="rapidgen.yaml", metavar="FILE", help="project file (default: rapidgen.yaml)")
+    chk_p.add_argument("--fix", action="store_true", help="rewrite stale output instead of failing")
+    _diag_args(chk_p)
+
     sum_p = sub.add_parser("summary", help="parse IDL files and print a one-line-per-module summary")
     sum_p.add_argument("files", nargs="+", metavar="FILE")
     _common_idl_args(sum_p)
     _diag_args(sum_p)
+
+    val_p = sub.add_parser("validate", help="check asset descriptors against the schema and the RAPID IDL")
+    val_p.add_argument("files", nargs="+", metavar="ASSET.yaml")
+    val_p.add_argument("--rapid", metavar="DIR", help="folder of the RAPID base IDL (default: the "
+                       "descriptor's idl.rapid, else the nearest specs/rapid above it)")
+    _diag_args(val_p)
+    desc_p = sub.add_parser("describe", help="print an asset's subsystems, command dictionary and telemetry")
+    desc_p.add_argument("file", metavar="ASSET.yaml")
+    desc_p.add_argument("--rapid", metavar="DIR", help="folder of the RAPID base IDL")
+    _diag_args(desc_p)
     return parser
 
 
@@ -115,7 +139,83 @@ def _cmd_summary(args: argparse.Namespace) -> int:
     return 0
 
 
-_COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary}
+def _cmd_validate(args: argparse.Namespace) -> int:
+    from rapidgen.asset.describe import run_validate
+    return run_validate(args.files, args.rapid, _sink(args), report)
+
+
+def _cmd_describe(args: argparse.Namespace) -> int:
+    from rapidgen.asset.describe import run_describe
+    return run_describe(args.file, args.rapid, _sink(args), report)
+
+
+def _langs(text: str) -> list[str]:
+    return [x.strip() for x in text.split(",") if x.strip()]
+
+
+def _cmd_generate(args: argparse.Namespace) -> int:
+    from rapidgen.generate import load_inputs, render
+    from rapidgen.writer import write_tree
+
+    sink = _sink(args)
+    inputs = load_inputs(args.inputs, args.include, sink)
+    files = render(inputs, _langs(args.lang), sink, args.package) if inputs else None
+    report(sink)
+    if files is None:
+        return 1
+    result = write_tree(args.output, files)
+    print(f"{args.output}: {len(result.written)} written, {len(result.unchanged)} unchanged"
+          + (f", {len(result.removed)} removed" if result.removed else "")
+          + (f", {len(result.kept_user)} user files kept" if result.kept_user else ""))
+    for rel in result.kept_edited:
+        print(f"  kept {rel}: no longer generated, but edited by hand", file=sys.stderr)
+    return 0
+
+
+def _cmd_check(args: argparse.Namespace) -> int:
+    from rapidgen.generate import load_inputs, render
+    from rapidgen.project import load_project
+    from rapidgen.writer import compare_tree, write_tree
+
+    sink = _sink(args)
+    targets = load_project(args.project, sink)
+    if targets is None:
+        report(sink)
+        return 1
+    stale = 0
+    for t in targets:
+        inputs = load_inputs(list(t.inputs), list(t.include), sink)
+        if inputs is not None:
+            inputs.source = t.source
+        files = render(inputs, list(t.lang), sink, t.package) if inputs else None
+        if files is None:
+            continue
+        if args.fix:
+            result = write_tree(t.out, files)
+            print(f"{t.name}: {len(result.written)} written, {len(result.removed)} removed")
+            continue
+        diff = compare_tree(t.out, files)
+        if diff.stale:
+            stale += 1
+            print(f"{t.name}: stale ({t.out})")
+            for label, items in (("missing", diff.missing), ("differs", diff.differs),
+                                 ("no longer generated", diff.extra)):
+                for item in items:
+                    print(f"  {label}: {item}")
+        else:
+            print(f"{t.name}: up to date ({len(files)} files)")
+    report(sink)
+    if sink.has_errors:
+        return 1
+    if stale:
+        print(f"rapidgen check: {stale} target{'s' * (stale != 1)} stale; run `rapidgen check --fix`",
+              file=sys.stderr)
+        return 1
+    return 0
+
+
+_COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary, "validate": _cmd_validate, "describe": _cmd_describe,
+             "generate": _cmd_generate, "check": _cmd_check}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

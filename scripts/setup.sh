@@ -19,4 +19,21 @@ if [ ! -f "$STAMP" ] || [ "$(cat "$STAMP")" != "$WANT" ]; then
     "$VENV/bin/python" -m pip install --quiet -e "$ROOT[test]" >&2
     echo "$WANT" > "$STAMP"
 fi
+# Debian packages (scripts/apt-packages.txt), installed only when one is missing.
+# RAPIDGEN_SKIP_APT=1 skips this (e.g. a machine without root, for the pure-Python tiers).
+if [ -z "${RAPIDGEN_SKIP_APT:-}" ] && command -v dpkg-query >/dev/null; then
+    mapfile -t PKGS < <(grep -v '^\s*#' "$ROOT/scripts/apt-packages.txt" | grep -v '^\s*$')
+    MISSING=()
+    for p in "${PKGS[@]}"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || MISSING+=("$p")
+    done
+    if [ "${#MISSING[@]}" -gt 0 ]; then
+        echo "setup: installing Debian packages: ${MISSING[*]}" >&2
+        SUDO=""
+        [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+        export DEBIAN_FRONTEND=noninteractive
+        $SUDO apt-get update -qq >&2 || true
+        $SUDO apt-get install -y -qq --no-install-recommends "${MISSING[@]}" >&2
+    fi
+fi
 export PATH="$VENV/bin:$PATH"

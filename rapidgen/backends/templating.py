@@ -1,0 +1,41 @@
+"""The one Jinja2 environment factory: strict, whitespace-controlled, filters in one place.
+
+Templates live in rapidgen/templates/<target>/ (inside the package so that a plain
+`pip install .` ships them), one per artifact, `<artifact>.<ext>.j2`, plus `_macros.j2`.
+They only print what the view layer decided: loops, precomputed booleans, macros.
+"""
+from __future__ import annotations
+
+import functools
+import json
+
+import jinja2
+
+
+def _xml_attr(value: object) -> str:
+    return jinja2.utils.markupsafe.escape(str(value))
+
+
+FILTERS = {
+    "json": lambda v: json.dumps(v, ensure_ascii=False),
+    "pyrepr": repr,
+    "xml_attr": _xml_attr,
+}
+
+
+@functools.lru_cache(maxsize=None)
+def environment(target: str) -> jinja2.Environment:
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("rapidgen", f"templates/{target}"),
+        undefined=jinja2.StrictUndefined,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+        autoescape=lambda name: bool(name) and name.endswith(".xml.j2"),
+    )
+    env.filters.update(FILTERS)
+    return env
+
+
+def render(target: str, template: str, **context: object) -> str:
+    return environment(target).get_template(template).render(**context)

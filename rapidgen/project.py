@@ -1,0 +1,100 @@
+"""The project file (rapidgen.yaml at the repository root): what generated/ holds.
+
+    targets:
+      - name: rapid                 # the RAPID message set alone
+        idl: [specs/rapid/*.idl]    # globs, expanded and sorted
+        include: [specs/rapid]
+        lang: [python]
+        out: generated/rapid
+      - name: k10
+        asset: specs/assets/k10.yaml
+        lang: [python, qos]
+        out: generated/k10
+
+`rapidgen check` regenerates every target in memory and reports what is stale;
+`rapidgen check --fix` rewrites it. Paths are relative to the project file.
+"""
+from __future__ import annotations
+
+import glob
+import os
+from dataclasses import dataclass
+
+import jsonschema
+import yaml
+
+from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+
+PROJECT_FILE = "rapidgen.yaml"
+
+_SCHEMA = {
+    "type": "object",
+    "required": ["targets"],
+    "additionalProperties": False,
+    "properties": {"targets": {"type": "array", "items": {
+        "type": "object",
+        "required": ["name", "lang", "out"],
+        "additionalProperties": False,
+        "properties": {
+            "name": {"type": "string", "pattern": "^[A-Za-z0-9_.-]+$"},
+            "idl": {"type": "array", "items": {"type": "string"}, "minItems": 1},
+            "include": {"type": "array", "items": {"type": "string"}},
+            "asset": {"type": "string"},
+            "lang": {"type": "array", "items": {"type": "string"}, "minItems": 1},
+            "out": {"type": "string"},
+            "package": {"type": "string"},
+        },
+        "oneOf": [{"required": ["idl"]}, {"required": ["asset"]}],
+    }}},
+}
+
+
+@dataclass(frozen=True)
+class Target:
+    name: str
+    inputs: tuple[str, ...]  # an asset descriptor, or IDL files
+    include: tuple[str, ...]
+    lang: tuple[str, ...]
+    out: str
+    package: str | None = None
+    source: str = ""  # the inputs as the project file names them, for file headers
+
+
+def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
+    loc = SourceLoc(path, 1, 1)
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = yaml.safe_load(fh)
+    except OSError as exc:
+        sink.error("RG0810", f"cannot read project file '{path}': {exc.strerror or exc}", loc,
+                   f"run from the project root, or pass --project FILE")
+        return None
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = SourceLoc(path, mark.line + 1, mark.column + 1) if mark else loc
+        sink.error("RG0811", f"project file is not valid YAML: {getattr(exc, 'problem', exc)}", where)
+        return None
+    errors = sorted(jsonschema.Draft202012Validator(_SCHEMA).iter_errors(data), key=lambda e: list(e.path))
+    if errors:
+        for err in errors:
+            where = "/".join(str(p) for p in err.path) or "(top level)"
+            sink.error("RG0812", f"project file: at {where}: {err.message}", loc)
+        return None
+    root = os.path.dirname(path)
+    targets = []
+    for t in data["targets"]:
+        if "asset" in t:
+            inputs: tuple[str, ...] = (os.path.join(root, t["asset"]),)
+            source = t["asset"]
+        else:
+            found: list[str] = []
+            for pattern in t["idl"]:
+                matches = sorted(glob.glob(os.path.join(root, pattern)))
+                if not matches:
+                    sink.error("RG0813", f"target '{t['name']}': no IDL file matches '{pattern}'", loc)
+                found += matches
+            inputs = tuple(found)
+            source = ", ".join(t["idl"])
+        targets.append(Target(t["name"], inputs, tuple(os.path.join(root, i) for i in t.get("include", [])),
+                              tuple(t["lang"]), os.path.join(root, t["out"]), t.get("package"), source))
+    return None if sink.has_errors else targets
