@@ -1,0 +1,82 @@
+"""The writer: write-if-changed, atomic staging, manifest, stale removal, user-owned files."""
+import json
+import os
+
+import pytest
+
+from rapidgen import writer
+from rapidgen.backends.base import GeneratedFile as F
+
+
+def read(p):
+    return p.read_text(encoding="utf-8")
+
+
+def test_writes_then_leaves_unchanged_files_alone(tmp_path):
+    files = [F("a/x.py", "x = 1\n"), F("b.txt", "b\n")]
+    first = writer.write_tree(str(tmp_path), files)
+    assert sorted(first.written) == ["a/x.py", "b.txt"]
+    mtime = os.stat(tmp_path / "a" / "x.py").st_mtime_ns
+    second = writer.write_tree(str(tmp_path), files)
+    assert second.written == [] and sorted(second.unchanged) == ["a/x.py", "b.txt"]
+    assert os.stat(tmp_path / "a" / "x.py").st_mtime_ns == mtime
+
+
+def test_manifest_lists_generated_files_with_digests(tmp_path):
+    writer.write_tree(str(tmp_path), [F("x.py", "1\n"), F("user.py", "edit me\n", user_owned=True)])
+    manifest = json.loads(read(tmp_path / writer.MANIFEST))
+    assert manifest["files"] == {"x.py": writer.digest("1\n")}
+
+
+def test_user_owned_files_are_never_overwritten(tmp_path):
+    writer.write_tree(str(tmp_path), [F("handlers.py", "template\n", user_owned=True)])
+    (tmp_path / "handlers.py").write_text("my code\n")
+    report = writer.write_tree(str(tmp_path), [F("handlers.py", "new template\n", user_owned=True)])
+    assert report.kept_user == ["handlers.py"]
+    assert read(tmp_path / "handlers.py") == "my code\n"
+
+
+def test_files_no_longer_generated_are_removed_unless_edited(tmp_path):
+    writer.write_tree(str(tmp_path), [F("keep.py", "k\n"), F("old.py", "o\n"), F("edited.py", "e\n")])
+    (tmp_path / "edited.py").write_text("changed by hand\n")
+    report = writer.write_tree(str(tmp_path), [F("keep.py", "k\n")])
+    assert report.removed == ["old.py"] and report.kept_edited == ["edited.py"]
+    assert not (tmp_path / "old.py").exists() and (tmp_path / "edited.py").exists()
+
+
+def test_interrupted_run_leaves_previous_output_intact(tmp_path, monkeypatch):
+    writer.write_tree(str(tmp_path), [F("a.py", "old a\n"), F("b.py", "old b\n")])
+    real_stage = writer._stage
+    calls = []
+
+    def failing_stage(path, text):
+        calls.append(path)
+        if len(calls) == 2:
+            raise KeyboardInterrupt  # interrupted while staging the second file
+        return real_stage(path, text)
+
+    monkeypatch.setattr(writer, "_stage", failing_stage)
+    with pytest.raises(KeyboardInterrupt):
+        writer.write_tree(str(tmp_path), [F("a.py", "new a\n"), F("b.py", "new b\n")])
+    assert read(tmp_path / "a.py") == "old a\n" and read(tmp_path / "b.py") == "old b\n"
+    assert not [p for p in os.listdir(tmp_path) if p.endswith(".tmp")]
+
+
+def test_compare_tree_reports_missing_differing_and_extra(tmp_path):
+    writer.write_tree(str(tmp_path), [F("same.py", "s\n"), F("diff.py", "d\n"), F("gone.py", "g\n")])
+    report = writer.compare_tree(str(tmp_path), [F("same.py", "s\n"), F("diff.py", "D\n"), F("new.py", "n\n")])
+    assert report.missing == ["new.py"]
+    assert report.differs == ["diff.py", writer.MANIFEST]
+    assert report.extra == ["gone.py"]
+    assert report.stale
+    clean = writer.compare_tree(str(tmp_path), [F("same.py", "s\n"), F("diff.py", "d\n"), F("gone.py", "g\n")])
+    assert not clean.stale
+
+
+def test_write_text_atomic_keeps_mode_and_skips_identical(tmp_path):
+    p = tmp_path / "run.sh"
+    assert writer.write_text_atomic(str(p), "echo 1\n")
+    os.chmod(p, 0o755)
+    assert not writer.write_text_atomic(str(p), "echo 1\n")
+    assert writer.write_text_atomic(str(p), "echo 2\n")
+    assert os.stat(p).st_mode & 0o777 == 0o755
