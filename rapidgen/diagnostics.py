@@ -106,13 +106,19 @@ def _gutter(width: int, text: str = "") -> str:
     return f"{text:>{width}} | "
 
 
+def _printable(text: str) -> str:
+    """Control characters (e.g. ESC from a binary file) become '?', so they never reach the
+    terminal; one character each, so carets stay aligned."""
+    return "".join(ch if ch.isprintable() else "?" for ch in text) if not text.isprintable() else text
+
+
 def render(diag: Diagnostic, read_lines: SourceReader | None = None) -> str:
     """Render one diagnostic; the source excerpt is shown when the line can be read."""
     head = f"{diag.loc}: {diag.severity.value}[{diag.code}]: {diag.message}"
     lines = read_lines(diag.loc.file) if read_lines and diag.loc.line > 0 else None
     if not lines or diag.loc.line > len(lines):
         return head + (f"\n  = hint: {diag.hint}" if diag.hint else "")
-    src = lines[diag.loc.line - 1].rstrip("\r\n").expandtabs(1)
+    src = _printable(lines[diag.loc.line - 1].rstrip("\r\n").expandtabs(1))
     if len(src) > 200:  # keep huge one-line inputs readable
         start = max(0, diag.loc.col - 80)
         src = src[start:start + 160]

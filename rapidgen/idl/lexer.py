@@ -17,6 +17,8 @@ from lark.lexer import Lexer, PatternStr, Token
 # literals before identifiers (L'x'), fixed before float before integer literals.
 _ORDER = ("WS", "LINE_COMMENT", "BLOCK_COMMENT", "PRAGMA_KEYLIST", "ANNOTATION_KW", "WCHAR_LIT",
           "WSTRING_LIT", "FIXED_LIT", "FLOAT_LIT", "INT_LIT", "CHAR_LIT", "STRING_LIT", "IDENT")
+# `sequence<sequence<long>>`: inside two open template lists '>>' closes both (as in C++11).
+_TEMPLATE_WORDS = frozenset({"sequence", "string", "wstring", "map", "fixed", "bitfield"})
 _WORD_ALTERNATION = re.compile(r"\(\?:([A-Za-z_][A-Za-z0-9_|]*)\)")
 
 
@@ -45,11 +47,14 @@ class IdlLexer(Lexer):
         # Punctuation: longest first, so '::' wins over ':' and '>>' over '>'.
         ordered += [(name, regex) for _, name, regex in sorted(rest, key=lambda r: (-r[0], r[1]))]
         self.master = re.compile("|".join(f"(?P<{name}>{regex})" for name, regex in ordered))
+        self.greater = next((t.name for t in lexer_conf.terminals
+                             if isinstance(t.pattern, PatternStr) and t.pattern.value == ">"), "MORETHAN")
 
     def lex(self, text: str) -> Iterator[Token]:  # lark's custom-lexer interface (whole text)
         match = self.master.match
         ignore, keywords = self.ignore, self.keywords
         line, line_start, pos, n = 1, 0, 0, len(text)
+        prev, templates = "", 0  # previous token's text; template '<' lists open
         while pos < n:
             m = match(text, pos)
             if m is None:
@@ -67,5 +72,17 @@ class IdlLexer(Lexer):
             if kind == "IDENT":
                 kind = keywords.get(value, "IDENT")
             col = pos - line_start + 1
+            if value[0] in "<>":
+                if value == "<" and prev in _TEMPLATE_WORDS:
+                    templates += 1
+                elif value == ">" and templates:
+                    templates -= 1
+                elif value == ">>" and templates >= 2:
+                    templates -= 2
+                    yield Token(self.greater, ">", pos, line, col, line, col + 1, pos + 1)  # type: ignore[arg-type]
+                    yield Token(self.greater, ">", pos + 1, line, col + 1, line, col + 2, end)  # type: ignore[arg-type]
+                    prev, pos = ">", end
+                    continue
+            prev = value
             yield Token(kind, value, pos, line, col, line, col + end - pos, end)  # type: ignore[arg-type]
             pos = end

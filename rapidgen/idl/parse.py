@@ -444,6 +444,11 @@ _TOKEN_FAMILIES = (
      {"'('", "'+'", "'-'", "'~'", "'::'", "'TRUE'", "'FALSE'", "an integer", "a number", "a fixed-point number",
       "a character literal", "a string literal", "an identifier"},
      "a constant expression"),
+    ({"'sequence'", "'long'", "an identifier"},
+     {"'boolean'", "'char'", "'double'", "'fixed'", "'float'", "'int16'", "'int32'", "'int64'", "'int8'",
+      "'long'", "'map'", "'octet'", "'sequence'", "'short'", "'string'", "'uint16'", "'uint32'", "'uint64'",
+      "'uint8'", "'unsigned'", "'wchar'", "'wstring'", "'::'", "an identifier"},
+     "a type"),
 )
 
 
@@ -514,7 +519,8 @@ def _syntax_error(exc: UnexpectedInput, text: str, locator: _Locator, sink: Diag
         else:
             shown = repr(ch)[1:-1] if ch.isprintable() is False else ch
             sink.error("RG0202", f"unexpected character '{shown}'", loc,
-                       f"expected {_describe_expected(_viable(exc, exc.allowed))}" if exc.allowed else None)
+                       f"expected {_describe_expected(_viable(exc, exc.allowed))}" if exc.allowed
+                       else "this character can appear only in comments and string literals")
         return
     if isinstance(exc, UnexpectedToken) and exc.token.type != "$END":
         tok = exc.token
@@ -531,10 +537,21 @@ def _syntax_error(exc: UnexpectedInput, text: str, locator: _Locator, sink: Diag
             sink.error("RG0201", "interfaces are not supported", loc,
                        "rapidgen compiles DDS data types; remove the interface or move it to another file")
             return
-        if "IDENT" in expected and found in _keywords():
+        after = text[tok.end_pos or 0:].lstrip()[:1]
+        if "IDENT" in expected and found in _keywords() and not (after.isalnum() or after in "_<:"):
+            # (a keyword followed by a name or '<' is not itself meant as a name: `struct Inner;`)
             sink.error("RG0201", f"'{found}' is a reserved word in IDL and cannot be used as a name", loc,
                        f"rename it, e.g. '{found}_'")
             return
+        if "IDENT" in expected and found in (";", ",", "[", "=", "{", ":", ")"):
+            # `long long;`: the name is missing, or the last word was meant as the name
+            prev = _prev_token_end(lines, tok.line, tok.column)
+            word = re.search(r"[A-Za-z_]\w*$", lines[prev[0] - 1][:prev[1] - 1]) if prev else None
+            if prev and word and word.group(0) in _keywords():
+                sink.error("RG0201", f"'{word.group(0)}' is a reserved word in IDL and cannot be used as a name",
+                           locator.at(prev[0], word.start() + 1, prev[0], prev[1]),
+                           f"rename it, e.g. '{word.group(0)}_', or add the missing name")
+                return
         stray = found == "}" and _unclosed_brace(text[:tok.start_pos or 0]) is None
         sink.error("RG0201", f"unexpected '{found}'; expected {_describe_expected(expected)}", loc,
                    "this '}' has no matching '{'" if stray else None)

@@ -44,7 +44,7 @@ def apply_keylists(decls: list[ir.Declaration], pragmas: list[tuple[ast.KeylistP
     for pragma, scope in pragmas:
         sym = resolver.lookup(pragma.type, scope)
         if sym is None:
-            resolver._unknown(pragma.type, scope, "type in #pragma keylist", frozenset({"struct"}))
+            resolver._unknown(pragma.type, scope, "type", frozenset({"struct"}))
             continue
         struct = structs.get(sym.scoped)
         if struct is None:

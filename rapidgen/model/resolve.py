@@ -20,6 +20,7 @@ from rapidgen.model.keys import apply_keylists, compute_keys
 from rapidgen.model.order import check_recursion, dependency_order
 
 _TYPE_KINDS = frozenset({"struct", "union", "enum", "bitmask", "bitset", "typedef", "native", "forward"})
+_MAX_TYPE_NESTING = 100
 _DISCRIMINATOR_PRIMITIVES = frozenset({"int8", "uint8", "int16", "uint16", "int32", "uint32", "int64",
                                        "uint64", "char8", "char16", "boolean", "octet"})
 
@@ -47,6 +48,7 @@ class Resolver:
         self.pragmas: list[tuple[ast.KeylistPragma, tuple[str, ...]]] = []
         self.done: dict[str, ir.Declaration | None] = {}
         self.busy: dict[str, None] = {}  # being resolved, in order (an ordered set)
+        self.too_deep = False  # a "nested too deeply" error was reported (once is enough)
         self.evaluator = ConstEvaluator(sink)
         self.annotations = AnnotationChecker(sink, self.evaluator)
 
@@ -185,7 +187,10 @@ class Resolver:
             t, depth = decl.type, depth + 1
         return t
 
-    def type_of(self, spec: ast.TypeSpec, scope: tuple[str, ...]) -> ir.Type | None:
+    def type_of(self, spec: ast.TypeSpec, scope: tuple[str, ...], depth: int = 0) -> ir.Type | None:
+        if depth > _MAX_TYPE_NESTING:  # sequence<sequence<...>>: later stages recurse on types
+            self.sink.error("RG0201", f"type nested more than {_MAX_TYPE_NESTING} levels deep", spec.loc)
+            return None
         if isinstance(spec, ast.BaseType):
             return ir.Primitive(spec.name)
         if isinstance(spec, ast.NamedType):
@@ -202,7 +207,7 @@ class Resolver:
                 return None
             return ir.TypeRef(sym.scoped, sym.kind)
         if isinstance(spec, ast.SequenceType):
-            elem = self.type_of(spec.element, scope)
+            elem = self.type_of(spec.element, scope, depth + 1)
             bound = self._positive(spec.bound, scope, "sequence bound") if spec.bound is not None else None
             if elem is None or (spec.bound is not None and bound is None):
                 return None
@@ -213,7 +218,7 @@ class Resolver:
                 return None
             return ir.String(bound, spec.wide)
         if isinstance(spec, ast.MapType):
-            key, value = self.type_of(spec.key, scope), self.type_of(spec.value, scope)
+            key, value = self.type_of(spec.key, scope, depth + 1), self.type_of(spec.value, scope, depth + 1)
             bound = self._positive(spec.bound, scope, "map bound") if spec.bound is not None else None
             if key is None or value is None:
                 return None
@@ -260,6 +265,15 @@ class Resolver:
         try:
             method = getattr(self, f"_resolve_{sym.kind}", None)
             result = method(sym) if method else None
+        except RecursionError:
+            self.done[sym.scoped] = None  # the whole chain fails, and is reported once
+            if len(self.busy) > 1:
+                raise  # unwind to the outermost declaration, which reports it
+            if not self.too_deep:
+                self.sink.error("RG0201", f"'{sym.scoped}' is nested too deeply to resolve", sym.loc,
+                                "it depends on a very long chain of declarations or a very deep expression")
+            self.too_deep = True
+            result = None
         finally:
             self.busy.pop(sym.scoped, None)
         self.done.setdefault(sym.scoped, result)
@@ -575,5 +589,9 @@ def _bitfield_holder(width: int) -> str:
 
 
 def resolve(spec: ast.Specification, sink: DiagnosticSink) -> ir.Model:
-    return Resolver(sink).run(spec)
+    try:
+        return Resolver(sink).run(spec)
+    except RecursionError:  # e.g. thousands of nested modules
+        sink.error("RG0201", "input is nested too deeply", SourceLoc(spec.files[0] if spec.files else "<input>", 1, 1))
+        return ir.Model((), (), spec.files)
 
