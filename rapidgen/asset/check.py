@@ -6,6 +6,7 @@ saying what to write instead.
 """
 from __future__ import annotations
 
+from rapidgen.asset.check_telemetry import check_telemetry
 from rapidgen.asset.check_values import ValueChecker
 from rapidgen.asset.dictionary import all_subsystems, effective_types, used_types
 from rapidgen.asset.facts import Facts, fits, utf8_len
@@ -38,13 +39,14 @@ class Checker:
                         at(n), f"item {n + 1} is here; {hint}")
         return False
 
-    def duplicates(self, items, key, what: str, field: str = "name") -> None:
+    def duplicates(self, items, key, what: str, field: str = "name", where: str = "") -> None:
         """One error per repeated name, at the repeat, naming the first line."""
         first: dict = {}
         for item in items:
             k = key(item)
             if k in first:
-                self.sink.error("RG1101", f"duplicate {what} '{k if isinstance(k, str) else '/'.join(k)}'",
+                shown = k if isinstance(k, str) else "/".join(k)
+                self.sink.error("RG1101", f"duplicate {what} '{shown}'{where}",
                                 item.at(field) if item.has(field) else item.loc,
                                 f"first defined at line {first[k].loc.line}")
             else:
@@ -66,7 +68,6 @@ class Checker:
         self.subsystems()
         self.native()
         self.access_control()
-        from rapidgen.asset.check_telemetry import check_telemetry
         check_telemetry(self)
 
     # -- subsystem types and commands -------------------------------------------------------
@@ -92,7 +93,7 @@ class Checker:
     def commands(self, t: SubsystemTypeSpec) -> None:
         own = [c for c in t.commands if c.loc.line > 0]  # inherited standard commands are checked by tests
         inherited = {c.name: c for c in t.commands if c.loc.line == 0}
-        self.duplicates(own, lambda c: c.name, f"command in subsystem type '{t.name}'")
+        self.duplicates(own, lambda c: c.name, "command", where=f" in subsystem type '{t.name}'")
         for c in own:
             if c.name in inherited:
                 self.sink.error("RG1101", f"command '{c.name}' is already defined by '{t.extends}'",
@@ -109,12 +110,15 @@ class Checker:
 
     def command(self, c: CommandSpec) -> None:
         self.bound(c.name, c.at("name"), "command name", "rapid::CommandDef", "name")
-        self.duplicates(c.parameters, lambda p: p.name, f"parameter of '{c.name}'")
-        n = self.facts.seq_bound("rapid::CommandDef", "parameters")
-        if n is not None and len(c.parameters) > n:
+        self.duplicates(c.parameters, lambda p: p.name, "parameter", where=f" in command '{c.name}'")
+        # a command's arguments travel in Command.arguments, its parameters in CommandDef.parameters
+        bounds = [(n, f"{s.split('::')[-1]}.{m} ({self._seq_name(s, m)})")
+                  for s, m in (("rapid::Command", "arguments"), ("rapid::CommandDef", "parameters"))
+                  if (n := self.facts.seq_bound(s, m)) is not None]
+        if bounds and len(c.parameters) > min(bounds)[0]:
+            n, where = min(bounds)
             self.sink.error("RG1107", f"command '{c.name}' has {len(c.parameters)} parameters; "
-                            f"CommandDef.parameters ({self._seq_name('rapid::CommandDef', 'parameters')}) "
-                            f"holds at most {n}", c.parameters[n].loc,
+                            f"{where} holds at most {n}", c.parameters[n].loc,
                             "pass related values together (RAPID_VEC3d, RAPID_MAT33f) or split the command")
         for p in c.parameters:
             self.bound(p.name, p.at("name"), "parameter name", "rapid::KeyTypePair", "key")
@@ -200,8 +204,8 @@ class Checker:
         names = all_cmds if sub == "*" else [c.name for c in types[subs[sub].type].commands] \
             if subs[sub].type in types else []
         if cmd not in names:
-            where = "any subsystem" if sub == "*" else f"subsystem '{sub}'"
-            self.sink.error("RG1104", f"{where} has no command '{cmd}'", loc,
+            msg = f"no subsystem has a command '{cmd}'" if sub == "*" else f"subsystem '{sub}' has no command '{cmd}'"
+            self.sink.error("RG1104", msg, loc,
                             did_you_mean(cmd, names) or f"its commands: {', '.join(names) or 'none'}")
 
 

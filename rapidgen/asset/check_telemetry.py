@@ -69,7 +69,8 @@ def _types(c: "Checker", t: Telemetry) -> None:
         if struct is None:
             decl = c.facts.model.get(type_)
             if decl is not None:
-                c.sink.error("RG1302", f"'{type_}' is a {decl.kind}, not a RAPID message", loc,
+                article = "an" if decl.kind[0] in "aeiou" else "a"
+                c.sink.error("RG1302", f"'{type_}' is {article} {decl.kind}, not a RAPID message", loc,
                              "telemetry types are valuetypes derived from rapid::Message")
                 continue
             names = c.facts.struct_names()
@@ -84,15 +85,16 @@ def _types(c: "Checker", t: Telemetry) -> None:
 
 def _topics(c: "Checker") -> None:
     pubs = publications(c.spec, c.facts)
-    first = {}
+    first, reported = {}, set()
     for p in pubs:
-        if p.topic in first:
+        if p.topic in first and id(p.source) not in reported:  # one error per entry
+            reported.add(id(p.source))
             prev = first[p.topic]
-            where = f"line {prev.loc.line}" if prev.source is not None else "the asset's subsystems"
+            where = f"the entry at line {prev.loc.line}" if prev.source is not None else "the asset's subsystems"
             c.sink.error("RG1305", f"topic '{p.topic}' is published twice", p.loc,
                          f"also published by {where}; give one of them a 'suffix'")
         else:
-            first[p.topic] = p
+            first.setdefault(p.topic, p)
         if p.source is not None:
             c.bound(p.topic, p.loc, "topic name", "rapid::AgentConfig", "topics")
     if any(isinstance(t, AgentTelemetry) for t in c.spec.telemetry):

@@ -6,11 +6,20 @@ must fit a 32-bit long, a RAPID_MAT33f default has 9 elements, ...).
 """
 from __future__ import annotations
 
+from decimal import Decimal
+
 from rapidgen.asset.facts import FLOAT32_MAX, IDL_TO_DATATYPE, STATIC_SHAPES, Facts, Shape, fits, utf8_len
 from rapidgen.asset.spec import Threshold, TypedValue, ValueKey
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 
 _ELEMENT_MAX = {"float32": FLOAT32_MAX, "float64": 1.7976931348623157e308}
+
+
+def _g(x) -> str:
+    """Short number text; ints as written (a huge int has no float form)."""
+    if isinstance(x, int):
+        return str(x) if abs(x) < 10**15 else f"{Decimal(x):.6e}"
+    return f"{x:g}"
 
 
 def _num(x) -> bool:
@@ -67,25 +76,25 @@ class ValueChecker:
             self.thresholds(v, shape)
         return shape
 
-    def number_error(self, x, shape: Shape) -> str | None:
+    def number_error(self, x, shape: Shape, dtype: str) -> str | None:
         """Why x cannot be a value of the shape (or one element of it), or None."""
         if shape.kind == "int":
             if isinstance(x, float) and not x.is_integer():
-                return f"{x} is not a whole number"
+                return f"{_g(x)} is not a whole number"
             if not shape.lo <= x <= shape.hi:
-                return f"{x} does not fit ({shape.lo} .. {shape.hi})"
+                return f"{_g(x)} does not fit {dtype} ({shape.lo} .. {shape.hi})"
         limit = _ELEMENT_MAX.get(shape.element) if shape.kind == "array" else shape.hi
         if shape.kind in ("float", "array") and limit is not None and abs(x) > limit:
-            return f"{x} does not fit a {shape.element or 'float'} (largest {limit:g})"
+            return f"{_g(x)} does not fit {dtype} (largest {limit:g})"
         return None
 
     def limits(self, v: TypedValue, shape: Shape) -> None:
         for field, x in (("min", v.min), ("max", v.max)):
-            err = None if x is None else self.number_error(x, shape)
+            err = None if x is None else self.number_error(x, shape, v.type)
             if err:
-                self.sink.error("RG1207", f"{field} of {v.type} '{v.name}': {err}", v.at(field))
+                self.sink.error("RG1207", f"{field} of '{v.name}': {err}", v.at(field))
         if v.min is not None and v.max is not None and v.min > v.max:
-            self.sink.error("RG1203", f"min {v.min} is greater than max {v.max} for '{v.name}'",
+            self.sink.error("RG1203", f"min {_g(v.min)} is greater than max {_g(v.max)} for '{v.name}'",
                             v.at("min"), "swap them")
 
     def default(self, v: TypedValue, shape: Shape, what: str) -> None:
@@ -106,12 +115,12 @@ class ValueChecker:
             return
         elements = d if shape.kind == "array" else [d] if shape.kind in ("int", "float") else []
         for x in elements:
-            err = self.number_error(x, shape)
+            err = self.number_error(x, shape, v.type)
             if err:
                 self.sink.error("RG1207", f"default of '{v.name}': {err}", loc)
                 return
             if (v.min is not None and x < v.min) or (v.max is not None and x > v.max):
-                self.sink.error("RG1204", f"default {x} of '{v.name}' is outside its range "
+                self.sink.error("RG1204", f"default {_g(x)} of '{v.name}' is outside its range "
                                 f"{_range_text(v)}", loc, "change the default or widen the range")
                 return
         if shape.kind == "string":
@@ -139,7 +148,7 @@ class ValueChecker:
                     continue
                 out = (v.min is not None and x <= v.min) if side == "below" else (v.max is not None and x >= v.max)
                 if out:
-                    self.sink.error("RG1306", f"{name} threshold '{side}: {x}' can never be passed: "
+                    self.sink.error("RG1306", f"{name} threshold '{side}: {_g(x)}' can never be passed: "
                                     f"'{v.name}' ranges over {_range_text(v)}", t.at(side),
                                     "move it inside the range")
         if v.warning is not None and v.critical is not None:
@@ -156,6 +165,6 @@ class ValueChecker:
 
 
 def _range_text(v: TypedValue) -> str:
-    lo = "-inf" if v.min is None else f"{v.min:g}"
-    hi = "inf" if v.max is None else f"{v.max:g}"
+    lo = "-inf" if v.min is None else _g(v.min)
+    hi = "inf" if v.max is None else _g(v.max)
     return f"[{lo}, {hi}]"

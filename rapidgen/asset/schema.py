@@ -91,7 +91,7 @@ def _translate(e: ValidationError, doc: YamlDoc):
         missing = [k for k in val if isinstance(inst, dict) and k not in inst]
         for k in missing:
             yield ("RG1020", f"{where} needs '{k}'" if path else f"the descriptor needs '{k}'",
-                   doc.key_loc(path) if path else loc, _required_hint(k))
+                   doc.key_loc(path) if path else loc, _required_hint(k, sch.get("properties", {}).get(k)))
     elif kw == "additionalProperties":
         allowed = list(sch.get("properties", {}))
         for k in (k for k in inst if k not in allowed):
@@ -117,6 +117,9 @@ def _translate(e: ValidationError, doc: YamlDoc):
         yield "RG1025", f"{where} {_shown(inst)} is not valid here", loc, hint
     elif kw in ("minItems", "maxItems", "minLength", "maxLength", "minProperties", "uniqueItems"):
         yield "RG1026", _size_message(kw, val, where, inst), loc, hint
+    elif kw == "not" and "dependentSchemas" in e.relative_schema_path:
+        yield ("RG1021", f"'{path[-1]}' cannot be combined with 'range'", doc.key_loc(path),
+               "give either range: [min, max] or min:/max:")
     elif kw == "anyOf" and all(set(s) == {"required"} for s in val):
         names = [s["required"][0] for s in val]
         yield ("RG1020", f"{where} needs at least one of: {', '.join(names)}",
@@ -143,9 +146,10 @@ def _size_message(kw: str, val, where: str, inst) -> str:
 _REQUIRED_HINTS = {
     "version": "add 'version: 1' at the top",
     "type": "a RAPID DataType such as RAPID_DOUBLE, RAPID_STRING or RAPID_VEC3d",
-    "kind": "one of position, joint, agent, image, text, custom",
 }
 
 
-def _required_hint(key: str) -> str | None:
+def _required_hint(key: str, prop) -> str | None:
+    if isinstance(prop, dict) and "enum" in prop:
+        return f"{key}: one of {', '.join(map(str, prop['enum']))}"
     return _REQUIRED_HINTS.get(key)

@@ -16,7 +16,7 @@ from rapidgen.diagnostics import SourceLoc
 
 QOS_LIBRARY = "RapidQosLibrary"
 QOS_PROFILES = ("RapidDefaultQos", "RapidBestEffortQos", "RapidReliableQos", "RapidReliableDurableQos",
-                "RapidConfigQos", "RapidStateQos", "RapidSampleQos")
+                "RapidConfigQos", "RapidStateQos", "RapidSampleQos", "RapidPointCloudQos")
 
 # kind -> (role, message type, topic constant), config first
 STANDARD_MESSAGES: dict[str, tuple[tuple[str, str, str], ...]] = {

@@ -96,8 +96,9 @@ def read_text(path: str, shown: str, sink: DiagnosticSink) -> str | None:
 
 def parse_yaml(text: str, file: str, sink: DiagnosticSink) -> YamlDoc | None:
     """Compose one YAML document and convert it; None after diagnostics."""
-    loader = yaml.SafeLoader(text)
+    loader = None
     try:
+        loader = yaml.SafeLoader(text)  # the reader already rejects control characters here
         node = loader.get_single_node()
     except yaml.MarkedYAMLError as exc:
         _syntax_error(exc, file, sink)
@@ -115,7 +116,8 @@ def parse_yaml(text: str, file: str, sink: DiagnosticSink) -> YamlDoc | None:
         sink.error("RG1010", f"invalid YAML: {exc}", SourceLoc(file, 1, 1))
         return None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
     doc = YamlDoc(file, None)
     if node is None:
         return doc
@@ -177,6 +179,10 @@ class _Converter:
         if id(node) in self.active:
             self.error("RG1012", "recursive YAML alias", loc, "an alias may not refer to a node containing it")
             raise _Abort
+        if node.tag not in ("tag:yaml.org,2002:seq", "tag:yaml.org,2002:map"):
+            self.error("RG1012", f"YAML tag '{node.tag}' is not supported", loc,
+                       "remove the tag; descriptors use plain mappings and lists")
+            return None
         self.active.add(id(node))
         try:
             if isinstance(node, yaml.SequenceNode):

@@ -1,0 +1,174 @@
+"""`rapidgen validate` and `rapidgen describe`: the descriptor as an operator reads it.
+
+describe prints plain aligned tables (no colour, no terminal width guessing) so the
+output can be diffed, pasted into a report, or grepped.
+"""
+from __future__ import annotations
+
+import sys
+from typing import Callable
+
+from rapidgen.asset.dictionary import all_subsystems, used_types
+from rapidgen.asset.facts import Facts
+from rapidgen.asset.load import LoadedAsset, load_asset
+from rapidgen.asset.spec import (AgentTelemetry, ImageTelemetry, JointTelemetry, PositionTelemetry,
+                                 Threshold, TypedValue)
+from rapidgen.asset.topics import publications
+from rapidgen.diagnostics import DiagnosticSink
+
+Report = Callable[[DiagnosticSink], None]
+
+
+def run_validate(files: list[str], rapid_dir: str | None, sink: DiagnosticSink, report: Report) -> int:
+    ok_lines = []
+    for path in files:
+        before = len(sink.errors)
+        loaded = load_asset(path, sink, rapid_dir)
+        if loaded is not None and len(sink.errors) == before:
+            ok_lines.append(f"{path}: valid ({_summary(loaded)})")
+    report(sink)
+    for line in ok_lines:
+        print(line)
+    return 1 if sink.has_errors else 0
+
+
+def run_describe(path: str, rapid_dir: str | None, sink: DiagnosticSink, report: Report) -> int:
+    loaded = load_asset(path, sink, rapid_dir)
+    report(sink)
+    if loaded is None or sink.has_errors:
+        return 1
+    sys.stdout.write(describe(loaded))
+    return 0
+
+
+def _summary(loaded: LoadedAsset) -> str:
+    spec = loaded.spec
+    cmds = sum(len(t.commands) for t in used_types(spec))
+    topics = len(publications(spec, Facts(loaded.model)))
+    n_subs = len(all_subsystems(spec))
+    return (f"asset {spec.name}: {n_subs} subsystem{'s' * (n_subs != 1)}, {cmds} command{'s' * (cmds != 1)}, "
+            f"{topics} topic{'s' * (topics != 1)}")
+
+
+# -- formatting ----------------------------------------------------------------------------
+def _n(x) -> str:
+    return "-" if x is None else (str(x) if isinstance(x, int) else f"{x:g}")
+
+
+def table(headers: list[str], rows: list[list[str]], indent: int = 2) -> list[str]:
+    widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h) for i, h in enumerate(headers)]
+    fmt = lambda cells: (" " * indent + "  ".join(c.ljust(w) for c, w in zip(cells, widths))).rstrip()  # noqa: E731
+    return [fmt(headers), fmt(["-" * w for w in widths])] + [fmt(r) for r in rows]
+
+
+def _range(v) -> str:
+    if v.min is None and v.max is None:
+        return "-"
+    return f"[{_n(v.min) if v.min is not None else '-inf'}, {_n(v.max) if v.max is not None else 'inf'}]"
+
+
+def _default(v: TypedValue) -> str:
+    if not v.has_default:
+        return "-"
+    d = v.default
+    if isinstance(d, bool):
+        return "true" if d else "false"
+    if isinstance(d, list):
+        return "[" + ", ".join(_n(x) for x in d) + "]"
+    return repr(d) if isinstance(d, str) else _n(d)
+
+
+def _rate(p) -> str:
+    if p.rate:
+        return f"{_n(p.rate)} Hz"
+    return "per command" if p.role == "ack" else "on change"
+
+
+def _threshold(t: Threshold | None) -> str:
+    if t is None:
+        return "-"
+    parts = ([f"< {_n(t.below)}"] if t.below is not None else []) + ([f"> {_n(t.above)}"] if t.above is not None else [])
+    return " or ".join(parts)
+
+
+def describe(loaded: LoadedAsset) -> str:
+    spec = loaded.spec
+    facts = Facts(loaded.model)
+    out = [f"{spec.name} ({spec.kind})"]
+    if spec.description:
+        out.append(f"  {spec.description.strip()}")
+    out.append(f"  DDS domain {spec.domain}, partition '{spec.partition}'"
+               + (f"; tags: {', '.join(spec.tags)}" if spec.tags else ""))
+    subs = all_subsystems(spec)
+    types = used_types(spec)
+    out += ["", "Subsystems"]
+    if subs:
+        by_type = {t.name: t for t in types}
+        out += table(["subsystem", "type", "commands", "description"],
+                     [[s.name, s.type, str(len(by_type[s.type].commands)) if s.type in by_type else "?",
+                       s.description] for s in subs])
+    else:
+        out.append("  none: the asset takes no commands (telemetry only)")
+    if types:
+        out += ["", "Command dictionary"]
+        for t in types:
+            users = [s.name for s in subs if s.type == t.name]
+            out.append(f"  {t.name}{' (standard)' if t.standard else ''}: {', '.join(users)}")
+            if not t.commands:
+                out.append("    no commands")
+            for c in t.commands:
+                flags = [f for f, on in (("abortable", c.abortable), ("suspendable", c.suspendable)) if on]
+                out.append(f"    {c.name}" + (f"  [{', '.join(flags)}]" if flags else "")
+                           + (f"  {c.description}" if c.description else ""))
+                if c.parameters:
+                    out += table(["#", "parameter", "type", "unit", "range", "allowed", "default", "description"],
+                                 [[str(i), p.name, p.type, p.unit or "-", _range(p),
+                                   ", ".join(p.allowed) or "-", _default(p), p.description]
+                                  for i, p in enumerate(c.parameters, 1)], indent=6)
+    pubs = publications(spec, facts)
+    out += ["", "Telemetry"]
+    out += table(["topic", "type", "role", "rate", "QoS"],
+                 [[p.topic, p.type, p.role, _rate(p), p.qos] for p in pubs])
+    out += _details(spec, pubs)
+    if spec.native is not None:
+        n = spec.native
+        out += ["", "Native passthrough",
+                f"  subsystem '{n.subsystem}', command '{n.command}'({n.parameter}: RAPID_STRING): "
+                + (n.description or "the text is passed to the asset unchanged")]
+    ac = spec.access_control
+    if ac is not None:
+        out += ["", f"Access control (sources not listed: {ac.default})"]
+        out += table(["source", "may send"], [[r.source, ", ".join(r.allow)] for r in ac.rules])
+    return "\n".join(out) + "\n"
+
+
+def _details(spec, pubs) -> list[str]:
+    out: list[str] = []
+    topic_of, data_topic_of = {}, {}  # config topic (or the only one); sample/state topic
+    for p in pubs:
+        if p.source is not None:
+            topic_of.setdefault(id(p.source), p.topic)
+            if p.role != "config":
+                data_topic_of.setdefault(id(p.source), p.topic)
+    values = []
+    for t in spec.telemetry:
+        topic = topic_of.get(id(t), "?")
+        if isinstance(t, PositionTelemetry):
+            out += ["", f"Position {topic}: frame '{t.frame}', pose {t.pose_encoding}, "
+                    f"velocity {t.velocity_encoding}"]
+        if isinstance(t, ImageTelemetry):
+            size = f", {t.width}x{t.height}" if t.width and t.height else ""
+            out += ["", f"Images {topic}: sensor '{t.sensor}'"
+                    + (f" ({t.sensor_type})" if t.sensor_type else "") + f", {t.mime}{size}"]
+        if isinstance(t, JointTelemetry):
+            fields = f"; fields {', '.join(t.fields)}" if t.fields else ""
+            out += ["", f"Joints {topic}: group '{t.group}', {len(t.joints)} joints{fields}"]
+            out += table(["#", "frame", "dof", "unit", "range"],
+                         [[str(i), j.frame, j.dof, j.unit or "-", _range(j)] for i, j in enumerate(t.joints)])
+        if isinstance(t, (AgentTelemetry, PositionTelemetry)):
+            values += [[data_topic_of.get(id(t), topic), str(i), v.name, v.type, v.unit or "-", _range(v),
+                        _default(v), _threshold(v.warning), _threshold(v.critical)] for i, v in enumerate(t.values)]
+    if values:
+        out += ["", "Values (index i of the sample's or state's values; initial value in the config)"]
+        out += table(["topic", "#", "key", "type", "unit", "range", "initial", "warning", "critical"], values)
+    return out
