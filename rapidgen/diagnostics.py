@@ -12,12 +12,15 @@ from __future__ import annotations
 import difflib
 import enum
 from dataclasses import dataclass, field
-from typing import Callable, Iterable
+from typing import Callable, Iterable, NamedTuple
 
 
-@dataclass(frozen=True, slots=True)
-class SourceLoc:
-    """A span in a source file; lines and columns are 1-based, end is inclusive of end_col-1."""
+class SourceLoc(NamedTuple):
+    """A span in a source file; lines and columns are 1-based, the span ends before end_col.
+
+    A NamedTuple rather than a frozen dataclass: the parser makes one per token, and a
+    tuple is several times cheaper to create; it is just as immutable.
+    """
 
     file: str
     line: int

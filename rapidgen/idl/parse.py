@@ -163,12 +163,12 @@ class _ToAst(Transformer):
     def abs_name(self, items):
         (ident,) = items
         loc = self.loc.token(ident)
-        return ast.ScopedName((str(ident),), True, replace(loc, col=max(1, loc.col - 2)))
+        return ast.ScopedName((str(ident),), True, loc._replace(col=max(1, loc.col - 2)))
 
     def sub_name(self, items):
         base, ident = items
         end = self.loc.token(ident)
-        loc = replace(base.loc, end_line=end.end_line, end_col=end.end_col) if end.line == base.loc.line else end
+        loc = base.loc._replace(end_line=end.end_line, end_col=end.end_col) if end.line == base.loc.line else end
         return ast.ScopedName(base.parts + (str(ident),), base.absolute, loc)
 
     def name_expr(self, items):
@@ -194,8 +194,8 @@ class _ToAst(Transformer):
         def method(self, items):
             operand = items[-1]
             loc = self.loc.token(items[0]) if isinstance(items[0], Token) else \
-                replace(operand.loc, col=max(1, operand.loc.col - 1))
-            return ast.Unary(op, operand, replace(loc, end_line=operand.loc.end_line, end_col=operand.loc.end_col)
+                operand.loc._replace(col=max(1, operand.loc.col - 1))
+            return ast.Unary(op, operand, loc._replace(end_line=operand.loc.end_line, end_col=operand.loc.end_col)
                              if loc.line == operand.loc.line else loc)
         return method
 
@@ -242,7 +242,7 @@ class _ToAst(Transformer):
     def _base(name):  # noqa: N805
         def method(self, items):
             first, last = self.loc.token(items[0]), self.loc.token(items[-1])
-            return ast.BaseType(name, replace(first, end_col=last.end_col) if first.line == last.line else first)
+            return ast.BaseType(name, first._replace(end_col=last.end_col) if first.line == last.line else first)
         return method
 
     t_int8, t_uint8, t_int16, t_uint16 = _base("int8"), _base("uint8"), _base("int16"), _base("uint16")
@@ -384,7 +384,7 @@ class _ToAst(Transformer):
     # -- annotations
     def annotation_appl(self, items):
         name, *args = items
-        loc = replace(name.loc, col=max(1, name.loc.col - 1))  # include the '@'
+        loc = name.loc._replace(col=max(1, name.loc.col - 1))  # include the '@'
         return ast.AnnotationAppl("::".join(name.parts) if not name.absolute else str(name),
                                   args[0] if args else (), loc)
 
@@ -428,7 +428,7 @@ def _fold(operands: list[ast.Expr], op: str) -> None:
     left = operands.pop()
     loc = left.loc
     if right.loc.line == loc.line and right.loc.file == loc.file:
-        loc = replace(loc, end_line=right.loc.end_line, end_col=right.loc.end_col)
+        loc = loc._replace(end_line=right.loc.end_line, end_col=right.loc.end_col)
     operands.append(ast.Binary(op, left, right, loc))
 
 
