@@ -9,7 +9,7 @@ import os
 from dataclasses import dataclass
 
 from rapidgen import backends
-from rapidgen.backends.base import GeneratedFile, Options
+from rapidgen.backends.base import GeneratedFile, GenerationError, Options
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.model.ir import Model
 
@@ -64,6 +64,10 @@ def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink, package: str 
     files: list[GeneratedFile] = []
     options = Options(source=inputs.source, package=package)
     for lang in langs:
-        for f in backends.get(lang).generate(inputs.model, inputs.asset, options):
-            files.append(GeneratedFile(f"{lang}/{f.path}", f.content, f.user_owned))
+        try:
+            produced = backends.get(lang).generate(inputs.model, inputs.asset, options)
+        except GenerationError as exc:
+            exc.report(sink)
+            return None
+        files += [GeneratedFile(f"{lang}/{f.path}", f.content, f.user_owned) for f in produced]
     return files

@@ -13,6 +13,7 @@ from rapidgen.model.ir import Model
 
 if TYPE_CHECKING:
     from rapidgen.asset import LoadedAsset
+    from rapidgen.diagnostics import DiagnosticSink
 
 
 @dataclass(frozen=True, slots=True)
@@ -27,6 +28,13 @@ class Options:
     source: str  # the spec the output comes from, named in every file header
     package: str | None = None  # base package/crate/namespace name; back ends pick a default
     settings: dict[str, str] = field(default_factory=dict)
+
+
+class GenerationError(Exception):
+    """A back end cannot express part of the model; report() turns it into diagnostics."""
+
+    def report(self, sink: "DiagnosticSink") -> None:
+        raise NotImplementedError
 
 
 class Backend(Protocol):

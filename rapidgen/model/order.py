@@ -48,7 +48,7 @@ def _edges(d: ir.Declaration, by_value: bool) -> list[str]:
     return out
 
 
-def _sccs(names: list[str], graph: dict[str, list[str]]) -> list[list[str]]:
+def strongly_connected(names: list[str], graph: dict[str, list[str]]) -> list[list[str]]:
     """Tarjan's algorithm, iterative; components come out dependencies first."""
     index: dict[str, int] = {}
     low: dict[str, int] = {}
@@ -95,7 +95,7 @@ def check_recursion(decls: list[ir.Declaration], sink: DiagnosticSink) -> None:
     names = [d.scoped_name for d in decls]
     by_name = {d.scoped_name: d for d in decls}
     graph = {d.scoped_name: [n for n in _edges(d, True) if n in by_name] for d in decls}
-    for comp in _sccs(names, graph):
+    for comp in strongly_connected(names, graph):
         if len(comp) == 1 and comp[0] not in graph[comp[0]]:
             continue
         members = sorted(comp, key=names.index)
@@ -112,7 +112,7 @@ def dependency_order(decls: list[ir.Declaration]) -> list[ir.Declaration]:
     soft = {n: sorted({e for e in _edges(by_name[n], False) if e in by_name}, key=pos.__getitem__) for n in names}
     hard = {n: {e for e in _edges(by_name[n], True) if e in by_name} for n in names}
     out: list[ir.Declaration] = []
-    for comp in _sccs(names, soft):
+    for comp in strongly_connected(names, soft):
         if len(comp) == 1:
             out.append(by_name[comp[0]])
             continue

@@ -1,13 +1,5 @@
-"""`rapidgen generate` and `rapidgen check` over a project file, with a stub-free back end.
-
-These use the real `python` back end when it is installed; otherwise they are skipped
-(the back end has its own tests)."""
-import pytest
-
-from rapidgen import backends
+"""`rapidgen generate` and `rapidgen check` over a project file, through the real python back end."""
 from tests.helpers import rapidgen
-
-pytestmark = pytest.mark.skipif("python" not in backends.available(), reason="python back end not present")
 
 IDL = "module m { struct S { @key long id; string<8> name; }; };\n"
 

@@ -1,0 +1,46 @@
+"""Python target: a pip-installable package of `cyclonedds.idl` classes.
+
+    generate(model, asset, options) -> [GeneratedFile]
+
+The package is named after the asset (`K10Red` -> `rapid_k10red`), or options.package,
+or `rapid_types` for IDL alone. See view.py for the layout and docs/python-backend.md
+for the mapping rules.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from rapidgen.backends.base import GeneratedFile, Options, notice
+from rapidgen.backends.python import namer
+from rapidgen.backends.python.view import PackageView, UnsupportedInput, build
+from rapidgen.backends.templating import render
+from rapidgen.model.ir import Model
+
+if TYPE_CHECKING:
+    from rapidgen.asset import LoadedAsset
+
+NAME = "python"
+DEFAULT_PACKAGE = "rapid_types"
+
+__all__ = ["NAME", "DEFAULT_PACKAGE", "UnsupportedInput", "generate", "package_for", "view"]
+
+
+def package_for(asset: "LoadedAsset | None", options: Options) -> str:
+    if options.package:
+        return namer.escape(namer.identifier(options.package), namer.KEYWORDS)
+    if asset is not None:
+        return namer.package_name(asset.spec.name)
+    return DEFAULT_PACKAGE
+
+
+def view(model: Model, asset: "LoadedAsset | None", options: Options) -> PackageView:
+    return build(model, package_for(asset, options), options.source, notice(options.source))
+
+
+def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:
+    """Raises UnsupportedInput when the model uses what cyclonedds cannot encode."""
+    pkg = view(model, asset, options)
+    files = [GeneratedFile("pyproject.toml", render("python", "pyproject.toml.j2", p=pkg.project)),
+             GeneratedFile(pkg.support_path, render("python", "_support.py.j2", header=pkg.header))]
+    files += [GeneratedFile(m.path, render("python", "module.py.j2", f=m)) for m in pkg.modules]
+    return sorted(files, key=lambda f: f.path)

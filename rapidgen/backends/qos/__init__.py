@@ -1,0 +1,110 @@
+"""The `qos` back end: RAPID's QoS library (+ an asset's overrides) as vendor files.
+
+Output, under qos/:
+  fastdds/rapid_qos_profiles.xml   Fast DDS 2.9: participant profiles per transport,
+                                   data_writer/data_reader profiles per RAPID profile
+  cyclonedds/<transport>.xml       Cyclone DDS domain configuration, one per transport
+  rti/USER_QOS_PROFILES.xml        RTI Connext, RAPID's original qos_library form
+  dds-xml/rapid_qos.xml            OMG DDS-XML 1.0 (Cyclone's QoS provider loads it)
+  topics.json                      topic -> type, profile: what the runtimes read
+
+The library is the one the package ships (specs/qos/rapid.yaml); `render()` takes
+another (tests, sites with their own peers and servers).
+"""
+from __future__ import annotations
+
+import json
+
+from rapidgen.backends.base import GeneratedFile, Options, notice
+from rapidgen.backends.qos import topicmap, view
+from rapidgen.backends.templating import render as render_template
+from rapidgen.model.ir import Model
+from rapidgen.qos.spec import QosSpec, default_library
+
+NAME = "qos"
+
+FASTDDS_FILE = "fastdds/rapid_qos_profiles.xml"
+DDS_XML_FILE = "dds-xml/rapid_qos.xml"
+RTI_FILE = "rti/USER_QOS_PROFILES.xml"
+TOPICS_FILE = "topics.json"
+
+
+def cyclone_file(transport: str) -> str:
+    return f"cyclonedds/{transport}.xml"
+
+
+def comment_text(text: str) -> str:
+    """One line that is safe inside an XML comment (no '--')."""
+    text = " ".join(text.split())
+    while "--" in text:
+        text = text.replace("--", "- -")
+    return text.rstrip("-")
+
+
+def _safe(spec: QosSpec) -> QosSpec:
+    import dataclasses
+
+    return dataclasses.replace(
+        spec,
+        profiles=tuple(dataclasses.replace(p, description=comment_text(p.description)) for p in spec.profiles),
+        transports=tuple(dataclasses.replace(t, description=comment_text(t.description)) for t in spec.transports))
+
+
+def generate(model: Model, asset, options: Options) -> list[GeneratedFile]:
+    return render(default_library(), model, asset, options)
+
+
+def render(spec: QosSpec, model: Model, asset, options: Options) -> list[GeneratedFile]:
+    spec = _safe(spec)
+    head = comment_text(notice(options.source))
+    asset_name = asset.spec.name if asset is not None else None
+    topics = topicmap.from_asset(asset, spec) if asset is not None else topicmap.from_model(model, spec)
+    for entry in topics:
+        if not spec.has_profile(entry.profile):
+            raise ValueError(f"topic '{entry.topic}' names profile '{entry.profile}', "
+                             f"which QoS library {spec.library} lacks")
+    common = dict(notice=head, library=spec.library, asset=asset_name)
+    files = []
+
+    transports, participants = view.fastdds_view(spec, asset)
+    files.append(GeneratedFile(FASTDDS_FILE, render_template(
+        NAME, "fastdds.xml.j2", transports=transports, participants=participants,
+        profiles=view.effective_profiles(spec, asset, view.FASTDDS_NAMES, True), **common)))
+
+    files.append(GeneratedFile(DDS_XML_FILE, render_template(
+        NAME, "dds_xml.xml.j2", profiles=view.effective_profiles(spec, asset, view.OMG_NAMES, False), **common)))
+
+    files.append(GeneratedFile(RTI_FILE, render_template(
+        NAME, "rti.xml.j2", profiles=view.rti_profiles(spec, asset), transports=view.rti_transports(spec),
+        **common)))
+
+    for t in view.cyclone_views(spec):
+        files.append(GeneratedFile(cyclone_file(t.name), render_template(NAME, "cyclonedds.xml.j2", t=t, **common)))
+
+    files.append(GeneratedFile(TOPICS_FILE, topics_json(spec, asset, topics, options)))
+    return files
+
+
+def topics_json(spec: QosSpec, asset, topics: list[topicmap.TopicEntry], options: Options) -> str:
+    default = spec.default_transport.name
+    data = {
+        "_generated": notice(options.source),
+        "library": spec.library,
+        "asset": asset.spec.name if asset is not None else None,
+        "domain": asset.spec.domain if asset is not None else None,
+        "partition": view.partition_of(spec, asset),
+        "default_transport": default,
+        "transports": {t.name: {"cyclonedds": cyclone_file(t.name),
+                                "fastdds_participant": f"rapid_{t.name}",
+                                **({"fastdds_tcp_participant": f"rapid_{t.name}_tcp",
+                                    "fastdds_discovery_server": f"rapid_{t.name}_tcp_server"} if t.tcp else {}),
+                                "rti_profile": f"{spec.library}::{view.rti_transport_name(t)}"}
+                       for t in spec.transports},
+        "files": {"fastdds": FASTDDS_FILE, "dds_xml": DDS_XML_FILE, "rti": RTI_FILE},
+        "topics": [{"topic": e.topic, "type": e.type, "role": e.role, "direction": e.direction,
+                    "profile": e.profile, "key": f"{spec.library}::{e.profile}"} for e in topics],
+    }
+    return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
+
+
+__all__ = ["NAME", "generate", "render"]

@@ -1,0 +1,339 @@
+"""QoS spec (+ asset) -> view objects for each vendor's template.
+
+Everything a template prints is decided here: vendor enum spellings, which elements
+appear (precomputed booleans and lists), locators, port numbers, profile names.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rapidgen.qos.spec import Participant, Policies, Ports, QosSpec, Transport
+
+# Bytes left for RTPS headers and inline QoS when Cyclone cuts samples into fragments.
+FRAGMENT_HEADROOM = 150
+FASTDDS_DEFAULT_MULTICAST = "239.255.0.1"
+
+_OMG = {  # DDS-XML and RTI spell the enumerators the same way
+    "reliable": "RELIABLE_RELIABILITY_QOS", "best_effort": "BEST_EFFORT_RELIABILITY_QOS",
+    "volatile": "VOLATILE_DURABILITY_QOS", "transient_local": "TRANSIENT_LOCAL_DURABILITY_QOS",
+    "keep_last": "KEEP_LAST_HISTORY_QOS", "keep_all": "KEEP_ALL_HISTORY_QOS",
+    "asynchronous": "ASYNCHRONOUS_PUBLISH_MODE_QOS", "synchronous": "SYNCHRONOUS_PUBLISH_MODE_QOS",
+}
+_FASTDDS = {
+    "reliable": "RELIABLE", "best_effort": "BEST_EFFORT", "volatile": "VOLATILE",
+    "transient_local": "TRANSIENT_LOCAL", "keep_last": "KEEP_LAST", "keep_all": "KEEP_ALL",
+    "asynchronous": "ASYNCHRONOUS", "synchronous": "SYNCHRONOUS",
+}
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    """One side's QoS, spelt for one vendor; None: not written."""
+
+    reliability: str | None
+    durability: str | None
+    history_kind: str | None
+    history_depth: int | None
+    publish_mode: str | None
+
+    @property
+    def has_history(self) -> bool:
+        return self.history_kind is not None
+
+    @property
+    def has_depth(self) -> bool:
+        return self.history_depth is not None
+
+    @property
+    def empty(self) -> bool:
+        return self == Endpoint(None, None, None, None, None)
+
+
+def endpoint(p: Policies, names: dict[str, str]) -> Endpoint:
+    return Endpoint(names.get(p.reliability or ""), names.get(p.durability or ""),
+                    names.get(p.history.kind) if p.history else None,
+                    p.history.depth if p.history else None, names.get(p.publish_mode or ""))
+
+
+@dataclass(frozen=True)
+class ProfileView:
+    name: str
+    key: str  # library::name
+    base_key: str | None
+    description: str
+    writer: Endpoint
+    reader: Endpoint
+    partition: str | None
+    rti_participant: "RtiParticipant | None" = None
+
+    @property
+    def has_base(self) -> bool:
+        return self.base_key is not None
+
+    @property
+    def has_partition(self) -> bool:
+        return self.partition is not None
+
+
+def partition_of(spec: QosSpec, asset) -> str | None:
+    if asset is None or spec.partition is None:
+        return None
+    name = asset.spec.partition or asset.spec.name
+    return spec.partition.replace("{asset}", name)
+
+
+def effective_profiles(spec: QosSpec, asset, names: dict[str, str], publish_mode: bool) -> list[ProfileView]:
+    """Every profile with its whole chain resolved (Fast DDS; DDS-XML, which has no publish mode)."""
+    part = partition_of(spec, asset)
+    out = []
+    for p in spec.profiles:
+        writer, reader = spec.effective(p.name)
+        if not publish_mode:
+            writer = Policies(writer.reliability, writer.durability, writer.history, None)
+        out.append(ProfileView(p.name, f"{spec.library}::{p.name}", f"{spec.library}::{p.base}" if p.base else None,
+                               p.description, endpoint(writer, names), endpoint(reader, names), part))
+    return out
+
+
+# ---------------------------------------------------------------- RTI Connext
+
+
+@dataclass(frozen=True)
+class Property:
+    name: str
+    value: str
+
+
+@dataclass(frozen=True)
+class RtiParticipant:
+    type_code_off: bool
+    ports: Ports | None
+    properties: tuple[Property, ...]
+    builtin_mask: str | None
+    initial_peers: tuple[str, ...]
+    multicast_receive: tuple[str, ...]
+    sets_discovery: bool  # write <discovery> (an empty multicast list disables multicast)
+
+    @property
+    def has_ports(self) -> bool:
+        return self.ports is not None
+
+    @property
+    def has_properties(self) -> bool:
+        return bool(self.properties)
+
+    @property
+    def has_mask(self) -> bool:
+        return self.builtin_mask is not None
+
+    @property
+    def has_multicast_receive(self) -> bool:
+        return bool(self.multicast_receive)
+
+
+def _rti_message_size(part: Participant) -> tuple[Property, ...]:
+    if part.max_message_size is None:
+        return ()
+    return (Property("dds.transport.UDPv4.builtin.parent.message_size_max", str(part.max_message_size)),)
+
+
+def rti_profiles(spec: QosSpec, asset) -> list[ProfileView]:
+    """RAPID's original form: each profile states only what it adds to its base."""
+    part = partition_of(spec, asset)
+    root = spec.default_profile.name
+    out = []
+    for p in spec.profiles:
+        writer = endpoint(p.writer.over(p.both), _OMG)
+        reader = endpoint(p.reader.over(p.both), _OMG)
+        participant = None
+        if p.participant != Participant():
+            participant = RtiParticipant(p.participant.type_information is False, p.participant.ports,
+                                         _rti_message_size(p.participant), None, (), (), False)
+        out.append(ProfileView(p.name, f"{spec.library}::{p.name}", f"{spec.library}::{p.base}" if p.base else None,
+                               p.description, writer, reader, part if p.name == root else None, participant))
+    return out
+
+
+def rti_transport_name(t: Transport) -> str:
+    return "Rapid" + "".join(w.capitalize() for w in t.name.split("_")) + "TransportQos"
+
+
+@dataclass(frozen=True)
+class RtiTransport:
+    name: str
+    base_key: str
+    description: str
+    is_default: bool
+    participant: RtiParticipant
+    tcp_note: bool  # the transport also has a Fast DDS TCP variant RTI does not get
+
+
+def rti_transports(spec: QosSpec) -> list[RtiTransport]:
+    root = spec.default_profile
+    size = _rti_message_size(spec.participant(root.name))
+    out = []
+    for t in spec.transports:
+        props = list(size)
+        if t.interfaces:
+            props.append(Property("dds.transport.UDPv4.builtin.parent.allow_interfaces_list", ",".join(t.interfaces)))
+        index = f"{t.max_participants_per_host - 1}@" if t.max_participants_per_host else ""
+        if t.multicast:
+            group = t.multicast_address or FASTDDS_DEFAULT_MULTICAST
+            peers = tuple(f"builtin.udpv4://{a}" for a in (group, *t.peers))
+            receive = (f"udpv4://{group}",)
+        else:
+            peers = tuple(f"{index}builtin.udpv4://{a}" for a in t.peers)
+            receive = ()
+        participant = RtiParticipant(False, None, tuple(props), "UDPv4", peers, receive, True)
+        out.append(RtiTransport(rti_transport_name(t), f"{spec.library}::{root.name}", t.description, t.default,
+                                participant, t.tcp is not None))
+    return out
+
+
+# ---------------------------------------------------------------- Cyclone DDS
+
+
+@dataclass(frozen=True)
+class CycloneView:
+    name: str
+    description: str
+    interfaces: tuple[str, ...]
+    allow_multicast: str
+    spdp_multicast_address: str | None
+    max_message_size: str | None
+    fragment_size: str | None
+    participant_index: str | None
+    max_auto_participant_index: int | None
+    peers: tuple[str, ...]
+    ports: Ports | None
+
+    @property
+    def has_interfaces(self) -> bool:
+        return bool(self.interfaces)
+
+    @property
+    def has_peers(self) -> bool:
+        return bool(self.peers)
+
+
+def cyclone_views(spec: QosSpec) -> list[CycloneView]:
+    part = spec.participant(spec.default_profile.name)
+    size = part.max_message_size
+    out = []
+    for t in spec.transports:
+        unicast = not t.multicast
+        out.append(CycloneView(
+            t.name, t.description, t.interfaces, "true" if t.multicast else "false",
+            t.multicast_address if t.multicast else None,
+            f"{size}B" if size else None, f"{size - FRAGMENT_HEADROOM}B" if size else None,
+            "auto" if unicast else None,
+            (t.max_participants_per_host - 1) if unicast and t.max_participants_per_host else None,
+            t.peers, part.ports))
+    return out
+
+
+# ---------------------------------------------------------------- Fast DDS
+
+
+@dataclass(frozen=True)
+class Locator:
+    kind: str  # udpv4 | tcpv4
+    address: str | None = None
+    port: int | None = None  # TCP logical port
+    physical_port: int | None = None
+
+    @property
+    def is_any(self) -> bool:
+        return self.address is None
+
+
+@dataclass(frozen=True)
+class FastTransport:
+    id: str
+    type: str  # UDPv4 | TCPv4
+    max_message_size: int | None
+    interfaces: tuple[str, ...]
+    max_initial_peers_range: int | None
+    listening_ports: tuple[int, ...]
+
+    @property
+    def is_tcp(self) -> bool:
+        return self.type == "TCPv4"
+
+
+@dataclass(frozen=True)
+class RemoteServer:
+    prefix: str
+    locator: Locator
+
+
+@dataclass(frozen=True)
+class FastParticipant:
+    name: str
+    description: str
+    is_default: bool
+    domain: int | None
+    participant_name: str | None
+    discovery: str  # SIMPLE | CLIENT | SERVER
+    prefix: str | None
+    servers: tuple[RemoteServer, ...]
+    meta_unicast: tuple[Locator, ...]
+    initial_peers: tuple[Locator, ...]
+    default_unicast: tuple[Locator, ...]
+    transport: str
+    ports: Ports | None
+
+    @property
+    def has_builtin(self) -> bool:
+        return self.discovery != "SIMPLE" or bool(self.meta_unicast or self.initial_peers)
+
+
+def _fast_udp(t: Transport, size: int | None) -> tuple[FastTransport, FastParticipant]:
+    tr = FastTransport(f"rapid_udp_{t.name}", "UDPv4", size, t.interfaces,
+                       t.max_participants_per_host, ())
+    meta: tuple[Locator, ...] = ()
+    peers: tuple[Locator, ...] = ()
+    if not t.multicast:  # a unicast metatraffic list alone means: no multicast listener
+        meta = tuple(Locator("udpv4", a) for a in t.interfaces) or (Locator("udpv4"),)
+        peers = tuple(Locator("udpv4", a) for a in t.peers)
+    elif t.peers:
+        peers = tuple(Locator("udpv4", a) for a in (t.multicast_address or FASTDDS_DEFAULT_MULTICAST, *t.peers))
+    default_uc = tuple(Locator("udpv4", a) for a in t.interfaces)
+    return tr, FastParticipant(f"rapid_{t.name}", t.description, t.default, None, None, "SIMPLE", None, (),
+                               meta, peers, default_uc, tr.id, None)
+
+
+def fastdds_view(spec: QosSpec, asset) -> tuple[list[FastTransport], list[FastParticipant]]:
+    part = spec.participant(spec.default_profile.name)
+    domain = asset.spec.domain if asset is not None else None
+    pname = asset.spec.name if asset is not None else None
+    transports: list[FastTransport] = []
+    participants: list[FastParticipant] = []
+
+    def add(tr: FastTransport, pa: FastParticipant) -> None:
+        transports.append(tr)
+        participants.append(FastParticipant(pa.name, pa.description, pa.is_default, domain, pname, pa.discovery,
+                                            pa.prefix, pa.servers, pa.meta_unicast, pa.initial_peers,
+                                            pa.default_unicast, pa.transport, part.ports))
+
+    for t in spec.transports:
+        add(*_fast_udp(t, part.max_message_size))
+        if t.tcp is None:
+            continue
+        ds = t.tcp.discovery_server
+        server_loc = Locator("tcpv4", ds.address, ds.port, ds.port)
+        listen = (t.tcp.listening_port,) if t.tcp.listening_port else ()
+        client = FastTransport(f"rapid_tcp_{t.name}", "TCPv4", None, t.interfaces, None, listen)
+        add(client, FastParticipant(f"rapid_{t.name}_tcp", f"{t.name} over TCP: a client of the discovery server",
+                                    False, None, None, "CLIENT", None, (RemoteServer(ds.prefix, server_loc),),
+                                    (), (), (), client.id, None))
+        server = FastTransport(f"rapid_tcp_{t.name}_server", "TCPv4", None, t.interfaces, None, (ds.port,))
+        add(server, FastParticipant(f"rapid_{t.name}_tcp_server",
+                                    f"the discovery server of {t.name} over TCP (fastdds discovery -x)",
+                                    False, None, None, "SERVER", ds.prefix, (), (server_loc,), (), (),
+                                    server.id, None))
+    return transports, participants
+
+
+FASTDDS_NAMES = _FASTDDS
+OMG_NAMES = _OMG
