@@ -68,6 +68,11 @@ def build_parser() -> argparse.ArgumentParser:
     desc_p.add_argument("file", metavar="ASSET.yaml")
     desc_p.add_argument("--rapid", metavar="DIR", help="folder of the RAPID base IDL")
     _diag_args(desc_p)
+    vec_p = sub.add_parser("vectors", help="write golden CDR vectors (sample values and their XCDR1/XCDR2 bytes)")
+    vec_p.add_argument("inputs", nargs="+", metavar="ASSET.yaml|FILE.idl")
+    _common_idl_args(vec_p)
+    _diag_args(vec_p)
+    vec_p.add_argument("-o", "--output", required=True, metavar="FILE", help="the JSON file to write")
     return parser
 
 
@@ -214,8 +219,13 @@ def _cmd_check(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_vectors(args: argparse.Namespace) -> int:
+    from rapidgen.vectors import run_vectors
+    return run_vectors(args.inputs, args.include, args.output, _sink(args), report, _defines(args.define))
+
+
 _COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary, "validate": _cmd_validate, "describe": _cmd_describe,
-             "generate": _cmd_generate, "check": _cmd_check}
+             "generate": _cmd_generate, "check": _cmd_check, "vectors": _cmd_vectors}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

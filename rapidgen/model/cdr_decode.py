@@ -146,6 +146,7 @@ class Decoder:
             raw = self.data[self.pos:self.pos + 16]
             self.pos += 16
             return float128_value(raw, self.little)
+        self.align(size)
         at = self.pos
         x = self.get(fmt, size)
         if name == "boolean":
@@ -186,6 +187,7 @@ class Decoder:
 
     # -- strings ----------------------------------------------------------------------------
     def string(self, r: ir.String) -> str:
+        self.align(4)
         at = self.pos
         n = self.u32()
         if r.wide:
@@ -232,6 +234,7 @@ class Decoder:
     def sequence(self, r: ir.Sequence) -> list:
         self.enter()
         saved = self.open_dheader() if self.v == 2 and not self.t.is_primitive(r.element) else None
+        self.align(4)
         at = self.pos
         n = self.u32()
         if r.bound is not None and n > r.bound:
@@ -261,6 +264,7 @@ class Decoder:
         self.enter()
         dh = self.v == 2 and not (self.t.is_primitive(r.key) and self.t.is_primitive(r.value))
         saved = self.open_dheader() if dh else None
+        self.align(4)
         at = self.pos
         n = self.u32()
         if r.bound is not None and n > r.bound:
@@ -304,6 +308,7 @@ class Decoder:
     # -- enums, bitmasks, bitsets -------------------------------------------------------------
     def enum(self, d: ir.Enum) -> str:
         size = self.t.enum_size(d)
+        self.align(size)
         at = self.pos
         number = self.get({1: "b", 2: "h", 4: "i"}[size], size)
         _, by_value = self.t.enum_maps(d)
@@ -313,6 +318,7 @@ class Decoder:
 
     def bitmask(self, d: ir.Bitmask) -> int:
         size = self.t.bitmask_size(d)
+        self.align(size)
         at = self.pos
         mask = self.get({1: "B", 2: "H", 4: "I", 8: "Q"}[size], size)
         allowed = sum(1 << b.position for b in d.values)

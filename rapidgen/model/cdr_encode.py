@@ -19,6 +19,11 @@ PID_FLAG_MU = 0x4000  # must-understand bit of the short parameter id
 PID_LONG_MU = 0x40000000  # must-understand bit of the extended member id
 EM_MU = 0x80000000  # must-understand bit of an XCDR2 EMHEADER
 
+# element types a list may hold for the packed fast path (others are checked one by one)
+_FAST_KINDS: dict[str, tuple[type, ...]] = {
+    **{k: (int,) for k in ("int8", "uint8", "octet", "int16", "uint16", "int32", "uint32", "int64", "uint64")},
+    "float32": (float, int), "float64": (float, int), "boolean": (bool,),
+}
 _INT_FORMATS = {"int8", "uint8", "octet", "int16", "uint16", "int32", "uint32", "int64", "uint64"}
 
 
@@ -175,13 +180,20 @@ class Encoder:
                 except CdrError as err:
                     raise err.within(f"[{i}]") from None
             return
+        self.align(size)
+        kinds = _FAST_KINDS.get(name)
+        if kinds is not None and all(type(x) in kinds for x in items):  # type: ignore[attr-defined]
+            try:  # struct checks the ranges; on failure, find the culprit below
+                self.buf += packer(f"{self.e}{n}{fmt}").pack(*items)  # type: ignore[misc]
+                return
+            except (struct.error, OverflowError):
+                pass
         values = []
         for i, x in enumerate(items):  # type: ignore[attr-defined]
             try:
                 values.append(self.check_primitive(name, x))
             except CdrError as err:
                 raise err.within(f"[{i}]") from None
-        self.align(size)
         try:
             self.buf += packer(f"{self.e}{n}{fmt}").pack(*values)
         except (struct.error, OverflowError) as exc:

@@ -58,9 +58,12 @@ _STRUCT_CACHE: dict[str, struct.Struct] = {}
 
 
 def packer(fmt: str) -> struct.Struct:
+    """A compiled struct format; the fixed ones are kept, counted ones ("<12i") are not."""
     s = _STRUCT_CACHE.get(fmt)
     if s is None:
-        s = _STRUCT_CACHE[fmt] = struct.Struct(fmt)
+        s = struct.Struct(fmt)
+        if len(fmt) <= 3:
+            _STRUCT_CACHE[fmt] = s
     return s
 
 
@@ -71,7 +74,7 @@ class MemberInfo:
     must_understand: bool  # key members and @must_understand ones
 
 
-def int_size(bit_bound: int, limit: int = 32) -> int:
+def int_size(bit_bound: int) -> int:
     """Bytes holding a @bit_bound value: 1..8 -> 1, 9..16 -> 2, 17..32 -> 4, 33..64 -> 8."""
     for size, bits in ((1, 8), (2, 16), (4, 32), (8, 64)):
         if bit_bound <= bits:
