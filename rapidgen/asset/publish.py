@@ -32,7 +32,7 @@ def command_config(spec: AssetSpec) -> dict | None:
 
 
 def union_value(facts: Facts, data_type: str, value: object = None) -> dict:
-    """A ParameterUnion holding value (the type's zero when None)."""
+    """A ParameterUnion holding value (the type's zero when None), in the codec's value form."""
     shape = facts.shapes.get(data_type) or STATIC_SHAPES[data_type]
     if shape.kind == "bool":
         v = bool(value) if value is not None else False
@@ -44,7 +44,7 @@ def union_value(facts: Facts, data_type: str, value: object = None) -> dict:
         v = str(value) if value is not None else ""
     else:
         v = [float(x) for x in value] if value is not None else [0.0] * shape.count
-    return {"discriminator": data_type, shape.member: v}
+    return {"discriminator": data_type, "value": v}
 
 
 def value_keys(facts: Facts, values: tuple[ValueKey, ...]) -> list[dict]:

@@ -82,14 +82,28 @@ def test_paths_are_relative_to_the_descriptor(tmp_path, monkeypatch):
     assert loaded.spec.idl_files == ("robots/idl/X.idl",) and loaded.spec.include_dirs == ("robots/idl",)
 
 
-def test_union_values_use_the_idl_member_names(seed):
+def test_union_values_use_the_codec_value_form(seed):
     facts = Facts(seed("k10").model)
-    assert union_value(facts, "RAPID_BOOL") == {"discriminator": "RAPID_BOOL", "b": False}
-    assert union_value(facts, "RAPID_INT", 3) == {"discriminator": "RAPID_INT", "i": 3}
-    assert union_value(facts, "RAPID_LONGLONG") == {"discriminator": "RAPID_LONGLONG", "ll": 0}
-    assert union_value(facts, "RAPID_DOUBLE", 2) == {"discriminator": "RAPID_DOUBLE", "d": 2.0}
-    assert union_value(facts, "RAPID_STRING", "x") == {"discriminator": "RAPID_STRING", "s": "x"}
-    assert union_value(facts, "RAPID_MAT33f")["mat33f"] == [0.0] * 9
+    assert union_value(facts, "RAPID_BOOL") == {"discriminator": "RAPID_BOOL", "value": False}
+    assert union_value(facts, "RAPID_INT", 3) == {"discriminator": "RAPID_INT", "value": 3}
+    assert union_value(facts, "RAPID_LONGLONG") == {"discriminator": "RAPID_LONGLONG", "value": 0}
+    assert union_value(facts, "RAPID_DOUBLE", 2) == {"discriminator": "RAPID_DOUBLE", "value": 2.0}
+    assert union_value(facts, "RAPID_STRING", "x") == {"discriminator": "RAPID_STRING", "value": "x"}
+    assert union_value(facts, "RAPID_MAT33f") == {"discriminator": "RAPID_MAT33f", "value": [0.0] * 9}
+
+
+def test_computed_configs_encode_with_the_reference_codec(seed):
+    from rapidgen.asset.publish import configs
+    from rapidgen.model.cdr import Codec
+
+    loaded = seed("robonaut2")
+    codec = Codec(loaded.model)
+    hdr = {"srcName": "R2", "assetName": "R2", "timeStamp": 0, "statusCode": 0, "serial": 1}
+    for _topic, (type_name, value) in configs(loaded).items():
+        full = dict(hdr=hdr, **value)
+        decoded = codec.decode(type_name, codec.encode(type_name, full))
+        assert decoded["hdr"] == hdr
+        assert set(decoded) == set(full)
 
 
 def test_value_keys_carry_defaults(seed):
@@ -97,8 +111,8 @@ def test_value_keys_carry_defaults(seed):
     loaded = seed("eva-suit")
     agent = next(t for t in loaded.spec.telemetry if isinstance(t, AgentTelemetry))
     keys = value_keys(Facts(loaded.model), agent.values)
-    assert keys[0] == {"key": "suitPressure", "padding": 0, "value": {"discriminator": "RAPID_FLOAT", "f": 4.3}}
-    assert keys[3]["value"] == {"discriminator": "RAPID_INT", "i": 0}
+    assert keys[0] == {"key": "suitPressure", "padding": 0, "value": {"discriminator": "RAPID_FLOAT", "value": 4.3}}
+    assert keys[3]["value"] == {"discriminator": "RAPID_INT", "value": 0}
 
 
 def test_string_bounds_leave_room_for_the_nul():

@@ -92,6 +92,6 @@ def test_telemetry_of_table_1(seed):
     assert joints["jointDefinitions"][3] == {"frameName": "LeftArm/Joint3", "dof": "elbowFlexion"}
     _, agent = got["rapid_agent_config"]
     assert agent["valueKeys"][0] == {"key": "leftWristForce", "padding": 0,
-                                     "value": {"discriminator": "RAPID_VEC3d", "vec3d": [0.0, 0.0, 0.0]}}
+                                     "value": {"discriminator": "RAPID_VEC3d", "value": [0.0, 0.0, 0.0]}}
     assert "rapid_position_sample-leftArm" in agent["topics"]
     assert Facts(loaded.model).shapes["RAPID_VEC3d"].count == 3
