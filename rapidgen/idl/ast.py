@@ -2,16 +2,17 @@
 
 Names here are as written (relative or absolute), expressions are unevaluated and
 types are unresolved; resolution turns this into the Model (rapidgen.model.ir).
+Nodes are NamedTuples: immutable, and much cheaper to create than frozen dataclasses
+(the parser makes tens of thousands); the model proper uses frozen dataclasses.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from rapidgen.diagnostics import SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class ScopedName:
+class ScopedName(NamedTuple):
     parts: tuple[str, ...]
     absolute: bool
     loc: SourceLoc
@@ -21,28 +22,24 @@ class ScopedName:
 
 
 # -- constant expressions ----------------------------------------------------------
-@dataclass(frozen=True, slots=True)
-class Literal:
+class Literal(NamedTuple):
     kind: str  # int | float | fixed | char | wchar | string | wstring | bool
     value: object
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class NameRef:
+class NameRef(NamedTuple):
     name: ScopedName
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class Unary:
+class Unary(NamedTuple):
     op: str
     operand: "Expr"
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class Binary:
+class Binary(NamedTuple):
     op: str
     left: "Expr"
     right: "Expr"
@@ -53,50 +50,43 @@ Expr = Literal | NameRef | Unary | Binary
 
 
 # -- annotations -------------------------------------------------------------------
-@dataclass(frozen=True, slots=True)
-class AnnotationAppl:
+class AnnotationAppl(NamedTuple):
     name: str  # as written, e.g. "key" or "::my::ann"
     params: tuple[tuple[str | None, Expr], ...]
     loc: SourceLoc
 
 
 # -- type specs ----------------------------------------------------------------------
-@dataclass(frozen=True, slots=True)
-class BaseType:
+class BaseType(NamedTuple):
     name: str  # IR primitive name: int32, float64, char8, boolean, octet, ...
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class NamedType:
+class NamedType(NamedTuple):
     name: ScopedName
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class SequenceType:
+class SequenceType(NamedTuple):
     element: "TypeSpec"
     bound: Expr | None
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class StringType:
+class StringType(NamedTuple):
     bound: Expr | None
     wide: bool
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class MapType:
+class MapType(NamedTuple):
     key: "TypeSpec"
     value: "TypeSpec"
     bound: Expr | None
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class FixedType:
+class FixedType(NamedTuple):
     digits: Expr | None  # None for the bare `fixed` const type
     scale: Expr | None
     loc: SourceLoc
@@ -106,15 +96,13 @@ TypeSpec = BaseType | NamedType | SequenceType | StringType | MapType | FixedTyp
 
 
 # -- declarations --------------------------------------------------------------------
-@dataclass(frozen=True, slots=True)
-class Declarator:
+class Declarator(NamedTuple):
     name: str
     dims: tuple[Expr, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class MemberDecl:
+class MemberDecl(NamedTuple):
     annotations: tuple[AnnotationAppl, ...]
     type: TypeSpec
     declarators: tuple[Declarator, ...]
@@ -123,8 +111,7 @@ class MemberDecl:
     visibility: str | None = None  # valuetype state members: public | private
 
 
-@dataclass(frozen=True, slots=True)
-class StructDecl:
+class StructDecl(NamedTuple):
     name: str
     base: ScopedName | None
     members: tuple[MemberDecl, ...]
@@ -134,23 +121,20 @@ class StructDecl:
     exports: tuple["Definition", ...] = ()  # consts/typedefs declared inside a valuetype
 
 
-@dataclass(frozen=True, slots=True)
-class ForwardDecl:
+class ForwardDecl(NamedTuple):
     kind: str  # struct | union | valuetype
     name: str
     annotations: tuple[AnnotationAppl, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class CaseDecl:
+class CaseDecl(NamedTuple):
     labels: tuple[Expr | None, ...]  # None is `default`
     member: MemberDecl
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class UnionDecl:
+class UnionDecl(NamedTuple):
     name: str
     discriminator: TypeSpec
     disc_annotations: tuple[AnnotationAppl, ...]
@@ -159,39 +143,34 @@ class UnionDecl:
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class EnumeratorDecl:
+class EnumeratorDecl(NamedTuple):
     name: str
     value: Expr | None
     annotations: tuple[AnnotationAppl, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class EnumDecl:
+class EnumDecl(NamedTuple):
     name: str
     enumerators: tuple[EnumeratorDecl, ...]
     annotations: tuple[AnnotationAppl, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class BitValueDecl:
+class BitValueDecl(NamedTuple):
     name: str
     annotations: tuple[AnnotationAppl, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class BitmaskDecl:
+class BitmaskDecl(NamedTuple):
     name: str
     values: tuple[BitValueDecl, ...]
     annotations: tuple[AnnotationAppl, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class BitfieldDecl:
+class BitfieldDecl(NamedTuple):
     width: Expr
     type: TypeSpec | None
     names: tuple[str, ...]
@@ -199,8 +178,7 @@ class BitfieldDecl:
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class BitsetDecl:
+class BitsetDecl(NamedTuple):
     name: str
     base: ScopedName | None
     fields: tuple[BitfieldDecl, ...]
@@ -208,16 +186,14 @@ class BitsetDecl:
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class TypedefDecl:
+class TypedefDecl(NamedTuple):
     type: TypeSpec
     declarators: tuple[Declarator, ...]
     annotations: tuple[AnnotationAppl, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class ConstDecl:
+class ConstDecl(NamedTuple):
     type: TypeSpec
     name: str
     value: Expr
@@ -225,30 +201,26 @@ class ConstDecl:
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class NativeDecl:
+class NativeDecl(NamedTuple):
     name: str
     annotations: tuple[AnnotationAppl, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class ModuleDecl:
+class ModuleDecl(NamedTuple):
     name: str
     definitions: tuple["Definition", ...]
     annotations: tuple[AnnotationAppl, ...]
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class KeylistPragma:
+class KeylistPragma(NamedTuple):
     type: ScopedName
     members: tuple[tuple[str, SourceLoc], ...]  # dotted paths
     loc: SourceLoc
 
 
-@dataclass(frozen=True, slots=True)
-class AnnotationDecl:
+class AnnotationDecl(NamedTuple):
     name: str
     loc: SourceLoc
 
@@ -257,7 +229,6 @@ Definition = (ModuleDecl | StructDecl | ForwardDecl | UnionDecl | EnumDecl | Bit
               | BitsetDecl | TypedefDecl | ConstDecl | NativeDecl | KeylistPragma | AnnotationDecl)
 
 
-@dataclass(frozen=True, slots=True)
-class Specification:
+class Specification(NamedTuple):
     definitions: tuple[Definition, ...]
     files: tuple[str, ...]

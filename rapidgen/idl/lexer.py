@@ -52,6 +52,7 @@ class IdlLexer(Lexer):
 
     def lex(self, text: str) -> Iterator[Token]:  # lark's custom-lexer interface (whole text)
         match = self.master.match
+        new_str = str.__new__
         ignore, keywords = self.ignore, self.keywords
         line, line_start, pos, n = 1, 0, 0, len(text)
         prev, templates = "", 0  # previous token's text; template '<' lists open
@@ -84,5 +85,10 @@ class IdlLexer(Lexer):
                     prev, pos = ">", end
                     continue
             prev = value
-            yield Token(kind, value, pos, line, col, line, col + end - pos, end)  # type: ignore[arg-type]
+            # Token(...) goes through two Python frames per token; fill its slots directly.
+            tok = new_str(Token, value)
+            tok.type, tok.value, tok.start_pos, tok.end_pos = kind, value, pos, end
+            tok.line = tok.end_line = line
+            tok.column, tok.end_column = col, col + end - pos
+            yield tok
             pos = end

@@ -9,7 +9,6 @@ from __future__ import annotations
 import copy
 import functools
 import re
-from dataclasses import replace
 from decimal import Decimal, InvalidOperation
 from importlib import resources
 
@@ -19,6 +18,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedTok
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.idl import ast
+from rapidgen.idl.lalr import LeanLALR
 from rapidgen.idl.lexer import IdlLexer
 from rapidgen.idl.preprocess import PreprocessResult
 
@@ -43,6 +43,11 @@ def _parser() -> Lark:
         return Lark(grammar, cache=True, **options)
     except OSError:  # unwritable temp dir: build without the on-disk cache
         return Lark(grammar, **options)
+
+
+@functools.lru_cache(maxsize=1)
+def _lean() -> LeanLALR:
+    return LeanLALR(_parser())
 
 
 @functools.lru_cache(maxsize=1)
@@ -144,7 +149,7 @@ class _ToAst(Transformer):
     def annotated_definition(self, items):
         *anns, definition = items
         if anns and hasattr(definition, "annotations"):
-            definition = replace(definition, annotations=tuple(anns) + definition.annotations)
+            definition = definition._replace(annotations=tuple(anns) + definition.annotations)
         return definition
 
     def module_dcl(self, items):
@@ -379,7 +384,7 @@ class _ToAst(Transformer):
 
     def value_export(self, items):
         *anns, definition = items
-        return replace(definition, annotations=tuple(anns))
+        return definition._replace(annotations=tuple(anns))
 
     # -- annotations
     def annotation_appl(self, items):
@@ -392,7 +397,7 @@ class _ToAst(Transformer):
         return ast.ScopedName(("default",), False, self.loc.token(items[0]))
 
     def annotation_args(self, items):
-        if len(items) == 1 and not isinstance(items[0], tuple):
+        if len(items) == 1 and type(items[0]) is not tuple:  # an expression, not (name, expr) pairs
             return ((None, items[0]),)
         return tuple(items)
 
@@ -585,7 +590,7 @@ def _unclosed_brace(text: str) -> tuple[int, int] | None:
 def parse(pre: PreprocessResult, sink: DiagnosticSink) -> ast.Specification | None:
     """Parse preprocessed text; on a syntax error report it and return None."""
     locator = _Locator(pre)
-    parser = _parser()
+    parser = _lean()
     _TRANSFORMER.loc, _TRANSFORMER.key_comments, _TRANSFORMER.sink = locator, pre.key_comments, sink
     try:
         definitions = parser.parse(pre.text)

@@ -294,6 +294,8 @@ class Resolver:
         t = self._declared(md.type, decl, scope)
         if t is None:
             return None
+        if not md.annotations:  # the common case
+            return ir.Member(decl.name, t, decl.loc, (), md.key_comment)
         checked = self._anns(md.annotations, where, scope, lambda: self._target(t))
         key = md.key_comment or bool(checked.get("key", default=False))
         if md.key_comment and checked.has("optional"):

@@ -1,0 +1,92 @@
+"""A lean LALR(1) driver over the parse table lark builds from grammar.lark.
+
+Lark compiles the grammar, builds the LALR tables and wraps the syntax-tree callbacks;
+this module only runs the shift/reduce loop over those same tables, with the actions
+flattened once into plain dicts (lark's generic loop hashes rule objects and checks
+its state on every step, which was most of the parse time). On any input the table
+rejects, parsing is handed to lark's own parser, which raises its full exception (with
+the expected tokens and an interactive parser) for the error translation in parse.py:
+error reporting is lark's, only the happy path is ours.
+"""
+from __future__ import annotations
+
+from lark import Lark
+from lark.parsers.lalr_analysis import Shift
+
+from rapidgen.idl.lexer import IdlLexer
+
+
+class _Rejected(Exception):
+    """The table has no action: let lark's parser produce the real error."""
+
+
+class LeanLALR:
+    def __init__(self, parser: Lark) -> None:
+        inner = parser.parser.parser.parser  # ParsingFrontend -> LALR_Parser -> _Parser
+        table = inner.parse_table
+        callbacks = inner.callbacks
+        self.parser = parser
+        self.lexer = IdlLexer(parser.lexer_conf)
+        self.start = table.start_states["start"]
+        self.end = table.end_states["start"]
+        # Terminal callbacks (transformer methods named after terminals) would need calling
+        # on shift; the grammar's transformer has none, and lark's loop handles them if it ever does.
+        self.usable = not any(isinstance(k, str) for k in callbacks)
+        # state -> symbol -> next state (int: shift / goto) or (size, rule name, callback) to reduce
+        self.rows: dict[int, dict[str, object]] = {
+            state: {sym: arg if action is Shift else (len(arg.expansion), arg.origin.name, callbacks[arg])
+                    for sym, (action, arg) in row.items()}
+            for state, row in table.states.items()
+        }
+
+    def parse(self, text: str):
+        if not self.usable:
+            return self.parser.parse(text)
+        try:
+            return self._run(text)
+        except _Rejected:
+            return self.parser.parse(text)  # raises lark's UnexpectedToken with full context
+
+    def _run(self, text: str):
+        rows = self.rows
+        state = self.start
+        states = [state]
+        values: list[object] = []
+        push_state, push_value = states.append, values.append
+        for tok in self.lexer.lex(text):
+            kind = tok.type
+            while True:
+                act = rows[state].get(kind)
+                if act.__class__ is int:
+                    state = act  # type: ignore[assignment]
+                    push_state(state)
+                    push_value(tok)
+                    break
+                if act is None:
+                    raise _Rejected
+                size, origin, callback = act  # type: ignore[misc]
+                if size:
+                    args = values[-size:]
+                    del values[-size:]
+                    del states[-size:]
+                else:
+                    args = []
+                push_value(callback(args))
+                state = rows[states[-1]][origin]  # type: ignore[assignment]
+                push_state(state)
+        while True:  # end of input: reduce until the start rule is complete
+            act = rows[state].get("$END")
+            if act is None or act.__class__ is int:
+                raise _Rejected
+            size, origin, callback = act  # type: ignore[misc]
+            if size:
+                args = values[-size:]
+                del values[-size:]
+                del states[-size:]
+            else:
+                args = []
+            push_value(callback(args))
+            state = rows[states[-1]][origin]  # type: ignore[assignment]
+            push_state(state)
+            if state == self.end:
+                return values[-1]
