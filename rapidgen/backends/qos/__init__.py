@@ -15,9 +15,10 @@ from __future__ import annotations
 
 import json
 
-from rapidgen.backends.base import GeneratedFile, Options, notice
+from rapidgen.backends.base import GeneratedFile, GenerationError, Options, notice
 from rapidgen.backends.qos import topicmap, view
 from rapidgen.backends.templating import render as render_template
+from rapidgen.diagnostics import did_you_mean
 from rapidgen.model.ir import Model
 from rapidgen.qos.spec import QosSpec, default_library
 
@@ -27,6 +28,20 @@ FASTDDS_FILE = "fastdds/rapid_qos_profiles.xml"
 DDS_XML_FILE = "dds-xml/rapid_qos.xml"
 RTI_FILE = "rti/USER_QOS_PROFILES.xml"
 TOPICS_FILE = "topics.json"
+
+
+class UnknownProfile(GenerationError):
+    """Topics whose profile the QoS library lacks (a library without RAPID's profiles)."""
+
+    def __init__(self, spec: QosSpec, entries: list) -> None:
+        super().__init__(f"{len(entries)} topics name profiles QoS library {spec.library} lacks")
+        self.spec, self.entries = spec, entries
+
+    def report(self, sink) -> None:
+        names = [p.name for p in self.spec.profiles]
+        for e in self.entries:
+            sink.error("RG1608", f"topic '{e.topic}' uses QoS profile '{e.profile}', which library "
+                       f"{self.spec.library} ({self.spec.file}) lacks", e.loc, did_you_mean(e.profile, names))
 
 
 def cyclone_file(transport: str) -> str:
@@ -59,10 +74,9 @@ def render(spec: QosSpec, model: Model, asset, options: Options) -> list[Generat
     head = comment_text(notice(options.source))
     asset_name = asset.spec.name if asset is not None else None
     topics = topicmap.from_asset(asset, spec) if asset is not None else topicmap.from_model(model, spec)
-    for entry in topics:
-        if not spec.has_profile(entry.profile):
-            raise ValueError(f"topic '{entry.topic}' names profile '{entry.profile}', "
-                             f"which QoS library {spec.library} lacks")
+    missing = [e for e in topics if not spec.has_profile(e.profile)]
+    if missing:
+        raise UnknownProfile(spec, missing)
     common = dict(notice=head, library=spec.library, asset=asset_name)
     files = []
 

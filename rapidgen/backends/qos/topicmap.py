@@ -7,8 +7,9 @@ the library's per-type profile.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
+from rapidgen.diagnostics import UNKNOWN_LOC, SourceLoc
 from rapidgen.model.ir import Model, Struct
 from rapidgen.qos.spec import QosSpec
 
@@ -22,6 +23,7 @@ class TopicEntry:
     profile: str
     role: str  # config | sample | state | ack | command | message
     direction: str  # publish | subscribe (for the asset); both (no asset)
+    loc: SourceLoc = field(default=UNKNOWN_LOC, compare=False)  # what chose the profile
 
 
 def _is_message(model: Model, struct: Struct) -> bool:
@@ -60,7 +62,7 @@ def from_model(model: Model, spec: QosSpec) -> list[TopicEntry]:
             continue
         profile = spec.profile_for_type(struct.scoped_name)
         if profile is not None:
-            out.append(TopicEntry(d.value, struct.scoped_name, profile, _role(struct.scoped_name), "both"))
+            out.append(TopicEntry(d.value, struct.scoped_name, profile, _role(struct.scoped_name), "both", d.loc))
     return sorted(out, key=lambda e: (e.topic, e.type))
 
 
@@ -70,11 +72,11 @@ def from_asset(asset, spec: QosSpec) -> list[TopicEntry]:
     from rapidgen.asset.topics import profile_name, publications
 
     facts = Facts(asset.model)
-    out = [TopicEntry(p.topic, p.type, profile_name(p.qos), p.role, "publish")
+    out = [TopicEntry(p.topic, p.type, profile_name(p.qos), p.role, "publish", p.loc)
            for p in publications(asset.spec, facts)]
     if used_types(asset.spec):  # an asset with subsystems reads commands
         command = "rapid::Command"
         topic = facts.string_const("rapid::COMMAND_TOPIC") or "rapid_command"
         out.append(TopicEntry(topic, command, spec.profile_for_type(command) or "RapidReliableQos",
-                              "command", "subscribe"))
+                              "command", "subscribe", asset.spec.loc))
     return sorted(set(out), key=lambda e: (e.topic, e.type, e.direction))
