@@ -1,14 +1,17 @@
 """The live half of the demo: an asset announces itself over DDS, a ground tool reads it.
 
-    python scripts/demo_live.py asset  ASSET.yaml GENERATED_PYTHON_DIR [--seconds N]
-    python scripts/demo_live.py ground ASSET.yaml GENERATED_PYTHON_DIR [--seconds N]
+    python scripts/demo_live.py asset  ASSET.yaml GENERATED_DIR [--seconds N]
+    python scripts/demo_live.py ground ASSET.yaml GENERATED_DIR [--seconds N]
 
-The asset publishes every config its descriptor computes (CommandConfig, AgentConfig,
-JointConfig, PositionConfig...) with the generated Python bindings, on RAPID's config QoS
-(reliable, transient-local, keep-last 1) in its own partition; the ground side joins
-late, receives them all, and checks each against the descriptor. Values are built with the
-reference codec (rapidgen.model.cdr) and handed to the generated classes as bytes, so this
-also shows the two agree. Run with CYCLONEDDS_URI pointing at a loopback-only config.
+GENERATED_DIR is `rapidgen generate ASSET.yaml --lang python,qos -o GENERATED_DIR`. The
+asset publishes every config its descriptor computes (CommandConfig, AgentConfig,
+JointConfig, PositionConfig...) with the generated Python bindings, each with the QoS its
+topic maps to (qos/topics.json; RapidConfigQos: reliable, transient-local, keep-last 1)
+loaded from the generated DDS-XML by Cyclone's QoS provider, in the asset's partition; the
+ground side joins late, receives them all, and checks each against the descriptor. Values
+are built with the reference codec (rapidgen.model.cdr) and handed to the generated classes
+as bytes, so this also shows the two agree. Run with CYCLONEDDS_URI pointing at the
+generated loopback transport, GENERATED_DIR/qos/cyclonedds/local.xml.
 """
 from __future__ import annotations
 
@@ -38,13 +41,30 @@ def _class_of(package: str, scoped: str):
     return getattr(importlib.import_module(".".join([package, *modules])), name)
 
 
-def _dds(asset_name: str):
-    from cyclonedds.core import Policy, Qos
-    from cyclonedds.util import duration
+class _QosMap:
+    """QoS per topic: the generated topic map names a profile, the DDS-XML defines it."""
 
-    config_qos = Qos(Policy.Reliability.Reliable(duration(seconds=1)), Policy.Durability.TransientLocal,
-                     Policy.History.KeepLast(1))
-    return config_qos, Qos(Policy.Partition([asset_name]))
+    def __init__(self, qos_dir: str) -> None:
+        import json
+
+        from cyclonedds.qos_provider import QosProvider
+
+        with open(os.path.join(qos_dir, "topics.json"), encoding="utf-8") as fh:
+            self.map = json.load(fh)
+        self.provider = QosProvider(os.path.join(qos_dir, self.map["files"]["dds_xml"]))
+        self.keys = {t["topic"]: t["key"] for t in self.map["topics"]}
+
+    def writer(self, topic: str):
+        return self.provider.get_datawriter_qos(self.keys[topic])
+
+    def reader(self, topic: str):
+        return self.provider.get_datareader_qos(self.keys[topic])
+
+    def publisher(self):
+        return self.provider.get_publisher_qos(next(iter(self.keys.values())))
+
+    def subscriber(self):
+        return self.provider.get_subscriber_qos(next(iter(self.keys.values())))
 
 
 def run_asset(args, loaded, configs, package: str) -> int:
@@ -55,9 +75,9 @@ def run_asset(args, loaded, configs, package: str) -> int:
     from rapidgen.model.cdr import Codec
 
     name = loaded.spec.name
-    config_qos, partition = _dds(name)
+    qos = _QosMap(os.path.join(args.generated, "qos"))
     participant = DomainParticipant(args.domain)
-    publisher = Publisher(participant, qos=partition)
+    publisher = Publisher(participant, qos=qos.publisher())
     codec = Codec(loaded.model)
     header = {"srcName": name, "assetName": name, "timeStamp": int(time.time() * 1e6), "statusCode": 0,
               "serial": int(time.time())}
@@ -65,7 +85,7 @@ def run_asset(args, loaded, configs, package: str) -> int:
     for topic_name, (type_name, value) in configs.items():
         cls = _class_of(package, type_name)
         sample = cls.deserialize(codec.encode(type_name, dict(hdr=header, **value)))
-        writer = DataWriter(publisher, Topic(participant, topic_name, cls), qos=config_qos)
+        writer = DataWriter(publisher, Topic(participant, topic_name, cls), qos=qos.writer(topic_name))
         writer.write(sample)
         writers.append(writer)
         print(f"asset {name}: published {type_name} on {topic_name}", flush=True)
@@ -80,12 +100,11 @@ def run_ground(args, loaded, configs, package: str) -> int:
 
     from rapidgen.model.cdr import Codec
 
-    name = loaded.spec.name
-    config_qos, partition = _dds(name)
+    qos = _QosMap(os.path.join(args.generated, "qos"))
     participant = DomainParticipant(args.domain)
-    subscriber = Subscriber(participant, qos=partition)
+    subscriber = Subscriber(participant, qos=qos.subscriber())
     codec = Codec(loaded.model)
-    readers = {t: (ty, DataReader(subscriber, Topic(participant, t, _class_of(package, ty)), qos=config_qos))
+    readers = {t: (ty, DataReader(subscriber, Topic(participant, t, _class_of(package, ty)), qos=qos.reader(t)))
                for t, (ty, _v) in configs.items()}
     pending = dict(readers)
     deadline = time.monotonic() + args.seconds
@@ -123,7 +142,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("role", choices=("asset", "ground"))
     parser.add_argument("asset_file")
-    parser.add_argument("generated", help="the generated python folder (holds the package)")
+    parser.add_argument("generated", help="output of `rapidgen generate ASSET --lang python,qos`")
     parser.add_argument("--domain", type=int, default=30)
     parser.add_argument("--seconds", type=float, default=10.0)
     args = parser.parse_args()
@@ -131,9 +150,9 @@ def main() -> int:
         print("demo_live: set CYCLONEDDS_URI to a loopback-only Cyclone config first", file=sys.stderr)
         return 2
     loaded, configs = _load(args.asset_file)
-    package = next(p for p in sorted(os.listdir(args.generated))
-                   if os.path.isfile(os.path.join(args.generated, p, "__init__.py")))
-    sys.path.insert(0, os.path.abspath(args.generated))
+    python_dir = os.path.join(args.generated, "python")
+    package = next(p for p in sorted(os.listdir(python_dir)) if os.path.isfile(os.path.join(python_dir, p, "__init__.py")))
+    sys.path.insert(0, os.path.abspath(python_dir))
     run = run_asset if args.role == "asset" else run_ground
     return run(args, loaded, configs, package)
 

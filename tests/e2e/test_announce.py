@@ -1,6 +1,7 @@
 """End to end: an asset process announces its computed configs over Cyclone DDS with the
 committed generated bindings; a late-joining ground process receives and checks them.
-Real DDS processes, loopback only (tests/interop/cyclonedds-loopback.xml), domain 31."""
+Real DDS processes, loopback only (the generated "local" transport), domain 31; QoS from the
+generated DDS-XML through Cyclone's QoS provider."""
 import os
 import subprocess
 import sys
@@ -10,13 +11,13 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).parents[2]
-LOOPBACK = ROOT / "tests" / "interop" / "cyclonedds-loopback.xml"
 
 
 @pytest.mark.parametrize("asset", ["robonaut2", "k10"])
 def test_ground_receives_every_config_the_descriptor_computes(asset):
-    env = dict(os.environ, CYCLONEDDS_URI=f"file://{LOOPBACK}")
-    args = [f"specs/assets/{asset}.yaml", f"generated/{asset}/python", "--domain", "31"]
+    loopback = ROOT / "generated" / asset / "qos" / "cyclonedds" / "local.xml"
+    env = dict(os.environ, CYCLONEDDS_URI=f"file://{loopback}")
+    args = [f"specs/assets/{asset}.yaml", f"generated/{asset}", "--domain", "31"]
     script = str(ROOT / "scripts" / "demo_live.py")
     publisher = subprocess.Popen([sys.executable, script, "asset", *args, "--seconds", "10"], cwd=ROOT, env=env,
                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
