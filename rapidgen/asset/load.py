@@ -32,6 +32,7 @@ _IDL_CACHE: dict[tuple, tuple[Model | None, list[Diagnostic]]] = {}
 
 
 def find_rapid_dir(start: str) -> str | None:
+    """The nearest specs/rapid at or above start, else the RAPID IDL shipped in the package."""
     here = os.path.abspath(start)
     while True:
         cand = os.path.join(here, "specs", "rapid")
@@ -39,8 +40,11 @@ def find_rapid_dir(start: str) -> str | None:
             return display_path(cand)
         parent = os.path.dirname(here)
         if parent == here:
-            return None
+            break
         here = parent
+    # rapidgen/rapid_idl is specs/rapid in a checkout (a symlink) and a copy in the wheel.
+    shipped = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rapid_idl")
+    return display_path(shipped) if os.path.isfile(os.path.join(shipped, "Message.idl")) else None
 
 
 def _idl_model(spec: AssetSpec, rapid_dir: str | None, sink: DiagnosticSink) -> Model | None:

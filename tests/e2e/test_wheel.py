@@ -1,0 +1,47 @@
+"""`pip install .` (not editable) gives a working rapidgen: templates, schemas, the QoS
+library and the RAPID IDL all ship in the wheel. Installed into a fresh venv that reuses
+this environment's packages, then run from a folder outside the checkout."""
+import subprocess
+import sys
+import venv
+from pathlib import Path
+
+ROOT = Path(__file__).parents[2]
+
+
+def test_installed_wheel_validates_and_generates_outside_the_checkout(tmp_path):
+    wheels = tmp_path / "wheels"
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps",
+                    "-w", str(wheels), str(ROOT)], check=True, timeout=300, capture_output=True)
+    env_dir = tmp_path / "venv"
+    venv.EnvBuilder(system_site_packages=False, with_pip=False).create(env_dir)
+    py = env_dir / "bin" / "python"
+    # Dependencies come from this environment's site-packages, the package itself from the wheel.
+    site = next(Path(p) for p in sys.path if p.endswith("site-packages"))
+    (next((env_dir / "lib").glob("python*")) / "site-packages" / "deps.pth").write_text(str(site) + "\n")
+    wheel = next(wheels.glob("rapidgen-*.whl"))
+    subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--no-deps", "--target",
+                    str(next((env_dir / "lib").glob("python*")) / "site-packages"), str(wheel)],
+                   check=True, timeout=300, capture_output=True)
+    work = tmp_path / "elsewhere"
+    work.mkdir()
+    # Without `idl: {rapid: ...}` the descriptor falls back to the RAPID IDL shipped in the wheel.
+    text = (ROOT / "specs" / "assets" / "robonaut2.yaml").read_text()
+    assert "idl:\n  rapid: ../rapid\n" in text
+    (work / "r2.yaml").write_text(text.replace("idl:\n  rapid: ../rapid\n", ""))
+
+    def run(*args):
+        return subprocess.run([str(py), "-m", "rapidgen", *args], cwd=work, capture_output=True, text=True,
+                              timeout=120)
+
+    where = subprocess.run([str(py), "-c", "import rapidgen; print(rapidgen.__file__)"], cwd=work,
+                           capture_output=True, text=True, timeout=60)
+    assert str(ROOT) not in where.stdout, "the test must use the installed wheel, not the checkout"
+    validated = run("validate", "r2.yaml")
+    assert validated.returncode == 0, validated.stderr
+    generated = run("generate", "r2.yaml", "--lang", "python,qos", "-o", "out")
+    assert generated.returncode == 0, generated.stderr
+    assert (work / "out" / "python" / "pyproject.toml").is_file()
+    assert (work / "out" / "qos" / "cyclonedds" / "local.xml").is_file()
+    ir = run("ir", str(ROOT / "specs" / "rapid" / "Ack.idl"), "-I", str(ROOT / "specs" / "rapid"))
+    assert ir.returncode == 0 and '"rapid::Ack"' in ir.stdout
