@@ -110,13 +110,13 @@ def dependency_order(decls: list[ir.Declaration]) -> list[ir.Declaration]:
     pos = {n: i for i, n in enumerate(names)}
     by_name = {d.scoped_name: d for d in decls}
     soft = {n: sorted({e for e in _edges(by_name[n], False) if e in by_name}, key=pos.__getitem__) for n in names}
-    hard = {n: {e for e in _edges(by_name[n], True) if e in by_name} for n in names}
     out: list[ir.Declaration] = []
     for comp in strongly_connected(names, soft):
         if len(comp) == 1:
             out.append(by_name[comp[0]])
             continue
         # Inside a cycle through sequences: order by value containment, source order otherwise.
+        hard = {n: set(_edges(by_name[n], True)) for n in comp}
         remaining = sorted(comp, key=pos.__getitem__)
         placed: set[str] = set()
         while remaining:

@@ -49,6 +49,7 @@ class Resolver:
         self.done: dict[str, ir.Declaration | None] = {}
         self.busy: dict[str, None] = {}  # being resolved, in order (an ordered set)
         self.too_deep = False  # a "nested too deeply" error was reported (once is enough)
+        self._lookups: dict[tuple, _Sym | None] = {}
         self.evaluator = ConstEvaluator(sink)
         self.annotations = AnnotationChecker(sink, self.evaluator)
 
@@ -115,13 +116,20 @@ class Resolver:
 
     # == lookup ===========================================================================
     def lookup(self, name: ast.ScopedName, scope: tuple[str, ...]) -> _Sym | None:
+        """The symbol a name means in scope: from the root when absolute, else searched outward."""
+        memo_key = (name.parts, name.absolute, scope)
+        if memo_key in self._lookups:  # the symbol table is complete before any lookup
+            return self._lookups[memo_key]
+        found = None
         if name.absolute:
-            return self.syms.get(_join(name.parts))
-        for i in range(len(scope), -1, -1):
-            sym = self.syms.get(_join(scope[:i] + name.parts))
-            if sym is not None:
-                return sym
-        return None
+            found = self.syms.get(_join(name.parts))
+        else:
+            for i in range(len(scope), -1, -1):
+                found = self.syms.get(_join(scope[:i] + name.parts))
+                if found is not None:
+                    break
+        self._lookups[memo_key] = found
+        return found
 
     def _unknown(self, name: ast.ScopedName, scope: tuple[str, ...], what: str, kinds: frozenset[str]) -> None:
         pool = [s.scoped.rsplit("::", 1)[-1] for s in self.syms.values() if s.kind in kinds]
