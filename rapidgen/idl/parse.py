@@ -299,17 +299,19 @@ class _ToAst(Transformer):
     def value_forward_dcl(self, items):
         return ast.ForwardDecl("valuetype", self._name(items[0]), (), self.loc.token(items[0]))
 
+    # Declarators are direct children (no wrapper rule): one reduction less per member.
     def member(self, items):
-        *anns, type_spec, decls = items
-        return ast.MemberDecl(tuple(anns), type_spec, decls, decls[0].loc, self._is_key(decls[-1]))
+        n = 0
+        while items[n].__class__ is ast.AnnotationAppl:
+            n += 1
+        decls = tuple(items[n + 1:])
+        return ast.MemberDecl(tuple(items[:n]), items[n], decls, decls[0].loc, self._is_key(decls[-1]))
 
     def state_member(self, items):
         anns = self._anns(items)
-        vis, type_spec, decls = items[len(anns):]
+        vis, type_spec, *rest = items[len(anns):]
+        decls = tuple(rest)
         return ast.MemberDecl(anns, type_spec, decls, decls[0].loc, self._is_key(decls[-1]), str(vis))
-
-    def declarators(self, items):
-        return tuple(items)
 
     def declarator(self, items):
         name, *dims = items
@@ -352,7 +354,8 @@ class _ToAst(Transformer):
         return ast.NativeDecl(self._name(items[0]), (), self.loc.token(items[0]))
 
     def typedef_dcl(self, items):
-        return ast.TypedefDecl(items[0], items[1], (), items[1][0].loc)
+        decls = tuple(items[1:])
+        return ast.TypedefDecl(items[0], decls, (), decls[0].loc)
 
     def bitset_dcl(self, items):
         name, *rest = items
