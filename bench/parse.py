@@ -283,6 +283,34 @@ def measure(tool: Tool, idl: Path, repeat: int) -> list[Run] | str:
     return runs
 
 
+# The target is about parsing and resolving; the table's rapidgen column times the whole
+# `rapidgen ir` process (interpreter start-up, imports and JSON output included). This
+# times just the front end, inside a fresh process, after the imports.
+_FRONT_END = """
+import sys, time
+from rapidgen.diagnostics import DiagnosticSink
+from rapidgen.frontend import load_idl
+from rapidgen.idl.parse import _lean
+_lean()  # grammar tables: loaded once per process, like the imports
+start = time.perf_counter()
+model, _ = load_idl([sys.argv[1]], [], DiagnosticSink())
+print(time.perf_counter() - start if model is not None else "failed")
+"""
+
+
+def front_end_seconds(idl: Path, repeat: int) -> list[float] | str:
+    """In-process time of preprocess + parse + resolve, best-effort like measure()."""
+    times = []
+    for _ in range(repeat):
+        proc = subprocess.run([sys.executable, "-c", _FRONT_END, str(idl)], cwd=REPO, capture_output=True,
+                              text=True, timeout=600)
+        out = proc.stdout.strip()
+        if proc.returncode != 0 or out == "failed":
+            return "failed: " + (proc.stderr.strip().splitlines() or ["front end failed"])[-1]
+        times.append(float(out))
+    return times
+
+
 # ---------------------------------------------------------------- report
 
 def cell(result: list[Run] | str, width: int) -> str:
@@ -334,6 +362,18 @@ def print_ratios(tools: list[Tool], rows: list[tuple[int, int, dict]]) -> None:
             ratio = f"{min(r.seconds for r in b) / min(r.seconds for r in a):.2f}"
         print(f"{t.name:<11} time {big}/{small}: {ratio:>5}"
               f"  (linear would be {big / small:.2f})")
+
+
+def print_front_end(rows: list[tuple[int, int, dict]]) -> None:
+    cells = []
+    for n, _lines, results in rows:
+        r = results.get("front end")
+        if r is not None:
+            cells.append(f"{n}: {r}" if isinstance(r, str) else
+                         f"{n}: {min(r):.3f} s (median {statistics.median(r):.3f})")
+    if cells:
+        print("\nrapidgen front end alone (preprocess + parse + resolve, in-process, "
+              "excluding interpreter start-up, imports and output):\n  " + "; ".join(cells))
 
 
 def print_notes(tools: list[Tool]) -> None:
@@ -405,11 +445,14 @@ def main(argv: list[str] | None = None) -> int:
         for n in args.sizes:
             idl, lines = write_idl(directory.resolve(), n, args.seed)
             results = {t.name: measure(t, idl, args.repeat) for t in tools}
+            if any(t.name == "rapidgen" for t in tools) and not args.rapidgen:
+                results["front end"] = front_end_seconds(idl, args.repeat)
             rows.append((n, lines, results))
             print(f"... {n} structs done", file=sys.stderr, flush=True)
     print(f"machine: {os.cpu_count()} CPUs, python {sys.version.split()[0]}")
     print_table(tools, rows, args.repeat)
     print_ratios(tools, rows)
+    print_front_end(rows)
     print_notes(tools)
     if args.keep:
         print(f"\nIDL files kept in {args.keep}")
