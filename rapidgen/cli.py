@@ -114,10 +114,24 @@ def _cmd_ir(args: argparse.Namespace) -> int:
         return 1
     text = model_to_json(model, loc=not args.no_loc)
     if args.output:
-        from rapidgen.writer import write_text_atomic
-        write_text_atomic(args.output, text)
+        return _write_output(args.output, text, sink)
     else:
         sys.stdout.write(text)
+    return 0
+
+
+def _write_output(path: str, text: str, sink: DiagnosticSink) -> int:
+    """Write a command's output file; a failure is a diagnostic, not a traceback."""
+    from rapidgen.diagnostics import SourceLoc
+    from rapidgen.writer import write_text_atomic
+
+    try:
+        write_text_atomic(path, text)
+    except OSError as exc:
+        sink.error("RG0803", f"cannot write '{path}': {exc.strerror or exc}", SourceLoc(path, 0, 0),
+                   "check that the folder exists and is writable, and that the path is not a directory")
+        report(sink)
+        return 1
     return 0
 
 
@@ -159,64 +173,25 @@ def _langs(text: str) -> list[str]:
 
 
 def _cmd_generate(args: argparse.Namespace) -> int:
-    from rapidgen.generate import load_inputs, render
-    from rapidgen.writer import write_tree
+    from rapidgen.generate import generate_command
 
+    langs = _langs(args.lang)
+    if not langs:
+        print("rapidgen generate: --lang needs at least one target", file=sys.stderr)
+        return 2
     sink = _sink(args)
-    inputs = load_inputs(args.inputs, args.include, sink)
-    files = render(inputs, _langs(args.lang), sink, args.package) if inputs else None
+    ok = generate_command(args.inputs, args.include, _defines(args.define), langs, args.output, args.package, sink)
     report(sink)
-    if files is None:
-        return 1
-    result = write_tree(args.output, files)
-    print(f"{args.output}: {len(result.written)} written, {len(result.unchanged)} unchanged"
-          + (f", {len(result.removed)} removed" if result.removed else "")
-          + (f", {len(result.kept_user)} user files kept" if result.kept_user else ""))
-    for rel in result.kept_edited:
-        print(f"  kept {rel}: no longer generated, but edited by hand", file=sys.stderr)
-    return 0
+    return 0 if ok else 1
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    from rapidgen.generate import load_inputs, render
-    from rapidgen.project import load_project
-    from rapidgen.writer import compare_tree, write_tree
+    from rapidgen.generate import check_command
 
     sink = _sink(args)
-    targets = load_project(args.project, sink)
-    if targets is None:
-        report(sink)
-        return 1
-    stale = 0
-    for t in targets:
-        inputs = load_inputs(list(t.inputs), list(t.include), sink)
-        if inputs is not None:
-            inputs.source = t.source
-        files = render(inputs, list(t.lang), sink, t.package) if inputs else None
-        if files is None:
-            continue
-        if args.fix:
-            result = write_tree(t.out, files)
-            print(f"{t.name}: {len(result.written)} written, {len(result.removed)} removed")
-            continue
-        diff = compare_tree(t.out, files)
-        if diff.stale:
-            stale += 1
-            print(f"{t.name}: stale ({t.out})")
-            for label, items in (("missing", diff.missing), ("differs", diff.differs),
-                                 ("no longer generated", diff.extra)):
-                for item in items:
-                    print(f"  {label}: {item}")
-        else:
-            print(f"{t.name}: up to date ({len(files)} files)")
+    code = check_command(args.project, args.fix, sink)
     report(sink)
-    if sink.has_errors:
-        return 1
-    if stale:
-        print(f"rapidgen check: {stale} target{'s' * (stale != 1)} stale; run `rapidgen check --fix`",
-              file=sys.stderr)
-        return 1
-    return 0
+    return code
 
 
 def _cmd_vectors(args: argparse.Namespace) -> int:

@@ -29,7 +29,8 @@ class SourceLoc(NamedTuple):
     end_col: int = 0
 
     def __str__(self) -> str:
-        return f"{self.file}:{self.line}:{self.col}"
+        # line 0: about the file (or the command line) as a whole
+        return f"{self.file}:{self.line}:{self.col}" if self.line > 0 else self.file
 
 
 UNKNOWN_LOC = SourceLoc("<unknown>", 0, 0)

@@ -1,11 +1,13 @@
-"""Fan one parsed input out to the requested back ends.
+"""Fan one parsed input out to the requested back ends, and write or check the result.
 
 Inputs are either one asset descriptor (YAML; it names its IDL) or IDL files (types
-alone). Each target's files go under `<lang>/` in the output folder.
+alone). Each target's files go to `<out>/<lang>/`, which has its own manifest: generating
+one language never touches another's files.
 """
 from __future__ import annotations
 
 import os
+import sys
 from dataclasses import dataclass
 
 from rapidgen import backends
@@ -26,15 +28,26 @@ def is_asset(path: str) -> bool:
 
 
 def source_name(paths: list[str]) -> str:
-    """Stable, machine-independent name of the inputs for file headers."""
-    shown = [p.replace(os.sep, "/") for p in paths]
+    """Stable, machine-independent name of the inputs for file headers.
+
+    Relative to the working folder when inside it (absolute paths would differ between
+    machines); printable characters only, since back ends embed it in comments/strings.
+    """
+    shown = []
+    for p in paths:
+        rel = os.path.relpath(p) if os.path.isabs(p) else os.path.normpath(p)
+        shown.append((os.path.basename(p) if rel.startswith("..") and os.path.isabs(p) else rel)
+                     .replace(os.sep, "/"))
     if len(shown) > 3:
         folders = sorted({os.path.dirname(p) or "." for p in shown})
-        return ", ".join(f"{f}/*.idl" for f in folders)
-    return ", ".join(shown)
+        text = ", ".join(f"{f}/*.idl" for f in folders)
+    else:
+        text = ", ".join(shown)
+    return "".join(ch if ch.isprintable() and ch not in "\"'\\`" else "_" for ch in text)
 
 
-def load_inputs(paths: list[str], include: list[str], sink: DiagnosticSink) -> Inputs | None:
+def load_inputs(paths: list[str], include: list[str], sink: DiagnosticSink,
+                defines: dict[str, str] | None = None) -> Inputs | None:
     assets = [p for p in paths if is_asset(p)]
     if assets:
         if len(paths) != 1:
@@ -49,25 +62,99 @@ def load_inputs(paths: list[str], include: list[str], sink: DiagnosticSink) -> I
         return Inputs(loaded.model, loaded, source_name(assets))
     from rapidgen.frontend import load_idl
 
-    model, _ = load_idl(paths, include, sink)
+    model, _ = load_idl(paths, include, sink, defines)
     if model is None:
         return None
     return Inputs(model, None, source_name(paths))
 
 
-def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink, package: str | None = None) -> list[GeneratedFile] | None:
+def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
+           package: str | None = None) -> dict[str, list[GeneratedFile]] | None:
+    """Every requested target's files, by target, paths relative to `<out>/<lang>/`."""
     unknown = [lang for lang in langs if lang not in backends.available()]
-    if unknown:
-        sink.error("RG0802", f"unknown or unavailable target '{unknown[0]}'", SourceLoc("<command line>", 0, 0),
-                   f"available: {', '.join(backends.available())}")
+    if unknown or not langs:
+        sink.error("RG0802", f"unknown or unavailable target '{unknown[0]}'" if unknown else "no target given",
+                   SourceLoc("<command line>", 0, 0), f"available: {', '.join(backends.available())}")
         return None
-    files: list[GeneratedFile] = []
-    options = Options(source=inputs.source, package=package)
-    for lang in langs:
+    qos_library = None
+    if "qos" in langs:  # read here, in the driver: back ends never read files
+        from rapidgen.qos.spec import default_library
+        qos_library = default_library()
+    options = Options(source=inputs.source, package=package, qos_library=qos_library)
+    out: dict[str, list[GeneratedFile]] = {}
+    for lang in dict.fromkeys(langs):
         try:
-            produced = backends.get(lang).generate(inputs.model, inputs.asset, options)
+            out[lang] = backends.get(lang).generate(inputs.model, inputs.asset, options)
         except GenerationError as exc:
             exc.report(sink)
             return None
-        files += [GeneratedFile(f"{lang}/{f.path}", f.content, f.user_owned) for f in produced]
-    return files
+    return out
+
+
+def write_outputs(out_dir: str, per_lang: dict[str, list[GeneratedFile]], sink: DiagnosticSink) -> bool:
+    """Write each target into out_dir/<lang>; print a line per target. False on a write error."""
+    from rapidgen.writer import write_tree
+
+    for lang, files in per_lang.items():
+        folder = os.path.join(out_dir, lang)
+        try:
+            result = write_tree(folder, files)
+        except OSError as exc:
+            where = exc.filename or folder
+            sink.error("RG0803", f"cannot write '{where}': {exc.strerror or exc}", SourceLoc(str(where), 0, 0),
+                       "check that the output folder is a writable directory")
+            return False
+        print(f"{folder}: {len(result.written)} written, {len(result.unchanged)} unchanged"
+              + (f", {len(result.removed)} removed" if result.removed else "")
+              + (f", {len(result.kept_user)} user files kept" if result.kept_user else ""))
+        for rel in result.kept_edited:
+            print(f"  kept {rel}: no longer generated, but edited by hand", file=sys.stderr)
+    return True
+
+
+def generate_command(paths: list[str], include: list[str], defines: dict[str, str], langs: list[str],
+                     out_dir: str, package: str | None, sink: DiagnosticSink) -> bool:
+    inputs = load_inputs(paths, include, sink, defines)
+    per_lang = render(inputs, langs, sink, package) if inputs else None
+    return per_lang is not None and write_outputs(out_dir, per_lang, sink)
+
+
+def check_command(project: str, fix: bool, sink: DiagnosticSink) -> int:
+    """Regenerate every target of the project file in memory; report (or fix) what is stale."""
+    from rapidgen.project import load_project
+    from rapidgen.writer import compare_tree
+
+    targets = load_project(project, sink)
+    if targets is None:
+        return 1
+    stale = 0
+    for t in targets:
+        inputs = load_inputs(list(t.inputs), list(t.include), sink)
+        if inputs is not None:
+            inputs.source = t.source
+        per_lang = render(inputs, list(t.lang), sink, t.package) if inputs else None
+        if per_lang is None:
+            continue
+        if fix:
+            write_outputs(t.out, per_lang, sink)
+            continue
+        lines, count = [], 0
+        for lang, files in per_lang.items():
+            diff = compare_tree(os.path.join(t.out, lang), files)
+            count += len(files)
+            for label, items in (("missing", diff.missing), ("differs", diff.differs),
+                                 ("no longer generated", diff.extra)):
+                lines += [f"  {label}: {lang}/{item}" for item in items]
+        if lines:
+            stale += 1
+            print(f"{t.name}: stale ({t.out})")
+            print("\n".join(lines))
+        else:
+            print(f"{t.name}: up to date ({count} files)")
+    if sink.has_errors:
+        return 1
+    if stale:
+        print(f"rapidgen check: {stale} target{'s' * (stale != 1)} stale; run `rapidgen check --fix`",
+              file=sys.stderr)
+        return 1
+    return 0

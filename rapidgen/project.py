@@ -69,6 +69,9 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
         sink.error("RG0810", f"cannot read project file '{path}': {exc.strerror or exc}", loc,
                    f"run from the project root, or pass --project FILE")
         return None
+    except UnicodeDecodeError as exc:
+        sink.error("RG0811", f"project file is not UTF-8 text (byte 0x{exc.object[exc.start]:02x})", loc)
+        return None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = SourceLoc(path, mark.line + 1, mark.column + 1) if mark else loc
@@ -97,4 +100,21 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
             source = ", ".join(t["idl"])
         targets.append(Target(t["name"], inputs, tuple(os.path.join(root, i) for i in t.get("include", [])),
                               tuple(t["lang"]), os.path.join(root, t["out"]), t.get("package"), source))
+    _check_outputs(targets, loc, sink)
     return None if sink.has_errors else targets
+
+
+def _check_outputs(targets: list[Target], loc: SourceLoc, sink: DiagnosticSink) -> None:
+    """Targets must not share a name or write into each other's output folders."""
+    seen: dict[str, Target] = {}
+    for t in targets:
+        if t.name in seen:
+            sink.error("RG0814", f"two targets are named '{t.name}'", loc, "give each target its own name")
+        seen.setdefault(t.name, t)
+    outs = [(os.path.normpath(os.path.abspath(t.out)), t) for t in targets]
+    for i, (a, ta) in enumerate(outs):
+        for b, tb in outs[i + 1:]:
+            if a == b or b.startswith(a + os.sep) or a.startswith(b + os.sep):
+                sink.error("RG0814", f"targets '{ta.name}' and '{tb.name}' write into the same folder "
+                           f"({ta.out}, {tb.out})", loc, "each target needs its own output folder; "
+                           "one target can list several languages")

@@ -17,7 +17,7 @@ import os
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.model import ir
 from rapidgen.model.cdr import Codec, CdrError
-from rapidgen.model.samples import samples
+from rapidgen.model.samples import SampleError, samples
 from rapidgen.model.to_json import declaration
 
 FORMAT = "rapidgen-vectors/1"
@@ -131,6 +131,9 @@ def render(paths: list[str], include: list[str], sink: DiagnosticSink,
         return to_text(build(model, source_name(paths)))
     except CdrError as exc:  # a sample the encoder refuses: a bug in the generator
         sink.error("RG0902", f"cannot encode a sample: {exc}", SourceLoc(paths[0], 1, 1))
+        return None
+    except SampleError as exc:
+        sink.error("RG0903", f"cannot make sample values: {exc}", SourceLoc(paths[0], 1, 1))
         return None
 
 

@@ -25,12 +25,19 @@ Path = tuple  # keys (str) and indices (int) from the document root
 
 @dataclass
 class YamlDoc:
-    """Plain data plus the location of every value (`locs`) and mapping key (`key_locs`)."""
+    """Plain data plus the location of every value (`locs`) and mapping key (`key_locs`),
+    and the source text of every scalar that YAML read as a boolean or a number (`texts`:
+    `on` for True), so that diagnostics can repeat what the user wrote."""
 
     file: str
     data: object
     locs: dict[Path, SourceLoc] = field(default_factory=dict)
     key_locs: dict[Path, SourceLoc] = field(default_factory=dict)
+    texts: dict[Path, str] = field(default_factory=dict)
+
+    def written(self, path: Path, default: str) -> str:
+        """The scalar at path as written in the file (booleans and numbers), else default."""
+        return self.texts.get(tuple(path), default)
 
     def loc(self, path: Path) -> SourceLoc:
         """Location of the value at path, or of its nearest located ancestor."""
@@ -66,12 +73,12 @@ def read_text(path: str, shown: str, sink: DiagnosticSink) -> str | None:
         if os.path.isdir(path):
             sink.error("RG1001", f"'{shown}' is a directory, not an asset descriptor", here)
             return None
-        if os.path.getsize(path) > MAX_BYTES:
+        with open(path, "rb") as fh:  # read at most one byte past the limit (devices report size 0)
+            data = fh.read(MAX_BYTES + 1)
+        if len(data) > MAX_BYTES:
             sink.error("RG1004", f"'{shown}' is larger than {MAX_BYTES // (1024 * 1024)} MiB", here,
                        "an asset descriptor is a small YAML file")
             return None
-        with open(path, "rb") as fh:
-            data = fh.read()
     except OSError as exc:
         sink.error("RG1001", f"cannot read '{shown}': {exc.strerror or exc}", here)
         return None
@@ -152,6 +159,21 @@ _SCALAR_TAGS = {
 _AS_TEXT_TAGS = {"tag:yaml.org,2002:timestamp", "tag:yaml.org,2002:binary"}
 
 
+def _finite_hint(path: Path) -> str:
+    """What to write instead of .inf/.nan, for the field at path."""
+    keys = [k for k in path if isinstance(k, str)]
+    field_name = keys[-1] if keys else ""
+    if field_name == "range":
+        return "a range is two finite numbers; for a one-sided bound give only min: or max:"
+    if field_name in ("min", "max"):
+        return f"leave '{field_name}' out for no {'lower' if field_name == 'min' else 'upper'} bound"
+    if field_name in ("below", "above"):
+        return f"give a finite threshold, or leave '{field_name}' out"
+    if field_name == "rate":
+        return "a rate in Hz is a finite number above 0; leave 'rate' out for a topic published on change"
+    return f"give '{field_name}' a finite number" if field_name else "use a finite number"
+
+
 class _Converter:
     def __init__(self, doc: YamlDoc, loader: yaml.SafeLoader, sink: DiagnosticSink) -> None:
         self.doc, self.loader, self.sink = doc, loader, sink
@@ -175,7 +197,7 @@ class _Converter:
             raise _Abort
         self.doc.locs[path] = loc
         if isinstance(node, yaml.ScalarNode):
-            return self.scalar(node, loc)
+            return self.scalar(node, loc, path)
         if id(node) in self.active:
             self.error("RG1012", "recursive YAML alias", loc, "an alias may not refer to a node containing it")
             raise _Abort
@@ -191,7 +213,7 @@ class _Converter:
         finally:
             self.active.discard(id(node))
 
-    def scalar(self, node: yaml.ScalarNode, loc: SourceLoc) -> object:
+    def scalar(self, node: yaml.ScalarNode, loc: SourceLoc, path: Path = ()) -> object:
         if node.tag in _AS_TEXT_TAGS:
             return node.value  # dates and binary stay text: a descriptor has no use for them
         if node.tag not in _SCALAR_TAGS:
@@ -204,11 +226,12 @@ class _Converter:
             self.error("RG1012", f"cannot read the scalar '{node.value[:40]}'", loc)
             return None
         if isinstance(value, float) and not math.isfinite(value):
-            self.error("RG1013", f"'{node.value}' is not a finite number", loc,
-                       "leave the bound out instead of using infinity")
+            self.error("RG1013", f"'{node.value}' is not a finite number", loc, _finite_hint(path))
             return None
         if isinstance(value, (datetime.date, bytes)):
             return node.value
+        if isinstance(value, (bool, int, float)):
+            self.doc.texts[path] = node.value
         return value
 
     def mapping(self, node: yaml.MappingNode, path: Path, depth: int) -> dict:

@@ -10,10 +10,15 @@ error reporting is lark's, only the happy path is ours.
 """
 from __future__ import annotations
 
-from lark import Lark
+from itertools import chain
+
+from lark import Lark, Token
 from lark.parsers.lalr_analysis import Shift
 
 from rapidgen.idl.lexer import IdlLexer
+
+
+_END = (Token("$END", ""),)  # end of input, fed through the same loop as the tokens
 
 
 class _Rejected(Exception):
@@ -48,12 +53,12 @@ class LeanLALR:
             return self.parser.parse(text)  # raises lark's UnexpectedToken with full context
 
     def _run(self, text: str):
-        rows = self.rows
+        rows, end = self.rows, self.end
         state = self.start
         states = [state]
         values: list[object] = []
         push_state, push_value = states.append, values.append
-        for tok in self.lexer.lex(text):
+        for tok in chain(self.lexer.lex(text), _END):
             kind = tok.type
             while True:
                 act = rows[state].get(kind)
@@ -74,19 +79,6 @@ class LeanLALR:
                 push_value(callback(args))
                 state = rows[states[-1]][origin]  # type: ignore[assignment]
                 push_state(state)
-        while True:  # end of input: reduce until the start rule is complete
-            act = rows[state].get("$END")
-            if act is None or act.__class__ is int:
-                raise _Rejected
-            size, origin, callback = act  # type: ignore[misc]
-            if size:
-                args = values[-size:]
-                del values[-size:]
-                del states[-size:]
-            else:
-                args = []
-            push_value(callback(args))
-            state = rows[states[-1]][origin]  # type: ignore[assignment]
-            push_state(state)
-            if state == self.end:
-                return values[-1]
+                if state == end and kind == "$END":  # the start rule is complete
+                    return values[-1]
+        raise _Rejected

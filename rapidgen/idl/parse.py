@@ -217,7 +217,11 @@ class _ToAst(Transformer):
         return ast.Literal("int", value, self.loc.token(items[0]))
 
     def float_lit(self, items):
-        return ast.Literal("float", float(str(items[0]).rstrip("fF")), self.loc.token(items[0]))
+        value = float(str(items[0]).rstrip("fF"))
+        if value in (float("inf"), float("-inf")):  # the literal is finite; only its value overflowed
+            self.sink.error("RG0402", f"floating-point literal {items[0]} is out of range",
+                            self.loc.token(items[0]), "the largest double is about 1.8e308")
+        return ast.Literal("float", value, self.loc.token(items[0]))
 
     def fixed_lit(self, items):
         try:

@@ -86,6 +86,10 @@ class Preprocessor:
 
     # -- files -------------------------------------------------------------------
     def run(self, paths: list[str]) -> PreprocessResult:
+        for d in self.include_dirs:
+            if not os.path.isdir(d):
+                self.sink.warning("RG0112", f"include folder '{d}' does not exist",
+                                  SourceLoc("<command line>", 0, 0), "check the -I option")
         for p in paths:
             self._read_file(p, None)
         return PreprocessResult("\n".join(self.out) + "\n", self.line_map, self.sources, self.files,
@@ -97,13 +101,12 @@ class Preprocessor:
             if os.path.isdir(path):
                 self.sink.error("RG0001", f"'{shown}' is a directory, not an IDL file", where)
                 return None
-            size = os.path.getsize(path)
-            if size > MAX_INPUT_BYTES:
-                self.sink.error("RG0005", f"'{shown}' is {size // (1024 * 1024)} MiB; the limit is "
-                                f"{MAX_INPUT_BYTES // (1024 * 1024)} MiB", SourceLoc(shown, 1, 1))
+            with open(path, "rb") as fh:  # read at most one byte past the limit (devices report size 0)
+                data = fh.read(MAX_INPUT_BYTES + 1)
+            if len(data) > MAX_INPUT_BYTES:
+                self.sink.error("RG0005", f"'{shown}' is larger than {MAX_INPUT_BYTES // (1024 * 1024)} MiB",
+                                SourceLoc(shown, 1, 1), "split it, or check that it is the right file")
                 return None
-            with open(path, "rb") as fh:
-                data = fh.read()
         except OSError as exc:
             self.sink.error("RG0001", f"cannot read '{shown}': {exc.strerror or exc}", where)
             return None

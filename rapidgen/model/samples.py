@@ -41,6 +41,40 @@ _OCTETS_MAX = 64
 _MAX_CDEPTH = 4  # collections nested deeper than this are left empty
 
 
+# Golden vectors are for reading and for cross-checking three languages: arrays beyond
+# this many elements are refused rather than sampled (they would take gigabytes).
+MAX_ARRAY_ELEMENTS = 1 << 20
+
+
+class SampleError(Exception):
+    """A type that cannot be given a sample value."""
+
+
+def _refuse_huge_arrays(model: ir.Model) -> None:
+    """Every sample fills its arrays: refuse, before starting, any array too large to fill."""
+    def check(t: ir.Type, where: ir.Declaration, outer: int = 1) -> None:
+        t = model.resolve_alias(t)
+        if isinstance(t, ir.Array):
+            total = outer
+            for d in t.dims:
+                total *= d
+            if total > MAX_ARRAY_ELEMENTS:
+                raise SampleError(f"'{where.scoped_name}' holds an array of {total} elements ({t}); "
+                                  f"samples are made for arrays of at most {MAX_ARRAY_ELEMENTS}")
+            check(t.element, where, total)  # arrays of (typedef'd) arrays multiply
+        elif isinstance(t, ir.Sequence):
+            check(t.element, where)
+    for d in model.declarations:
+        if isinstance(d, ir.Struct):
+            for m in d.members:
+                check(m.type, d)
+        elif isinstance(d, ir.Union):
+            for c in d.cases:
+                check(c.member.type, d)
+        elif isinstance(d, ir.Typedef):
+            check(d.type, d)
+
+
 @dataclass(frozen=True)
 class Sample:
     type: str  # scoped name
@@ -308,6 +342,7 @@ def _free_discriminator(types: CdrTypes, d: ir.Union) -> object | None:
 
 def samples(model: ir.Model, types: CdrTypes | None = None) -> list[Sample]:
     t = types or CdrTypes(model)
+    _refuse_huge_arrays(model)
     decls = sorted((d for d in model.declarations if isinstance(d, (ir.Struct, ir.Union))),
                    key=lambda d: d.scoped_name)
     out: list[Sample] = []

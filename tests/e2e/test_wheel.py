@@ -1,6 +1,7 @@
 """`pip install .` (not editable) gives a working rapidgen: templates, schemas, the QoS
 library and the RAPID IDL all ship in the wheel. Installed into a fresh venv that reuses
 this environment's packages, then run from a folder outside the checkout."""
+import shutil
 import subprocess
 import sys
 import venv
@@ -10,9 +11,16 @@ ROOT = Path(__file__).parents[2]
 
 
 def test_installed_wheel_validates_and_generates_outside_the_checkout(tmp_path):
+    # Build from a copy (symlinks resolved, as in a source distribution): building in the
+    # checkout would leave build/ and *.egg-info behind.
+    src = tmp_path / "src"
+    shutil.copytree(ROOT / "rapidgen", src / "rapidgen", symlinks=False,
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(ROOT / name, src / name)
     wheels = tmp_path / "wheels"
-    subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps",
-                    "-w", str(wheels), str(ROOT)], check=True, timeout=300, capture_output=True)
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", "-w", str(wheels), str(src)],
+                   check=True, timeout=300, capture_output=True)
     env_dir = tmp_path / "venv"
     venv.EnvBuilder(system_site_packages=False, with_pip=False).create(env_dir)
     py = env_dir / "bin" / "python"

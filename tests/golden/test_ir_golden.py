@@ -19,8 +19,9 @@ def test_ir_snapshot(case, monkeypatch, update_golden):
     res = rapidgen("ir", *(case / "args").read_text().split())
     assert res.code == 0, res.err
     expected_path = case / "expected.json"
-    if update_golden or not expected_path.exists():
+    if update_golden:
         expected_path.write_text(res.out)
+    assert expected_path.exists(), f"{expected_path} is missing: run pytest --update-golden and review it"
     expected = expected_path.read_text()
     if res.out != expected:
         diff = "".join(difflib.unified_diff(expected.splitlines(True), res.out.splitlines(True),

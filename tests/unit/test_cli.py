@@ -50,3 +50,24 @@ def test_console_script_runs_as_a_module(tmp_path):
 def test_version():
     res = rapidgen("--version")
     assert res.code == 0 and res.out.startswith("rapidgen ")
+
+
+def test_out_of_range_float_and_missing_include_folder(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a.idl").write_text("const double X = 1e400;\n")
+    res = rapidgen("ir", "a.idl", "-I", "nowhere")
+    assert res.code == 1
+    assert "a.idl:1:18: error[RG0402]: floating-point literal 1e400 is out of range" in res.err
+    assert "<command line>: warning[RG0112]: include folder 'nowhere' does not exist" in res.err
+
+
+def test_device_files_are_bounded(monkeypatch):
+    res = rapidgen("ir", "/dev/zero")
+    assert res.code == 1 and "error[RG0005]: '/dev/zero' is larger than 64 MiB" in res.err
+
+
+def test_vectors_refuse_huge_arrays(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a.idl").write_text("typedef long Row[100000];\nstruct A { Row x[100000]; };\n")
+    res = rapidgen("vectors", "a.idl", "-o", "v.json")
+    assert res.code == 1 and "error[RG0903]" in res.err and not (tmp_path / "v.json").exists()

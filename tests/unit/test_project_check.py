@@ -47,3 +47,47 @@ def test_unknown_target_language(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     res = rapidgen("generate", "idl/s.idl", "--lang", "cobol", "-o", "out")
     assert res.code == 1 and "unknown or unavailable target 'cobol'" in res.err
+
+
+def test_generating_a_second_language_keeps_the_first(tmp_path, monkeypatch):
+    make_project(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    assert rapidgen("generate", "idl/s.idl", "--lang", "python", "-o", "out").code == 0
+    before = sorted(p.relative_to(tmp_path) for p in (tmp_path / "out" / "python").rglob("*.py"))
+    res = rapidgen("generate", "idl/s.idl", "--lang", "qos", "-o", "out")
+    assert res.code == 0 and "removed" not in res.out
+    assert sorted(p.relative_to(tmp_path) for p in (tmp_path / "out" / "python").rglob("*.py")) == before
+    assert (tmp_path / "out" / "qos" / "topics.json").is_file()
+
+
+def test_targets_sharing_an_output_folder_are_refused(tmp_path, monkeypatch):
+    make_project(tmp_path)
+    (tmp_path / "rapidgen.yaml").write_text(
+        "targets:\n  - name: a\n    idl: [idl/*.idl]\n    lang: [python]\n    out: gen/s\n"
+        "  - name: b\n    idl: [idl/*.idl]\n    lang: [qos]\n    out: gen/s/inner\n"
+        "  - name: a\n    idl: [idl/*.idl]\n    lang: [qos]\n    out: gen/t\n")
+    monkeypatch.chdir(tmp_path)
+    res = rapidgen("check")
+    assert res.code == 1
+    assert "error[RG0814]: two targets are named 'a'" in res.err
+    assert "targets 'a' and 'b' write into the same folder" in res.err
+
+
+def test_unwritable_output_is_a_diagnostic(tmp_path, monkeypatch):
+    make_project(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a_file").write_text("not a folder\n")
+    res = rapidgen("generate", "idl/s.idl", "-o", "a_file")
+    assert res.code == 1 and "error[RG0803]: cannot write" in res.err and "Traceback" not in res.err
+    assert rapidgen("generate", "idl/s.idl", "--lang", "", "-o", "out").code == 2
+
+
+def test_headers_name_sources_relative_and_printable(tmp_path, monkeypatch):
+    make_project(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    weird = tmp_path / 'we"ird\nname.idl'
+    weird.write_text(IDL)
+    assert rapidgen("generate", str(weird), "-o", "out").code == 0
+    text = "".join(p.read_text() for p in (tmp_path / "out" / "python").rglob("*.py"))
+    assert str(tmp_path) not in text
+    assert "we_ird_name.idl" in text

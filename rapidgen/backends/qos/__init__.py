@@ -8,8 +8,9 @@ Output, under qos/:
   dds-xml/rapid_qos.xml            OMG DDS-XML 1.0 (Cyclone's QoS provider loads it)
   topics.json                      topic -> type, profile: what the runtimes read
 
-The library is the one the package ships (specs/qos/rapid.yaml); `render()` takes
-another (tests, sites with their own peers and servers).
+The driver (rapidgen.generate) reads the library, the one the package ships
+(specs/qos/rapid.yaml), and passes it in Options: back ends never read files. `render()`
+takes any library (tests, sites with their own peers and servers).
 """
 from __future__ import annotations
 
@@ -20,7 +21,7 @@ from rapidgen.backends.qos import topicmap, view
 from rapidgen.backends.templating import render as render_template
 from rapidgen.diagnostics import did_you_mean
 from rapidgen.model.ir import Model
-from rapidgen.qos.spec import QosSpec, default_library
+from rapidgen.qos.spec import QosSpec
 
 NAME = "qos"
 
@@ -66,7 +67,18 @@ def _safe(spec: QosSpec) -> QosSpec:
 
 
 def generate(model: Model, asset, options: Options) -> list[GeneratedFile]:
-    return render(default_library(), model, asset, options)
+    """Render the QoS library the driver read (rapidgen.generate); the package's own by default."""
+    spec = options.qos_library if isinstance(options.qos_library, QosSpec) else None
+    if spec is None:
+        raise NoLibrary()
+    return render(spec, model, asset, options)
+
+
+class NoLibrary(GenerationError):
+    def report(self, sink) -> None:
+        from rapidgen.diagnostics import SourceLoc
+        sink.error("RG1609", "the qos target needs a QoS library", SourceLoc("<command line>", 0, 0),
+                   "rapidgen generate/check pass the packaged one (specs/qos/rapid.yaml)")
 
 
 def render(spec: QosSpec, model: Model, asset, options: Options) -> list[GeneratedFile]:
