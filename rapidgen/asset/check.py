@@ -135,7 +135,7 @@ class Checker:
     def subsystems(self) -> None:
         spec = self.spec
         subs = all_subsystems(spec)
-        self.duplicates(subs, lambda s: s.name, "subsystem")
+        self.duplicates(spec.subsystems, lambda s: s.name, "subsystem")  # the native one: native()
         types = effective_types(spec)
         for s in spec.subsystems:
             self.bound(s.name, s.at("name"), "subsystem name", "rapid::Subsystem", "name")
@@ -166,10 +166,20 @@ class Checker:
         self.bound(n.subsystem, n.at("subsystem"), "native subsystem name", "rapid::Subsystem", "name")
         self.bound(n.command, n.at("command"), "native command name", "rapid::CommandDef", "name")
         self.bound(n.parameter, n.at("parameter"), "native parameter name", "rapid::KeyTypePair", "key")
-        clash = {t.name for t in self.spec.subsystem_types} | set(STANDARD_TYPES)
-        if n.subsystem in clash:
-            self.sink.error("RG1101", f"native subsystem '{n.subsystem}' is also a subsystem type name",
-                            n.at("subsystem"), "the passthrough defines its own type of that name; pick another")
+        # The passthrough adds a subsystem and a subsystem type, both named n.subsystem: one
+        # error for a name that clashes with either or both.
+        taken = []
+        sub = next((s for s in self.spec.subsystems if s.name == n.subsystem), None)
+        if sub is not None:
+            taken.append(f"a subsystem (line {sub.loc.line})")
+        if n.subsystem in STANDARD_TYPES:
+            taken.append("a standard subsystem type")
+        elif any(t.name == n.subsystem for t in self.spec.subsystem_types):
+            taken.append("a subsystem type")
+        if taken:
+            self.sink.error("RG1101", f"native subsystem '{n.subsystem}' is also the name of {' and of '.join(taken)}",
+                            n.at("subsystem"), "the passthrough adds a subsystem and a subsystem type of that name; "
+                            "pick another for native.subsystem (default 'Native')")
 
     # -- access control -----------------------------------------------------------------------
     def access_control(self) -> None:

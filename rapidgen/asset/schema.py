@@ -101,9 +101,12 @@ def _translate(e: ValidationError, doc: YamlDoc):
         want = " or ".join(_SCHEMA_TYPES.get(t, t) for t in (val if isinstance(val, list) else [val]))
         got = _NAMES.get(type(inst), "a value")
         if not isinstance(inst, (dict, list)) and inst is not None:
-            got += f" ({_shown(inst)})"
-        if val == "string" and isinstance(inst, (int, float, bool)):
-            hint = f"quote it: '{_shown(inst)}'"
+            shown = _shown(inst)
+            written = doc.written(path, shown) if isinstance(inst, (int, float, bool)) else shown
+            # YAML 1.1 reads `on`, `yes`, `0x10` as true, true, 16: name both spellings
+            got += f" ({shown})" if written == shown else f" ({written}, which YAML reads as {shown})"
+            if val == "string" and isinstance(inst, (int, float, bool)):
+                hint = f"quote it: '{written}'"
         yield "RG1022", f"{where} must be {want}, not {got}", loc, hint
     elif kw in ("enum", "const"):
         options = [str(v) for v in (val if kw == "enum" else [val])]

@@ -30,12 +30,20 @@ HERE = Path(__file__).resolve().parent
 RAPID_IDL = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "specs" / "rapid").glob("*.idl"))
 ROVER = "tests/qos/cases/rover.yaml"
 
-# Domain ids of this tier (60-79), one per live test so that tests never see each other.
-DOMAIN_CYCLONE_LOCAL = 60
-DOMAIN_FASTDDS_QOS = 61
-DOMAIN_TCP = 62
-DOMAIN_UDP_WAN = 63
-DOMAIN_NEGATIVE_TCP = 64
+# Domain ids of this tier (60-79), one per live test so that tests never see each other;
+# every fixed port a test uses follows from its domain id (RTPS well-known ports, tcp_port).
+DOMAIN_CYCLONE_LOCAL = 60          # test_cyclone: participant with the `local` config
+DOMAIN_FASTDDS_QOS = 61            # test_fastdds: writers and readers of every profile
+DOMAIN_TCP = 62                    # test_wan: Fast DDS TCP through a discovery server
+DOMAIN_UDP_WAN = 63                # test_wan: Fast DDS and Cyclone DDS over UDP unicast
+DOMAIN_NEGATIVE_TCP = 64           # test_wan: TCP clients without the server
+DOMAIN_FASTDDS_EXCHANGE = {        # test_fastdds: local exchange, one per profile
+    "RapidSampleQos": 65,
+    "RapidReliableQos": 66,
+}
+LIVE_DOMAINS = [DOMAIN_CYCLONE_LOCAL, DOMAIN_FASTDDS_QOS, DOMAIN_TCP, DOMAIN_UDP_WAN, DOMAIN_NEGATIVE_TCP,
+                *DOMAIN_FASTDDS_EXCHANGE.values()]
+assert len(set(LIVE_DOMAINS)) == len(LIVE_DOMAINS) and all(60 <= d <= 79 for d in LIVE_DOMAINS), LIVE_DOMAINS
 
 
 def render(spec, asset_path: str | None) -> dict[str, str]:

@@ -74,28 +74,70 @@ def test_participant_runs_with_the_local_config(rover_dir, procs):
     assert "error" not in procs.log(proc).lower()
 
 
+def cargo_program() -> str | None:
+    """cargo on PATH, else rustup's usual place (a shell that did not source ~/.cargo/env)."""
+    found = shutil.which("cargo")
+    if found:
+        return found
+    home = os.environ.get("CARGO_HOME", os.path.expanduser("~/.cargo"))
+    candidate = Path(home) / "bin" / "cargo"
+    return str(candidate) if os.access(candidate, os.X_OK) else None
+
+
+@pytest.mark.parametrize("config, domain, why", [
+    (None, DOMAIN_CYCLONE_LOCAL, "CYCLONEDDS_URI is not set"),
+    ("lan.xml", DOMAIN_CYCLONE_LOCAL, "AllowMulticast"),
+    ("wan.xml", DOMAIN_CYCLONE_LOCAL, "NetworkInterface"),  # shipped wan: no interface pinned
+    ("local.xml", 0, "outside the QoS tier"),
+    ("<CycloneDDS/>", DOMAIN_CYCLONE_LOCAL, "one config file"),
+])
+def test_cyclone_peer_refuses_configs_that_may_leave_loopback(rover_dir, config, domain, why):
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
+    if config is not None:
+        env["CYCLONEDDS_URI"] = config if config.startswith("<") else f"file://{rover_dir / 'cyclonedds' / config}"
+    res = subprocess.run([PYTHON, str(HERE / "cyclone_peer.py"), "participant", str(domain), "0"], env=env,
+                         capture_output=True, text=True, timeout=30)
+    assert res.returncode == 2 and "refusing to run" in res.stderr and why in res.stderr, res.stderr
+    assert "participant" not in res.stdout  # no DomainParticipant was created
+
+
 @pytest.fixture(scope="session")
 def cyclone_xsd(tmp_path_factory) -> Path:
-    """cyclonedds.xsd from the `cyclors` crate's sources (cargo's registry, fetched if absent)."""
+    """cyclonedds.xsd from the `cyclors` crate's sources (cargo's registry, fetched if absent).
+
+    Never skips: the schema check is a requirement, so a machine without cargo, or where
+    the crate cannot be had, fails here with the reason. The fetch tries cargo's local
+    cache first (`--offline`), then the registry."""
     def found():
         home = os.environ.get("CARGO_HOME", os.path.expanduser("~/.cargo"))
         hits = sorted(glob.glob(f"{home}/registry/src/*/cyclors-{CYCLORS}/cyclonedds/etc/cyclonedds.xsd"))
         return Path(hits[0]) if hits else None
     xsd = found()
-    if xsd is None:
-        if shutil.which("cargo") is None:
-            pytest.skip("cargo is not installed: cannot fetch the cyclors crate for cyclonedds.xsd")
-        project = tmp_path_factory.mktemp("cyclors")
-        (project / "src").mkdir()
-        (project / "src" / "lib.rs").write_text("")
-        (project / "Cargo.toml").write_text(
-            '[package]\nname = "fetch-cyclors"\nversion = "0.0.0"\nedition = "2021"\n\n'
-            f'[dependencies]\ncyclors = "={CYCLORS}"\n')
-        res = subprocess.run(["cargo", "fetch", "--quiet"], cwd=project, capture_output=True, text=True, timeout=300)
+    if xsd is not None:
+        return xsd
+    cargo = cargo_program()
+    if cargo is None:
+        pytest.fail(f"cargo is needed to fetch the cyclors {CYCLORS} crate, whose cyclonedds.xsd validates the "
+                    "generated Cyclone DDS domain configs: install Rust (rustup) or Debian's `cargo` "
+                    "(scripts/setup.sh installs it when no cargo is found)", pytrace=False)
+    project = tmp_path_factory.mktemp("cyclors")
+    (project / "src").mkdir()
+    (project / "src" / "lib.rs").write_text("")
+    (project / "Cargo.toml").write_text(
+        '[package]\nname = "fetch-cyclors"\nversion = "0.0.0"\nedition = "2021"\n\n'
+        f'[dependencies]\ncyclors = "={CYCLORS}"\n')
+    errors = []
+    # offline first: cargo's cache; then the registry (an old cargo without the sparse
+    # protocol clones the whole index first, hence the long deadline)
+    for extra, deadline in ((["--offline"], 120), ([], 900)):
+        res = subprocess.run([cargo, "fetch", "--quiet", *extra], cwd=project, capture_output=True, text=True,
+                             timeout=deadline)
         xsd = found()
-        if xsd is None:
-            pytest.skip(f"could not fetch the cyclors crate: {res.stderr[-500:]}")
-    return xsd
+        if xsd is not None:
+            return xsd
+        errors.append(f"$ cargo fetch {' '.join(extra)} (exit {res.returncode})\n{res.stderr[-1500:]}")
+    pytest.fail(f"could not fetch the cyclors {CYCLORS} crate for cyclonedds.xsd:\n" + "\n".join(errors),
+                pytrace=False)
 
 
 @pytest.mark.parametrize("transport", ["local", "lan", "wan"])

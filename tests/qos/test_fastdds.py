@@ -12,7 +12,7 @@ import subprocess
 
 import pytest
 
-from tests.qos.conftest import DOMAIN_FASTDDS_QOS, render, write_tree
+from tests.qos.conftest import DOMAIN_FASTDDS_EXCHANGE, DOMAIN_FASTDDS_QOS, render, write_tree
 from tests.qos.test_spec import SECTION_6, expected
 
 PARTICIPANTS = ["rapid_local", "rapid_lan", "rapid_wan", "rapid_wan_tcp", "rapid_wan_tcp_server"]
@@ -82,10 +82,10 @@ def test_broken_xml_is_refused(probe, rover_files, tmp_path):
     assert res.returncode != 0
 
 
-@pytest.mark.parametrize("profile", ["RapidSampleQos", "RapidReliableQos"])
+@pytest.mark.parametrize("profile", sorted(DOMAIN_FASTDDS_EXCHANGE))
 def test_local_exchange_between_two_fastdds_programs(probe, rover_dir, procs, profile):
     xml = str(rover_dir / "fastdds" / "rapid_qos_profiles.xml")
-    domain = str(DOMAIN_FASTDDS_QOS)
+    domain = str(DOMAIN_FASTDDS_EXCHANGE[profile])  # its own domain, so its own RTPS ports
     echo = procs.start("echo", [str(probe), "echo", xml, domain, "rapid_local", profile, "15", "3"], timeout=25)
     assert procs.wait_for(echo, "ready", 10), procs.log(echo)
     ping = procs.start("ping", [str(probe), "ping", xml, domain, "rapid_local", profile, "15", "3"], timeout=25)

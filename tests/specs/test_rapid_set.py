@@ -195,12 +195,73 @@ def test_messages(model, name, spec):
     assert d["keys"] == ["hdr.srcName", "hdr.assetName"] + extra_keys
 
 
+# Section 4: the topic constants by name (`const String64 X_TOPIC = "..."`), and which
+# message each one names (the message/topic table).
+TOPIC_CONSTANTS = {
+    "COMMAND_TOPIC": "rapid_command", "ACK_TOPIC": "rapid_ack", "COMMAND_CONFIG_TOPIC": "rapid_command_config",
+    "AGENT_CONFIG_TOPIC": "rapid_agent_config", "AGENT_STATE_TOPIC": "rapid_agent_state",
+    "POSITION_CONFIG_TOPIC": "rapid_position_config", "POSITION_SAMPLE_TOPIC": "rapid_position_sample",
+    "JOINT_CONFIG_TOPIC": "rapid_joint_config", "JOINT_SAMPLE_TOPIC": "rapid_joint_sample",
+    "IMAGESENSOR_SAMPLE_TOPIC": "rapid_imagesensor_sample", "IMAGESENSOR_STATE_TOPIC": "rapid_imagesensor_state",
+    "TEXTMESSAGE_TOPIC": "rapid_textmessage", "ACCESSCONTROL_STATE_TOPIC": "rapid_accesscontrol_state",
+    "FILEANNOUNCE_TOPIC": "rapid_fileannounce", "QUEUE_STATE_TOPIC": "rapid_queue_state",
+}
+TOPIC_OF = {
+    "Command": "COMMAND_TOPIC", "Ack": "ACK_TOPIC", "CommandConfig": "COMMAND_CONFIG_TOPIC",
+    "AgentConfig": "AGENT_CONFIG_TOPIC", "AgentState": "AGENT_STATE_TOPIC",
+    "PositionConfig": "POSITION_CONFIG_TOPIC", "PositionSample": "POSITION_SAMPLE_TOPIC",
+    "JointConfig": "JOINT_CONFIG_TOPIC", "JointSample": "JOINT_SAMPLE_TOPIC",
+    "ImageSensorSample": "IMAGESENSOR_SAMPLE_TOPIC", "ImageSensorState": "IMAGESENSOR_STATE_TOPIC",
+    "TextMessage": "TEXTMESSAGE_TOPIC", "AccessControlState": "ACCESSCONTROL_STATE_TOPIC",
+    "FileAnnounce": "FILEANNOUNCE_TOPIC", "QueueState": "QUEUE_STATE_TOPIC",
+}
+
+
+def test_protocol_tables_agree():
+    """The constant table and the message table (both section 4) tell the same story."""
+    assert set(TOPIC_OF) == set(MESSAGES) and sorted(TOPIC_OF.values()) == sorted(TOPIC_CONSTANTS)
+    assert {m: TOPIC_CONSTANTS[c] for m, c in TOPIC_OF.items()} == {m: spec[2] for m, spec in MESSAGES.items()}
+
+
 def test_topic_constants(model):
-    topics = {d["value"] for d in model.values() if d["kind"] == "const" and d["name"].endswith("_TOPIC")}
-    assert topics == {spec[2] for spec in MESSAGES.values()}
-    for d in model.values():
-        if d["kind"] == "const" and d["name"].endswith("_TOPIC"):
-            assert resolve(model, d["type"]) == "string<64>", d["name"]
+    """By name, so that two constants with swapped values fail."""
+    got = {d["name"]: d["value"] for d in model.values() if d["kind"] == "const" and d["name"].endswith("_TOPIC")}
+    assert got == {S + name: value for name, value in TOPIC_CONSTANTS.items()}
+    for name in TOPIC_CONSTANTS:
+        assert resolve(model, model[S + name]["type"]) == "string<64>", name
+
+
+@pytest.fixture(scope="module")
+def declared_in():
+    """{scoped name: IDL file} of the RAPID set (the IR with locations)."""
+    import os
+    cwd = os.getcwd()
+    os.chdir(ROOT)
+    try:
+        res = rapidgen("ir", "-I", "specs/rapid", *sorted(glob.glob("specs/rapid/*.idl")))
+    finally:
+        os.chdir(cwd)
+    assert res.code == 0, res.err
+    return {d["name"]: Path(d["loc"].split(":", 1)[0]).name for d in json.loads(res.out)["declarations"]}
+
+
+@pytest.mark.parametrize("message,const", TOPIC_OF.items())
+def test_each_message_pairs_with_its_topic_constant(model, declared_in, message, const):
+    """RAPID declares a message's topic constant beside it, in the message's own file."""
+    assert model[S + const]["value"] == MESSAGES[message][2]
+    assert declared_in[S + const] == declared_in[S + message] == f"{message}.idl"
+
+
+def test_generator_pairs_messages_with_their_topic_constants():
+    """rapidgen's own message -> constant tables (asset topics) agree with section 4."""
+    from rapidgen.asset.standard import IMPLICIT_STATE_TOPICS
+    from rapidgen.asset.topics import FALLBACK_TOPICS, STANDARD_MESSAGES
+
+    pairs = [(type_, const) for entries in STANDARD_MESSAGES.values() for _role, type_, const in entries]
+    pairs += list(IMPLICIT_STATE_TOPICS.values())
+    for type_, const in pairs:
+        assert TOPIC_OF[type_.removeprefix(S)] == const, (type_, const)
+    assert FALLBACK_TOPICS.items() <= TOPIC_CONSTANTS.items()
 
 
 def test_command_record_and_single_queue(model):
