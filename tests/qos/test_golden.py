@@ -34,9 +34,10 @@ def test_every_format_is_generated(outputs):
 def test_golden(outputs, case, rel, update_golden):
     actual = outputs[case][rel]
     path = GOLDEN / case / rel
-    if update_golden or not path.exists():
+    if update_golden:
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(actual, encoding="utf-8")
+    assert path.exists(), f"golden/{case}/{rel} is missing: run pytest --update-golden and review it"
     expected = path.read_text(encoding="utf-8")
     if actual != expected:
         diff = "".join(difflib.unified_diff(expected.splitlines(True), actual.splitlines(True),
