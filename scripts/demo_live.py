@@ -7,11 +7,14 @@ GENERATED_DIR is `rapidgen generate ASSET.yaml --lang python,qos -o GENERATED_DI
 asset publishes every config its descriptor computes (CommandConfig, AgentConfig,
 JointConfig, PositionConfig...) with the generated Python bindings, each with the QoS its
 topic maps to (qos/topics.json; RapidConfigQos: reliable, transient-local, keep-last 1)
-loaded from the generated DDS-XML by Cyclone's QoS provider, in the asset's partition; the
+loaded from the generated DDS-XML by Cyclone's QoS provider through the generated package's
+QoS runtime (`<package>.qos.RapidQos`), in the asset's partition; the
 ground side joins late, receives them all, and checks each against the descriptor. Values
 are built with the reference codec (rapidgen.model.cdr) and handed to the generated classes
 as bytes, so this also shows the two agree. Run with CYCLONEDDS_URI pointing at the
-generated loopback transport, GENERATED_DIR/qos/cyclonedds/local.xml.
+generated loopback transport, GENERATED_DIR/qos/cyclonedds/local.xml: anything else
+(unset, inline XML, not a file, multicast allowed, an interface or peer other than
+127.0.0.1) is refused before DDS starts.
 """
 from __future__ import annotations
 
@@ -20,6 +23,7 @@ import importlib
 import os
 import sys
 import time
+import xml.etree.ElementTree as ET
 
 
 def _load(asset_path: str):
@@ -41,30 +45,59 @@ def _class_of(package: str, scoped: str):
     return getattr(importlib.import_module(".".join([package, *modules])), name)
 
 
-class _QosMap:
-    """QoS per topic: the generated topic map names a profile, the DDS-XML defines it."""
+def _qos(package: str, generated: str):
+    """The generated package's QoS runtime (<package>/qos.py) on GENERATED_DIR/qos."""
+    try:
+        runtime = importlib.import_module(f"{package}.qos")
+    except ModuleNotFoundError as exc:
+        raise SystemExit(f"demo_live: {generated} has no {package}.qos ({exc}); regenerate it with this rapidgen")
+    try:
+        return runtime.RapidQos(os.path.join(generated, "qos"))
+    except runtime.RapidQosError as exc:
+        raise SystemExit(f"demo_live: {exc}")
 
-    def __init__(self, qos_dir: str) -> None:
-        import json
 
-        from cyclonedds.qos_provider import QosProvider
+def loopback_refusal(uri: str | None) -> str | None:
+    """Why CYCLONEDDS_URI does not keep Cyclone on loopback, or None when it does.
 
-        with open(os.path.join(qos_dir, "topics.json"), encoding="utf-8") as fh:
-            self.map = json.load(fh)
-        self.provider = QosProvider(os.path.join(qos_dir, self.map["files"]["dds_xml"]))
-        self.keys = {t["topic"]: t["key"] for t in self.map["topics"]}
+    It must name exactly one configuration file (`file://PATH` or `PATH`; not inline XML,
+    not a list, no ${VAR}) whose every <Domain> sets <AllowMulticast>false</AllowMulticast>,
+    pins every network interface to 127.0.0.1 and has no peer but 127.0.0.1.
+    """
+    uri = (uri or "").strip()
+    if not uri:
+        return "CYCLONEDDS_URI is not set (Cyclone's default uses every interface and multicast)"
+    if uri.startswith("<"):
+        return "CYCLONEDDS_URI holds inline XML; point it at a configuration file (file://PATH)"
+    if "," in uri or "$" in uri:
+        return f"CYCLONEDDS_URI={uri!r} is a list or uses ${{VAR}}; give exactly one file (file://PATH)"
+    path = uri[len("file://"):] if uri.startswith("file://") else uri
+    if "://" in path:
+        return f"CYCLONEDDS_URI={uri!r} is not a file URI (file://PATH)"
+    try:
+        root = ET.parse(path).getroot()  # XML comments are dropped: only live settings count
+    except (OSError, ValueError, ET.ParseError) as exc:
+        return f"cannot read {path!r} as a Cyclone DDS configuration: {exc}"
 
-    def writer(self, topic: str):
-        return self.provider.get_datawriter_qos(self.keys[topic])
+    def tag(e) -> str:
+        return e.tag.rsplit("}", 1)[-1] if isinstance(e.tag, str) else ""
 
-    def reader(self, topic: str):
-        return self.provider.get_datareader_qos(self.keys[topic])
-
-    def publisher(self):
-        return self.provider.get_publisher_qos(next(iter(self.keys.values())))
-
-    def subscriber(self):
-        return self.provider.get_subscriber_qos(next(iter(self.keys.values())))
+    domains = [e for e in root.iter() if tag(e) == "Domain"]
+    if tag(root) != "CycloneDDS" or not domains:
+        return f"{path} is not a Cyclone DDS configuration with a <Domain> section"
+    for d in domains:
+        where = f"{path} <Domain Id={d.get('Id', 'any')!r}>"
+        multicast = [(e.text or "").strip().lower() for e in d.iter() if tag(e) == "AllowMulticast"]
+        nics = [e.get("address") if tag(e) == "NetworkInterface" else (e.text or "").strip()
+                for e in d.iter() if tag(e) in ("NetworkInterface", "NetworkInterfaceAddress")]
+        peers = [e.get("Address") or e.get("address") for e in d.iter() if tag(e) == "Peer"]
+        if multicast != ["false"]:
+            return f"{where}: needs <AllowMulticast>false</AllowMulticast> (once), has {multicast}"
+        if not nics or any(n != "127.0.0.1" for n in nics):
+            return f'{where}: must pin every interface to 127.0.0.1 (<NetworkInterface address="127.0.0.1"/>)'
+        if any(p != "127.0.0.1" for p in peers):
+            return f"{where}: every <Peer> must be 127.0.0.1, has {peers}"
+    return None
 
 
 def run_asset(args, loaded, configs, package: str) -> int:
@@ -75,7 +108,7 @@ def run_asset(args, loaded, configs, package: str) -> int:
     from rapidgen.model.cdr import Codec
 
     name = loaded.spec.name
-    qos = _QosMap(os.path.join(args.generated, "qos"))
+    qos = _qos(package, args.generated)
     participant = DomainParticipant(args.domain)
     publisher = Publisher(participant, qos=qos.publisher())
     codec = Codec(loaded.model)
@@ -100,7 +133,7 @@ def run_ground(args, loaded, configs, package: str) -> int:
 
     from rapidgen.model.cdr import Codec
 
-    qos = _QosMap(os.path.join(args.generated, "qos"))
+    qos = _qos(package, args.generated)
     participant = DomainParticipant(args.domain)
     subscriber = Subscriber(participant, qos=qos.subscriber())
     codec = Codec(loaded.model)
@@ -146,12 +179,19 @@ def main() -> int:
     parser.add_argument("--domain", type=int, default=30)
     parser.add_argument("--seconds", type=float, default=10.0)
     args = parser.parse_args()
-    if "127.0.0.1" not in open(os.environ.get("CYCLONEDDS_URI", "").removeprefix("file://") or os.devnull).read():
-        print("demo_live: set CYCLONEDDS_URI to a loopback-only Cyclone config first", file=sys.stderr)
+    refusal = loopback_refusal(os.environ.get("CYCLONEDDS_URI"))
+    if refusal is not None:
+        print(f"demo_live: {refusal}; refusing to start DDS. Set CYCLONEDDS_URI=file://<absolute path of "
+              f"{os.path.join(args.generated, 'qos', 'cyclonedds', 'local.xml')}> (loopback only)", file=sys.stderr)
         return 2
     loaded, configs = _load(args.asset_file)
     python_dir = os.path.join(args.generated, "python")
-    package = next(p for p in sorted(os.listdir(python_dir)) if os.path.isfile(os.path.join(python_dir, p, "__init__.py")))
+    found = sorted(os.listdir(python_dir)) if os.path.isdir(python_dir) else []
+    package = next((p for p in found if os.path.isfile(os.path.join(python_dir, p, "__init__.py"))), None)
+    if package is None:
+        print(f"demo_live: no generated Python package in {python_dir}; run "
+              f"`rapidgen generate {args.asset_file} --lang python,qos -o {args.generated}`", file=sys.stderr)
+        return 2
     sys.path.insert(0, os.path.abspath(python_dir))
     run = run_asset if args.role == "asset" else run_ground
     return run(args, loaded, configs, package)

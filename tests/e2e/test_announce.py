@@ -1,7 +1,8 @@
 """End to end: an asset process announces its computed configs over Cyclone DDS with the
 committed generated bindings; a late-joining ground process receives and checks them.
-Real DDS processes, loopback only (the generated "local" transport), domain 31; QoS from the
-generated DDS-XML through Cyclone's QoS provider."""
+Real DDS processes, loopback only (the generated "local" transport), one DDS domain per case
+(31, 32) so the two cases never see each other; QoS from the generated DDS-XML through
+Cyclone's QoS provider, read by the generated package's QoS runtime (`<package>.qos`)."""
 import os
 import subprocess
 import sys
@@ -13,11 +14,11 @@ import pytest
 ROOT = Path(__file__).parents[2]
 
 
-@pytest.mark.parametrize("asset", ["robonaut2", "k10"])
-def test_ground_receives_every_config_the_descriptor_computes(asset):
+@pytest.mark.parametrize("asset, domain", [("robonaut2", 31), ("k10", 32)])
+def test_ground_receives_every_config_the_descriptor_computes(asset, domain):
     loopback = ROOT / "generated" / asset / "qos" / "cyclonedds" / "local.xml"
     env = dict(os.environ, CYCLONEDDS_URI=f"file://{loopback}")
-    args = [f"specs/assets/{asset}.yaml", f"generated/{asset}", "--domain", "31"]
+    args = [f"specs/assets/{asset}.yaml", f"generated/{asset}", "--domain", str(domain)]
     script = str(ROOT / "scripts" / "demo_live.py")
     publisher = subprocess.Popen([sys.executable, script, "asset", *args, "--seconds", "10"], cwd=ROOT, env=env,
                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)

@@ -18,13 +18,56 @@ import json
 import os
 import sys
 import time
+import xml.etree.ElementTree as ET
+
+
+def loopback_refusal(uri: str | None) -> str | None:
+    """Why CYCLONEDDS_URI does not keep Cyclone on loopback, or None when it does.
+
+    It must be `file://PATH` of exactly one configuration file (not inline XML, not a
+    list, no ${VAR}) whose every <Domain> sets <AllowMulticast>false</AllowMulticast>,
+    pins every network interface to 127.0.0.1 and has no peer but 127.0.0.1.
+    """
+    uri = (uri or "").strip()
+    if not uri:
+        return "CYCLONEDDS_URI is not set (Cyclone's default uses every interface and multicast)"
+    if uri.startswith("<"):
+        return "CYCLONEDDS_URI holds inline XML; point it at a configuration file (file://PATH)"
+    if "," in uri or "$" in uri:
+        return f"CYCLONEDDS_URI={uri!r} is a list or uses ${{VAR}}; give exactly one file (file://PATH)"
+    path = uri[len("file://"):] if uri.startswith("file://") else uri
+    if not uri.startswith("file://") or "://" in path:
+        return f"CYCLONEDDS_URI={uri!r} is not a file URI (file://PATH)"
+    try:
+        root = ET.parse(path).getroot()  # XML comments are dropped: only live settings count
+    except (OSError, ValueError, ET.ParseError) as exc:
+        return f"cannot read {path!r} as a Cyclone DDS configuration: {exc}"
+
+    def tag(e) -> str:
+        return e.tag.rsplit("}", 1)[-1] if isinstance(e.tag, str) else ""
+
+    domains = [e for e in root.iter() if tag(e) == "Domain"]
+    if tag(root) != "CycloneDDS" or not domains:
+        return f"{path} is not a Cyclone DDS configuration with a <Domain> section"
+    for d in domains:
+        where = f"{path} <Domain Id={d.get('Id', 'any')!r}>"
+        multicast = [(e.text or "").strip().lower() for e in d.iter() if tag(e) == "AllowMulticast"]
+        nics = [e.get("address") if tag(e) == "NetworkInterface" else (e.text or "").strip()
+                for e in d.iter() if tag(e) in ("NetworkInterface", "NetworkInterfaceAddress")]
+        peers = [e.get("Address") or e.get("address") for e in d.iter() if tag(e) == "Peer"]
+        if multicast != ["false"]:
+            return f"{where}: needs <AllowMulticast>false</AllowMulticast> (once), has {multicast}"
+        if not nics or any(n != "127.0.0.1" for n in nics):
+            return f'{where}: must pin every interface to 127.0.0.1 (<NetworkInterface address="127.0.0.1"/>)'
+        if any(p != "127.0.0.1" for p in peers):
+            return f"{where}: every <Peer> must be 127.0.0.1, has {peers}"
+    return None
 
 
 def _require_loopback_config() -> None:
-    uri = os.environ.get("CYCLONEDDS_URI", "")
-    path = uri[len("file://"):] if uri.startswith("file://") else ""
-    if not path or not os.path.isfile(path):
-        sys.exit("live_peer: CYCLONEDDS_URI must name the loopback configuration file; refusing to start DDS")
+    refusal = loopback_refusal(os.environ.get("CYCLONEDDS_URI"))
+    if refusal is not None:
+        sys.exit(f"live_peer: {refusal}; refusing to start DDS")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -72,8 +72,9 @@ def write_tree(root: Path, files: dict[str, str]) -> None:
 def test_golden(case: Path, update_golden: bool):
     actual = generate_case(case)
     expected_root = case / "expected"
-    if update_golden or not expected_root.exists():
+    if update_golden:
         write_tree(expected_root, actual)
+    assert expected_root.is_dir(), f"{expected_root} is missing: run pytest --update-golden and review it"
     expected = read_tree(expected_root)
     problems = [f"missing (generated but not expected): {p}" for p in sorted(actual.keys() - expected.keys())]
     problems += [f"no longer generated: {p}" for p in sorted(expected.keys() - actual.keys())]

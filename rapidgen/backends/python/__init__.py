@@ -3,8 +3,9 @@
     generate(model, asset, options) -> [GeneratedFile]
 
 The package is named after the asset (`K10Red` -> `rapid_k10red`), or options.package,
-or `rapid_types` for IDL alone. See view.py for the layout and docs/python-backend.md
-for the mapping rules.
+or `rapid_types` for IDL alone. Every package carries the `qos` runtime module (each
+topic's QoS from the generated qos/ folder; templates/python/qos.py.j2). See view.py for
+the layout and docs/python-backend.md for the mapping rules.
 """
 from __future__ import annotations
 
@@ -41,6 +42,7 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
     """Raises UnsupportedInput when the model uses what cyclonedds cannot encode."""
     pkg = view(model, asset, options)
     files = [GeneratedFile("pyproject.toml", render("python", "pyproject.toml.j2", p=pkg.project)),
-             GeneratedFile(pkg.support_path, render("python", "_support.py.j2", header=pkg.header))]
+             GeneratedFile(pkg.support_path, render("python", "_support.py.j2", header=pkg.header)),
+             GeneratedFile(pkg.qos.path, render("python", "qos.py.j2", q=pkg.qos))]
     files += [GeneratedFile(m.path, render("python", "module.py.j2", f=m)) for m in pkg.modules]
     return sorted(files, key=lambda f: f.path)

@@ -5,6 +5,7 @@ The package for one model:
     pyproject.toml
     <package>/__init__.py            imports the top-level IDL module packages
     <package>/_support.py            helpers the generated modules use
+    <package>/qos.py                 runtime: each topic's QoS from the generated qos/ folder
     <package>/_idl/<File>.py         the declarations of one IDL file (dataclasses, enums, ...)
     <package>/<module>/__init__.py   one package per IDL module, re-exporting its declarations
 
@@ -25,6 +26,9 @@ from rapidgen.model import ir
 
 CYCLONEDDS_REQUIREMENT = "cyclonedds>=11.0.1,<12"
 VERSION = "1.0.0"
+# Runtime modules of the package root (besides _idl and _support): an IDL module or a
+# global-scope declaration with one of these names is renamed (`qos`, `QoS` -> `qos_`, `QoS_`).
+RUNTIME_MODULES = ("qos",)
 
 
 # -- view objects --------------------------------------------------------------------------
@@ -87,13 +91,23 @@ class ProjectView:
 
 
 @dataclass
+class QosRuntimeView:
+    """`<package>/qos.py`: static runtime code; only the header and package name vary."""
+
+    path: str
+    header: str
+    package: str
+
+
+@dataclass
 class PackageView:
     package: str
     project: ProjectView
-    modules: list[ModuleView]  # every .py file but _support.py
+    modules: list[ModuleView]  # every .py file but _support.py and qos.py
     support_path: str
     header: str
     type_count: int
+    qos: QosRuntimeView
 
 
 class UnsupportedInput(GenerationError):
@@ -177,7 +191,8 @@ class PythonViewBuilder:
         project = ProjectView(self.header, self.package.replace("_", "-"), VERSION,
                               f"RAPID DDS types from {self.source} (cyclonedds.idl dataclasses)",
                               CYCLONEDDS_REQUIREMENT, [self.package, f"{self.package}.*"])
-        return PackageView(self.package, project, modules, f"{self.package}/_support.py", self.header, types)
+        return PackageView(self.package, project, modules, f"{self.package}/_support.py", self.header, types,
+                           QosRuntimeView(f"{self.package}/qos.py", self.header, self.package))
 
     def _packages(self) -> list[ModuleView]:
         """One package per IDL module (and the root): re-exports and subpackage imports."""
@@ -189,6 +204,9 @@ class PythonViewBuilder:
                                        namer.KEYWORDS | {"_idl", "_support"})
         folders = {path: namer.Scope(f"folders of {'::'.join(path) or self.package}", namer.KEYWORDS, fold_case=True)
                    for path in paths}
+        for runtime in RUNTIME_MODULES:  # taken first, so IDL names step aside (case-folded for folders)
+            scopes[()].take(runtime, f"runtime module {runtime}.py")
+            folders[()].take(runtime, f"runtime module {runtime}.py")
         for path in paths[1:]:
             folder = folders[path[:-1]].claim(path[-1], "module " + "::".join(path))
             scopes[path[:-1]].take(folder, "module " + "::".join(path))
