@@ -113,24 +113,14 @@ def _cmd_ir(args: argparse.Namespace) -> int:
     if model is None:
         return 1
     text = model_to_json(model, loc=not args.no_loc)
-    if args.output:
-        return _write_output(args.output, text, sink)
-    else:
+    if not args.output:
         sys.stdout.write(text)
-    return 0
+        return 0
+    from rapidgen.writer import write_output
 
-
-def _write_output(path: str, text: str, sink: DiagnosticSink) -> int:
-    """Write a command's output file; a failure is a diagnostic, not a traceback."""
-    from rapidgen.diagnostics import SourceLoc
-    from rapidgen.writer import write_text_atomic
-
-    try:
-        write_text_atomic(path, text)
-    except OSError as exc:
-        sink.error("RG0803", f"cannot write '{path}': {exc.strerror or exc}", SourceLoc(path, 0, 0),
-                   "check that the folder exists and is writable, and that the path is not a directory")
-        report(sink)
+    failed = DiagnosticSink()  # the diagnostics above are already printed
+    if write_output(args.output, text, failed) is None:
+        report(failed)
         return 1
     return 0
 

@@ -143,9 +143,13 @@ def run_vectors(paths: list[str], include: list[str], output: str, sink: Diagnos
     report(sink)
     if text is None:
         return 1
-    from rapidgen.writer import write_text_atomic
+    from rapidgen.writer import write_output
 
-    written = write_text_atomic(output, text)
+    failed = DiagnosticSink()  # the diagnostics above are already printed
+    written = write_output(output, text, failed)
+    if written is None:
+        report(failed)
+        return 1
     count = text.count('\n    {"id": ')
     print(f"{output}: {count} vectors, {'written' if written else 'unchanged'}")
     return 0

@@ -14,9 +14,12 @@ import json
 import os
 import tempfile
 from dataclasses import dataclass, field
-from typing import Iterable
+from typing import TYPE_CHECKING, Iterable
 
 from rapidgen.backends.base import GeneratedFile
+
+if TYPE_CHECKING:
+    from rapidgen.diagnostics import DiagnosticSink
 
 MANIFEST = ".rapidgen-manifest.json"
 _TMP_PREFIX = ".rapidgen-"
@@ -33,6 +36,19 @@ def write_text_atomic(path: str, text: str) -> bool:
         return False
     os.replace(staged, path)
     return True
+
+
+def write_output(path: str, text: str, sink: "DiagnosticSink") -> bool | None:
+    """write_text_atomic for a command's output file: True written, False unchanged, None on
+    failure, reported in sink as RG0803 (a directory, a missing folder, no permission)."""
+    from rapidgen.diagnostics import SourceLoc
+
+    try:
+        return write_text_atomic(path, text)
+    except OSError as exc:
+        sink.error("RG0803", f"cannot write '{path}': {exc.strerror or exc}", SourceLoc(path, 0, 0),
+                   "check that the folder exists and is writable, and that the path is not a directory")
+        return None
 
 
 def _stage(path: str, text: str) -> str | None:

@@ -71,3 +71,14 @@ def test_vectors_refuse_huge_arrays(tmp_path, monkeypatch):
     (tmp_path / "a.idl").write_text("typedef long Row[100000];\nstruct A { Row x[100000]; };\n")
     res = rapidgen("vectors", "a.idl", "-o", "v.json")
     assert res.code == 1 and "error[RG0903]" in res.err and not (tmp_path / "v.json").exists()
+
+
+def test_output_paths_that_cannot_be_written(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a.idl").write_text("@frobnicate struct S { long x; };\n")
+    (tmp_path / "out").mkdir()
+    for command in ("ir", "vectors"):
+        res = rapidgen(command, "a.idl", "-o", "out")
+        assert res.code == 1, command
+        assert "out: error[RG0803]: cannot write 'out'" in res.err and "Traceback" not in res.err
+        assert res.err.count("warning[RG0501]") == 1, "earlier diagnostics must not be printed twice"
