@@ -14,19 +14,18 @@ diagnostic names the original file and line.
 """
 from __future__ import annotations
 
-import ast
 import os
 import re
 from dataclasses import dataclass, field
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+from rapidgen.idl.ifexpr import evaluate as evaluate_condition
 
 MAX_INPUT_BYTES = 64 * 1024 * 1024
 MAX_INCLUDE_DEPTH = 64
 
 _DIRECTIVE = re.compile(r"^\s*#\s*([A-Za-z_]\w*)?(.*)$")
 _IDENT = re.compile(r"[A-Za-z_]\w*")
-_INT = re.compile(r"(0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*)[uUlL]*")
 
 
 @dataclass
@@ -324,7 +323,7 @@ class Preprocessor:
                 return False
             return (m.group(0) in self.macros) == (kind == "ifdef")
         try:
-            return bool(_eval_condition(rest, self.macros))
+            return bool(evaluate_condition(rest, self.macros))
         except (ValueError, SyntaxError, ZeroDivisionError, RecursionError) as exc:
             self.sink.error("RG0106", f"cannot evaluate #if expression: {exc}", loc,
                             "use defined(NAME), integers and C operators")
@@ -394,105 +393,6 @@ def _scan_line(line: str, in_comment: SourceLoc | None, file: str, lineno: int):
 def _strip_comments(text: str) -> str:
     text = re.sub(r"/\*.*?\*/", " ", text)
     return text.split("//", 1)[0]
-
-
-_ALLOWED = (ast.Expression, ast.BoolOp, ast.BinOp, ast.UnaryOp, ast.Compare, ast.Constant,
-            ast.And, ast.Or, ast.Not, ast.Invert, ast.USub, ast.UAdd, ast.Add, ast.Sub,
-            ast.Mult, ast.FloorDiv, ast.Mod, ast.LShift, ast.RShift, ast.BitAnd, ast.BitOr,
-            ast.BitXor, ast.Eq, ast.NotEq, ast.Lt, ast.LtE, ast.Gt, ast.GtE, ast.IfExp)
-
-
-def _eval_condition(expr: str, macros: dict[str, str], depth: int = 0) -> int:
-    """Evaluate a #if expression by translating C operators and checking the AST."""
-    if depth > 16:
-        raise ValueError("macro expansion too deep")
-    expr = re.sub(r"\bdefined\s*\(\s*([A-Za-z_]\w*)\s*\)|\bdefined\s+([A-Za-z_]\w*)",
-                  lambda m: "1" if (m.group(1) or m.group(2)) in macros else "0", expr)
-    if re.search(r"\bdefined\b", expr):
-        raise ValueError("'defined' needs a macro name")
-
-    def name(m: re.Match[str]) -> str:
-        word = m.group(0)
-        val = macros.get(word, "")
-        return f"({_eval_condition(val, macros, depth + 1)})" if val else "0"
-
-    tokens: list[str] = []
-    pos = 0
-    for m in re.finditer(r"\s+|0[xX][0-9a-fA-F]+[uUlL]*|\d+[uUlL]*|[A-Za-z_]\w*|&&|\|\||==|!=|<=|>=|<<|>>|[-+*/%()!~<>&|^?:]", expr):
-        if m.start() != pos:
-            raise ValueError(f"unexpected '{expr[pos:m.start()]}'")
-        pos = m.end()
-        tok = m.group(0)
-        if tok.isspace():
-            continue
-        if tok[0].isdigit() and not _INT.fullmatch(tok):
-            raise ValueError(f"invalid integer '{tok}'")
-        if _INT.fullmatch(tok):
-            digits = tok.rstrip("uUlL")
-            tokens.append(str(int(digits, 0) if not re.fullmatch(r"0[0-7]+", digits) else int(digits, 8)))
-        elif _IDENT.fullmatch(tok):
-            tokens.append(name(m))
-        else:
-            tokens.append({"&&": " and ", "||": " or ", "!": " not ", "/": "//"}.get(tok, tok))
-    if pos != len(expr):
-        raise ValueError(f"unexpected '{expr[pos:]}'")
-    py = " ".join(tokens).strip()
-    if not py:
-        raise ValueError("empty expression")
-    if "?" in py or ":" in py:
-        raise ValueError("the ?: operator is not supported")
-    try:
-        tree = ast.parse(py, mode="eval")
-    except (SyntaxError, MemoryError):
-        raise ValueError(f"malformed expression '{expr.strip()}'") from None
-    for node in ast.walk(tree):
-        if not isinstance(node, _ALLOWED):
-            raise ValueError(f"unsupported syntax in '{expr.strip()}'")
-    return _c_value(tree.body)
-
-
-_COMPARE = {ast.Eq: lambda a, b: a == b, ast.NotEq: lambda a, b: a != b, ast.Lt: lambda a, b: a < b,
-            ast.LtE: lambda a, b: a <= b, ast.Gt: lambda a, b: a > b, ast.GtE: lambda a, b: a >= b}
-
-
-def _c_value(node: ast.expr) -> int:
-    """Evaluate a checked #if AST with C semantics: 0/1 logic, truncating division, 64-bit range."""
-    if isinstance(node, ast.Constant):
-        return int(node.value)
-    if isinstance(node, ast.UnaryOp):
-        v = _c_value(node.operand)
-        if isinstance(node.op, ast.Not):
-            return int(not v)
-        return ~v if isinstance(node.op, ast.Invert) else -v if isinstance(node.op, ast.USub) else v
-    if isinstance(node, ast.BoolOp):  # short-circuit, like C
-        if isinstance(node.op, ast.And):
-            return int(all(_c_value(v) for v in node.values))
-        return int(any(_c_value(v) for v in node.values))
-    if isinstance(node, ast.Compare):  # C compares left to right: a < b < c is (a < b) < c
-        left = _c_value(node.left)
-        for op, right in zip(node.ops, node.comparators):
-            left = int(_COMPARE[type(op)](left, _c_value(right)))
-        return left
-    if isinstance(node, ast.BinOp):
-        a, b = _c_value(node.left), _c_value(node.right)
-        op = node.op
-        if isinstance(op, (ast.LShift, ast.RShift)) and not 0 <= b < 64:
-            raise ValueError(f"shift count {b} is outside 0..63")
-        if isinstance(op, (ast.FloorDiv, ast.Mod)) and b == 0:
-            raise ValueError("division by zero")
-        if isinstance(op, ast.FloorDiv):
-            q = abs(a) // abs(b)
-            result = q if (a >= 0) == (b >= 0) else -q
-        elif isinstance(op, ast.Mod):
-            result = abs(a) % abs(b) * (1 if a >= 0 else -1)
-        else:
-            result = {ast.Add: int.__add__, ast.Sub: int.__sub__, ast.Mult: int.__mul__,
-                      ast.LShift: int.__lshift__, ast.RShift: int.__rshift__, ast.BitAnd: int.__and__,
-                      ast.BitOr: int.__or__, ast.BitXor: int.__xor__}[type(op)](a, b)
-        if not -2**63 <= result < 2**64:
-            raise ValueError("integer overflow (the value does not fit in 64 bits)")
-        return result
-    raise ValueError("unsupported syntax")
 
 
 def preprocess(paths: list[str], include_dirs: list[str], sink: DiagnosticSink,

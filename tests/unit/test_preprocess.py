@@ -163,3 +163,20 @@ def test_include_cycle_is_an_error(tmp_path, monkeypatch):
     res = rapidgen("ir", "a.idl")
     assert res.code == 1
     assert "b.idl:1:1: error[RG0102]: include cycle: a.idl -> b.idl -> a.idl" in res.err
+
+
+@pytest.mark.parametrize("expr,value", [
+    ("A & 4 == 4", 6 & 1),  # C: == binds tighter than &
+    ("(A & 4) == 4", 1),
+    ("A | 1 ^ 3 & 2", 6 | (1 ^ (3 & 2))),
+    ("0 && 1/0", 0),  # short-circuit: the right side is not computed
+    ("1 || 1 % 0", 1),
+    ("3 > 2 > 1", 0),  # left to right: (3 > 2) > 1
+    ("-7 / 2 * 2 + -7 % 2", -7),  # truncation toward zero
+    ("!A + ~0", -1),
+    ("C << 1", 24),  # macros evaluate their values
+    ("UNDEFINED + EMPTY", 0),
+])
+def test_if_expressions_follow_c(expr, value):
+    from rapidgen.idl.ifexpr import evaluate
+    assert evaluate(expr, {"A": "6", "C": "A * 2", "EMPTY": ""}) == value
