@@ -74,8 +74,9 @@ def _idl_model(spec: AssetSpec, rapid_dir: str | None, sink: DiagnosticSink) -> 
         return None
     files = base + [f for f in spec.idl_files if os.path.abspath(f) not in map(os.path.abspath, base)]
     includes = [rapid, *spec.include_dirs]
+    # The working folder is part of the key: diagnostics name files relative to it.
     key = (tuple((os.path.abspath(f), os.stat(f).st_mtime_ns, os.stat(f).st_size) for f in files),
-           tuple(os.path.abspath(d) for d in includes))
+           tuple(os.path.abspath(d) for d in includes), os.getcwd())
     if key not in _IDL_CACHE:
         from rapidgen.frontend import load_idl
         local = DiagnosticSink()
