@@ -26,6 +26,7 @@ import yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 
 PROJECT_FILE = "rapidgen.yaml"
+_MAX_CHARS = 1024 * 1024
 
 _SCHEMA = {
     "type": "object",
@@ -64,7 +65,12 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
     loc = SourceLoc(path, 1, 1)
     try:
         with open(path, encoding="utf-8") as fh:
-            data = yaml.safe_load(fh)
+            text = fh.read(_MAX_CHARS + 1)
+        if len(text) > _MAX_CHARS:
+            sink.error("RG0811", "project file is larger than 1 MiB", loc, "is this the right file?")
+            return None
+        data = yaml.safe_load(text)
+        root_node = yaml.compose(text)  # the same document as nodes: positions for schema errors
     except OSError as exc:
         sink.error("RG0810", f"cannot read project file '{path}': {exc.strerror or exc}", loc,
                    f"run from the project root, or pass --project FILE")
@@ -81,7 +87,7 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
     if errors:
         for err in errors:
             where = "/".join(str(p) for p in err.path) or "(top level)"
-            sink.error("RG0812", f"project file: at {where}: {err.message}", loc)
+            sink.error("RG0812", f"project file: at {where}: {err.message}", _locate(root_node, err.path, path))
         return None
     root = os.path.dirname(path)
     targets = []
@@ -102,6 +108,21 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
                               tuple(t["lang"]), os.path.join(root, t["out"]), t.get("package"), source))
     _check_outputs(targets, loc, sink)
     return None if sink.has_errors else targets
+
+
+def _locate(node: yaml.Node | None, path, file: str) -> SourceLoc:
+    """Where the value at a jsonschema error path starts (the deepest node found)."""
+    for part in path:
+        if isinstance(node, yaml.MappingNode):
+            node = next((v for k, v in node.value if k.value == part), node)
+        elif isinstance(node, yaml.SequenceNode) and isinstance(part, int) and part < len(node.value):
+            node = node.value[part]
+        else:
+            break
+    if node is None:
+        return SourceLoc(file, 1, 1)
+    mark = node.start_mark
+    return SourceLoc(file, mark.line + 1, mark.column + 1)
 
 
 def _check_outputs(targets: list[Target], loc: SourceLoc, sink: DiagnosticSink) -> None:

@@ -91,3 +91,11 @@ def test_headers_name_sources_relative_and_printable(tmp_path, monkeypatch):
     text = "".join(p.read_text() for p in (tmp_path / "out" / "python").rglob("*.py"))
     assert str(tmp_path) not in text
     assert "we_ird_name.idl" in text
+
+
+def test_project_schema_errors_point_at_the_value(tmp_path, monkeypatch):
+    (tmp_path / "rapidgen.yaml").write_text("targets:\n  - name: s\n    idl: [a.idl]\n    lang: python\n    out: gen\n")
+    monkeypatch.chdir(tmp_path)
+    res = rapidgen("check")
+    assert res.code == 1
+    assert res.err.startswith("rapidgen.yaml:4:11: error[RG0812]: project file: at targets/0/lang: 'python' is not of type 'array'")
