@@ -2,8 +2,12 @@
 from __future__ import annotations
 
 import contextlib
+import difflib
 import io
 from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
 
 from rapidgen.cli import main
 
@@ -56,3 +60,21 @@ def errors_of(tmp_path, source: str, name: str = "t.idl", *extra: str) -> Result
     finally:
         os.chdir(cwd)
     return res
+
+
+def assert_golden(path: Path, actual: str, update: bool, what: str = "output") -> None:
+    """Compare actual with the golden file (byte for byte); `pytest --update-golden` rewrites it.
+
+    A missing golden file fails (it is never silently created), a mismatch shows a diff.
+    """
+    if update:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with open(path, "w", encoding="utf-8", newline="") as fh:
+            fh.write(actual)
+        return
+    assert path.exists(), f"{path} is missing: run pytest --update-golden and review it"
+    with open(path, encoding="utf-8", newline="") as fh:
+        expected = fh.read()
+    if actual != expected:
+        diff = "".join(difflib.unified_diff(expected.splitlines(True), actual.splitlines(True), path.name, "actual"))
+        pytest.fail(f"{what} differs from {path.name} (pytest --update-golden rewrites it):\n{diff}", pytrace=False)

@@ -3,13 +3,12 @@ what `rapidgen validate` prints on stderr (file:line:col, message, excerpt, hint
 its exit status. `pytest --update-golden` rewrites the expectations; review the diff."""
 from __future__ import annotations
 
-import difflib
 import re
 from pathlib import Path
 
 import pytest
 
-from tests.helpers import rapidgen
+from tests.helpers import assert_golden, rapidgen
 
 ROOT = Path(__file__).resolve().parents[2]
 HERE = Path(__file__).resolve().parent / "negative"
@@ -30,13 +29,4 @@ def test_negative_case(case, update_golden, monkeypatch):
     assert res.code == (0 if case.startswith("warn-") else 1)
     heads = [line for line in res.err.splitlines() if re.match(r"^\S+:\d+:\d+: ", line)]
     assert heads and all(LOCATED.match(h) for h in heads), res.err
-    expected = HERE / f"{case}.expected"
-    if update_golden:
-        expected.write_text(got, encoding="utf-8")
-        return
-    assert expected.exists(), f"no {expected.name}; run pytest --update-golden and review it"
-    want = expected.read_text(encoding="utf-8")
-    if got != want:
-        diff = "".join(difflib.unified_diff(want.splitlines(True), got.splitlines(True),
-                                            f"{case}.expected", "actual"))
-        pytest.fail(f"diagnostics differ from {case}.expected:\n{diff}")
+    assert_golden(HERE / f"{case}.expected", got, update_golden, "diagnostics")

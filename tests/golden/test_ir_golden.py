@@ -3,12 +3,11 @@
 Each case folder under ir/ holds `args` (the command-line arguments, run from the case
 folder), the inputs, and `expected.json`. `pytest --update-golden` rewrites expectations.
 """
-import difflib
 from pathlib import Path
 
 import pytest
 
-from tests.helpers import rapidgen
+from tests.helpers import assert_golden, rapidgen
 
 CASES = sorted(p for p in (Path(__file__).parent / "ir").iterdir() if (p / "args").is_file())
 
@@ -18,15 +17,7 @@ def test_ir_snapshot(case, monkeypatch, update_golden):
     monkeypatch.chdir(case)
     res = rapidgen("ir", *(case / "args").read_text().split())
     assert res.code == 0, res.err
-    expected_path = case / "expected.json"
-    if update_golden:
-        expected_path.write_text(res.out)
-    assert expected_path.exists(), f"{expected_path} is missing: run pytest --update-golden and review it"
-    expected = expected_path.read_text()
-    if res.out != expected:
-        diff = "".join(difflib.unified_diff(expected.splitlines(True), res.out.splitlines(True),
-                                            "expected.json", "actual"))
-        pytest.fail(f"IR of {case.name} differs from the golden file:\n{diff}")
+    assert_golden(case / "expected.json", res.out, update_golden, f"IR of {case.name}")
 
 
 def test_ir_is_deterministic(monkeypatch):

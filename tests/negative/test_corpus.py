@@ -10,7 +10,6 @@ Inputs too big to commit (10 MB) are generated at run time by the tests at the e
 """
 from __future__ import annotations
 
-import difflib
 import json
 import random
 import re
@@ -18,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.helpers import rapidgen
+from tests.helpers import assert_golden, rapidgen
 
 CASES = Path(__file__).parent / "cases"
 CASE_DIRS = sorted(p for p in CASES.iterdir() if p.is_dir())
@@ -40,11 +39,6 @@ def assert_no_crash(err: str) -> None:
     assert "internal error" not in err, err
 
 
-def _diff(expected: str, actual: str) -> str:
-    return "".join(difflib.unified_diff(expected.splitlines(keepends=True), actual.splitlines(keepends=True),
-                                        "expected.txt", "actual stderr"))
-
-
 def test_corpus_is_big_enough():
     assert len(CASE_DIRS) >= 45
 
@@ -57,15 +51,7 @@ def test_case(case: Path, monkeypatch, update_golden):
     assert_no_crash(res.err)
     assert res.code == meta["exit"], f"exit {res.code}, expected {meta['exit']}\n{res.err}"
 
-    golden = case / "expected.txt"
-    if update_golden:
-        golden.write_text(res.err, encoding="utf-8", newline="")
-    else:
-        assert golden.exists(), f"{golden} is missing; run pytest with --update-golden and review it"
-        with open(golden, encoding="utf-8", newline="") as fh:
-            expected = fh.read()
-        if res.err != expected:
-            pytest.fail("stderr differs from expected.txt:\n" + _diff(expected, res.err), pytrace=False)
+    assert_golden(case / "expected.txt", res.err, update_golden, "stderr")
 
     # Every diagnostic names a file of the case (relative, as the user typed or included it).
     diags = [m for m in map(DIAG.match, res.err.splitlines()) if m]

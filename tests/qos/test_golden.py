@@ -4,13 +4,13 @@
 """
 from __future__ import annotations
 
-import difflib
 import json
 import xml.dom.minidom
 from pathlib import Path
 
 import pytest
 
+from tests.helpers import assert_golden
 from tests.qos.conftest import ROVER, render
 
 GOLDEN = Path(__file__).resolve().parent / "golden"
@@ -33,16 +33,7 @@ def test_every_format_is_generated(outputs):
 @pytest.mark.parametrize("rel", FILES)
 def test_golden(outputs, case, rel, update_golden):
     actual = outputs[case][rel]
-    path = GOLDEN / case / rel
-    if update_golden:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(actual, encoding="utf-8")
-    assert path.exists(), f"golden/{case}/{rel} is missing: run pytest --update-golden and review it"
-    expected = path.read_text(encoding="utf-8")
-    if actual != expected:
-        diff = "".join(difflib.unified_diff(expected.splitlines(True), actual.splitlines(True),
-                                            f"golden/{case}/{rel}", "generated"))
-        pytest.fail(f"{rel} of case {case} differs from its golden file (pytest --update-golden rewrites it):\n{diff}")
+    assert_golden(GOLDEN / case / rel, actual, update_golden, f"{rel} of case {case}")
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
