@@ -11,7 +11,7 @@ import sys
 from dataclasses import dataclass
 
 from rapidgen import backends
-from rapidgen.backends.base import GeneratedFile, GenerationError, Options
+from rapidgen.backends.base import GeneratedFile, GenerationError, Options, printable
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.model.ir import Model
 
@@ -43,7 +43,7 @@ def source_name(paths: list[str]) -> str:
         text = ", ".join(f"{f}/*.idl" for f in folders)
     else:
         text = ", ".join(shown)
-    return "".join(ch if ch.isprintable() and ch not in "\"'\\`" else "_" for ch in text)
+    return printable(text)
 
 
 def load_inputs(paths: list[str], include: list[str], sink: DiagnosticSink,
