@@ -116,12 +116,21 @@ def _printable(text: str) -> str:
     return "".join(ch if ch.isprintable() else "?" for ch in text) if not text.isprintable() else text
 
 
+def escaped(text: str) -> str:
+    """Text with every non-printable character written as a Python escape (ESC -> \\x1b):
+    messages and hints quote names from untrusted inputs, which must not drive the terminal."""
+    if text.isprintable():
+        return text
+    return "".join(ch if ch.isprintable() else repr(ch)[1:-1] for ch in text)
+
+
 def render(diag: Diagnostic, read_lines: SourceReader | None = None) -> str:
     """Render one diagnostic; the source excerpt is shown when the line can be read."""
-    head = f"{diag.loc}: {diag.severity.value}[{diag.code}]: {diag.message}"
+    hint = escaped(diag.hint) if diag.hint else None
+    head = escaped(f"{diag.loc}: {diag.severity.value}[{diag.code}]: {diag.message}")
     lines = read_lines(diag.loc.file) if read_lines and diag.loc.line > 0 else None
     if not lines or diag.loc.line > len(lines):
-        return head + (f"\n  = hint: {diag.hint}" if diag.hint else "")
+        return head + (f"\n  = hint: {hint}" if hint else "")
     src = _printable(lines[diag.loc.line - 1].rstrip("\r\n").expandtabs(1))
     if len(src) > 200:  # keep huge one-line inputs readable
         start = max(0, diag.loc.col - 80)
@@ -136,7 +145,7 @@ def render(diag: Diagnostic, read_lines: SourceReader | None = None) -> str:
     span = max(1, min(span, max(1, len(src) - col + 1)))
     caret = " " * max(0, col - 1) + "^" * span
     out = [head, _gutter(width, str(diag.loc.line)) + src,
-           _gutter(width) + caret + (f" {diag.hint}" if diag.hint else "")]
+           _gutter(width) + caret + (f" {hint}" if hint else "")]
     return "\n".join(out)
 
 
