@@ -10,7 +10,7 @@ import os
 import sys
 from typing import Sequence
 
-from rapidgen import __version__
+from rapidgen import __version__, backends
 from rapidgen.diagnostics import DiagnosticSink, FileLineCache, Severity, render
 
 
@@ -28,7 +28,9 @@ def _diag_args(p: argparse.ArgumentParser) -> None:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="rapidgen", description=(
-        "Compile RAPID IDL and asset descriptors into DDS bindings; check assets against the protocol."))
+        "Compile RAPID IDL and asset descriptors into DDS bindings; check assets against the protocol."),
+        epilog=f"targets (generate --lang): {', '.join(backends.known())}. "
+        "Exit status: 0 success, 1 errors in the input, 2 usage error, 3 internal error.")
     parser.add_argument("--version", action="version", version=f"rapidgen {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
@@ -45,9 +47,11 @@ def build_parser() -> argparse.ArgumentParser:
     _common_idl_args(gen_p)
     _diag_args(gen_p)
     gen_p.add_argument("--lang", default="python", metavar="LANG[,LANG...]",
-                       help="targets to generate (default: python)")
+                       help=f"targets to generate, comma-separated: {', '.join(backends.known())} "
+                       "(default: python)")
     gen_p.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder")
-    gen_p.add_argument("--package", metavar="NAME", help="package/crate name (default: from the asset or 'rapid')")
+    gen_p.add_argument("--package", metavar="NAME", help="name of the generated Python package (default: "
+                       "rapid_<asset name> for an asset, rapid_types for IDL alone)")
 
     chk_p = sub.add_parser("check", help="regenerate the project's targets in memory and report stale output")
     chk_p.add_argument("--project", default="rapidgen.yaml", metavar="FILE", help="project file (default: rapidgen.yaml)")
@@ -166,8 +170,10 @@ def _cmd_generate(args: argparse.Namespace) -> int:
     from rapidgen.generate import generate_command
 
     langs = _langs(args.lang)
-    if not langs:
-        print("rapidgen generate: --lang needs at least one target", file=sys.stderr)
+    unknown = [lang for lang in langs if lang not in backends.available()]
+    if not langs or unknown:
+        what = f"unknown target '{unknown[0]}'" if unknown else "--lang needs at least one target"
+        print(f"rapidgen generate: {what}; available: {', '.join(backends.available())}", file=sys.stderr)
         return 2
     sink = _sink(args)
     ok = generate_command(args.inputs, args.include, _defines(args.define), langs, args.output, args.package, sink)
