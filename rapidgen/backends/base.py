@@ -6,9 +6,12 @@ whose content depends only on its inputs, so output is byte-identical on every r
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Protocol
 
+from rapidgen.backends.escape import UNENCODABLE, XML_FORBIDDEN, visible
+from rapidgen.diagnostics import SourceLoc
 from rapidgen.model.ir import Model
 
 if TYPE_CHECKING:
@@ -55,3 +58,50 @@ def printable(text: str) -> str:
 def notice(source: str) -> str:
     """The header line naming the source spec."""
     return GENERATED_NOTICE.format(source=printable(source))
+
+
+class UnwritableCharacter(GenerationError):
+    """A generated file would hold a character its format cannot carry, even escaped."""
+
+    CODE = "RG0820"
+
+    def __init__(self, path: str, char: str, line: int, col: int, loc: SourceLoc | None) -> None:
+        super().__init__(f"{path}:{line}:{col}: {visible(char)}")
+        self.path, self.char, self.line, self.col, self.loc = path, char, line, col, loc
+
+    def report(self, sink: "DiagnosticSink") -> None:
+        what = "XML 1.0" if self.path.endswith(".xml") else "UTF-8 text"
+        sink.error(self.CODE, f"character U+{ord(self.char):04X} ('{visible(self.char)}') cannot be written to "
+                   f"{self.path} (line {self.line}): {what} forbids it",
+                   self.loc or SourceLoc(self.path, self.line, self.col),
+                   "remove control characters, lone surrogates and U+FFFE/U+FFFF from names and text")
+
+
+def check_output(files: list[GeneratedFile], asset: "LoadedAsset | None" = None) -> None:
+    """Refuse output that would be malformed: XML 1.0's forbidden characters in .xml files,
+    lone surrogates anywhere. The input loaders refuse them first; this is the last line.
+    Raises UnwritableCharacter, located at the descriptor field holding the character
+    when there is one."""
+    for f in files:
+        m = (XML_FORBIDDEN if f.path.endswith(".xml") else UNENCODABLE).search(f.content)
+        if m:
+            line = f.content.count("\n", 0, m.start()) + 1
+            col = m.start() - (f.content.rfind("\n", 0, m.start()) + 1) + 1
+            raise UnwritableCharacter(f.path, m.group(), line, col,
+                                      _holder(asset.spec, m.group()) if asset is not None else None)
+
+
+def _holder(node: object, char: str, depth: int = 0) -> SourceLoc | None:
+    """Location of the first descriptor field (rapidgen.asset.spec node) whose text holds char."""
+    if depth > 16 or not dataclasses.is_dataclass(node):
+        return None
+    for f in dataclasses.fields(node):
+        value = getattr(node, f.name)
+        items = value if isinstance(value, tuple) else (value,)
+        for i, item in enumerate(items):
+            if isinstance(item, str) and char in item and hasattr(node, "at"):
+                return node.at(f.name, i) if isinstance(value, tuple) else node.at(f.name)
+            found = _holder(item, char, depth + 1)
+            if found is not None:
+                return found
+    return None

@@ -7,19 +7,20 @@ They only print what the view layer decided: loops, precomputed booleans, macros
 from __future__ import annotations
 
 import functools
-import json
 
 import jinja2
 
-
-def _xml_attr(value: object) -> str:
-    return jinja2.utils.markupsafe.escape(str(value))
+from rapidgen.backends import escape
 
 
+# Every input string a template prints goes through one of these (or XML autoescape);
+# rapidgen/backends/escape.py says what each guarantees.
 FILTERS = {
-    "json": lambda v: json.dumps(v, ensure_ascii=False),
-    "pyrepr": repr,
-    "xml_attr": _xml_attr,
+    "py_str": escape.py_str,  # a Python string literal (value round-trips)
+    "docstring": escape.py_docstring,  # inside """...""" (value round-trips)
+    "comment": escape.line_comment,  # after `#` in Python or TOML
+    "toml_str": escape.toml_str,  # a TOML basic string (value round-trips)
+    "xml_comment": escape.xml_comment,  # inside <!-- ... -->
 }
 
 

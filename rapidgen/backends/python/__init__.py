@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from rapidgen.backends.base import GeneratedFile, Options, notice
+from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
 from rapidgen.backends.python import namer
 from rapidgen.backends.python.view import PackageView, UnsupportedInput, build
 from rapidgen.backends.templating import render
@@ -45,4 +45,5 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
              GeneratedFile(pkg.support_path, render("python", "_support.py.j2", header=pkg.header)),
              GeneratedFile(pkg.qos.path, render("python", "qos.py.j2", q=pkg.qos))]
     files += [GeneratedFile(m.path, render("python", "module.py.j2", f=m)) for m in pkg.modules]
+    check_output(files, asset)
     return sorted(files, key=lambda f: f.path)

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from decimal import Decimal
 from typing import Protocol
 
+from rapidgen.backends.escape import py_str
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
 
@@ -50,31 +51,6 @@ class Value:
     expr: str  # a Python expression giving a fresh default value
     mutable: bool  # needs a default_factory
     forward: bool = False  # names a class defined later in the module
-
-
-def py_str(text: str) -> str:
-    """A double-quoted, ASCII-only Python string literal (same bytes on every machine)."""
-    out = ['"']
-    for ch in text:
-        code = ord(ch)
-        if ch in '"\\':
-            out.append("\\" + ch)
-        elif ch == "\n":
-            out.append("\\n")
-        elif ch == "\t":
-            out.append("\\t")
-        elif ch == "\r":
-            out.append("\\r")
-        elif code < 0x20 or code == 0x7F:
-            out.append(f"\\x{code:02x}")
-        elif code < 0x7F:
-            out.append(ch)
-        elif code <= 0xFFFF:
-            out.append(f"\\u{code:04x}")
-        else:
-            out.append(f"\\U{code:08x}")
-    out.append('"')
-    return "".join(out)
 
 
 def enum_default(enum: ir.Enum) -> ir.Enumerator:

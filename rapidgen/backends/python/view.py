@@ -18,9 +18,10 @@ import hashlib
 from dataclasses import dataclass, field
 
 from rapidgen.backends.base import GenerationError
+from rapidgen.backends.escape import py_str
 from rapidgen.backends.python import namer
 from rapidgen.backends.python.layout import Layout, module_path, plan
-from rapidgen.backends.python.typemap import TypeMapper, Unsupported, enum_default, py_str
+from rapidgen.backends.python.typemap import TypeMapper, Unsupported, enum_default
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.model import ir
 

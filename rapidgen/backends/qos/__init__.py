@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import json
 
-from rapidgen.backends.base import GeneratedFile, GenerationError, Options, notice
+from rapidgen.backends.base import GeneratedFile, GenerationError, Options, check_output, notice
+from rapidgen.backends.escape import xml_comment as comment_text  # noqa: F401 (kept for callers)
 from rapidgen.backends.qos import topicmap, view
 from rapidgen.backends.templating import render as render_template
 from rapidgen.diagnostics import did_you_mean
@@ -49,23 +50,6 @@ def cyclone_file(transport: str) -> str:
     return f"cyclonedds/{transport}.xml"
 
 
-def comment_text(text: str) -> str:
-    """One line that is safe inside an XML comment (no '--')."""
-    text = " ".join(text.split())
-    while "--" in text:
-        text = text.replace("--", "- -")
-    return text.rstrip("-")
-
-
-def _safe(spec: QosSpec) -> QosSpec:
-    import dataclasses
-
-    return dataclasses.replace(
-        spec,
-        profiles=tuple(dataclasses.replace(p, description=comment_text(p.description)) for p in spec.profiles),
-        transports=tuple(dataclasses.replace(t, description=comment_text(t.description)) for t in spec.transports))
-
-
 def generate(model: Model, asset, options: Options) -> list[GeneratedFile]:
     """Render the QoS library the driver read (rapidgen.generate); the package's own by default."""
     spec = options.qos_library if isinstance(options.qos_library, QosSpec) else None
@@ -82,8 +66,7 @@ class NoLibrary(GenerationError):
 
 
 def render(spec: QosSpec, model: Model, asset, options: Options) -> list[GeneratedFile]:
-    spec = _safe(spec)
-    head = comment_text(notice(options.source))
+    head = notice(options.source)  # templates escape every value printed in a comment
     asset_name = asset.spec.name if asset is not None else None
     topics = topicmap.from_asset(asset, spec) if asset is not None else topicmap.from_model(model, spec)
     missing = [e for e in topics if not spec.has_profile(e.profile)]
@@ -108,6 +91,7 @@ def render(spec: QosSpec, model: Model, asset, options: Options) -> list[Generat
         files.append(GeneratedFile(cyclone_file(t.name), render_template(NAME, "cyclonedds.xml.j2", t=t, **common)))
 
     files.append(GeneratedFile(TOPICS_FILE, topics_json(spec, asset, topics, options)))
+    check_output(files, asset)
     return files
 
 

@@ -1,0 +1,77 @@
+"""How input text is written into each kind of generated file.
+
+Every string that comes from an input (file names, IDL string constants, descriptor
+names, partition names, ...) reaches a generated file through one of these: templating.py
+registers them as Jinja2 filters, view layers call py_str for code they compose. Literals
+keep the value exactly (it round-trips); comments only need to stay comments, so they
+show what cannot be printed as escapes. XML goes through Jinja2's autoescape, and
+check_output (base.py) refuses what no escape can carry (XML 1.0's forbidden characters,
+lone surrogates).
+"""
+from __future__ import annotations
+
+import re
+
+_PY_SHORT = {"\\": "\\\\", "\n": "\\n", "\t": "\\t", "\r": "\\r"}
+# PEP 263: a comment on line 1 or 2 matching this names the source encoding.
+_CODING = re.compile(r"coding([:=])")
+
+
+def _code_escape(ch: str) -> str:
+    """`ch` as a Python (and C/JSON-like) backslash escape."""
+    code = ord(ch)
+    if ch in _PY_SHORT:
+        return _PY_SHORT[ch]
+    if code < 0x80:
+        return f"\\x{code:02x}"
+    return f"\\u{code:04x}" if code <= 0xFFFF else f"\\U{code:08x}"
+
+
+def py_str(text: str) -> str:
+    """A double-quoted, ASCII-only Python string literal of `text` (same bytes on every machine)."""
+    return '"' + "".join(ch if " " <= ch < "\x7f" and ch not in '"\\' else
+                         "\\" + ch if ch in '"\\' else _code_escape(ch) for ch in text) + '"'
+
+
+def py_docstring(text: str) -> str:
+    """The body of a `\"\"\"...\"\"\"` docstring whose value is `text`: printable characters and
+    newlines as they are, quotes and backslashes escaped (no early end, no escape
+    surprises), anything else as a backslash escape."""
+    return "".join(ch if ch == "\n" or (ch.isprintable() and ch not in '"\\') else
+                   "\\" + ch if ch in '"\\' else _code_escape(ch) for ch in text)
+
+
+def visible(text: str) -> str:
+    """One line of printable text: what is not printable (newlines, controls, escape
+    sequences, lone surrogates) shown as a backslash escape such as \\x1b."""
+    return "".join(ch if ch.isprintable() else _code_escape(ch) for ch in text)
+
+
+def line_comment(text: str) -> str:
+    """Text for a `#` comment (Python, TOML): one printable line, and never read as a
+    PEP 263 encoding declaration (`coding:` in a file name would make the module unloadable)."""
+    return _CODING.sub(r"coding \1", visible(text))
+
+
+_TOML_SHORT = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
+
+
+def toml_str(text: str) -> str:
+    """A TOML basic string of `text` (TOML 1.0: quote, backslash and controls escaped).
+    Lone surrogates have no TOML form; they are left for check_output to refuse."""
+    return '"' + "".join(_TOML_SHORT.get(ch) or (f"\\u{ord(ch):04x}" if ch < " " or ch == "\x7f" else ch)
+                         for ch in text) + '"'
+
+
+def xml_comment(text: str) -> str:
+    """One visible line that is safe inside an XML comment (no '--', no trailing '-')."""
+    text = visible(" ".join(text.split()))
+    while "--" in text:
+        text = text.replace("--", "- -")
+    return text.rstrip("-")
+
+
+# What XML 1.0 cannot carry even escaped: C0 controls but tab/LF/CR, surrogates, U+FFFE/U+FFFF.
+XML_FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
+# What no UTF-8 file can carry.
+UNENCODABLE = re.compile("[\ud800-\udfff]")
