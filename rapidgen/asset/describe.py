@@ -1,7 +1,8 @@
 """`rapidgen validate` and `rapidgen describe`: the descriptor as an operator reads it.
 
 describe prints plain aligned tables (no colour, no terminal width guessing) so the
-output can be diffed, pasted into a report, or grepped.
+output can be diffed, pasted into a report, or grepped. Descriptor text is shown with
+what is not printable escaped (\x1b, not an escape sequence the terminal would obey).
 """
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from rapidgen.asset.load import LoadedAsset, load_asset
 from rapidgen.asset.spec import (AgentTelemetry, ImageTelemetry, JointTelemetry, PositionTelemetry,
                                  Threshold, TypedValue)
 from rapidgen.asset.topics import publications
+from rapidgen.backends.escape import visible
 from rapidgen.diagnostics import DiagnosticSink
 
 Report = Callable[[DiagnosticSink], None]
@@ -25,7 +27,7 @@ def run_validate(files: list[str], rapid_dir: str | None, sink: DiagnosticSink, 
         before = len(sink.errors)
         loaded = load_asset(path, sink, rapid_dir)
         if loaded is not None and len(sink.errors) == before:
-            ok_lines.append(f"{path}: valid ({_summary(loaded)})")
+            ok_lines.append(visible(f"{path}: valid ({_summary(loaded)})"))
     report(sink)
     for line in ok_lines:
         print(line)
@@ -56,6 +58,7 @@ def _n(x) -> str:
 
 
 def table(headers: list[str], rows: list[list[str]], indent: int = 2) -> list[str]:
+    rows = [[visible(c) for c in r] for r in rows]  # escaped before measuring, so columns align
     widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h) for i, h in enumerate(headers)]
     fmt = lambda cells: (" " * indent + "  ".join(c.ljust(w) for c, w in zip(cells, widths))).rstrip()  # noqa: E731
     return [fmt(headers), fmt(["-" * w for w in widths])] + [fmt(r) for r in rows]
@@ -139,7 +142,7 @@ def describe(loaded: LoadedAsset) -> str:
     if ac is not None:
         out += ["", f"Access control (sources not listed: {ac.default})"]
         out += table(["source", "may send"], [[r.source, ", ".join(r.allow)] for r in ac.rules])
-    return "\n".join(out) + "\n"
+    return "\n".join(visible(line) for line in "\n".join(out).split("\n")) + "\n"
 
 
 def _details(spec, pubs) -> list[str]:
