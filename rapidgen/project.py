@@ -21,8 +21,9 @@ import os
 from dataclasses import dataclass
 
 import jsonschema
-import yaml
 
+from rapidgen.asset.schema import end_of, report_capped
+from rapidgen.asset.yamlread import parse_yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 
 PROJECT_FILE = "rapidgen.yaml"
@@ -69,8 +70,6 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
         if len(text) > _MAX_CHARS:
             sink.error("RG0811", "project file is larger than 1 MiB", loc, "is this the right file?")
             return None
-        data = yaml.safe_load(text)
-        root_node = yaml.compose(text)  # the same document as nodes: positions for schema errors
     except OSError as exc:
         sink.error("RG0810", f"cannot read project file '{path}': {exc.strerror or exc}", loc,
                    f"run from the project root, or pass --project FILE")
@@ -78,16 +77,16 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
     except UnicodeDecodeError as exc:
         sink.error("RG0811", f"project file is not UTF-8 text (byte 0x{exc.object[exc.start]:02x})", loc)
         return None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = SourceLoc(path, mark.line + 1, mark.column + 1) if mark else loc
-        sink.error("RG0811", f"project file is not valid YAML: {getattr(exc, 'problem', exc)}", where)
+    # The descriptor loader: positions for every value, and its limits on size, nesting,
+    # aliases and control characters (no field here is free text).
+    doc = parse_yaml(text.lstrip("\ufeff"), path, sink, free_text=())
+    if doc is None:
         return None
-    errors = sorted(jsonschema.Draft202012Validator(_SCHEMA).iter_errors(data), key=lambda e: list(e.path))
-    if errors:
-        for err in errors:
-            where = "/".join(str(p) for p in err.path) or "(top level)"
-            sink.error("RG0812", f"project file: at {where}: {err.message}", _locate(root_node, err.path, path))
+    data = doc.data
+    errors = jsonschema.Draft202012Validator(_SCHEMA).iter_errors(data)
+    if report_capped(errors, sink, lambda err: [(
+            "RG0812", f"project file: at {'/'.join(str(p) for p in err.absolute_path) or '(top level)'}: "
+            f"{_clip(err.message)}", doc.loc(err.absolute_path), None)], end_of(doc), "RG0812"):
         return None
     root = os.path.dirname(path)
     targets = []
@@ -110,19 +109,9 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
     return None if sink.has_errors else targets
 
 
-def _locate(node: yaml.Node | None, path, file: str) -> SourceLoc:
-    """Where the value at a jsonschema error path starts (the deepest node found)."""
-    for part in path:
-        if isinstance(node, yaml.MappingNode):
-            node = next((v for k, v in node.value if k.value == part), node)
-        elif isinstance(node, yaml.SequenceNode) and isinstance(part, int) and part < len(node.value):
-            node = node.value[part]
-        else:
-            break
-    if node is None:
-        return SourceLoc(file, 1, 1)
-    mark = node.start_mark
-    return SourceLoc(file, mark.line + 1, mark.column + 1)
+def _clip(message: str, limit: int = 160) -> str:
+    """jsonschema quotes the whole offending value; a long one is cut."""
+    return message if len(message) <= limit else message[:limit - 3] + "..."
 
 
 def _check_outputs(targets: list[Target], loc: SourceLoc, sink: DiagnosticSink) -> None:

@@ -7,15 +7,23 @@ generic message, never the raw text.
 """
 from __future__ import annotations
 
+import heapq
 import json
 from functools import lru_cache
 from importlib import resources
+from typing import Callable, Iterable
 
 import jsonschema
 from jsonschema.exceptions import ValidationError
 
 from rapidgen.asset.yamlread import YamlDoc
-from rapidgen.diagnostics import DiagnosticSink, did_you_mean
+from rapidgen.diagnostics import Diagnostic, DiagnosticSink, Severity, SourceLoc, did_you_mean
+
+# Schema diagnostics shown per file: a list of 100,000 wrong items is one mistake made
+# many times, and printing each would bury the first (and fill a terminal for minutes).
+MAX_SHOWN = 50
+
+Translated = tuple  # (code, message, loc, hint)
 
 _NAMES = {dict: "a mapping", list: "a list", str: "a string", bool: "true or false",
           int: "a number", float: "a number", type(None): "nothing"}
@@ -64,21 +72,55 @@ def _leaves(errors):
             yield e
 
 
+def report_capped(errors: Iterable[ValidationError], sink: DiagnosticSink,
+                  translate: Callable[[ValidationError], Iterable[Translated]], end: SourceLoc,
+                  note_code: str = "RG1027") -> bool:
+    """Report jsonschema errors in document order, at most MAX_SHOWN distinct diagnostics,
+    then one note at `end` counting the rest. True when there was any error.
+
+    Only the first MAX_SHOWN errors are kept in memory (heapq), whatever their number.
+    """
+    total = 0
+
+    def counted():
+        nonlocal total
+        for e in errors:
+            total += 1
+            yield e
+
+    # document order: indices as numbers (item 10 after item 9), keys by name
+    kept = heapq.nsmallest(MAX_SHOWN, counted(), key=lambda e: [(isinstance(p, str), p) for p in e.absolute_path])
+    hidden = total - len(kept)
+    shown: set[tuple] = set()
+    for err in _leaves(kept):
+        for code, msg, loc, hint in translate(err):
+            key = (code, msg, loc.line, loc.col)
+            if key in shown:
+                continue
+            if len(shown) >= MAX_SHOWN:
+                hidden += 1
+                continue
+            shown.add(key)
+            sink.error(code, msg, loc, hint)
+    if hidden:
+        sink.diagnostics.append(Diagnostic(Severity.NOTE, note_code, f"{hidden} more schema error"
+                                           f"{'s' * (hidden != 1)} not shown", end, "fix the ones above first"))
+    return total > 0
+
+
+def end_of(doc: YamlDoc) -> SourceLoc:
+    """The end of the document, where a note about the errors above sorts last."""
+    root = doc.loc(())
+    return SourceLoc(doc.file, root.end_line or root.line, root.end_col or root.col)
+
+
 def check_schema(doc: YamlDoc, sink: DiagnosticSink) -> bool:
     """True when the document satisfies the schema; diagnostics for every violation."""
     if doc.data is None:
         sink.error("RG1020", "the descriptor is empty", doc.loc(()),
                    "start with 'version: 1' and an 'asset:' section")
         return False
-    errors = sorted(_validator().iter_errors(doc.data), key=lambda e: list(map(str, e.absolute_path)))
-    seen: set[tuple] = set()
-    for err in _leaves(errors):
-        for code, msg, loc, hint in _translate(err, doc):
-            key = (code, msg, loc.line, loc.col)
-            if key not in seen:
-                seen.add(key)
-                sink.error(code, msg, loc, hint)
-    return not errors
+    return not report_capped(_validator().iter_errors(doc.data), sink, lambda e: _translate(e, doc), end_of(doc))
 
 
 def _translate(e: ValidationError, doc: YamlDoc):
@@ -95,7 +137,7 @@ def _translate(e: ValidationError, doc: YamlDoc):
     elif kw == "additionalProperties":
         allowed = list(sch.get("properties", {}))
         for k in (k for k in inst if k not in allowed):
-            yield ("RG1021", f"unknown key '{k}' in {where}", doc.key_loc(path + (k,)),
+            yield ("RG1021", f"unknown key {_shown(k)} in {where}", doc.key_loc(path + (k,)),
                    did_you_mean(k, allowed) or f"allowed here: {', '.join(allowed)}")
     elif kw == "type":
         want = " or ".join(_SCHEMA_TYPES.get(t, t) for t in (val if isinstance(val, list) else [val]))

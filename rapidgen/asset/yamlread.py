@@ -3,13 +3,16 @@
 PyYAML's composer gives nodes with marks; we turn them into dicts/lists/scalars
 ourselves (instead of yaml.safe_load) so that every value keeps its position, duplicate
 keys are errors rather than silently overwritten, and hostile inputs (alias bombs,
-recursive aliases, deep nesting, binary) end as diagnostics instead of exceptions.
+recursive aliases, deep nesting, huge documents, binary, control characters) end as
+diagnostics instead of exceptions. Asset descriptors, the QoS library and the project
+file (rapidgen.yaml) all load through `parse_yaml`, so they share these limits.
 """
 from __future__ import annotations
 
 import datetime
 import math
 import os
+import re
 from dataclasses import dataclass, field
 
 import yaml
@@ -17,8 +20,16 @@ import yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 
 MAX_BYTES = 8 * 1024 * 1024
-MAX_NODES = 200_000  # after alias expansion: a descriptor has a few thousand at most
+MAX_NODES = 200_000  # while parsing, and again after alias expansion: a descriptor has a few thousand
 MAX_DEPTH = 64
+FREE_TEXT = ("description",)  # the only fields where a tab or a line break is text
+
+# Never text: C0 controls but tab and line feed, DEL, C1 controls, surrogates (a YAML
+# "\ud800" escape makes a lone one) and the noncharacters (U+FDD0..U+FDEF, U+xFFFE/xFFFF).
+_NEVER = "\x00-\x08\x0b-\x1f\x7f-\x9f\ud800-\udfff\ufdd0-\ufdef" + "".join(
+    chr(plane << 16 | 0xFFFE) + chr(plane << 16 | 0xFFFF) for plane in range(17))
+_BAD_FREE = re.compile(f"[{_NEVER}]")
+_BAD = re.compile(f"[{_NEVER}\t\n]")
 
 Path = tuple  # keys (str) and indices (int) from the document root
 
@@ -51,8 +62,57 @@ class YamlDoc:
         return self.key_locs.get(tuple(path)) or self.loc(path)
 
 
+def bad_char(text: str, free_text: bool = False) -> int | None:
+    """Index of the first character a loaded string may not hold, else None.
+
+    Such characters break the XML, Python and JSON rapidgen writes, or hide text from
+    the operator reading it; free text (a description) may also hold tabs and line feeds.
+    """
+    m = (_BAD_FREE if free_text else _BAD).search(text)
+    return m.start() if m else None
+
+
+def char_name(ch: str) -> str:
+    code = ord(ch)
+    kind = ("a tab" if ch == "\t" else "a line break" if ch == "\n" else
+            "a surrogate" if 0xD800 <= code <= 0xDFFF else
+            "a noncharacter" if 0xFDD0 <= code <= 0xFDEF or code & 0xFFFE == 0xFFFE else
+            "a control character")
+    return f"{kind} (U+{code:04X})"
+
+
 class _Abort(Exception):
     """Stop converting; the diagnostic is already in the sink."""
+
+
+class _TooBig(Exception):
+    def __init__(self, what: str, mark) -> None:
+        super().__init__(what)
+        self.what, self.mark = what, mark
+
+
+class _BoundedLoader(yaml.SafeLoader):
+    """SafeLoader whose composer counts nodes and nesting as it goes: a huge or deep
+    document stops at the limit instead of being built whole first."""
+
+    def __init__(self, stream) -> None:
+        super().__init__(stream)
+        self.nodes = 0
+        self.depth = 0
+
+    def compose_node(self, parent, index):
+        mark = self.peek_event().start_mark
+        if not self.check_event(yaml.AliasEvent):  # aliases are counted after expansion
+            self.nodes += 1
+            if self.nodes > MAX_NODES:
+                raise _TooBig("nodes", mark)
+        self.depth += 1
+        try:
+            if self.depth > MAX_DEPTH:
+                raise _TooBig("depth", mark)
+            return super().compose_node(parent, index)
+        finally:
+            self.depth -= 1
 
 
 def _span(file: str, node: yaml.Node) -> SourceLoc:
@@ -101,12 +161,25 @@ def read_text(path: str, shown: str, sink: DiagnosticSink) -> str | None:
     return text[1:] if text.startswith("\ufeff") else text
 
 
-def parse_yaml(text: str, file: str, sink: DiagnosticSink) -> YamlDoc | None:
-    """Compose one YAML document and convert it; None after diagnostics."""
+def parse_yaml(text: str, file: str, sink: DiagnosticSink,
+               free_text: tuple[str, ...] = FREE_TEXT) -> YamlDoc | None:
+    """Compose one YAML document and convert it; None after diagnostics.
+
+    Strings under a key named in free_text may hold tabs and line feeds; no string or
+    key may hold the other characters `bad_char` refuses.
+    """
     loader = None
     try:
-        loader = yaml.SafeLoader(text)  # the reader already rejects control characters here
+        loader = _BoundedLoader(text)  # the reader already rejects raw control characters here
         node = loader.get_single_node()
+    except _TooBig as exc:
+        loc = _mark_loc(file, exc.mark)
+        if exc.what == "nodes":
+            sink.error("RG1012", f"the document has more than {MAX_NODES} YAML values", loc,
+                       "a descriptor has a few thousand; is this the right file?")
+        else:
+            sink.error("RG1012", f"YAML nesting deeper than {MAX_DEPTH} levels", loc)
+        return None
     except yaml.MarkedYAMLError as exc:
         _syntax_error(exc, file, sink)
         return None
@@ -128,7 +201,7 @@ def parse_yaml(text: str, file: str, sink: DiagnosticSink) -> YamlDoc | None:
     doc = YamlDoc(file, None)
     if node is None:
         return doc
-    conv = _Converter(doc, loader, sink)
+    conv = _Converter(doc, loader, sink, free_text)
     try:
         doc.data = conv.value(node, (), 0)
     except _Abort:
@@ -175,8 +248,9 @@ def _finite_hint(path: Path) -> str:
 
 
 class _Converter:
-    def __init__(self, doc: YamlDoc, loader: yaml.SafeLoader, sink: DiagnosticSink) -> None:
-        self.doc, self.loader, self.sink = doc, loader, sink
+    def __init__(self, doc: YamlDoc, loader: yaml.SafeLoader, sink: DiagnosticSink,
+                 free_text: tuple[str, ...]) -> None:
+        self.doc, self.loader, self.sink, self.free_text = doc, loader, sink, free_text
         self.count = 0
         self.active: set[int] = set()  # collections being converted: a recursive alias loops
         self.failed = False
@@ -188,7 +262,7 @@ class _Converter:
     def value(self, node: yaml.Node, path: Path, depth: int) -> object:
         self.count += 1
         loc = _span(self.doc.file, node)
-        if self.count > MAX_NODES:
+        if self.count > MAX_NODES:  # the composer counted without aliases: they did this
             self.error("RG1012", f"the document expands to more than {MAX_NODES} values",
                        loc, "are aliases (*name) repeating large parts of it?")
             raise _Abort
@@ -213,7 +287,29 @@ class _Converter:
         finally:
             self.active.discard(id(node))
 
+    def text_ok(self, text: str, loc: SourceLoc, path: Path, what: str) -> bool:
+        """Refuse a string holding a character `bad_char` names (RG1014)."""
+        keys = [k for k in path if isinstance(k, str)]
+        free = what == "value" and bool(keys) and keys[-1] in self.free_text
+        at = bad_char(text, free)
+        if at is None:
+            return True
+        ch = text[at]
+        if ch in "\t\n":
+            hint = "tabs and line breaks are text only in " + (
+                " and ".join(f"'{k}'" for k in self.free_text) or "no field of this file")
+        elif 0xD800 <= ord(ch) <= 0xDFFF:
+            hint = "write a character above U+FFFF as one escape (\"\\U0001F600\"), not as a surrogate pair"
+        else:
+            hint = "remove it; YAML escapes in double quotes (\"\\x01\", \"\\uFFFE\") are how such characters get in"
+        where = "".join(f"[{k}]" if isinstance(k, int) else f".{k}" for k in path).lstrip(".") or "the document"
+        subject = where if what == "value" else f"a key in {where}"
+        self.error("RG1014", f"{subject} holds {char_name(ch)} at character {at + 1}", loc, hint)
+        return False
+
     def scalar(self, node: yaml.ScalarNode, loc: SourceLoc, path: Path = ()) -> object:
+        if isinstance(node.value, str) and not self.text_ok(node.value, loc, path, "value"):
+            return None
         if node.tag in _AS_TEXT_TAGS:
             return node.value  # dates and binary stay text: a descriptor has no use for them
         if node.tag not in _SCALAR_TAGS:
@@ -246,10 +342,13 @@ class _Converter:
                            "write the keys out; anchors and aliases of whole values do work")
                 continue
             key = key_node.value  # the text as written: 'on:' stays "on", not True
+            if not self.text_ok(key, kloc, path, "key"):
+                continue
             if key in out:
                 first = self.doc.key_locs[path + (key,)]
-                self.error("RG1011", f"duplicate key '{key}'", kloc,
-                           f"'{key}' is already given at line {first.line}")
+                shown = key if len(key) <= 40 else key[:37] + "..."
+                self.error("RG1011", f"duplicate key '{shown}'", kloc,
+                           f"'{shown}' is already given at line {first.line}")
                 continue
             self.doc.key_locs[path + (key,)] = kloc
             out[key] = self.value(value_node, path + (key,), depth + 1)

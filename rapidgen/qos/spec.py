@@ -20,6 +20,7 @@ from importlib import resources
 
 import jsonschema
 
+from rapidgen.asset.schema import end_of, report_capped
 from rapidgen.asset.yamlread import YamlDoc, parse_yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 
@@ -251,10 +252,8 @@ def parse_qos(text: str, file: str, sink: DiagnosticSink) -> QosSpec | None:
     if doc.data is None:
         sink.error("RG1602", "the QoS library is empty", doc.loc(()), "start with 'version: 1'")
         return None
-    errors = sorted(_validator().iter_errors(doc.data), key=lambda e: [str(p) for p in e.absolute_path])
-    for err in errors:
-        _schema_error(err, doc, sink)
-    if errors:
+    if report_capped(_validator().iter_errors(doc.data), sink, lambda e: _translated(e, doc),
+                     end_of(doc), "RG1602"):
         return None
     spec = _build(doc)
     if not _check(spec, doc, sink):
@@ -266,6 +265,18 @@ _TYPES = {"object": "a mapping", "array": "a list", "string": "a string", "boole
           "integer": "a whole number", "number": "a number"}
 
 
+def _translated(err: jsonschema.ValidationError, doc: YamlDoc) -> list[tuple]:
+    """_schema_error's diagnostics as (code, message, loc, hint), for report_capped."""
+    local = DiagnosticSink()
+    _schema_error(err, doc, local)
+    return [(d.code, d.message, d.loc, d.hint) for d in local.diagnostics]
+
+
+def _clip(value: object, limit: int = 40) -> str:
+    text = str(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
 def _schema_error(err: jsonschema.ValidationError, doc: YamlDoc, sink: DiagnosticSink) -> None:
     path = tuple(err.absolute_path)
     where = ".".join(str(p) for p in path) or "the QoS library"
@@ -273,14 +284,14 @@ def _schema_error(err: jsonschema.ValidationError, doc: YamlDoc, sink: Diagnosti
     if v == "additionalProperties" and isinstance(err.instance, dict):
         allowed = sorted(err.schema.get("properties", {}))
         for key in sorted(k for k in err.instance if k not in allowed):
-            sink.error("RG1602", f"unknown key '{key}' in {where}", doc.key_loc(path + (key,)),
+            sink.error("RG1602", f"unknown key '{_clip(key)}' in {where}", doc.key_loc(path + (key,)),
                        did_you_mean(key, allowed) or (f"expected one of: {', '.join(allowed)}" if allowed else None))
         return
     if v == "required":
         missing = [k for k in err.validator_value if isinstance(err.instance, dict) and k not in err.instance]
         msg = f"{where}: missing key '{missing[0]}'" if missing else f"{where}: missing key"
     elif v == "enum":
-        msg = f"{where}: '{err.instance}' is not one of {', '.join(map(str, err.validator_value))}"
+        msg = f"{where}: '{_clip(err.instance)}' is not one of {', '.join(map(str, err.validator_value))}"
     elif v == "const":
         msg = f"{where}: must be {err.validator_value!r}"
     elif v == "type":
@@ -288,7 +299,7 @@ def _schema_error(err: jsonschema.ValidationError, doc: YamlDoc, sink: Diagnosti
     elif v in ("minimum", "maximum"):
         msg = f"{where}: {err.instance} is {'below the minimum' if v == 'minimum' else 'above the maximum'} {err.validator_value}"
     elif v == "pattern":
-        msg = f"{where}: '{err.instance}' is not a valid name or address"
+        msg = f"{where}: '{_clip(err.instance)}' is not a valid name or address"
     elif v == "not" and path and path[-1:] != () and isinstance(err.instance, dict) and "depth" in err.instance:
         msg = f"{where}: keep_all history takes no depth"
     elif v == "uniqueItems":
