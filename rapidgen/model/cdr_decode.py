@@ -11,8 +11,8 @@ import struct
 from decimal import Decimal
 
 from rapidgen.model import ir
-from rapidgen.model.cdr_types import (MAX_DEPTH, MAX_EMPTY_ELEMENTS, PRIMITIVES, CdrError, CdrTypes, MemberInfo,
-                                      format_fixed, packer)
+from rapidgen.model.cdr_types import (MAX_DEPTH, MAX_EMPTY_ELEMENTS, MAX_VALUES_BASE, PRIMITIVES, VALUES_PER_BYTE,
+                                      CdrError, CdrTypes, MemberInfo, format_fixed, packer)
 
 _PID_MASK = 0x3FFF
 _PID_EXTENDED = 0x3F01
@@ -51,6 +51,10 @@ class Decoder:
         self.e = "<" if little else ">"
         self.maxalign = 8 if version == 1 else 4
         self.depth = 0
+        # values this input may still make: memory stays in proportion to its length
+        self.size = max(0, len(data) - pos)
+        self.allowance = MAX_VALUES_BASE + VALUES_PER_BYTE * self.size
+        self.budget = self.allowance
 
     # -- low level ----------------------------------------------------------------------
     def fail(self, message: str, at: int | None = None) -> CdrError:
@@ -78,10 +82,23 @@ class Decoder:
     def u32(self) -> int:
         return self.get("I", 4)  # type: ignore[return-value]
 
+    def charge(self, n: int, what: str) -> None:
+        """Spend n values of the budget before making them."""
+        if n > self.budget:
+            raise self.fail(f"{what} would make the value hold more than {self.allowance} values, "
+                            f"the most {self.size} bytes may decode to")
+        self.budget -= n
+
+    def default(self, t: ir.Type, name: str) -> object:
+        """The default of an absent member, charged to the budget first."""
+        self.charge(self.t.default_count(t), f"the default of absent member '{name}'")
+        return self.t.default_value(t)
+
     def enter(self) -> None:
         self.depth += 1
         if self.depth > MAX_DEPTH:
             raise self.fail(f"data nests deeper than {MAX_DEPTH} levels")
+        self.charge(1, "one more aggregate")
 
     def check_count(self, n: int, elem: ir.Type, what: str) -> None:
         """Before allocating n elements: do the bytes left hold them at all?"""
@@ -92,6 +109,7 @@ class Decoder:
                 raise self.fail(f"{what} of {n} elements is more than {MAX_EMPTY_ELEMENTS} empty elements")
         elif n > left // smallest:
             raise self.fail(f"{what} of {n} elements needs at least {n * smallest} bytes, {left} left")
+        self.charge(n, f"{what} of {n} elements")
 
     def open_dheader(self) -> int:
         """Read a DHEADER; reads are limited to its length. Returns the previous limit."""
@@ -272,6 +290,7 @@ class Decoder:
         smallest = self.t.min_size(r.key, self.v) + self.t.min_size(r.value, self.v)
         if (smallest and n > (self.end - self.pos) // smallest) or (not smallest and n > MAX_EMPTY_ELEMENTS):
             raise self.fail(f"map of {n} entries does not fit in the {self.end - self.pos} bytes left", at)
+        self.charge(2 * n, f"map of {n} entries")
         out = []
         seen: set[object] = set()
         for i in range(n):
@@ -357,7 +376,7 @@ class Decoder:
             for mi in members:
                 m = mi.member
                 if appendable and self.pos >= self.end:  # an older writer's shorter type
-                    out[m.name] = None if m.optional else self.t.default_value(m.type)
+                    out[m.name] = None if m.optional else self.default(m.type, m.name)
                     continue
                 try:
                     out[m.name] = self.optional(mi) if m.optional else self.value(m.type)
@@ -484,7 +503,7 @@ class Decoder:
             elif m.key:
                 raise self.fail(f"key member '{m.name}' of {d.scoped_name} is missing")
             else:
-                out[m.name] = None if m.optional else self.t.default_value(m.type)
+                out[m.name] = None if m.optional else self.default(m.type, m.name)
         return out
 
     # -- unions ---------------------------------------------------------------------------------

@@ -53,6 +53,11 @@ PRIMITIVES: dict[str, tuple[str, int]] = {
 
 MAX_DEPTH = 100  # nesting of aggregates and collections, in values and in bytes
 MAX_EMPTY_ELEMENTS = 1 << 16  # count limit for collections whose elements may take 0 bytes
+# The decoder's budget of values (elements, aggregates, defaults of absent members) for
+# one input: MAX_VALUES_BASE + VALUES_PER_BYTE x its length. Real data makes about one
+# value per byte or less; defaults and empty elements are what make more from nothing.
+MAX_VALUES_BASE = 1 << 16
+VALUES_PER_BYTE = 16
 
 _STRUCT_CACHE: dict[str, struct.Struct] = {}
 
@@ -294,7 +299,9 @@ class CdrTypes:
                 ext = d.extensibility
                 if ext == "mutable":
                     return 4  # DHEADER (XCDR2) or the list-end sentinel (XCDR1)
-                total = 4 if (v == 2 and ext == "appendable") else 0
+                if v == 2 and ext == "appendable":
+                    return 4  # DHEADER 0: an older writer's type may end before any member
+                total = 0
                 for mi in self.members(d):
                     if mi.member.optional:
                         total += 1 if v == 2 else 4
@@ -306,6 +313,37 @@ class CdrTypes:
         return 0
 
     # -- default values (members an appendable or mutable encoding leaves out) -------------------
+    def default_count(self, t: ir.Type, depth: int = 0) -> int:
+        """How many values default_value(t) builds (lists and dicts included), without
+        building them: the decoder charges its budget before filling in an absent member."""
+        key = ("default", t)
+        got = self._min.get(key)  # type: ignore[call-overload]
+        if got is not None:
+            return got
+        if depth > MAX_DEPTH:
+            raise CdrError("type nests too deeply for a default value")
+        r = self.resolve(t)
+        n = 1
+        if isinstance(r, ir.Array):
+            dims, elem = self.array_shape(r)
+            total, lists = 1, 0
+            for d in dims:
+                lists += total
+                total *= d
+            n = lists + total * self.default_count(elem, depth + 1)
+        elif isinstance(r, ir.TypeRef):
+            d = self.decl(r)
+            if isinstance(d, ir.Struct):
+                n += sum(1 if mi.member.optional else self.default_count(mi.member.type, depth + 1)
+                         for mi in self.members(d))
+            elif isinstance(d, ir.Union):
+                n += 2  # the discriminator and a value: a small bound, unions default to their first case
+                n += max((self.default_count(c.member.type, depth + 1) for c in d.cases), default=0)
+            elif isinstance(d, ir.Bitset):
+                n += len(self.bitset_fields(d))
+        self._min[key] = n  # type: ignore[index]
+        return n
+
     def default_value(self, t: ir.Type, depth: int = 0) -> object:
         if depth > MAX_DEPTH:
             raise CdrError("type nests too deeply for a default value")
