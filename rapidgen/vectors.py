@@ -133,7 +133,8 @@ def render(paths: list[str], include: list[str], sink: DiagnosticSink,
         sink.error("RG0902", f"cannot encode a sample: {exc}", SourceLoc(paths[0], 1, 1))
         return None
     except SampleError as exc:
-        sink.error("RG0903", f"cannot make sample values: {exc}", SourceLoc(paths[0], 1, 1))
+        sink.error("RG0903", f"cannot make sample values: {exc}", exc.loc or SourceLoc(paths[0], 1, 1),
+                   "golden vectors are for small, readable values; leave this type out of the inputs")
         return None
 
 

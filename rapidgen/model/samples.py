@@ -42,17 +42,25 @@ _MAX_CDEPTH = 4  # collections nested deeper than this are left empty
 
 
 # Golden vectors are for reading and for cross-checking three languages: arrays beyond
-# this many elements are refused rather than sampled (they would take gigabytes).
+# this many elements, and strings whose bound (times the array copies holding them) is
+# beyond this many characters, are refused rather than sampled (they would take gigabytes:
+# `max` fills strings to their bound).
 MAX_ARRAY_ELEMENTS = 1 << 20
+MAX_STRING_CHARS = 1 << 20
 
 
 class SampleError(Exception):
-    """A type that cannot be given a sample value."""
+    """A type that cannot be given a sample value; `loc` is the member or typedef naming it."""
+
+    def __init__(self, message: str, loc=None) -> None:
+        super().__init__(message)
+        self.loc = loc
 
 
-def _refuse_huge_arrays(model: ir.Model) -> None:
-    """Every sample fills its arrays: refuse, before starting, any array too large to fill."""
-    def check(t: ir.Type, where: ir.Declaration, outer: int = 1) -> None:
+def _refuse_huge(model: ir.Model) -> None:
+    """Every sample fills its arrays, and `max` its strings: refuse, before starting, any
+    array or string too large to fill."""
+    def check(t: ir.Type, where: ir.Declaration, loc, outer: int = 1) -> None:
         t = model.resolve_alias(t)
         if isinstance(t, ir.Array):
             total = outer
@@ -60,19 +68,26 @@ def _refuse_huge_arrays(model: ir.Model) -> None:
                 total *= d
             if total > MAX_ARRAY_ELEMENTS:
                 raise SampleError(f"'{where.scoped_name}' holds an array of {total} elements ({t}); "
-                                  f"samples are made for arrays of at most {MAX_ARRAY_ELEMENTS}")
-            check(t.element, where, total)  # arrays of (typedef'd) arrays multiply
+                                  f"samples are made for arrays of at most {MAX_ARRAY_ELEMENTS}", loc)
+            check(t.element, where, loc, total)  # arrays of (typedef'd) arrays multiply
         elif isinstance(t, ir.Sequence):
-            check(t.element, where)
+            check(t.element, where, loc)
+        elif isinstance(t, ir.Map):
+            check(t.key, where, loc)
+            check(t.value, where, loc)
+        elif isinstance(t, ir.String) and t.bound is not None and t.bound * outer > MAX_STRING_CHARS:
+            copies = f" ({outer} of them in an array)" if outer > 1 else ""
+            raise SampleError(f"'{where.scoped_name}' holds a string bounded to {t.bound} characters{copies}; "
+                              f"samples fill strings to their bound, at most {MAX_STRING_CHARS} characters", loc)
     for d in model.declarations:
         if isinstance(d, ir.Struct):
             for m in d.members:
-                check(m.type, d)
+                check(m.type, d, m.loc)
         elif isinstance(d, ir.Union):
             for c in d.cases:
-                check(c.member.type, d)
+                check(c.member.type, d, c.member.loc)
         elif isinstance(d, ir.Typedef):
-            check(d.type, d)
+            check(d.type, d, d.loc)
 
 
 @dataclass(frozen=True)
@@ -342,7 +357,7 @@ def _free_discriminator(types: CdrTypes, d: ir.Union) -> object | None:
 
 def samples(model: ir.Model, types: CdrTypes | None = None) -> list[Sample]:
     t = types or CdrTypes(model)
-    _refuse_huge_arrays(model)
+    _refuse_huge(model)
     decls = sorted((d for d in model.declarations if isinstance(d, (ir.Struct, ir.Union))),
                    key=lambda d: d.scoped_name)
     out: list[Sample] = []
