@@ -97,19 +97,39 @@ def write_outputs(out_dir: str, per_lang: dict[str, list[GeneratedFile]], sink: 
 
     for lang, files in per_lang.items():
         folder = os.path.join(out_dir, lang)
-        try:
-            result = write_tree(folder, files)
-        except OSError as exc:
-            where = exc.filename or folder
-            sink.error("RG0803", f"cannot write '{where}': {exc.strerror or exc}", SourceLoc(str(where), 0, 0),
-                       "check that the output folder is a writable directory")
+        report = _call_writer(write_tree, folder, files, sink)
+        if report is None:
             return False
-        print(f"{folder}: {len(result.written)} written, {len(result.unchanged)} unchanged"
-              + (f", {len(result.removed)} removed" if result.removed else "")
-              + (f", {len(result.kept_user)} user files kept" if result.kept_user else ""))
-        for rel in result.kept_edited:
+        sink.extend(report.problems)
+        if report.failed:
+            return False
+        if report.recovered:
+            print(f"{folder}: completed a run that was interrupted")
+        print(f"{folder}: {len(report.written)} written, {len(report.unchanged)} unchanged"
+              + (f", {len(report.removed)} removed" if report.removed else "")
+              + (f", {len(report.kept_user)} user files kept" if report.kept_user else ""))
+        for rel in report.kept_edited:
             print(f"  kept {rel}: no longer generated, but edited by hand", file=sys.stderr)
     return True
+
+
+def _call_writer(function, folder: str, files: list[GeneratedFile], sink: DiagnosticSink):
+    """function(folder, files), its exceptions turned into diagnostics (then None)."""
+    from rapidgen.writer import LOCK_WAIT_S, LockBusy, UnsafeJournal
+
+    try:
+        return function(folder, files)
+    except LockBusy:
+        sink.error("RG0824", f"another rapidgen run kept '{folder}' locked for {LOCK_WAIT_S:g} s",
+                   SourceLoc(folder, 0, 0), "wait for it to end, or stop it (a killed run's lock is freed)")
+    except UnsafeJournal as exc:
+        sink.error("RG0822", f"an interrupted run cannot be completed: '{exc.path}' is now a link or in the way",
+                   SourceLoc(exc.path, 0, 0), "move it away and run again")
+    except OSError as exc:
+        where = exc.filename or folder
+        sink.error("RG0803", f"cannot write '{where}': {exc.strerror or exc}", SourceLoc(str(where), 0, 0),
+                   "check that the output folder is a writable directory")
+    return None
 
 
 def generate_command(paths: list[str], include: list[str], defines: dict[str, str], langs: list[str],
@@ -140,10 +160,13 @@ def check_command(project: str, fix: bool, sink: DiagnosticSink) -> int:
             continue
         lines, count = [], 0
         for lang, files in per_lang.items():
-            diff = compare_tree(os.path.join(t.out, lang), files)
+            diff = _call_writer(compare_tree, os.path.join(t.out, lang), files, sink)
+            if diff is None:
+                continue
+            sink.extend(diff.problems)
             count += len(files)
             for label, items in (("missing", diff.missing), ("differs", diff.differs),
-                                 ("no longer generated", diff.extra)):
+                                 ("no longer generated", diff.extra), ("interrupted run", diff.interrupted)):
                 lines += [f"  {label}: {lang}/{item}" for item in items]
         if lines:
             stale += 1

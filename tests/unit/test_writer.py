@@ -46,20 +46,20 @@ def test_files_no_longer_generated_are_removed_unless_edited(tmp_path):
 
 def test_interrupted_run_leaves_previous_output_intact(tmp_path, monkeypatch):
     writer.write_tree(str(tmp_path), [F("a.py", "old a\n"), F("b.py", "old b\n")])
-    real_stage = writer._stage
+    real_write = writer._write_new
     calls = []
 
-    def failing_stage(path, text):
+    def failing_write(path, data, mode):
         calls.append(path)
         if len(calls) == 2:
             raise KeyboardInterrupt  # interrupted while staging the second file
-        return real_stage(path, text)
+        return real_write(path, data, mode)
 
-    monkeypatch.setattr(writer, "_stage", failing_stage)
+    monkeypatch.setattr(writer, "_write_new", failing_write)
     with pytest.raises(KeyboardInterrupt):
         writer.write_tree(str(tmp_path), [F("a.py", "new a\n"), F("b.py", "new b\n")])
     assert read(tmp_path / "a.py") == "old a\n" and read(tmp_path / "b.py") == "old b\n"
-    assert not [p for p in os.listdir(tmp_path) if p.endswith(".tmp")]
+    assert sorted(os.listdir(tmp_path)) == [writer.MANIFEST, "a.py", "b.py"]
 
 
 def test_compare_tree_reports_missing_differing_and_extra(tmp_path):
