@@ -25,25 +25,27 @@ All or nothing, by a write-ahead journal replayed forward:
    folder of a run killed before its commit (the lock proves no live run owns it);
 2. stage every new or changed file, the new manifest last, in `<root>/.rapidgen-staging/`
    (each fsync'ed);
-3. commit: write `journal.json` there (the files to remove, the renames), as a temporary
-   file renamed into place after fsync;
-4. apply: remove stale files, rename each staged file over its target (manifest last),
-   remove the folders emptied by the removals, fsync the folders, delete the journal,
-   then the staging folder. Every step is idempotent (a staged file already gone was
-   renamed), so a replay after a kill at any point finishes the same run.
+3. commit: write `journal.json` there (the files to remove with their digests, the
+   renames), as a temporary file renamed into place after fsync;
+4. apply: remove the stale files that still hold what rapidgen wrote, rename each staged
+   file over its target (manifest last), remove the folders emptied by the removals,
+   fsync the folders, delete the journal, then the staging folder. Every step is
+   idempotent (a staged file already gone was renamed), so a replay after a kill at any
+   point finishes the same run.
 
-Guarantee: after a kill at any point the root holds either the old output with its
-manifest untouched (killed before the journal's rename; only the hidden staging folder is
-extra) or a committed journal. The next `generate` or `check --fix` into that folder (or
-recover()) first removes the staging folder or replays the journal, so the root then
-holds exactly the old or exactly the new output with a matching manifest, user files
-intact. Until then `rapidgen check` reports the folder as stale (interrupted run).
-Not covered: another local process racing a run, e.g. swapping a folder for a link
-between the check and the rename.
+Guarantee: after a kill at any point the root holds either the old output and manifest
+untouched (killed before the journal's rename), or a committed journal, or the complete
+new output (killed after the journal's removal); the hidden staging folder may be left.
+The next `generate` or `check --fix` into that folder (or recover()) first replays the
+journal or removes the staging folder, so the root then holds exactly the old or exactly
+the new output with a matching manifest, the user's files intact. Until then `rapidgen
+check` reports the folder as stale (interrupted run). Not covered: another local process
+racing a run, e.g. swapping a folder for a link between the check and the rename.
 """
 from __future__ import annotations
 
 import contextlib
+import errno
 import fcntl
 import hashlib
 import json
@@ -152,8 +154,10 @@ def _inspect(root: str, rel: str, gone: frozenset[str] = frozenset()) -> tuple[s
         prefix = "/".join(parts[:i + 1])
         try:
             mode = os.lstat(path).st_mode
-        except FileNotFoundError:
-            return "missing", prefix
+        except OSError as exc:
+            if exc.errno in (errno.ENOENT, errno.ENAMETOOLONG):  # a name no file can have
+                return "missing", prefix
+            raise
         if stat.S_ISLNK(mode):
             return "link", prefix
         if i == len(parts) - 1:

@@ -87,6 +87,21 @@ def test_manifest_key_outside_the_folder_is_never_deleted(demo, absolute):
         assert key not in json.loads((out / writer.MANIFEST).read_text())["files"]
 
 
+def test_hostile_manifest_entries_are_ignored_and_counted(tmp_path):
+    writer.write_tree(str(tmp_path / "out"), [F("a.py", "a\n")])
+    (tmp_path / "victim").write_text("v\n")
+    bad = {"x" * 300: "0" * 64, "a.py": 5, "../victim": sha(b"v\n"), "": "0" * 64,
+           **{f"../v{i}": "0" * 64 for i in range(20)}}
+    (tmp_path / "out" / writer.MANIFEST).write_text(json.dumps({"files": bad}))
+    report = writer.write_tree(str(tmp_path / "out"), [F("a.py", "a\n")])
+    assert not report.failed and {d.code for d in report.problems} == {"RG0821"}
+    assert len(report.problems) == writer._MAX_LISTED + 1 and "more manifest entries" in report.problems[-1].message
+    assert (tmp_path / "victim").read_text() == "v\n" and (tmp_path / "out" / "a.py").read_text() == "a\n"
+    (tmp_path / "out" / writer.MANIFEST).write_text("[1, 2")  # not JSON
+    report = writer.write_tree(str(tmp_path / "out"), [F("a.py", "a\n")])
+    assert [d.code for d in report.problems] == ["RG0821"] and manifest_matches(tmp_path / "out")
+
+
 def test_check_reports_a_bad_manifest_key_without_touching_anything(demo):
     work, out = demo
     add_manifest_entry(out, "../victim.txt", "0" * 64)
