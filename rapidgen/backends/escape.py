@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import re
 
+import markupsafe
+
 _PY_SHORT = {"\\": "\\\\", "\n": "\\n", "\t": "\\t", "\r": "\\r"}
 # PEP 263: a comment on line 1 or 2 matching this names the source encoding.
 _CODING = re.compile(r"coding([:=])")
@@ -69,6 +71,21 @@ def xml_comment(text: str) -> str:
     while "--" in text:
         text = text.replace("--", "- -")
     return text.rstrip("-")
+
+
+# Whitespace an XML parser would normalize (attribute values: to spaces; CR: to LF) and
+# what str.splitlines, hence Jinja2's indent filter, treats as a line break.
+_XML_REFS = re.compile("[\t\n\r\x85\u2028\u2029]")
+
+
+def xml_text(value: object) -> markupsafe.Markup:
+    """Any value as XML character data or attribute text: markup characters escaped, and
+    the whitespace above as character references, so the value is read back exactly.
+    Markup (a macro's output) is already escaped."""
+    if isinstance(value, markupsafe.Markup):
+        return value
+    text = str(markupsafe.escape(str(value)))
+    return markupsafe.Markup(_XML_REFS.sub(lambda m: f"&#{ord(m.group())};", text))
 
 
 # What XML 1.0 cannot carry even escaped: C0 controls but tab/LF/CR, surrogates, U+FFFE/U+FFFF.

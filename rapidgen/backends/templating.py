@@ -12,9 +12,9 @@ import jinja2
 
 from rapidgen.backends import escape
 
-
-# Every input string a template prints goes through one of these (or XML autoescape);
-# rapidgen/backends/escape.py says what each guarantees.
+# Every input string a template prints goes through one of these, or (XML targets) through
+# escape.xml_text, which replaces plain autoescape; rapidgen/backends/escape.py says what
+# each guarantees.
 FILTERS = {
     "py_str": escape.py_str,  # a Python string literal (value round-trips)
     "docstring": escape.py_docstring,  # inside """...""" (value round-trips)
@@ -22,6 +22,11 @@ FILTERS = {
     "toml_str": escape.toml_str,  # a TOML basic string (value round-trips)
     "xml_comment": escape.xml_comment,  # inside <!-- ... -->
 }
+
+
+# Targets whose templates are all XML: every printed value goes through escape.xml_text
+# (markup escaped, whitespace a parser would normalize as character references).
+XML_TARGETS = frozenset({"qos"})
 
 
 @functools.lru_cache(maxsize=None)
@@ -33,6 +38,7 @@ def environment(target: str) -> jinja2.Environment:
         lstrip_blocks=True,
         keep_trailing_newline=True,
         autoescape=lambda name: bool(name) and name.endswith(".xml.j2"),
+        finalize=escape.xml_text if target in XML_TARGETS else None,
     )
     env.filters.update(FILTERS)
     return env

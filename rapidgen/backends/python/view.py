@@ -362,7 +362,10 @@ class PythonViewBuilder:
         if hashid is None and not hashed:
             return None
         text = str(dict(hashid.params).get("value") or "") if hashid else ""
-        digest = hashlib.md5((text or m.name).encode("utf-8")).digest()
+        try:
+            digest = hashlib.md5((text or m.name).encode("utf-8")).digest()
+        except UnicodeEncodeError:  # a lone surrogate (\ud800 escape): no UTF-8 bytes to hash
+            raise Unsupported(f"@hashid of member '{m.name}' is not valid Unicode text (lone surrogate)", m.loc)
         return int.from_bytes(digest[:4], "little") & 0x0FFFFFFF
 
     def _class_decorators(self, d: ir.Struct | ir.Union) -> list[str]:
