@@ -4,7 +4,9 @@ Precedence climbing over C's operator table (so `A & 4 == 4` is `A & (4 == 4)`, 
 C), integers in 64 bits, `/` and `%` truncating toward zero, `!`/`&&`/`||`/comparisons
 giving 0 or 1, and short-circuit: the unevaluated side of `&&`/`||` is parsed but not
 computed, so `0 && 1/0` is 0. A macro name evaluates its value (recursively); an
-undefined or empty one is 0. Every problem is a ValueError with a message for the user.
+undefined or empty one is 0, and each macro is evaluated once per expression (macros
+that use others twice would otherwise cost 2**depth). Every problem is a ValueError with
+a message for the user.
 """
 from __future__ import annotations
 
@@ -20,10 +22,10 @@ _MIN, _MAX = -2**63, 2**64 - 1
 MAX_MACRO_DEPTH = 16
 
 
-def evaluate(expr: str, macros: dict[str, str], depth: int = 0) -> int:
+def evaluate(expr: str, macros: dict[str, str], depth: int = 0, memo: dict[str, int] | None = None) -> int:
     if depth > MAX_MACRO_DEPTH:
         raise ValueError("macro expansion too deep")
-    tokens = _tokens(expr, macros, depth)
+    tokens = _tokens(expr, macros, depth, {} if memo is None else memo)
     if not tokens:
         raise ValueError("empty expression")
     value, i = _Parser(tokens, expr.strip()).binary(0, 1, True)
@@ -32,7 +34,7 @@ def evaluate(expr: str, macros: dict[str, str], depth: int = 0) -> int:
     return value
 
 
-def _tokens(expr: str, macros: dict[str, str], depth: int) -> list[object]:
+def _tokens(expr: str, macros: dict[str, str], depth: int, memo: dict[str, int]) -> list[object]:
     """Integers (macros already evaluated) and operator strings."""
     expr = _DEFINED.sub(lambda m: "1" if (m.group(1) or m.group(2)) in macros else "0", expr)
     if re.search(r"\bdefined\b", expr):
@@ -52,8 +54,10 @@ def _tokens(expr: str, macros: dict[str, str], depth: int) -> list[object]:
             digits = tok.rstrip("uUlL")
             out.append(int(digits, 8) if re.fullmatch(r"0[0-7]+", digits) else int(digits, 0))
         elif tok[0].isalpha() or tok[0] == "_":
-            value = macros.get(tok, "")
-            out.append(evaluate(value, macros, depth + 1) if value.strip() else 0)
+            if tok not in memo:
+                value = macros.get(tok, "")
+                memo[tok] = evaluate(value, macros, depth + 1, memo) if value.strip() else 0
+            out.append(memo[tok])
         elif tok in ("?", ":"):
             raise ValueError("the ?: operator is not supported")
         else:

@@ -23,6 +23,11 @@ from rapidgen.idl.lexer import IdlLexer
 from rapidgen.idl.preprocess import PreprocessResult
 
 
+# Longest integer literal accepted, leading zeros aside: uint64 needs 20 decimal digits
+# and fixed 31, so 40 leaves room while keeping int() far from its 4300-digit limit.
+MAX_LITERAL_DIGITS = 40
+MAX_FIXED_DIGITS = 31  # IDL 4.2 7.4.1.4.4.2: fixed-point types have at most 31 digits
+
 # Friendly names for the grammar's named terminals in "expected ..." messages.
 _TERMINAL_NAMES = {
     "IDENT": "an identifier", "INT_LIT": "an integer", "FLOAT_LIT": "a number",
@@ -95,22 +100,26 @@ class _Label:
         self.loc = loc
 
 
+_SIMPLE_ESCAPES = {"n": "\n", "t": "\t", "v": "\v", "b": "\b", "r": "\r", "f": "\f", "a": "\a",
+                   "\\": "\\", "?": "?", "'": "'", '"': '"'}
+_ESCAPE = re.compile(r"\\(x[0-9a-fA-F]{1,2}|u[0-9a-fA-F]{1,4}|[0-7]{1,3}|.)")
+
+
+def _unescape_one(m: re.Match[str]) -> str:
+    esc = m.group(1)
+    simple = _SIMPLE_ESCAPES.get(esc)
+    if simple is not None:
+        return simple
+    if esc[0] in "xu":
+        return chr(int(esc[1:], 16))
+    if esc[0] in "01234567":
+        return chr(int(esc, 8))
+    return esc
+
+
 def _unescape(body: str) -> str:
     """Decode IDL escapes (C-style, plus \\uXXXX)."""
-    def repl(m: re.Match[str]) -> str:
-        esc = m.group(1)
-        simple = {"n": "\n", "t": "\t", "v": "\v", "b": "\b", "r": "\r", "f": "\f", "a": "\a",
-                  "\\": "\\", "?": "?", "'": "'", '"': '"'}
-        if esc in simple:
-            return simple[esc]
-        if esc[0] == "x":
-            return chr(int(esc[1:], 16))
-        if esc[0] == "u":
-            return chr(int(esc[1:], 16))
-        if esc[0] in "01234567":
-            return chr(int(esc, 8))
-        return esc
-    return re.sub(r"\\(x[0-9a-fA-F]{1,2}|u[0-9a-fA-F]{1,4}|[0-7]{1,3}|.)", repl, body)
+    return _ESCAPE.sub(_unescape_one, body) if "\\" in body else body
 
 
 class _ToAst(Transformer):
@@ -208,7 +217,14 @@ class _ToAst(Transformer):
 
     def int_lit(self, items):
         text = str(items[0])
-        if text.lower().startswith("0x"):
+        hexa = text[:2] in ("0x", "0X")
+        digits = len(text[2 if hexa else 0:].lstrip("0"))
+        if digits > MAX_LITERAL_DIGITS:  # (int() refuses more than 4300 decimal digits anyway)
+            self.sink.error("RG0402", f"integer literal of {digits} digits is too large for any IDL type",
+                            self.loc.token(items[0]), f"the widest types hold {MAX_LITERAL_DIGITS} digits or "
+                            "fewer; write a floating-point literal such as 1e40")
+            return ast.Literal("int", 0, self.loc.token(items[0]))
+        if hexa:
             value = int(text, 16)
         elif len(text) > 1 and text.startswith("0"):
             value = int(text, 8)
@@ -224,6 +240,11 @@ class _ToAst(Transformer):
         return ast.Literal("float", value, self.loc.token(items[0]))
 
     def fixed_lit(self, items):
+        digits = len(str(items[0])[:-1].replace(".", "").strip("0"))
+        if digits > MAX_FIXED_DIGITS:
+            self.sink.error("RG0402", f"fixed-point literal of {digits} digits; fixed holds at most {MAX_FIXED_DIGITS}",
+                            self.loc.token(items[0]))
+            return ast.Literal("fixed", Decimal(0), self.loc.token(items[0]))
         try:
             value = Decimal(str(items[0])[:-1])
         except InvalidOperation:

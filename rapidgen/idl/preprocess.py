@@ -14,6 +14,7 @@ diagnostic names the original file and line.
 """
 from __future__ import annotations
 
+import bisect
 import os
 import re
 from dataclasses import dataclass, field
@@ -21,17 +22,58 @@ from dataclasses import dataclass, field
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.idl.ifexpr import evaluate as evaluate_condition
 
-MAX_INPUT_BYTES = 64 * 1024 * 1024
+MAX_INPUT_BYTES = 64 * 1024 * 1024  # per file, and for all files of one run together
+MAX_INPUT_FILES = 10_000  # files read in one run (each include-once file counts once)
 MAX_INCLUDE_DEPTH = 64
+MAX_DIRECTIVE_CHARS = 64 * 1024  # one directive, after joining its backslash-continued lines
+# Object-like macros can double at each level (#define A1 A0+A0): without a cap, 22
+# levels make a line of millions of characters. One use of a macro may expand to at most
+# MAX_MACRO_EXPANSION characters, and all expansions together may add MAX_EXPANDED_TOTAL.
+MAX_MACRO_EXPANSION = 64 * 1024
+MAX_EXPANDED_TOTAL = 64 * 1024 * 1024
+MAX_MACRO_DEPTH = 32  # a macro naming itself (directly or not) stops expanding here
 
 _DIRECTIVE = re.compile(r"^\s*#\s*([A-Za-z_]\w*)?(.*)$")
 _IDENT = re.compile(r"[A-Za-z_]\w*")
 
 
+class LineMap:
+    """Output line -> (file, line), stored as runs of consecutive lines (a list of one
+    tuple per line cost ~100 bytes a line: gigabytes for a 64 MiB file of short lines)."""
+
+    def __init__(self) -> None:
+        self.starts: list[int] = []  # 0-based output line where each run starts
+        self.origins: list[tuple[str, int]] = []  # (file, line) of each run's first line
+        self.count = 0  # output lines so far
+
+    def add(self, file: str, line: int, count: int = 1) -> None:
+        if self.origins:
+            f, ln = self.origins[-1]
+            if f == file and ln + self.count - self.starts[-1] == line:  # continues the last run
+                self.count += count
+                return
+        self.starts.append(self.count)
+        self.origins.append((file, line))
+        self.count += count
+
+    def __len__(self) -> int:
+        return self.count
+
+    def __getitem__(self, index: int) -> tuple[str, int]:
+        """(file, line) of a 0-based output line (negative counts from the end)."""
+        if index < 0:
+            index += self.count
+        if not 0 <= index < self.count:
+            raise IndexError(index)
+        run = bisect.bisect_right(self.starts, index) - 1
+        f, ln = self.origins[run]
+        return f, ln + index - self.starts[run]
+
+
 @dataclass
 class PreprocessResult:
     text: str
-    line_map: list[tuple[str, int]]
+    line_map: LineMap
     sources: dict[str, str] = field(default_factory=dict)  # display path -> text
     files: list[str] = field(default_factory=list)  # display paths, in reading order
     # (file, line) -> column of a trailing `//@key` comment (RTI's key marker)
@@ -75,8 +117,11 @@ class Preprocessor:
         self.include_dirs = list(include_dirs)
         self.sink = sink
         self.macros: dict[str, str] = dict(defines or {})
+        self._valued = sum(1 for v in self.macros.values() if v)  # macros that expand to something
+        self._expanded = 0  # characters added by macro expansion so far
+        self._bytes_read = 0
         self.out: list[str] = []
-        self.line_map: list[tuple[str, int]] = []
+        self.line_map = LineMap()
         self.sources: dict[str, str] = {}
         self.files: list[str] = []
         self.key_comments: dict[tuple[str, int], int] = {}
@@ -100,11 +145,21 @@ class Preprocessor:
             if os.path.isdir(path):
                 self.sink.error("RG0001", f"'{shown}' is a directory, not an IDL file", where)
                 return None
+            if len(self._done) >= MAX_INPUT_FILES:
+                self.sink.error("RG0006", f"more than {MAX_INPUT_FILES} input files in one run", where,
+                                "split the input into several runs")
+                return None
             with open(path, "rb") as fh:  # read at most one byte past the limit (devices report size 0)
                 data = fh.read(MAX_INPUT_BYTES + 1)
             if len(data) > MAX_INPUT_BYTES:
                 self.sink.error("RG0005", f"'{shown}' is larger than {MAX_INPUT_BYTES // (1024 * 1024)} MiB",
                                 SourceLoc(shown, 1, 1), "split it, or check that it is the right file")
+                return None
+            self._bytes_read += len(data)
+            if self._bytes_read > MAX_INPUT_BYTES:
+                self.sink.error("RG0005", f"the input files together are larger than "
+                                f"{MAX_INPUT_BYTES // (1024 * 1024)} MiB (reading '{shown}')", where,
+                                "split the input into several runs")
                 return None
         except OSError as exc:
             self.sink.error("RG0001", f"cannot read '{shown}': {exc.strerror or exc}", where)
@@ -159,46 +214,70 @@ class Preprocessor:
             self._stack.pop()
 
     # -- lines -------------------------------------------------------------------
-    def _emit(self, text: str, file: str, line: int) -> None:
+    def _emit(self, text: str, file: str, line: int, count: int = 1) -> None:
+        """Append `count` output lines (text holds count - 1 newlines) from file:line onwards."""
         self.out.append(text)
-        self.line_map.append((file, line))
+        self.line_map.add(file, line, count)
 
     def _process(self, text: str, file: str, folder: str) -> None:
-        lines = text.split("\n")
-        if lines and lines[-1] == "":
-            lines.pop()
+        # Walks the text line by line with find() rather than split(): lines inside a block
+        # comment are passed on in one piece, so a huge comment costs no per-line objects.
         conds: list[_Cond] = []
         in_comment: SourceLoc | None = None
-        i = 0
-        while i < len(lines):
-            raw = lines[i].rstrip("\r")
-            lineno = i + 1
-            i += 1
+        pos, n, lineno = 0, len(text), 0
+        while pos < n:
             active = not conds or conds[-1].active
+            if in_comment is not None:
+                close = text.find("*/", pos)
+                stop = n if close < 0 else text.rfind("\n", pos, close) + 1  # the line holding */
+                if stop > pos:  # whole lines inside the comment
+                    chunk = text[pos:stop - 1] if text[stop - 1] == "\n" else text[pos:stop]
+                    count = chunk.count("\n") + 1
+                    self._emit(chunk if active else "\n" * (count - 1), file, lineno + 1, count)
+                    lineno += count
+                    pos = stop
+                    continue
+            eol = text.find("\n", pos)
+            if eol < 0:
+                eol = n
+            raw = text[pos:eol].rstrip("\r")
+            pos = eol + 1
+            lineno += 1
             m = _DIRECTIVE.match(raw) if in_comment is None else None
             if m:
                 # Directives continue over backslash-newline.
-                body = raw
-                while body.endswith("\\") and i < len(lines):
-                    body = body[:-1] + " " + lines[i].rstrip("\r")
-                    self._emit("", file, lineno)
-                    i += 1
+                parts, size, last, first = [raw], len(raw), raw, lineno
+                while last.endswith("\\") and pos < n:
+                    eol = text.find("\n", pos)
+                    if eol < 0:
+                        eol = n
+                    last = text[pos:eol].rstrip("\r")
+                    pos = eol + 1
+                    lineno += 1
+                    size += len(last) + 1
+                    if size <= MAX_DIRECTIVE_CHARS:
+                        parts[-1] = parts[-1][:-1]
+                        parts.append(last)
+                    self._emit("", file, first)
+                body = " ".join(parts)  # (joined once: repeated += is quadratic in the line count)
                 m = _DIRECTIVE.match(body) or m
                 name = m.group(1) or ""
                 col = raw.index("#") + 1
-                loc = SourceLoc(file, lineno, col, lineno, col + 1 + len(name))
+                loc = SourceLoc(file, first, col, first, col + 1 + len(name))
+                if size > MAX_DIRECTIVE_CHARS:
+                    self.sink.error("RG0107", f"#{name} directive longer than {MAX_DIRECTIVE_CHARS} characters",
+                                    loc, "directives hold short names and values")
+                    self._emit("", file, first)
+                    continue
                 rest = _strip_comments(m.group(2)).strip()
                 kept = self._directive(name, rest, loc, conds, active, folder, body)
-                if kept is None:
-                    self._emit("", file, lineno)
-                elif kept:
-                    self._emit(kept, file, lineno)
+                self._emit(kept or "", file, first)
                 continue
             in_comment, key_col = _scan_line(raw, in_comment, file, lineno)
             if active and key_col is not None:
                 self.key_comments[(file, lineno)] = key_col
             if active:
-                self._emit(self._expand(raw) if self._has_values() else raw, file, lineno)
+                self._emit(self._expand(raw, file, lineno) if self._valued else raw, file, lineno)
             else:
                 self._emit("", file, lineno)
         if in_comment is not None:
@@ -208,23 +287,69 @@ class Preprocessor:
             self.sink.error("RG0104", "#if/#ifdef/#ifndef without a matching #endif", c.loc,
                             "add #endif at the end of the conditional block")
 
-    def _has_values(self) -> bool:
-        return any(v for v in self.macros.values())
+    def _set_macro(self, name: str, value: str | None) -> None:
+        """Define (value not None) or undefine a macro, keeping count of those with a value."""
+        self._valued -= bool(self.macros.get(name))
+        if value is None:
+            self.macros.pop(name, None)
+        else:
+            self.macros[name] = value
+            self._valued += bool(value)
 
-    def _expand(self, line: str) -> str:
+    def _expand(self, line: str, file: str, lineno: int) -> str:
         """Replace object-like macros that have a value, outside strings and comments."""
         out: list[str] = []
-        for seg, is_code in _segments(line):
-            if is_code:
-                seg = _IDENT.sub(lambda mm: self._macro_value(mm.group(0)), seg)
-            out.append(seg)
+        for start, end, is_code in _segments(line):
+            if not is_code:
+                out.append(line[start:end])
+                continue
+            pos = start
+            for mm in _IDENT.finditer(line, start, end):
+                out.append(line[pos:mm.start()])
+                out.append(self._use(mm.group(0), SourceLoc(file, lineno, mm.start() + 1, lineno, mm.end() + 1)))
+                pos = mm.end()
+            out.append(line[pos:end])
         return "".join(out)
 
-    def _macro_value(self, name: str, depth: int = 0) -> str:
-        val = self.macros.get(name)
-        if not val or depth > 32:
+    def _use(self, name: str, loc: SourceLoc) -> str:
+        """The expansion of one use of a name in code, within the expansion limits."""
+        if not self.macros.get(name) or self._expanded > MAX_EXPANDED_TOTAL:
             return name
-        return _IDENT.sub(lambda mm: self._macro_value(mm.group(0), depth + 1), val)
+        budget = [MAX_MACRO_EXPANSION]
+        try:
+            text = self._macro_value(name, 0, budget)
+        except _TooLarge:
+            self.sink.error("RG0113", f"macro '{name}' expands to more than {MAX_MACRO_EXPANSION} characters", loc,
+                            "macros that use other macros more than once grow exponentially; "
+                            "define the value directly")
+            return name
+        self._expanded += len(text)
+        if self._expanded > MAX_EXPANDED_TOTAL:
+            self.sink.error("RG0113", f"macro expansions add more than {MAX_EXPANDED_TOTAL // (1024 * 1024)} "
+                            f"MiB to the input (here: '{name}')", loc, "use fewer or shorter macros")
+            return name
+        return text
+
+    def _macro_value(self, name: str, depth: int, budget: list[int]) -> str:
+        """The text a name expands to; raises _TooLarge once more than budget[0] characters."""
+        val = self.macros.get(name)
+        if not val or depth > MAX_MACRO_DEPTH:
+            budget[0] -= len(name)
+            if budget[0] < 0:
+                raise _TooLarge
+            return name
+        parts: list[str] = []
+        pos = 0
+        for mm in _IDENT.finditer(val):
+            parts.append(val[pos:mm.start()])
+            budget[0] -= mm.start() - pos
+            parts.append(self._macro_value(mm.group(0), depth + 1, budget))
+            pos = mm.end()
+        parts.append(val[pos:])
+        budget[0] -= len(val) - pos
+        if budget[0] < 0:
+            raise _TooLarge
+        return "".join(parts)
 
     # -- directives --------------------------------------------------------------
     def _directive(self, name: str, rest: str, loc: SourceLoc, conds: list[_Cond],
@@ -267,14 +392,14 @@ class Preprocessor:
                 self.sink.error("RG0107", f"function-like macro '{m.group(0)}' is not supported",
                                 loc, "IDL files only need object-like #define NAME [value]")
                 return None
-            self.macros[m.group(0)] = after.strip()
+            self._set_macro(m.group(0), after.strip())
             return None
         if name == "undef":
             m = _IDENT.match(rest)
             if not m:
                 self.sink.error("RG0107", "#undef needs a macro name", loc)
             else:
-                self.macros.pop(m.group(0), None)
+                self._set_macro(m.group(0), None)
             return None
         if name == "include":
             self._include(rest, loc, folder)
@@ -324,38 +449,45 @@ class Preprocessor:
             return (m.group(0) in self.macros) == (kind == "ifdef")
         try:
             return bool(evaluate_condition(rest, self.macros))
-        except (ValueError, SyntaxError, ZeroDivisionError, RecursionError) as exc:
+        except RecursionError:
+            self.sink.error("RG0106", "#if expression nested too deeply", loc)
+            return False
+        except (ValueError, SyntaxError, ZeroDivisionError) as exc:
             self.sink.error("RG0106", f"cannot evaluate #if expression: {exc}", loc,
                             "use defined(NAME), integers and C operators")
             return False
 
 
-def _segments(line: str):
-    """Split a line into (text, is_code) pieces; strings and comments are not code."""
-    i, start, n = 0, 0, len(line)
-    while i < n:
-        c = line[i]
-        if c in "\"'":
-            if i > start:
-                yield line[start:i], True
-            j = i + 1
-            while j < n and line[j] != c:
-                j += 2 if line[j] == "\\" else 1
-            yield line[i:j + 1], False
-            i = start = j + 1
-        elif line.startswith("//", i) or line.startswith("/*", i):
-            if i > start:
-                yield line[start:i], True
-            yield line[i:], False  # rest of the line: macros in comments are never expanded
-            return
-        else:
-            i += 1
-    if start < n:
-        yield line[start:], True
+class _TooLarge(Exception):
+    """A macro expansion went past MAX_MACRO_EXPANSION."""
 
 
 _INTERESTING = re.compile(r'["\']|//|/\*')
 _KEY_DIRECTIVE = re.compile(r"//\s*@key\b")
+# A quoted literal up to its closing quote (or the end of the line, or a final backslash).
+# Possessive repeats: linear time and no regex-engine state per character on long strings.
+_QUOTED = {q: re.compile(q + r"(?:[^" + q + r"\\]++|\\.)*+[" + q + r"\\]?") for q in "\"'"}
+
+
+def _segments(line: str):
+    """Split a line into (start, end, is_code) pieces; strings and comments are not code."""
+    start, n = 0, len(line)
+    while start < n:
+        m = _INTERESTING.search(line, start)
+        if m is None:
+            break
+        i = m.start()
+        if i > start:
+            yield start, i, True
+        if m.group(0) in "\"'":
+            j = _QUOTED[m.group(0)].match(line, i).end()
+            yield i, j, False
+            start = j
+        else:
+            yield i, n, False  # rest of the line: macros in comments are never expanded
+            return
+    if start < n:
+        yield start, n, True
 
 
 def _scan_line(line: str, in_comment: SourceLoc | None, file: str, lineno: int):
@@ -383,10 +515,7 @@ def _scan_line(line: str, in_comment: SourceLoc | None, file: str, lineno: int):
             in_comment = SourceLoc(file, lineno, i + 1, lineno, i + 3)
             i += 2
             continue
-        j = i + 1  # a string or char literal: skip to its closing quote
-        while j < n and line[j] != tok:
-            j += 2 if line[j] == "\\" else 1
-        i = j + 1
+        i = _QUOTED[tok].match(line, i).end()  # a string or char literal: skip to its closing quote
     return in_comment, None
 
 

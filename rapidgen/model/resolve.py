@@ -21,6 +21,8 @@ from rapidgen.model.order import check_recursion, dependency_order
 
 _TYPE_KINDS = frozenset({"struct", "union", "enum", "bitmask", "bitset", "typedef", "native", "forward"})
 _MAX_TYPE_NESTING = 100
+_MAX_SCOPE_DEPTH = 100  # modules (and valuetypes) nested in one another
+_MAX_NAME_HINTS = 100  # unknown names that get a did-you-mean hint (each costs a scan of all names)
 _DISCRIMINATOR_PRIMITIVES = frozenset({"int8", "uint8", "int16", "uint16", "int32", "uint32", "int64",
                                        "uint64", "char8", "char16", "boolean", "octet"})
 
@@ -50,6 +52,9 @@ class Resolver:
         self.busy: dict[str, None] = {}  # being resolved, in order (an ordered set)
         self.too_deep = False  # a "nested too deeply" error was reported (once is enough)
         self._lookups: dict[tuple, _Sym | None] = {}
+        self._by_enum: dict[str, dict[str, ir.Enumerator]] = {}  # enum -> its enumerators by name
+        self._pools: dict[frozenset[str], list[str]] = {}  # declaration names of some kinds, for hints
+        self._hints_left = _MAX_NAME_HINTS
         self.evaluator = ConstEvaluator(sink)
         self.annotations = AnnotationChecker(sink, self.evaluator)
 
@@ -71,6 +76,13 @@ class Resolver:
 
     def _collect(self, defs: tuple[ast.Definition, ...], scope: tuple[str, ...]) -> None:
         for d in defs:
+            if isinstance(d, (ast.ModuleDecl, ast.StructDecl)) and len(scope) >= _MAX_SCOPE_DEPTH:
+                # Name lookups walk every enclosing scope: thousands of levels make them quadratic.
+                if not self.too_deep:
+                    self.sink.error("RG0201", f"'{d.name}' is nested more than {_MAX_SCOPE_DEPTH} scopes deep",
+                                    d.loc, "flatten the modules")
+                self.too_deep = True
+                continue
             if isinstance(d, ast.ModuleDecl):
                 path = scope + (d.name,)
                 self._add(_Sym("module", _join(path), d, path, d.loc))
@@ -132,8 +144,16 @@ class Resolver:
         return found
 
     def _unknown(self, name: ast.ScopedName, scope: tuple[str, ...], what: str, kinds: frozenset[str]) -> None:
-        pool = [s.scoped.rsplit("::", 1)[-1] for s in self.syms.values() if s.kind in kinds]
-        hint = did_you_mean(name.parts[-1], pool)
+        hint = None
+        # A hint compares the name with every declaration: past the first few unknown names
+        # (a file of thousands of misspellings), that would make the run quadratic.
+        if self._hints_left > 0:
+            self._hints_left -= 1
+            pool = self._pools.get(kinds)
+            if pool is None:
+                pool = self._pools[kinds] = [s.scoped.rsplit("::", 1)[-1] for s in self.syms.values()
+                                             if s.kind in kinds]
+            hint = did_you_mean(name.parts[-1], pool)
         self.sink.error("RG0203", f"unknown {what} '{name}'", name.loc, hint)
 
     # == constants ========================================================================
@@ -148,7 +168,7 @@ class Resolver:
                 if not isinstance(enum, ir.Enum):
                     return None
                 # By name: enumerators with errors are left out of the IR, so indexes shift.
-                e = next((x for x in enum.enumerators if x.name == sym.decl.name), None)  # type: ignore[attr-defined]
+                e = self._enumerators(enum).get(sym.decl.name)  # type: ignore[attr-defined]
                 if e is None:  # this enumerator's own error is already reported
                     return None
                 return Typed("enum", ir.EnumValue(enum.scoped_name, e.name, e.value))
@@ -160,6 +180,13 @@ class Resolver:
                 return None
             return Typed(_category(self._target(const.type)), const.value)
         return lookup
+
+    def _enumerators(self, enum: ir.Enum) -> dict[str, ir.Enumerator]:
+        """An enum's enumerators by name, built once (a scan per use was quadratic)."""
+        index = self._by_enum.get(enum.scoped_name)
+        if index is None:
+            index = self._by_enum[enum.scoped_name] = {e.name: e for e in enum.enumerators}
+        return index
 
     def _target(self, t: ir.Type) -> Target:
         """What a constant of IR type t must hold."""
@@ -419,8 +446,8 @@ class Resolver:
             m = self._member(case.member, case.member.declarators[0], outer)
             if m is not None:
                 cases.append(ir.UnionCase(tuple(labels), is_default, m))  # type: ignore[arg-type]
-        names = self._check_member_names([c.member for c in cases], (), sym.scoped)
-        cases = [c for c in cases if c.member in names]
+        kept = {id(m) for m in self._check_member_names([c.member for c in cases], (), sym.scoped)}
+        cases = [c for c in cases if id(c.member) in kept]  # (by identity: `in` a list was quadratic)
         checked = self._anns(d.annotations, "union", outer)
         return ir.Union(d.name, sym.scoped, d.loc, disc, tuple(cases), checked.annotations,
                         self._extensibility(checked), bool(disc_checked.get("key", default=False)),
