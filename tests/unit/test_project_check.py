@@ -43,11 +43,16 @@ def test_bad_project_file_is_a_located_error(tmp_path, monkeypatch):
     assert res.code == 1 and res.err.startswith("rapidgen.yaml:4:1: error[RG1010]: YAML syntax error")
 
 
-def test_unknown_target_language(tmp_path, monkeypatch):
+def test_unknown_target_language_in_the_project_file(tmp_path, monkeypatch):
+    # on the command line it is a usage error (exit 2, tests/unit/test_cli_usage.py); in the
+    # project file it is an error in the input
     make_project(tmp_path)
+    (tmp_path / "rapidgen.yaml").write_text(
+        "targets:\n  - name: s\n    idl: [idl/*.idl]\n    lang: [cobol]\n    out: gen/s\n")
     monkeypatch.chdir(tmp_path)
-    res = rapidgen("generate", "idl/s.idl", "--lang", "cobol", "-o", "out")
+    res = rapidgen("check", "--fix")
     assert res.code == 1 and "unknown or unavailable target 'cobol'" in res.err
+    assert not (tmp_path / "gen").exists()
 
 
 def test_generating_a_second_language_keeps_the_first(tmp_path, monkeypatch):
