@@ -63,7 +63,7 @@ def notice(source: str) -> str:
 class UnwritableCharacter(GenerationError):
     """A generated file would hold a character its format cannot carry, even escaped."""
 
-    CODE = "RG0820"
+    CODE = "RG0830"
 
     def __init__(self, path: str, char: str, line: int, col: int, loc: SourceLoc | None) -> None:
         super().__init__(f"{path}:{line}:{col}: {visible(char)}")

@@ -111,7 +111,7 @@ def test_xml_writer_refuses_forbidden_characters_with_a_located_diagnostic(k10, 
     sink = DiagnosticSink()
     info.value.report(sink)
     [diag] = sink.errors
-    assert diag.code == "RG0820" and f"U+{ord(bad):04X}" in diag.message
+    assert diag.code == "RG0830" and f"U+{ord(bad):04X}" in diag.message
     assert diag.loc.file.endswith("k10.yaml") and diag.loc.line >= 1  # the descriptor's partition field
     assert diag.loc == k10.spec.at("partition")
 

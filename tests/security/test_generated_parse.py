@@ -104,3 +104,33 @@ def test_coding_declaration_in_a_file_name_does_not_change_the_source_encoding(t
     assert res.code == 0, res.err
     assert_parses(tmp_path / "out")
     assert_imports_cleanly(tmp_path / "out" / "python", "rapid_types")
+
+
+def test_deserialize_raises_one_documented_error_for_bad_bytes():
+    """Issue 8, item 13: cyclonedds raises struct.error, UnicodeDecodeError, ... on bad bytes;
+    the generated classes raise _support.DeserializeError (a ValueError) instead."""
+    code = """
+import random
+import rapid_types.rapid as r
+from rapid_types._support import DeserializeError
+rng = random.Random(8)
+causes = set()
+for good in (r.Ack(), r.TextMessage(), r.CommandConfig(), r.AgentState(), r.Command(),
+             r.ParameterUnion(s="text")):
+    cls = type(good)
+    assert cls.deserialize(good.serialize()) == good  # good bytes: cyclonedds' answer
+    for _ in range(300):
+        data = bytearray(good.serialize())
+        for _ in range(rng.randint(1, 6)):
+            data[rng.randrange(len(data))] = rng.randrange(256)
+        data = data[:rng.randint(0, len(data))] if rng.random() < 0.3 else data
+        try:
+            cls.deserialize(bytes(data))
+        except DeserializeError as exc:
+            assert isinstance(exc, ValueError) and exc.__cause__ is not None
+            causes.add(type(exc.__cause__).__name__)
+print(sorted(causes))
+"""
+    res = run_python(code, cwd=ROOT / "generated" / "rapid" / "python")
+    assert res.code == 0, res.err
+    assert "error" in res.out and "UnicodeDecodeError" in res.out  # both kinds were provoked, and wrapped

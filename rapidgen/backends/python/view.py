@@ -340,7 +340,8 @@ class PythonViewBuilder:
             doc += f" : {s.base}, flattened (base members first)"
         doc += "." + (f" Key: {', '.join(s.keys)}." if s.keys else "")
         return ClassView("struct", name, f"idl.IdlStruct, typename={typename}", doc,
-                         ["@dataclass"] + self._class_decorators(s), views, self._key_notes(s, top_keys))
+                         [self._checked(mapper), "@dataclass"] + self._class_decorators(s), views,
+                         self._key_notes(s, top_keys))
 
     def _annotation(self, mapper: TypeMapper, t: ir.Type, used: set[str], loc: SourceLoc) -> str:
         """A member's annotation; what cannot be mapped is recorded (every member is
@@ -367,6 +368,11 @@ class PythonViewBuilder:
         except UnicodeEncodeError:  # a lone surrogate (\ud800 escape): no UTF-8 bytes to hash
             raise Unsupported(f"@hashid of member '{m.name}' is not valid Unicode text (lone surrogate)", m.loc)
         return int.from_bytes(digest[:4], "little") & 0x0FFFFFFF
+
+    @staticmethod
+    def _checked(mapper: TypeMapper) -> str:
+        """deserialize() raises one documented error for bad bytes (_support.DeserializeError)."""
+        return f"@{mapper.ctx.support()}.checked"
 
     def _class_decorators(self, d: ir.Struct | ir.Union) -> list[str]:
         out = [f"@annotate.{d.extensibility}"]
@@ -423,7 +429,8 @@ class PythonViewBuilder:
         if u.discriminator_key:
             bases += ", discriminator_is_key=True"
         doc = f"IDL union {u.scoped_name} switch ({u.discriminator})."
-        return ClassView("union", name, f"{bases}, typename={typename}", doc, self._class_decorators(u), views)
+        return ClassView("union", name, f"{bases}, typename={typename}", doc,
+                         [self._checked(mapper)] + self._class_decorators(u), views)
 
     def _enum(self, e: ir.Enum, name: str, typename: str, used: set[str]) -> ClassView:
         names = self.enumerators[e.scoped_name]

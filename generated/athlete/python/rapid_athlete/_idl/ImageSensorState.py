@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .Header import Header
 from .ImageMetadata import ImageMetadata
 
@@ -13,6 +14,7 @@ from .ImageMetadata import ImageMetadata
 IMAGESENSOR_STATE_TOPIC = "rapid_imagesensor_state"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class ImageSensorState(idl.IdlStruct, typename="rapid.ImageSensorState"):

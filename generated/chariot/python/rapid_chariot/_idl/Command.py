@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .BaseTypes import ParameterSequence16, String32, String64
 from .Header import Header
 
@@ -23,6 +24,7 @@ class QueueAction(idl.IdlEnum, typename="rapid.QueueAction"):
     QUEUE_REPLACE = 4
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Command(idl.IdlStruct, typename="rapid.Command"):

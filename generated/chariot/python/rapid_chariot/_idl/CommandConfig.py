@@ -7,6 +7,7 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .BaseTypes import KeyTypeSequence16, String32, String64
 from .Header import Header
 
@@ -14,6 +15,7 @@ from .Header import Header
 COMMAND_CONFIG_TOPIC = "rapid_command_config"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class CommandDef(idl.IdlStruct, typename="rapid.CommandDef"):
@@ -25,6 +27,7 @@ class CommandDef(idl.IdlStruct, typename="rapid.CommandDef"):
     parameters: KeyTypeSequence16 = field(default_factory=list)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class SubsystemType(idl.IdlStruct, typename="rapid.SubsystemType"):
@@ -34,6 +37,7 @@ class SubsystemType(idl.IdlStruct, typename="rapid.SubsystemType"):
     commands: types.sequence[CommandDef, 100] = field(default_factory=list)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Subsystem(idl.IdlStruct, typename="rapid.Subsystem"):
@@ -43,6 +47,7 @@ class Subsystem(idl.IdlStruct, typename="rapid.Subsystem"):
     subsystemTypeName: String32 = ""
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class CommandConfig(idl.IdlStruct, typename="rapid.CommandConfig"):

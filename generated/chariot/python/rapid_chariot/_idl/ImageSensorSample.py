@@ -16,6 +16,7 @@ from .ImageMetadata import ImageMetadata
 IMAGESENSOR_SAMPLE_TOPIC = "rapid_imagesensor_sample"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class ImageSensorSample(idl.IdlStruct, typename="rapid.ImageSensorSample"):

@@ -7,6 +7,7 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .BaseTypes import String128, String32, String64
 from .Header import Header
 
@@ -14,6 +15,7 @@ from .Header import Header
 JOINT_CONFIG_TOPIC = "rapid_joint_config"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class JointDef(idl.IdlStruct, typename="rapid.JointDef"):
@@ -23,6 +25,7 @@ class JointDef(idl.IdlStruct, typename="rapid.JointDef"):
     dof: String64 = ""
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class JointConfig(idl.IdlStruct, typename="rapid.JointConfig"):

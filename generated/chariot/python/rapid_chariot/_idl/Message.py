@@ -6,9 +6,11 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .Header import Header
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Message(idl.IdlStruct, typename="rapid.Message"):

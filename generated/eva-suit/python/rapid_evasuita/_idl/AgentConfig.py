@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .BaseTypes import KeyTypeValueSequence64, String128Sequence64, String16Sequence16
 from .Header import Header
 
@@ -13,6 +14,7 @@ from .Header import Header
 AGENT_CONFIG_TOPIC = "rapid_agent_config"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class AgentConfig(idl.IdlStruct, typename="rapid.AgentConfig"):

@@ -7,6 +7,7 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .BaseTypes import (
     KeyTypeValueSequence16,
     NamedFloatRangeValue,
@@ -20,6 +21,7 @@ IMG_V_FOV = "IMG_V_FOV"
 IMG_H_FOV = "IMG_H_FOV"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class ImageMetadata(idl.IdlStruct, typename="rapid.ImageMetadata"):

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .BaseTypes import String128, String64
 from .Header import Header
 
@@ -32,6 +33,7 @@ class AckCompletedStatus(idl.IdlEnum, typename="rapid.AckCompletedStatus"):
     ACK_COMPLETED_CANCELED = 4
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Ack(idl.IdlStruct, typename="rapid.Ack"):

@@ -7,6 +7,7 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .BaseTypes import String32, Vec3d
 from .Header import Header
 
@@ -25,6 +26,7 @@ class GpsFixType(idl.IdlEnum, typename="rapid.ext.arc.GpsFixType"):
     GPS_FIX_RTK = 4
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class GpsConfig(idl.IdlStruct, typename="rapid.ext.arc.GpsConfig"):
@@ -37,6 +39,7 @@ class GpsConfig(idl.IdlStruct, typename="rapid.ext.arc.GpsConfig"):
     antennaOffset: Vec3d = field(default_factory=lambda: [0.0] * 3)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class GpsSample(idl.IdlStruct, typename="rapid.ext.arc.GpsSample"):

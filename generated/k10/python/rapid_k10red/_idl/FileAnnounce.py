@@ -7,6 +7,7 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .BaseTypes import KeyTypeValueSequence16, String256, String64
 from .Header import Header
 
@@ -14,6 +15,7 @@ from .Header import Header
 FILEANNOUNCE_TOPIC = "rapid_fileannounce"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class FileAnnounce(idl.IdlStruct, typename="rapid.FileAnnounce"):

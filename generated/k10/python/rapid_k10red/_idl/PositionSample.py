@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .BaseTypes import Transform3D, ValueSequence64
 from .Header import Header
 
@@ -13,6 +14,7 @@ from .Header import Header
 POSITION_SAMPLE_TOPIC = "rapid_position_sample"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class PositionSample(idl.IdlStruct, typename="rapid.PositionSample"):

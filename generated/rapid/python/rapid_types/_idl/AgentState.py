@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .BaseTypes import ValueSequence64
 from .Header import Header
 
@@ -13,6 +14,7 @@ from .Header import Header
 AGENT_STATE_TOPIC = "rapid_agent_state"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class AgentState(idl.IdlStruct, typename="rapid.AgentState"):

@@ -79,6 +79,7 @@ class DataType(idl.IdlEnum, typename="rapid.DataType"):
     RAPID_MAT33f = 7
 
 
+@_support.checked
 @annotate.final
 class ParameterUnion(idl.IdlUnion, discriminator=DataType, typename="rapid.ParameterUnion"):
     """IDL union rapid::ParameterUnion switch (rapid::DataType)."""
@@ -105,6 +106,7 @@ ValueSequence64 = types.typedef["rapid.ValueSequence64", types.sequence[Paramete
 ValueSequence128 = types.typedef["rapid.ValueSequence128", types.sequence[ParameterUnion, 128]]
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class KeyTypePair(idl.IdlStruct, typename="rapid.KeyTypePair"):
@@ -121,6 +123,7 @@ KeyTypeSequence64 = types.typedef["rapid.KeyTypeSequence64", types.sequence[KeyT
 KeyTypeSequence128 = types.typedef["rapid.KeyTypeSequence128", types.sequence[KeyTypePair, 128]]
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class KeyTypeValueTriple(idl.IdlStruct, typename="rapid.KeyTypeValueTriple"):
@@ -138,6 +141,7 @@ KeyTypeValueSequence64 = types.typedef["rapid.KeyTypeValueSequence64", types.seq
 KeyTypeValueSequence128 = types.typedef["rapid.KeyTypeValueSequence128", types.sequence[KeyTypeValueTriple, 128]]
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Transform3D(idl.IdlStruct, typename="rapid.Transform3D"):
@@ -147,6 +151,7 @@ class Transform3D(idl.IdlStruct, typename="rapid.Transform3D"):
     rot: Mat33f = field(default_factory=lambda: [0.0] * 9)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class NamedFloatSequence(idl.IdlStruct, typename="rapid.NamedFloatSequence"):
@@ -156,6 +161,7 @@ class NamedFloatSequence(idl.IdlStruct, typename="rapid.NamedFloatSequence"):
     values: FloatSequence64 = field(default_factory=list)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class FloatRange(idl.IdlStruct, typename="rapid.FloatRange"):
@@ -165,6 +171,7 @@ class FloatRange(idl.IdlStruct, typename="rapid.FloatRange"):
     max: types.float32 = 0.0
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class FloatRangeValue(idl.IdlStruct, typename="rapid.FloatRangeValue"):
@@ -175,6 +182,7 @@ class FloatRangeValue(idl.IdlStruct, typename="rapid.FloatRangeValue"):
     value: types.float32 = 0.0
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class OptionSetValue(idl.IdlStruct, typename="rapid.OptionSetValue"):
@@ -184,6 +192,7 @@ class OptionSetValue(idl.IdlStruct, typename="rapid.OptionSetValue"):
     options: String32Sequence16 = field(default_factory=list)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class NamedFloatRangeValue(idl.IdlStruct, typename="rapid.NamedFloatRangeValue"):
@@ -193,6 +202,7 @@ class NamedFloatRangeValue(idl.IdlStruct, typename="rapid.NamedFloatRangeValue")
     range: FloatRangeValue = field(default_factory=FloatRangeValue)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class NamedOptionSetValue(idl.IdlStruct, typename="rapid.NamedOptionSetValue"):

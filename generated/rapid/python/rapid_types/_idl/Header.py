@@ -7,9 +7,11 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .BaseTypes import String32
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Header(idl.IdlStruct, typename="rapid.Header"):

@@ -7,6 +7,7 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .BaseTypes import FloatSequence64, LongSequence64, NamedFloatSequence
 from .Header import Header
 
@@ -14,6 +15,7 @@ from .Header import Header
 JOINT_SAMPLE_TOPIC = "rapid_joint_sample"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class JointSample(idl.IdlStruct, typename="rapid.JointSample"):

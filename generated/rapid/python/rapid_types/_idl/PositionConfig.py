@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .BaseTypes import KeyTypeValueSequence64, RotationEncoding, String128
 from .Header import Header
 
@@ -13,6 +14,7 @@ from .Header import Header
 POSITION_CONFIG_TOPIC = "rapid_position_config"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class PositionConfig(idl.IdlStruct, typename="rapid.PositionConfig"):

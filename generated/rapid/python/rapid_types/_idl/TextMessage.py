@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .BaseTypes import String2K, String64
 from .Header import Header
 
@@ -24,6 +25,7 @@ class MessageLevel(idl.IdlEnum, typename="rapid.MessageLevel"):
     MSG_CRITICAL = 5
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class TextMessage(idl.IdlStruct, typename="rapid.TextMessage"):

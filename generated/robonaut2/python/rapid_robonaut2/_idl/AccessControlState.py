@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 
+from .. import _support
 from .BaseTypes import String32, String32Sequence16
 from .Header import Header
 
@@ -13,6 +14,7 @@ from .Header import Header
 ACCESSCONTROL_STATE_TOPIC = "rapid_accesscontrol_state"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class AccessControlState(idl.IdlStruct, typename="rapid.AccessControlState"):

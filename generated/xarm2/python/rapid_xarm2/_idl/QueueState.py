@@ -7,6 +7,7 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .Command import Command
 from .Header import Header
 
@@ -42,6 +43,7 @@ class StatusType(idl.IdlEnum, typename="rapid.StatusType"):
     Q_STATUS_FORGOTTEN_BY_ROBOT = 13
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class CommandRecord(idl.IdlStruct, typename="rapid.CommandRecord"):
@@ -52,6 +54,7 @@ class CommandRecord(idl.IdlStruct, typename="rapid.CommandRecord"):
     trStatus: StatusType = StatusType.Q_STATUS_INIT
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class SingleQueue(idl.IdlStruct, typename="rapid.SingleQueue"):
@@ -60,6 +63,7 @@ class SingleQueue(idl.IdlStruct, typename="rapid.SingleQueue"):
     records: types.sequence[CommandRecord, 64] = field(default_factory=list)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class QueueState(idl.IdlStruct, typename="rapid.QueueState"):

@@ -7,10 +7,13 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
+
 
 T = types.typedef["m.T", types.int32]
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class U(idl.IdlStruct, typename="m.U"):
@@ -19,6 +22,7 @@ class U(idl.IdlStruct, typename="m.U"):
     t: T = 0
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class S(idl.IdlStruct, typename="m.S"):

@@ -55,6 +55,7 @@ class Flags(idl.IdlBitmask, typename="demo.Flags"):
 FAVOURITE = Color.GREEN
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Base(idl.IdlStruct, typename="demo.Base"):
@@ -65,6 +66,7 @@ class Base(idl.IdlStruct, typename="demo.Base"):
     count: types.int32 = 0
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Derived(idl.IdlStruct, typename="demo.Derived"):
@@ -81,6 +83,7 @@ class Derived(idl.IdlStruct, typename="demo.Derived"):
 BaseAlias = types.typedef["demo.BaseAlias", Base]
 
 
+@_support.checked
 @dataclass
 @annotate.appendable
 class App(idl.IdlStruct, typename="demo.App"):
@@ -91,6 +94,7 @@ class App(idl.IdlStruct, typename="demo.App"):
     opt_base: Optional[Base] = None
 
 
+@_support.checked
 @dataclass
 @annotate.mutable
 class Mut(idl.IdlStruct, typename="demo.Mut"):
@@ -101,6 +105,7 @@ class Mut(idl.IdlStruct, typename="demo.Mut"):
     b: str = ""
 
 
+@_support.checked
 @dataclass
 @annotate.mutable
 @annotate.autoid("hash")
@@ -113,6 +118,7 @@ class Hashed(idl.IdlStruct, typename="demo.Hashed"):
     annotate.member_id("b", 36855673)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Defaults(idl.IdlStruct, typename="demo.Defaults"):
@@ -123,6 +129,7 @@ class Defaults(idl.IdlStruct, typename="demo.Defaults"):
     x: types.float64 = 1.5
 
 
+@_support.checked
 @annotate.final
 class U(idl.IdlUnion, discriminator=types.int16, typename="demo.U"):
     """IDL union demo::U switch (short)."""
@@ -132,6 +139,7 @@ class U(idl.IdlUnion, discriminator=types.int16, typename="demo.U"):
     d: types.default[types.float64]
 
 
+@_support.checked
 @annotate.final
 class E(idl.IdlUnion, discriminator=Color, typename="demo.E"):
     """IDL union demo::E switch (demo::Color)."""
@@ -141,6 +149,7 @@ class E(idl.IdlUnion, discriminator=Color, typename="demo.E"):
     b: types.case[[Color.BLUE], Base]
 
 
+@_support.checked
 @annotate.final
 class B(idl.IdlUnion, discriminator=bool, typename="demo.B"):
     """IDL union demo::B switch (boolean)."""
@@ -148,6 +157,7 @@ class B(idl.IdlUnion, discriminator=bool, typename="demo.B"):
     yes: types.case[[True], types.int32]
 
 
+@_support.checked
 @annotate.final
 class K(idl.IdlUnion, discriminator=types.int32, discriminator_is_key=True, typename="demo.K"):
     """IDL union demo::K switch (long)."""
@@ -155,6 +165,7 @@ class K(idl.IdlUnion, discriminator=types.int32, discriminator_is_key=True, type
     zero: types.case[[0], types.int32]
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Node(idl.IdlStruct, typename="demo.Node"):
@@ -164,6 +175,7 @@ class Node(idl.IdlStruct, typename="demo.Node"):
     children: types.sequence["Node"] = field(default_factory=list)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Keyed(idl.IdlStruct, typename="demo.Keyed"):
@@ -177,6 +189,7 @@ class Keyed(idl.IdlStruct, typename="demo.Keyed"):
     annotate.key("v")
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Containers(idl.IdlStruct, typename="demo.Containers"):
@@ -204,6 +217,7 @@ class Containers(idl.IdlStruct, typename="demo.Containers"):
     flags: Flags = field(default_factory=Flags)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Item(idl.IdlStruct, typename="demo.inner.Item"):

@@ -7,10 +7,13 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
+
 
 String32 = types.typedef["rapid.String32", types.bounded_str[32]]
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Header(idl.IdlStruct, typename="rapid.Header"):
@@ -22,6 +25,7 @@ class Header(idl.IdlStruct, typename="rapid.Header"):
     annotate.key("assetName")
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Message(idl.IdlStruct, typename="rapid.Message"):

@@ -7,6 +7,7 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 from .Base import Header
 
 
@@ -20,6 +21,7 @@ class FixType(idl.IdlEnum, typename="rapid.ext.arc.FixType"):
 GPS_TOPIC = "rapid_ext_arc_gps"
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class GpsSample(idl.IdlStruct, typename="rapid.ext.arc.GpsSample"):
@@ -31,6 +33,7 @@ class GpsSample(idl.IdlStruct, typename="rapid.ext.arc.GpsSample"):
     fix: FixType = FixType.FIX_NONE
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Extra(idl.IdlStruct, typename="rapid.Extra"):

@@ -7,7 +7,10 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
 
+
+@_support.checked
 @dataclass
 @annotate.final
 class types_(idl.IdlStruct, typename="from.types"):
@@ -16,6 +19,7 @@ class types_(idl.IdlStruct, typename="from.types"):
     x: types.int32 = 0
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class field_(idl.IdlStruct, typename="from.field"):
@@ -28,6 +32,7 @@ annotate_ = types.typedef["from.annotate", types.int32]
 range_ = 3
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class class_(idl.IdlStruct, typename="from.class_"):
@@ -36,6 +41,7 @@ class class_(idl.IdlStruct, typename="from.class_"):
     z: types.int32 = 0
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class class__(idl.IdlStruct, typename="from.class"):
@@ -50,6 +56,7 @@ class class__(idl.IdlStruct, typename="from.class"):
     annotate.member_name("class__", "class")
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Holder(idl.IdlStruct, typename="from.Holder"):
@@ -87,6 +94,7 @@ class Words(idl.IdlEnum, typename="from.Words"):
     import_ = 4
 
 
+@_support.checked
 @annotate.final
 class Pick(idl.IdlUnion, discriminator=types.int32, typename="from.Pick"):
     """IDL union from::Pick switch (long)."""

@@ -7,6 +7,8 @@ import cyclonedds.idl as idl
 import cyclonedds.idl.annotations as annotate
 import cyclonedds.idl.types as types
 
+from .. import _support
+
 
 String32 = types.typedef["rapid.String32", types.bounded_str[32]]
 String64 = types.typedef["rapid.String64", types.bounded_str[64]]
@@ -26,6 +28,7 @@ class DataType(idl.IdlEnum, typename="rapid.DataType"):
 DTYPE = DataType.RAPID_VEC3d
 
 
+@_support.checked
 @annotate.final
 class ParameterUnion(idl.IdlUnion, discriminator=DataType, typename="rapid.ParameterUnion"):
     """IDL union rapid::ParameterUnion switch (rapid::DataType)."""
@@ -36,6 +39,7 @@ class ParameterUnion(idl.IdlUnion, discriminator=DataType, typename="rapid.Param
     vec3d: types.case[[DataType.RAPID_VEC3d], Vec3d]
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Header(idl.IdlStruct, typename="rapid.Header"):
@@ -50,6 +54,7 @@ class Header(idl.IdlStruct, typename="rapid.Header"):
     serial: types.int32 = 0
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Message(idl.IdlStruct, typename="rapid.Message"):
@@ -59,6 +64,7 @@ class Message(idl.IdlStruct, typename="rapid.Message"):
     annotate.key("hdr")
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Ack(idl.IdlStruct, typename="rapid.Ack"):
@@ -71,6 +77,7 @@ class Ack(idl.IdlStruct, typename="rapid.Ack"):
     message: String64 = ""
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class Command(idl.IdlStruct, typename="rapid.Command"):
@@ -82,6 +89,7 @@ class Command(idl.IdlStruct, typename="rapid.Command"):
     arguments: types.sequence[ParameterUnion, 16] = field(default_factory=list)
 
 
+@_support.checked
 @dataclass
 @annotate.final
 class CommandRecord(idl.IdlStruct, typename="rapid.CommandRecord"):
