@@ -10,7 +10,7 @@ from rapidgen.asset.check_telemetry import check_telemetry
 from rapidgen.asset.check_values import ValueChecker
 from rapidgen.asset.dictionary import all_subsystems, effective_types, used_types
 from rapidgen.asset.facts import Facts, fits, utf8_len
-from rapidgen.asset.spec import AssetSpec, CommandSpec, Located, SubsystemTypeSpec
+from rapidgen.asset.spec import AssetSpec, CommandSpec, Located, SubsystemSpec, SubsystemTypeSpec
 from rapidgen.asset.standard import STANDARD_TYPES
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.model.ir import Model
@@ -188,7 +188,9 @@ class Checker:
             return
         rules = ac.rules
         self.duplicates(rules, lambda r: r.source, "command source", "source")
-        subs = {s.name: s for s in reversed(all_subsystems(self.spec))}
+        subs: dict[str, SubsystemSpec] = {}
+        for s in all_subsystems(self.spec):  # descriptor order (hints list them); first wins on duplicates
+            subs.setdefault(s.name, s)
         types = effective_types(self.spec)
         all_cmds = sorted({c.name for s in subs.values() if s.type in types for c in types[s.type].commands})
         for r in rules:

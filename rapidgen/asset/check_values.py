@@ -46,8 +46,10 @@ class ValueChecker:
                             "carries only RAPID DataTypes", loc,
                             f"use {better}" if better in shapes else f"use one of {', '.join(carried)}")
         else:
-            self.sink.error("RG1201", f"unknown DataType '{name}'", loc,
-                            did_you_mean(name, carried) or f"use one of {', '.join(carried)}")
+            # the whole list, not only the nearest name: a near miss may not be what was meant
+            close = did_you_mean(name, carried)
+            listed = f"the DataTypes are {', '.join(carried)}"
+            self.sink.error("RG1201", f"unknown DataType '{name}'", loc, f"{close} {listed}" if close else listed)
         return None
 
     def check(self, v: TypedValue, what: str) -> Shape | None:
@@ -93,7 +95,7 @@ class ValueChecker:
             err = None if x is None else self.number_error(x, shape, v.type)
             if err:
                 self.sink.error("RG1207", f"{field} of '{v.name}': {err}", v.at(field))
-        if v.min is not None and v.max is not None and v.min > v.max:
+        if _reversed(v):
             self.sink.error("RG1203", f"min {_g(v.min)} is greater than max {_g(v.max)} for '{v.name}'",
                             v.at("min"), "swap them")
 
@@ -119,6 +121,8 @@ class ValueChecker:
             if err:
                 self.sink.error("RG1207", f"default of '{v.name}': {err}", loc)
                 return
+            if _reversed(v):
+                continue  # RG1203 names the real mistake; no value lies in a reversed range
             if (v.min is not None and x < v.min) or (v.max is not None and x > v.max):
                 self.sink.error("RG1204", f"default {_g(x)} of '{v.name}' is outside its range "
                                 f"{_range_text(v)}", loc, "change the default or widen the range")
@@ -144,7 +148,7 @@ class ValueChecker:
                 self.sink.error("RG1306", f"{name} 'below: {t.below}' is not under 'above: {t.above}'",
                                 t.at("below"), "the normal band [below, above] would be empty")
             for side, x in (("below", t.below), ("above", t.above)):
-                if x is None:
+                if x is None or _reversed(v):  # a reversed range is reported once, as RG1203
                     continue
                 out = (v.min is not None and x <= v.min) if side == "below" else (v.max is not None and x >= v.max)
                 if out:
@@ -162,6 +166,11 @@ class ValueChecker:
         if warn.above is not None and crit.above is not None and crit.above < warn.above:
             self.sink.error("RG1306", f"critical 'above: {crit.above}' is below warning 'above: {warn.above}'",
                             crit.at("above"), "a value rising must pass the warning threshold first")
+
+
+def _reversed(v: TypedValue) -> bool:
+    """min above max: every check against the range would fail, so only RG1203 reports it."""
+    return v.min is not None and v.max is not None and v.min > v.max
 
 
 def _range_text(v: TypedValue) -> str:

@@ -16,6 +16,7 @@ from typing import Callable, Iterable
 import jsonschema
 from jsonschema.exceptions import ValidationError
 
+from rapidgen.asset.facts import STATIC_SHAPES
 from rapidgen.asset.yamlread import YamlDoc
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink, Severity, SourceLoc, did_you_mean
 
@@ -138,7 +139,7 @@ def _translate(e: ValidationError, doc: YamlDoc):
         allowed = list(sch.get("properties", {}))
         for k in (k for k in inst if k not in allowed):
             yield ("RG1021", f"unknown key {_shown(k)} in {where}", doc.key_loc(path + (k,)),
-                   did_you_mean(k, allowed) or f"allowed here: {', '.join(allowed)}")
+                   did_you_mean(k, allowed) or _comma_hint(doc, path, k) or f"allowed here: {', '.join(allowed)}")
     elif kw == "type":
         want = " or ".join(_SCHEMA_TYPES.get(t, t) for t in (val if isinstance(val, list) else [val]))
         got = _NAMES.get(type(inst), "a value")
@@ -148,7 +149,7 @@ def _translate(e: ValidationError, doc: YamlDoc):
             # YAML 1.1 reads `on`, `yes`, `0x10` as true, true, 16: name both spellings
             got += f" ({shown})" if written == shown else f" ({written}, which YAML reads as {shown})"
             if val == "string" and isinstance(inst, (int, float, bool)):
-                hint = f"quote it: '{written}'"
+                hint = _string_hint(doc, path, written)
         yield "RG1022", f"{where} must be {want}, not {got}", loc, hint
     elif kw in ("enum", "const"):
         options = [str(v) for v in (val if kw == "enum" else [val])]
@@ -171,6 +172,41 @@ def _translate(e: ValidationError, doc: YamlDoc):
                doc.key_loc(path) if path else loc, None)
     else:  # a keyword the schema may grow later: short and located, never jsonschema's dump
         yield "RG1029", f"{where} is not valid here ({kw})", loc, hint
+
+
+def _comma_hint(doc: YamlDoc, path: tuple, key: str) -> str | None:
+    """In {a: b, c} a comma ends b: an unknown key right after unquoted text is most
+    likely the rest of that text."""
+    prev = doc.split_values.get(path + (key,))
+    if prev is None:
+        return None
+    value = _value_at(doc.data, path + (prev,))
+    whole = f"{value}, {key}" if isinstance(value, str) else ""
+    example = f' ({prev}: "{whole}")' if whole and len(whole) <= 60 and not set(whole) & set('"\\') else ""
+    return f"a comma inside {{ }} ends a value: quote the value of '{prev}' if the comma is part of it{example}"
+
+
+def _string_hint(doc: YamlDoc, path: tuple, written: str) -> str:
+    """What to do about a number or boolean where a string belongs: usually quote it, but
+    not in the 'allowed' list of a numeric value, where a quoted number only meets RG1205."""
+    if len(path) >= 2 and path[-2] == "allowed":
+        owner = _value_at(doc.data, path[:-2])
+        dtype = owner.get("type") if isinstance(owner, dict) else None
+        shape = STATIC_SHAPES.get(dtype) if isinstance(dtype, str) else None
+        if shape is not None and shape.kind != "string":
+            instead = "it needs none" if shape.kind == "bool" else "give range: [min, max] or min:/max: instead"
+            return f"'allowed' values exist only for RAPID_STRING; for a {dtype} {instead}"
+    return f"quote it: '{written}'"
+
+
+def _value_at(data: object, path: tuple) -> object:
+    for p in path:
+        if isinstance(p, int) and isinstance(data, list) and p < len(data) or \
+                isinstance(p, str) and isinstance(data, dict) and p in data:
+            data = data[p]
+        else:
+            return None
+    return data
 
 
 def _size_message(kw: str, val, where: str, inst) -> str:

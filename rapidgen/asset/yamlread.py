@@ -45,6 +45,9 @@ class YamlDoc:
     locs: dict[Path, SourceLoc] = field(default_factory=dict)
     key_locs: dict[Path, SourceLoc] = field(default_factory=dict)
     texts: dict[Path, str] = field(default_factory=dict)
+    # key path -> the key before it, for a key in a flow mapping ({a: b, c}) that may be
+    # the rest of an unquoted value the comma cut short ({description: two modules, 12 nozzles})
+    split_values: dict[Path, str] = field(default_factory=dict)
 
     def written(self, path: Path, default: str) -> str:
         """The scalar at path as written in the file (booleans and numbers), else default."""
@@ -181,7 +184,7 @@ def parse_yaml(text: str, file: str, sink: DiagnosticSink,
             sink.error("RG1012", f"YAML nesting deeper than {MAX_DEPTH} levels", loc)
         return None
     except yaml.MarkedYAMLError as exc:
-        _syntax_error(exc, file, sink)
+        _syntax_error(exc, text, file, sink)
         return None
     except yaml.reader.ReaderError as exc:  # a control character the YAML reader refuses
         line = text.count("\n", 0, exc.position) + 1
@@ -209,8 +212,13 @@ def parse_yaml(text: str, file: str, sink: DiagnosticSink,
     return None if conv.failed else doc
 
 
-def _syntax_error(exc: yaml.MarkedYAMLError, file: str, sink: DiagnosticSink) -> None:
+def _syntax_error(exc: yaml.MarkedYAMLError, text: str, file: str, sink: DiagnosticSink) -> None:
     mark = exc.problem_mark or exc.context_mark
+    indentation = _indentation_error(exc, text)
+    if indentation is not None:  # at the offending line's first character, not at PyYAML's token
+        message, hint, line, col = indentation
+        sink.error("RG1010", f"YAML indentation error: {message}", SourceLoc(file, line, col, line, col + 1), hint)
+        return
     problem = (exc.problem or "syntax error").strip()
     hint = None
     if exc.context and exc.context_mark and exc.problem_mark and \
@@ -223,6 +231,61 @@ def _syntax_error(exc: yaml.MarkedYAMLError, file: str, sink: DiagnosticSink) ->
     if "\t" in problem or "found character '\\t'" in problem:
         hint = "YAML indentation must use spaces, not tabs"
     sink.error("RG1010", f"YAML syntax error: {problem}", _mark_loc(file, mark), hint)
+
+
+def _spaces(n: int) -> str:
+    return f"{n} space{'s' * (n != 1)}"
+
+
+def _indentation_error(exc: yaml.MarkedYAMLError, text: str) -> tuple[str, str, int, int] | None:
+    """(message, hint, line, column of the line's first character) in plain words when the error comes from a line's indentation, naming
+    the offending line and the line it fails to line up with; None for other errors.
+
+    PyYAML says "expected <block end>, but found ..." (context: the block the line falls
+    in) or, for a line indented deeper than a `key: value` above it, "mapping values are
+    not allowed here" (the line was read as more of that value, then its ':' is stray).
+    """
+    p, c = exc.problem_mark, exc.context_mark
+    problem, context = exc.problem or "", exc.context or ""
+    if p is None:
+        return None
+    lines = text.splitlines()
+    if p.line >= len(lines):
+        return None
+    here = lines[p.line]
+    pi = len(here) - len(here.lstrip(" "))
+    at = (p.line + 1, pi + 1)
+    if problem.startswith("expected <block end>") and context.startswith("while parsing a block") \
+            and c is not None and c.line < p.line:
+        kind, items = ("mapping", "keys") if "mapping" in context else ("list", "items")
+        ci, pl, cl = c.column, p.line + 1, c.line + 1
+        if p.column == ci and kind == "mapping" and "'-'" in problem:
+            return (f"line {pl} starts a list item at the indentation of the keys of the mapping "
+                    f"that starts at line {cl}",
+                    f"a list goes under a key ending in ':', indented more than that key; the keys "
+                    f"from line {cl} are indented {_spaces(ci)}", *at)
+        if p.column == ci and kind == "list":
+            return (f"line {pl} is at the indentation of the '-' of the list that starts at line {cl}",
+                    f"to put it in the item above, indent it like that item's first key; "
+                    f"to start a new item, begin line {pl} with '- '", *at)
+        return (f"line {pl} is indented {_spaces(pi)}, which lines up with no {kind} above it",
+                f"the {kind} it falls in starts at line {cl} with its {items} indented {_spaces(ci)}; "
+                f"indent line {pl} like the {items} it belongs with", *at)
+    if problem.startswith("mapping values are not allowed"):
+        colon = re.search(r":(\s|$)", here)
+        above = next((i for i in range(p.line - 1, -1, -1)
+                      if lines[i].strip() and not lines[i].lstrip().startswith("#")), None)
+        if colon is None or colon.start() != p.column or above is None:
+            return None
+        prev = lines[above]
+        qi = re.match(r" *(?:- +)*", prev).end()  # where its text starts, after any list dashes
+        if pi <= qi or prev.rstrip().endswith((":", "{", "[", ",")):
+            return None
+        return (f"line {p.line + 1} is indented more than line {above + 1}, so YAML reads it as more "
+                f"of line {above + 1}'s value",
+                f"line {above + 1} starts at column {qi + 1}, line {p.line + 1} at column {pi + 1}; "
+                f"indent line {p.line + 1} like the keys it belongs with", *at)
+    return None
 
 
 _SCALAR_TAGS = {
@@ -332,7 +395,12 @@ class _Converter:
 
     def mapping(self, node: yaml.MappingNode, path: Path, depth: int) -> dict:
         out: dict[str, object] = {}
+        before = None  # (key, value node) of the previous entry of a flow mapping
         for key_node, value_node in node.value:
+            if node.flow_style and isinstance(key_node, yaml.ScalarNode):
+                if before is not None and _cut_by_comma(before[1], key_node, value_node):
+                    self.doc.split_values[path + (key_node.value,)] = before[0]
+                before = (key_node.value, value_node)
             kloc = _span(self.doc.file, key_node)
             if not isinstance(key_node, yaml.ScalarNode):
                 self.error("RG1012", "mapping keys must be plain names", kloc)
@@ -353,6 +421,16 @@ class _Converter:
             self.doc.key_locs[path + (key,)] = kloc
             out[key] = self.value(value_node, path + (key,), depth + 1)
         return out
+
+
+def _cut_by_comma(prev_value: yaml.Node, key: yaml.ScalarNode, value: yaml.Node) -> bool:
+    """Whether a flow-mapping key probably continues the previous text value: it has no
+    value of its own and follows unquoted text, or reads as prose (has a space)."""
+    text = "tag:yaml.org,2002:str"
+    if not isinstance(prev_value, yaml.ScalarNode) or prev_value.tag != text:
+        return False
+    bare = isinstance(value, yaml.ScalarNode) and value.tag == "tag:yaml.org,2002:null" and value.value == ""
+    return bare and (prev_value.style is None or " " in key.value.strip())
 
 
 def load_yaml(path: str, shown: str, sink: DiagnosticSink) -> YamlDoc | None:
