@@ -45,6 +45,7 @@ class LineMap:
         self.starts: list[int] = []  # 0-based output line where each run starts
         self.origins: list[tuple[str, int]] = []  # (file, line) of each run's first line
         self.count = 0  # output lines so far
+        self._last = 0  # run of the last lookup
 
     def add(self, file: str, line: int, count: int = 1) -> None:
         if self.origins:
@@ -65,7 +66,9 @@ class LineMap:
             index += self.count
         if not 0 <= index < self.count:
             raise IndexError(index)
-        run = bisect.bisect_right(self.starts, index) - 1
+        run = self._last  # tokens arrive in order: usually the run of the previous lookup
+        if not (self.starts[run] <= index and (run + 1 == len(self.starts) or index < self.starts[run + 1])):
+            run = self._last = bisect.bisect_right(self.starts, index) - 1
         f, ln = self.origins[run]
         return f, ln + index - self.starts[run]
 
@@ -119,6 +122,7 @@ class Preprocessor:
         self.macros: dict[str, str] = dict(defines or {})
         self._valued = sum(1 for v in self.macros.values() if v)  # macros that expand to something
         self._expanded = 0  # characters added by macro expansion so far
+        self._expansions: dict[str, str] = {}  # name -> its expansion, until the next #define/#undef
         self._bytes_read = 0
         self.out: list[str] = []
         self.line_map = LineMap()
@@ -290,6 +294,7 @@ class Preprocessor:
     def _set_macro(self, name: str, value: str | None) -> None:
         """Define (value not None) or undefine a macro, keeping count of those with a value."""
         self._valued -= bool(self.macros.get(name))
+        self._expansions.clear()
         if value is None:
             self.macros.pop(name, None)
         else:
@@ -315,14 +320,15 @@ class Preprocessor:
         """The expansion of one use of a name in code, within the expansion limits."""
         if not self.macros.get(name) or self._expanded > MAX_EXPANDED_TOTAL:
             return name
-        budget = [MAX_MACRO_EXPANSION]
-        try:
-            text = self._macro_value(name, 0, budget)
-        except _TooLarge:
-            self.sink.error("RG0113", f"macro '{name}' expands to more than {MAX_MACRO_EXPANSION} characters", loc,
-                            "macros that use other macros more than once grow exponentially; "
-                            "define the value directly")
-            return name
+        text = self._expansions.get(name)
+        if text is None:
+            try:
+                text = self._expansions[name] = self._macro_value(name, 0, [MAX_MACRO_EXPANSION])
+            except _TooLarge:
+                self.sink.error("RG0113", f"macro '{name}' expands to more than {MAX_MACRO_EXPANSION} characters",
+                                loc, "macros that use other macros more than once grow exponentially; "
+                                "define the value directly")
+                return name
         self._expanded += len(text)
         if self._expanded > MAX_EXPANDED_TOTAL:
             self.sink.error("RG0113", f"macro expansions add more than {MAX_EXPANDED_TOTAL // (1024 * 1024)} "
