@@ -63,7 +63,7 @@ def test_out_of_range_float_and_missing_include_folder(tmp_path, monkeypatch):
 
 def test_device_files_are_bounded(monkeypatch):
     res = rapidgen("ir", "/dev/zero")
-    assert res.code == 1 and "error[RG0005]: '/dev/zero' is larger than 64 MiB" in res.err
+    assert res.code == 1 and "error[RG0005]: '/dev/zero' is larger than 16 MiB" in res.err
 
 
 def test_vectors_refuse_huge_arrays(tmp_path, monkeypatch):
