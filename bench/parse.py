@@ -289,7 +289,7 @@ def measure(tool: Tool, idl: Path, repeat: int) -> list[Run] | str:
 _FRONT_END = """
 import sys, time
 from rapidgen.diagnostics import DiagnosticSink
-from rapidgen.frontend import load_idl
+from rapidgen.idl.load import load_idl
 from rapidgen.idl.parse import _lean
 _lean()  # grammar tables: loaded once per process, like the imports
 start = time.perf_counter()

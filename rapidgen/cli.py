@@ -108,7 +108,7 @@ def report(sink: DiagnosticSink, stream=None) -> None:
 
 
 def _cmd_ir(args: argparse.Namespace) -> int:
-    from rapidgen.frontend import load_idl
+    from rapidgen.idl.load import load_idl
     from rapidgen.model.to_json import model_to_json
 
     sink = _sink(args)
@@ -130,7 +130,7 @@ def _cmd_ir(args: argparse.Namespace) -> int:
 
 
 def _cmd_summary(args: argparse.Namespace) -> int:
-    from rapidgen.frontend import load_idl
+    from rapidgen.idl.load import load_idl
 
     sink = _sink(args)
     model, pre = load_idl(args.files, args.include, sink, _defines(args.define))

@@ -60,7 +60,7 @@ def load_inputs(paths: list[str], include: list[str], sink: DiagnosticSink,
         if loaded is None or loaded.model is None or sink.has_errors:
             return None
         return Inputs(loaded.model, loaded, source_name(assets))
-    from rapidgen.frontend import load_idl
+    from rapidgen.idl.load import load_idl
 
     model, _ = load_idl(paths, include, sink, defines)
     if model is None:

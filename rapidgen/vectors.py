@@ -2,8 +2,8 @@
 
 Inputs are asset descriptors (each brings the full RAPID set plus its own IDL) and/or IDL
 files (with -I); their models are merged by scoped name. For every struct and union the
-file lists the deterministic samples of `rapidgen.model.samples` with their encodings by
-the reference encoder (`rapidgen.model.cdr`): XCDR1 little- and big-endian and XCDR2
+file lists the deterministic samples of `rapidgen.cdr.samples` with their encodings by
+the reference encoder (`rapidgen.cdr`): XCDR1 little- and big-endian and XCDR2
 little-endian, each with its 4-byte encapsulation header, as lowercase hex.
 
 The format is described in docs/cdr-and-vectors.md; the committed file for the RAPID set
@@ -16,8 +16,8 @@ import os
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.model import ir
-from rapidgen.model.cdr import Codec, CdrError
-from rapidgen.model.samples import SampleError, samples
+from rapidgen.cdr import Codec, CdrError
+from rapidgen.cdr.samples import SampleError, samples
 from rapidgen.model.to_json import declaration
 
 FORMAT = "rapidgen-vectors/1"
@@ -50,7 +50,7 @@ def load_model(paths: list[str], include: list[str], sink: DiagnosticSink,
             return None
         models.append(loaded.model)
     if idl:
-        from rapidgen.frontend import load_idl
+        from rapidgen.idl.load import load_idl
 
         model, _ = load_idl(idl, include, sink, defines)
         if model is None:

@@ -10,7 +10,7 @@ topic maps to (qos/topics.json; RapidConfigQos: reliable, transient-local, keep-
 loaded from the generated DDS-XML by Cyclone's QoS provider through the generated package's
 QoS runtime (`<package>.qos.RapidQos`), in the asset's partition; the
 ground side joins late, receives them all, and checks each against the descriptor. Values
-are built with the reference codec (rapidgen.model.cdr) and handed to the generated classes
+are built with the reference codec (rapidgen.cdr) and handed to the generated classes
 as bytes, so this also shows the two agree. Run with CYCLONEDDS_URI pointing at the
 generated loopback transport, GENERATED_DIR/qos/cyclonedds/local.xml: anything else
 (unset, inline XML, not a file, multicast allowed, an interface or peer other than
@@ -105,7 +105,7 @@ def run_asset(args, loaded, configs, package: str) -> int:
     from cyclonedds.pub import DataWriter, Publisher
     from cyclonedds.topic import Topic
 
-    from rapidgen.model.cdr import Codec
+    from rapidgen.cdr import Codec
 
     name = loaded.spec.name
     qos = _qos(package, args.generated)
@@ -131,7 +131,7 @@ def run_ground(args, loaded, configs, package: str) -> int:
     from cyclonedds.sub import DataReader, Subscriber
     from cyclonedds.topic import Topic
 
-    from rapidgen.model.cdr import Codec
+    from rapidgen.cdr import Codec
 
     qos = _qos(package, args.generated)
     participant = DomainParticipant(args.domain)

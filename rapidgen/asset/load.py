@@ -78,7 +78,7 @@ def _idl_model(spec: AssetSpec, rapid_dir: str | None, sink: DiagnosticSink) -> 
     key = (tuple((os.path.abspath(f), os.stat(f).st_mtime_ns, os.stat(f).st_size) for f in files),
            tuple(os.path.abspath(d) for d in includes), os.getcwd())
     if key not in _IDL_CACHE:
-        from rapidgen.frontend import load_idl
+        from rapidgen.idl.load import load_idl
         local = DiagnosticSink()
         model, _ = load_idl(files, includes, local)
         if len(_IDL_CACHE) > 32:

@@ -1,7 +1,7 @@
 """The one Jinja2 environment factory: strict, whitespace-controlled, filters in one place.
 
-Templates live in rapidgen/templates/<target>/ (inside the package so that a plain
-`pip install .` ships them), one per artifact, `<artifact>.<ext>.j2`, plus `_macros.j2`.
+Templates live in the top-level templates/<target>/; the package reaches them through the
+link rapidgen/templates (a copy in the wheel, so a plain `pip install .` ships them), one per artifact, `<artifact>.<ext>.j2`, plus `_macros.j2`.
 They only print what the view layer decided: loops, precomputed booleans, macros.
 """
 from __future__ import annotations

@@ -94,7 +94,7 @@ def test_union_values_use_the_codec_value_form(seed):
 
 def test_computed_configs_encode_with_the_reference_codec(seed):
     from rapidgen.asset.publish import configs
-    from rapidgen.model.cdr import Codec
+    from rapidgen.cdr import Codec
 
     loaded = seed("robonaut2")
     codec = Codec(loaded.model)

@@ -9,7 +9,7 @@ import os
 import pytest
 
 from rapidgen.diagnostics import DiagnosticSink
-from rapidgen.model.cdr import Codec
+from rapidgen.cdr import Codec
 from rapidgen.vectors import COMMITTED, load_model
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))

@@ -26,7 +26,7 @@ from cyclonedds.idl import IdlEnum, IdlUnion, make_idl_enum, make_idl_struct, ma
 from cyclonedds.idl import types as T
 
 from rapidgen.model import ir
-from rapidgen.model.cdr_types import CdrTypes
+from rapidgen.cdr.typeinfo import CdrTypes
 
 
 class Unsupported(Exception):

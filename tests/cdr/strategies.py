@@ -6,7 +6,7 @@ from decimal import Decimal
 from hypothesis import strategies as st
 
 from rapidgen.model import ir
-from rapidgen.model.cdr_types import CdrTypes, format_fixed, label_key, label_value
+from rapidgen.cdr.typeinfo import CdrTypes, format_fixed, label_key, label_value
 
 _TEXT = st.characters(blacklist_categories=("Cs",), blacklist_characters="\0")
 _MAX_LEN = 4  # elements per generated collection (bounds permitting)

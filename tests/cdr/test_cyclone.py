@@ -110,7 +110,7 @@ CYCLONE_CANNOT = {"kt::Hashed": "cyclonedds hashes a @hashid name given as str: 
 
 
 def test_extensible_types_agree_with_cyclonedds(kt, kitchen_model):
-    from rapidgen.model.samples import samples
+    from rapidgen.cdr.samples import samples
 
     cy = CycloneTypes(kitchen_model)
     compared_types: set[str] = set()

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from rapidgen.model.cdr import CdrError
+from rapidgen.cdr import CdrError
 
 
 def h(text: str) -> bytes:

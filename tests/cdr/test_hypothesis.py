@@ -10,7 +10,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from rapidgen.model import ir
-from rapidgen.model.cdr import CdrError, Codec
+from rapidgen.cdr import CdrError, Codec
 from tests.cdr.conftest import KITCHEN, ROOT, _load, seed_assets
 from tests.cdr.strategies import Strategies
 

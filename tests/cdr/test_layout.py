@@ -88,7 +88,7 @@ def test_hand_computed_layout(kt, type_name, value, version, little, expected):
 
 def test_fixed_point_is_packed_bcd(kitchen_model):
     from rapidgen.model import ir
-    from rapidgen.model.cdr import Codec
+    from rapidgen.cdr import Codec
 
     codec = Codec(kitchen_model)
     t = ir.Fixed(5, 2)
@@ -110,7 +110,7 @@ def test_wstring_counts_bytes_without_terminator(kt):
 def test_member_ids_follow_id_and_hashid(kt):
     d = kt.model.get("kt::Hashed")
     ids = [mi.id for mi in kt.types.members(d)]
-    from rapidgen.model.cdr_types import name_hash
+    from rapidgen.cdr.typeinfo import name_hash
 
     assert ids == [name_hash("first"), name_hash("other")]
     mut_all = [mi.id for mi in kt.types.members(kt.model.get("kt::MutAll"))]

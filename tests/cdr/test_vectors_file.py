@@ -60,7 +60,7 @@ def test_merging_inputs_refuses_conflicting_declarations(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "a.idl").write_text("module m { struct S { long x; }; };\n", encoding="utf-8")
     (tmp_path / "b.idl").write_text("module m { struct S { short x; }; };\n", encoding="utf-8")
-    from rapidgen.frontend import load_idl
+    from rapidgen.idl.load import load_idl
     from rapidgen.vectors import merge_models
 
     sink = DiagnosticSink()

@@ -24,7 +24,7 @@ RAPID_PACKAGE = "rapid_types"
 
 def rapid_model() -> ir.Model:
     from rapidgen.diagnostics import DiagnosticSink
-    from rapidgen.frontend import load_idl
+    from rapidgen.idl.load import load_idl
 
     sink = DiagnosticSink()
     files = sorted(glob.glob(os.path.join(REPO, "specs", "rapid", "*.idl")))

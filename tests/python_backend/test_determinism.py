@@ -88,7 +88,7 @@ UNSUPPORTED = """module m {
 
 def test_unsupported_constructs_are_refused_with_locations(tmp_path):
     from rapidgen.backends import python
-    from rapidgen.frontend import load_idl
+    from rapidgen.idl.load import load_idl
 
     path = tmp_path / "u.idl"
     path.write_text(UNSUPPORTED)

@@ -22,7 +22,7 @@ import pytest
 
 from rapidgen.backends.base import Options
 from rapidgen.diagnostics import DiagnosticSink
-from rapidgen.frontend import load_idl
+from rapidgen.idl.load import load_idl
 from rapidgen.generate import source_name
 
 HERE = Path(__file__).parent

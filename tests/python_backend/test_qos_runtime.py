@@ -203,7 +203,7 @@ def _generate_idl(tmp_path: Path, source: str) -> dict[str, str]:
     from rapidgen.backends import python
     from rapidgen.backends.base import Options
     from rapidgen.diagnostics import DiagnosticSink
-    from rapidgen.frontend import load_idl
+    from rapidgen.idl.load import load_idl
 
     (tmp_path / "q.idl").write_text(source, encoding="utf-8")
     sink = DiagnosticSink()

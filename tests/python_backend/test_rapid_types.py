@@ -149,7 +149,7 @@ def test_bytes_equal_the_reference_encoder(rapid, model, index):
     byte: final XCDR1, base members first, both byte orders."""
     from cyclonedds.idl._support import Endianness
 
-    from rapidgen.model.cdr import Codec
+    from rapidgen.cdr import Codec
 
     s = message_types(model)[index]
     value = Filler(model).message(s)

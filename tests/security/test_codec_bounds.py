@@ -20,7 +20,7 @@ IDL = """module m {
 
 CHILD = """
 from rapidgen.diagnostics import DiagnosticSink
-from rapidgen.model.cdr import CdrError, Codec
+from rapidgen.cdr import CdrError, Codec
 from rapidgen.vectors import load_model
 sink = DiagnosticSink()
 model = load_model(["t.idl"], [], sink)

@@ -1,6 +1,6 @@
 """Reference XCDR1/XCDR2 encoder and decoder that work from the Model alone.
 
-    from rapidgen.model.cdr import Codec, CdrError
+    from rapidgen.cdr import Codec, CdrError
     codec = Codec(model)
     data = codec.encode("rapid::Command", value)                 # XCDR1, little-endian, with header
     data = codec.encode("rapid::Command", value, version=2, little=False)
@@ -28,9 +28,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from rapidgen.model import ir
-from rapidgen.model.cdr_decode import Decoder
-from rapidgen.model.cdr_encode import Encoder
-from rapidgen.model.cdr_types import CdrError, CdrTypes
+from rapidgen.cdr.decode import Decoder
+from rapidgen.cdr.encode import Encoder
+from rapidgen.cdr.typeinfo import CdrError, CdrTypes
 
 __all__ = ["CdrError", "Codec", "Encapsulation", "ENCAPSULATIONS", "decode", "encode", "encapsulation_id"]
 

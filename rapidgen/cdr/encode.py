@@ -1,6 +1,6 @@
 """The reference XCDR1/XCDR2 encoder: a value in the value form -> bytes (no header).
 
-Use it through `rapidgen.model.cdr` (which adds the encapsulation header). The rules it
+Use it through `rapidgen.cdr` (which adds the encapsulation header). The rules it
 implements are listed in docs/cdr-and-vectors.md; every byte it writes follows from the
 Model alone.
 """
@@ -11,7 +11,7 @@ import struct
 from decimal import Decimal, InvalidOperation
 
 from rapidgen.model import ir
-from rapidgen.model.cdr_types import MAX_DEPTH, PRIMITIVES, CdrError, CdrTypes, MemberInfo, packer
+from rapidgen.cdr.typeinfo import MAX_DEPTH, PRIMITIVES, CdrError, CdrTypes, MemberInfo, packer
 
 PID_EXTENDED = 0x3F01
 PID_LIST_END = 0x3F02

@@ -1,7 +1,7 @@
 """Deterministic sample values of every struct and union in a Model (the golden vectors).
 
 `samples(model)` returns, for each struct and union (sorted by scoped name), named
-variants in the value form of `rapidgen.model.cdr`:
+variants in the value form of `rapidgen.cdr`:
 
 - `min`: the default value: empty sequences and strings, zeros, first enumerators, the
   first union branch.
@@ -27,7 +27,7 @@ import zlib
 from dataclasses import dataclass
 
 from rapidgen.model import ir
-from rapidgen.model.cdr_types import CdrTypes, format_fixed, label_key, label_value
+from rapidgen.cdr.typeinfo import CdrTypes, format_fixed, label_key, label_value
 
 _F64 = {"max": [1.7976931348623157e308, 2.2250738585072014e-308, 0.1, 1.0 / 3.0],
         "low": [-1.7976931348623157e308, -0.0, 5e-324, -2.2250738585072014e-308]}

@@ -2,7 +2,7 @@
 
 The bytes are untrusted. Every length is checked against the bytes that are left (and
 against the type's bound) before anything is allocated; nesting is limited; every
-failure is a `CdrError` with the offset. Use it through `rapidgen.model.cdr`.
+failure is a `CdrError` with the offset. Use it through `rapidgen.cdr`.
 """
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import struct
 from decimal import Decimal
 
 from rapidgen.model import ir
-from rapidgen.model.cdr_types import (MAX_DEPTH, MAX_EMPTY_ELEMENTS, MAX_VALUES_BASE, PRIMITIVES, VALUES_PER_BYTE,
+from rapidgen.cdr.typeinfo import (MAX_DEPTH, MAX_EMPTY_ELEMENTS, MAX_VALUES_BASE, PRIMITIVES, VALUES_PER_BYTE,
                                       CdrError, CdrTypes, MemberInfo, format_fixed, packer)
 
 _PID_MASK = 0x3FFF

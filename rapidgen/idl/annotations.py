@@ -12,7 +12,7 @@ from typing import Callable
 from rapidgen.diagnostics import DiagnosticSink, did_you_mean
 from rapidgen.idl import ast
 from rapidgen.model import ir
-from rapidgen.model.consts import ConstEvaluator, NameLookup, Target
+from rapidgen.idl.consts import ConstEvaluator, NameLookup, Target
 
 REQUIRED = object()
 

@@ -14,7 +14,7 @@ from rapidgen.idl import ast
 from rapidgen.model import ir
 
 if TYPE_CHECKING:
-    from rapidgen.model.resolve import Resolver
+    from rapidgen.idl.resolve import Resolver
 
 
 def _alias(t: ir.Type, typedefs: dict[str, ir.Typedef]) -> ir.Type:

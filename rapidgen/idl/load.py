@@ -7,7 +7,7 @@ from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.idl.parse import parse
 from rapidgen.idl.preprocess import PreprocessResult, preprocess
 from rapidgen.model.ir import Model
-from rapidgen.model.resolve import resolve
+from rapidgen.idl.resolve import resolve
 
 
 def load_idl(paths: list[str], include_dirs: list[str], sink: DiagnosticSink,

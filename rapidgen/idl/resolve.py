@@ -14,9 +14,9 @@ from dataclasses import dataclass
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.idl import ast
 from rapidgen.model import ir
-from rapidgen.model.annotations import AnnotationChecker, Checked
-from rapidgen.model.consts import ConstEvaluator, Target, Typed, target_for_primitive
-from rapidgen.model.keys import apply_keylists, compute_keys
+from rapidgen.idl.annotations import AnnotationChecker, Checked
+from rapidgen.idl.consts import ConstEvaluator, Target, Typed, target_for_primitive
+from rapidgen.idl.keys import apply_keylists, compute_keys
 from rapidgen.model.order import check_recursion, dependency_order
 
 _TYPE_KINDS = frozenset({"struct", "union", "enum", "bitmask", "bitset", "typedef", "native", "forward"})
