@@ -77,7 +77,9 @@ def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
                    SourceLoc("<command line>", 0, 0), f"available: {', '.join(backends.available())}")
         return None
     qos_library = None
-    if "qos" in langs:  # read here, in the driver: back ends never read files
+    # Read here, in the driver: back ends never read files. An asset's python package
+    # carries its QoS files too (rapidgen/backends/python/asset_tables.py).
+    if "qos" in langs or ("python" in langs and inputs.asset is not None):
         from rapidgen.qos.spec import default_library
         qos_library = default_library()
     options = Options(source=inputs.source, package=package, qos_library=qos_library)

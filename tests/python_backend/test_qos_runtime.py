@@ -102,8 +102,10 @@ def test_publisher_and_subscriber_are_in_the_asset_partition(out, runtime):
     assert qos.subscriber()[Policy.Partition] == Policy.Partition(["Robonaut2"])
 
 
-def test_package_finds_the_qos_folder_beside_it(out):
-    """`from <package>.qos import RapidQos; RapidQos()` with OUT/python on the path finds OUT/qos."""
+def test_package_finds_its_own_qos_files(out):
+    """`from <package>.qos import RapidQos; RapidQos()` finds the QoS files the asset package
+    carries (<package>/qos_files, package data: they survive `pip install`), the same
+    files as OUT/qos."""
     code = ("from rapid_robonaut2.qos import RapidQos\n"
             "q = RapidQos()\n"
             "print(q.qos_dir)\n"
@@ -113,7 +115,10 @@ def test_package_finds_the_qos_folder_beside_it(out):
     res = subprocess.run([sys.executable, "-c", code], cwd=out, env=env, capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stderr[-3000:]
     where, writer = res.stdout.splitlines()[:2]
-    assert Path(where) == (out / "qos").resolve()
+    own = out / "python" / PACKAGE / "qos_files"
+    assert Path(where) == own.resolve()
+    for rel in ("topics.json", "dds-xml/rapid_qos.xml", "cyclonedds/local.xml"):
+        assert (own / rel).read_bytes() == (out / "qos" / rel).read_bytes(), rel
     assert "KeepAll" in writer and "Reliable" in writer  # RAPID's command QoS
 
 
@@ -121,11 +126,19 @@ def test_without_a_qos_target_the_module_works_given_a_path(out, tmp_path):
     alone = _generate(tmp_path / "alone", "python")
     assert not (alone / "qos").exists()
     runtime = _load_runtime(alone / "python" / PACKAGE / "qos.py", "rapidgen_test_r2_alone_qos")
+    assert runtime.RapidQos().writer("rapid_command") == runtime.RapidQos(out / "qos").writer("rapid_command")
+    # Types alone (IDL, no asset) carry no QoS files: the error says where it looked.
+    types_only = tmp_path / "types"
+    res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", "specs/rapid/Ack.idl", "-I", "specs/rapid",
+                          "--lang", "python", "-o", str(types_only)], cwd=REPO, capture_output=True, text=True,
+                         timeout=120)
+    assert res.returncode == 0, res.stderr
+    runtime = _load_runtime(types_only / "python" / "rapid_types" / "qos.py", "rapidgen_test_types_alone_qos")
     with pytest.raises(runtime.QosFilesMissing) as missing:
         runtime.RapidQos()
     assert isinstance(missing.value, FileNotFoundError)
     text = str(missing.value)
-    assert str(alone / "qos") in text and "--lang python,qos" in text and "RapidQos('OUT/qos')" in text
+    assert str(types_only / "qos") in text and "--lang python,qos" in text and "RapidQos('OUT/qos')" in text
     qos = runtime.RapidQos(str(out / "qos"))  # another output's qos folder, given explicitly
     assert qos.writer("rapid_agent_config") == runtime.RapidQos(out / "qos").writer("rapid_agent_config")
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
-from rapidgen.backends.python import namer
+from rapidgen.backends.python import asset_tables, namer
 from rapidgen.backends.python.view import PackageView, UnsupportedInput, build
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
@@ -38,12 +38,26 @@ def view(model: Model, asset: "LoadedAsset | None", options: Options) -> Package
     return build(model, package_for(asset, options), options.source, notice(options.source))
 
 
+def asset_files(model: Model, asset: "LoadedAsset", options: Options, pkg: PackageView) -> list[GeneratedFile]:
+    """The asset's tables, handlers, bridge and QoS files (asset_tables.py); none without a
+    QoS library (the driver passes it)."""
+    from rapidgen.backends import qos
+    from rapidgen.qos.spec import QosSpec
+
+    if not isinstance(options.qos_library, QosSpec):
+        return []
+    return asset_tables.generate(asset, pkg.package, pkg.header, qos.render(options.qos_library, model, asset, options))
+
+
 def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:
     """Raises UnsupportedInput when the model uses what cyclonedds cannot encode."""
     pkg = view(model, asset, options)
-    files = [GeneratedFile("pyproject.toml", render("python", "pyproject.toml.j2", p=pkg.project)),
+    extras = asset_files(model, asset, options, pkg) if asset is not None else []
+    runtime = asset_tables.runtime_view(pkg.package) if extras else None
+    files = [GeneratedFile("pyproject.toml", render("python", "pyproject.toml.j2", p=pkg.project, runtime=runtime)),
              GeneratedFile(pkg.support_path, render("python", "_support.py.j2", header=pkg.header)),
              GeneratedFile(pkg.qos.path, render("python", "qos.py.j2", q=pkg.qos))]
     files += [GeneratedFile(m.path, render("python", "module.py.j2", f=m)) for m in pkg.modules]
+    files += extras
     check_output(files, asset)
     return sorted(files, key=lambda f: f.path)

@@ -11,8 +11,9 @@ returns for that topic's profile key.
 
     from rapid_types.qos import RapidQos
 
-    qos = RapidQos()              # <out>/qos, beside this package generated as <out>/python/rapid_types
-    qos = RapidQos("out/qos")     # or a qos folder given explicitly (an installed package needs this)
+    qos = RapidQos()              # the package's own qos_files/ (asset packages), else <out>/qos
+                                  # beside this package generated as <out>/python/rapid_types
+    qos = RapidQos("out/qos")     # or a qos folder given explicitly
     publisher = Publisher(participant, qos=qos.publisher())            # the asset's partition
     writer = DataWriter(publisher, topic, qos=qos.writer("rapid_agent_config"))
 
@@ -45,8 +46,12 @@ class UnknownTopic(RapidQosError, LookupError):
 
 
 def default_qos_dir():
-    """`<out>/qos` for this package generated as `<out>/python/<package>/`."""
+    """The package's own `qos_files/` (an asset package carries it, installed or not), else
+    `<out>/qos` for this package generated as `<out>/python/<package>/`."""
     here = os.path.dirname(os.path.abspath(__file__))
+    inside = os.path.join(here, "qos_files")
+    if os.path.isfile(os.path.join(inside, TOPICS_FILE)):
+        return inside
     return os.path.normpath(os.path.join(here, os.pardir, os.pardir, "qos"))
 
 

@@ -1,0 +1,204 @@
+"""A running RAPID asset: the manager on DDS, configs published, telemetry helpers.
+
+    python -m <package>.bridge [--simulate] [--domain N] [--transport local|lan|wan]
+
+`<package>.bridge` calls main() with the package's tables, its `rapid` types and its
+handlers. Prints "bridge ready" once every config is published and commands are read.
+"""
+from __future__ import annotations
+
+import argparse
+import signal
+import sys
+import threading
+import time
+
+from rapid_runtime import messages as M
+from rapid_runtime.configs import Serials
+from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
+from rapid_runtime.manager import CommandManager
+from rapid_runtime.tables import Tables
+from rapid_runtime.telemetry import ordered_values
+
+COMMAND_TOPIC = "rapid_command"
+ACK_TOPIC = "rapid_ack"
+QUEUE_STATE_TOPIC = "rapid_queue_state"
+ACCESS_STATE_TOPIC = "rapid_accesscontrol_state"
+
+
+class Bridge:
+    def __init__(self, tables: Tables, rapid, handlers, qos, domain: int | None = None,
+                 log=None, serial: int | None = None) -> None:
+        self.tables, self.rapid, self.handlers = tables, rapid, handlers
+        self.name = tables.name
+        self.serials = Serials(serial)
+        self.node = Node(rapid, qos, tables.domain if domain is None else domain)
+        self._log = log or (lambda text: print(f"[{self.name}] {text}", file=sys.stderr, flush=True))
+        self.stopped = threading.Event()
+        self.manager = CommandManager(tables, handlers, self, on_shutdown=self.stop)
+        self.telemetry = TelemetryPublisher(self)
+        self._reader: ReaderThread | None = None
+
+    # ---- Outbox (manager.py) ---------------------------------------------------------------
+    def ack(self, cmd, status, completed, message) -> None:
+        self.node.writer(ACK_TOPIC, self.rapid.Ack).write(M.ack(self.rapid, cmd, status, completed, message))
+
+    def queue_state(self, code, pending, active, completed) -> None:
+        hdr = M.header(self.rapid, self.name, self.name, self.serials.start, status=code)
+        self.node.writer(QUEUE_STATE_TOPIC, self.rapid.QueueState).write(
+            M.queue_state(self.rapid, hdr, pending, active, completed))
+
+    def access_state(self, controller, requestors) -> None:
+        hdr = M.header(self.rapid, self.name, self.name, self.serials.start)
+        self.node.writer(ACCESS_STATE_TOPIC, self.rapid.AccessControlState).write(
+            M.access_state(self.rapid, hdr, controller, requestors))
+
+    def log(self, text: str) -> None:
+        self._log(text)
+
+    # ---- configs -----------------------------------------------------------------------------
+    def publish_config(self, topic: str, value: dict | None = None) -> int:
+        """Publish a config (the computed one by default); a changed content gets a new
+        serial. Returns the serial."""
+        type_name, computed = self.tables.configs[topic]
+        value = computed if value is None else value
+        serial, changed = self.serials.update(topic, value)
+        if changed:
+            hdr = M.header(self.rapid, self.name, self.name, serial)
+            self.node.writer(topic, type_class(self.rapid, type_name)).write(
+                M.config(self.rapid, type_name, value, hdr))
+        return serial
+
+    # ---- life --------------------------------------------------------------------------------
+    def start(self) -> "Bridge":
+        for topic in self.tables.configs:
+            self.publish_config(topic)
+        self.manager.publish_states()
+        if self.tables.subsystems:
+            reader = self.node.reader(COMMAND_TOPIC, self.rapid.Command)
+            self._reader = ReaderThread(self.node, reader, self.rapid.Command, self._on_command, "rapid-commands")
+            self._reader.start()
+        self.handlers.on_start(self)
+        return self
+
+    def _on_command(self, sample) -> None:
+        try:
+            self.manager.receive(M.command_in(sample))
+        except Exception as exc:  # a bad sample must not stop command intake
+            self.log(f"command {getattr(sample, 'cmdId', '?')!r} not handled: {type(exc).__name__}: {exc}")
+
+    def stop(self) -> None:
+        if self.stopped.is_set():
+            return
+        self.stopped.set()
+        try:
+            self.handlers.on_stop()
+        finally:
+            if self._reader is not None and threading.current_thread() is not self._reader.thread:
+                self._reader.stop()
+
+    def wait(self, seconds: float | None = None) -> None:
+        self.stopped.wait(seconds)
+
+
+class TelemetryPublisher:
+    """Samples of the declared telemetry, headers filled (serial of the paired config,
+    timeStamp in microseconds), values in declaration order and checked against their
+    DataTypes. `index` picks among entries of the same kind."""
+
+    def __init__(self, bridge: Bridge) -> None:
+        self.b = bridge
+        self.entries = bridge.tables.telemetry
+
+    def of(self, kind: str, index: int = 0) -> dict:
+        found = [t for t in self.entries if t["kind"] == kind]
+        if index >= len(found):
+            raise LookupError(f"asset {self.b.name} declares {len(found)} {kind} telemetry entries")
+        return found[index]
+
+    def _hdr(self, entry: dict, stamp: int | None = None):
+        config = entry["topics"].get("config")
+        serial = self.b.serials.of(config) if config else self.b.serials.start
+        return M.header(self.b.rapid, self.b.name, self.b.name, serial, stamp=stamp)
+
+    def _values(self, entry: dict, values: dict | None) -> list:
+        return [M.union(self.b.rapid, t, v) for t, v in ordered_values(entry["values"], values or {})]
+
+    def _write(self, entry: dict, role: str, type_name: str, sample) -> None:
+        self.b.node.writer(entry["topics"][role], type_class(self.b.rapid, type_name)).write(sample)
+
+    def agent_state(self, values: dict | None = None, index: int = 0, stamp: int | None = None) -> None:
+        e = self.of("agent", index)
+        r = self.b.rapid
+        self._write(e, "state", "rapid::AgentState", r.AgentState(hdr=self._hdr(e, stamp), values=self._values(e, values)))
+
+    def position(self, xyz, rot=None, velocity_xyz=None, velocity_rot=None, values: dict | None = None,
+                 index: int = 0, stamp: int | None = None) -> None:
+        """rot and velocity_rot as the config's encodings say (9 floats; unused ones 0)."""
+        e = self.of("position", index)
+        r = self.b.rapid
+
+        def t3(a, b):
+            return r.Transform3D(xyz=[float(x) for x in a], rot=[float(x) for x in (list(b or []) + [0.0] * 9)[:9]])
+        self._write(e, "sample", "rapid::PositionSample", r.PositionSample(
+            hdr=self._hdr(e, stamp), pose=t3(xyz, rot), velocity=t3(velocity_xyz or [0, 0, 0], velocity_rot),
+            values=self._values(e, values)))
+
+    def joints(self, positions, velocities=None, torques=None, status=None, index: int = 0,
+               stamp: int | None = None) -> None:
+        e = self.of("joint", index)
+        n = len(e["joints"])
+        for name, seq in (("positions", positions), ("velocities", velocities), ("torques", torques)):
+            if seq is not None and len(seq) != n:
+                raise ValueError(f"{name}: {len(seq)} values for {n} joints")
+        r = self.b.rapid
+        f = [float(x) for x in positions]
+        self._write(e, "sample", "rapid::JointSample", r.JointSample(
+            hdr=self._hdr(e, stamp), anglePos=f, angleVel=[float(x) for x in velocities or []],
+            torque=[float(x) for x in torques or []], status=[int(x) for x in status or []]))
+
+    def text(self, message: str, level: str = "MSG_INFO", category: str = "", index: int = 0) -> None:
+        e = self.of("text", index)
+        r = self.b.rapid
+        self._write(e, "sample", "rapid::TextMessage", r.TextMessage(
+            hdr=self._hdr(e), level=r.MessageLevel[level], category=category, message=message))
+
+
+def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
+    tables = Tables(asset_tables)
+    p = argparse.ArgumentParser(prog=f"python -m {package}.bridge",
+                                description=f"RAPID bridge of asset {tables.name} (rapid_runtime)")
+    p.add_argument("--simulate", action="store_true", help="a simulated robot behind the handlers")
+    p.add_argument("--domain", type=int, default=None, help=f"DDS domain (default {tables.domain})")
+    p.add_argument("--transport", default=None,
+                   help="Cyclone transport from the package's QoS files: local (loopback, the default when "
+                        "CYCLONEDDS_URI is unset), lan, wan")
+    p.add_argument("--seconds", type=float, default=None, help="stop after this long (default: run until stopped)")
+    p.add_argument("--sim-speed", type=float, default=1.0, help="simulated time runs this many times faster")
+    args = p.parse_args(argv)
+    qos_mod = __import__(f"{package}.qos", fromlist=["RapidQos"])
+    try:
+        qos = qos_mod.RapidQos()
+        use_transport(qos, args.transport)
+    except qos_mod.RapidQosError as exc:
+        print(f"bridge: {exc}", file=sys.stderr)
+        return 2
+    if args.simulate:
+        from rapid_runtime.simulate import Simulator
+        handlers = Simulator(tables, speed=args.sim_speed)
+    else:
+        handlers = make_handlers()
+    bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain).start()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: bridge.stop())
+    print(f"bridge ready: asset {tables.name}, domain {tables.domain if args.domain is None else args.domain}, "
+          f"partition {tables.partition}{', simulated' if args.simulate else ''}", flush=True)
+    end = None if args.seconds is None else time.monotonic() + args.seconds
+    while not bridge.stopped.is_set():
+        left = None if end is None else end - time.monotonic()
+        if left is not None and left <= 0:
+            break
+        bridge.wait(0.5 if left is None else min(0.5, left))
+    bridge.stop()
+    print("bridge stopped", flush=True)
+    return 0

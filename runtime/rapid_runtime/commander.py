@@ -1,0 +1,75 @@
+"""The ground side: send commands into an asset's partition and follow their acks
+(`rapidgen cmd` and the tests use it). Acks are correlated by cmdId alone and read with
+KEEP_ALL history so no intermediate ack is lost; repeated acks are kept as received."""
+from __future__ import annotations
+
+import itertools
+import os
+import threading
+import time
+
+from rapid_runtime import messages as M
+from rapid_runtime.acks import BYPASS, COMPLETED
+from rapid_runtime.command import Cmd
+from rapid_runtime.dds import Node, ReaderThread
+
+COMMAND_TOPIC, ACK_TOPIC, COMMAND_CONFIG_TOPIC = "rapid_command", "rapid_ack", "rapid_command_config"
+
+
+class Commander:
+    def __init__(self, rapid, qos, asset: str, source: str, domain: int) -> None:
+        self.rapid, self.asset, self.source = rapid, asset, source
+        self.node = Node(rapid, qos, domain)
+        self.writer = self.node.writer(COMMAND_TOPIC, rapid.Command)
+        self.acks: dict[str, list[tuple[str, str, str]]] = {}
+        self.cond = threading.Condition()
+        self._ids = itertools.count(1)
+        reader = self.node.reader(ACK_TOPIC, rapid.Ack, keep_all=True)
+        self._reader = ReaderThread(self.node, reader, rapid.Ack, self._on_ack, "rapid-acks").start()
+
+    def _on_ack(self, sample) -> None:
+        cmd_id, status, completed, message = M.ack_fields(sample)
+        with self.cond:
+            self.acks.setdefault(cmd_id, []).append((status, completed, message))
+            self.cond.notify_all()
+
+    def wait_for_asset(self, timeout: float) -> bool:
+        """True once an asset's command reader matched our writer (Astrobee waits likewise)."""
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            if self.writer.get_matched_subscriptions():
+                return True
+            time.sleep(0.02)
+        return False
+
+    def new_id(self) -> str:
+        """Unique: counter, source, process and time (rapid-protocol.md section 5)."""
+        return f"{next(self._ids)}-{self.source}-{os.getpid()}-{time.time_ns() // 1_000_000}"
+
+    def send(self, subsystem: str, name: str, args=(), action: str = BYPASS, target: str = "",
+             cmd_id: str | None = None, source: str | None = None, asset: str | None = None) -> str:
+        cmd = Cmd(cmd_id=cmd_id or self.new_id(), cmd_src=self.source if source is None else source,
+                  subsystem=subsystem, name=name, args=tuple(args), action=action, target=target,
+                  src_name=self.source, asset_name=self.asset if asset is None else asset)
+        self.writer.write(M.command_out(self.rapid, cmd))
+        return cmd.cmd_id
+
+    def wait_final(self, cmd_id: str, timeout: float) -> list[tuple[str, str, str]]:
+        """The acks of cmd_id up to its COMPLETED (or what came within timeout)."""
+        end = time.monotonic() + timeout
+        with self.cond:
+            while not any(a[0] == COMPLETED for a in self.acks.get(cmd_id, ())):
+                left = end - time.monotonic()
+                if left <= 0:
+                    break
+                self.cond.wait(left)
+            return list(self.acks.get(cmd_id, ()))
+
+    def wait_acks(self, cmd_id: str, seconds: float) -> list[tuple[str, str, str]]:
+        """Whatever acks cmd_id got within `seconds` (to show that none came)."""
+        time.sleep(seconds)
+        with self.cond:
+            return list(self.acks.get(cmd_id, ()))
+
+    def close(self) -> None:
+        self._reader.stop()

@@ -1,0 +1,99 @@
+"""The DDS side (Cyclone): one participant in the asset's domain, publisher and subscriber
+in its partition, writers and readers with each topic's generated QoS, a command-reading
+thread. Nothing here decides anything: manager.py does."""
+from __future__ import annotations
+
+import importlib
+import os
+import threading
+
+from cyclonedds.core import GuardCondition, InstanceState, ReadCondition, SampleState, ViewState, WaitSet
+from cyclonedds.domain import DomainParticipant
+from cyclonedds.pub import DataWriter, Publisher
+from cyclonedds.qos import Policy, Qos
+from cyclonedds.sub import DataReader, Subscriber
+from cyclonedds.topic import Topic
+from cyclonedds.util import duration
+
+
+def use_transport(qos, transport: str | None) -> str | None:
+    """Point CYCLONEDDS_URI at the package's transport file (default: the loopback-only
+    "local") unless the environment already chose one. Must run before DDS starts."""
+    if os.environ.get("CYCLONEDDS_URI") and transport is None:
+        return None
+    path = qos.cyclonedds_config(transport or "local")
+    os.environ["CYCLONEDDS_URI"] = "file://" + os.path.abspath(path)
+    return path
+
+
+def type_class(rapid, scoped: str):
+    """rapid::ext::arc::GpsConfig -> the generated class (rapid is the package's `rapid` module)."""
+    parts = scoped.split("::")
+    if parts[0] != "rapid":
+        raise KeyError(scoped)
+    mod = rapid
+    for name in parts[1:-1]:
+        mod = getattr(mod, name, None) or importlib.import_module(f"{mod.__name__}.{name}")
+    return getattr(mod, parts[-1])
+
+
+class Node:
+    def __init__(self, rapid, qos, domain: int) -> None:
+        self.rapid, self.qos = rapid, qos
+        self.participant = DomainParticipant(domain)
+        self.publisher = Publisher(self.participant, qos=qos.publisher())
+        self.subscriber = Subscriber(self.participant, qos=qos.subscriber())
+        self._topics: dict[str, Topic] = {}
+        self._writers: dict[str, DataWriter] = {}
+        self._lock = threading.Lock()
+
+    def topic(self, name: str, cls) -> Topic:
+        with self._lock:
+            if name not in self._topics:
+                self._topics[name] = Topic(self.participant, name, cls)
+            return self._topics[name]
+
+    def writer(self, topic: str, cls) -> DataWriter:
+        with self._lock:
+            w = self._writers.get(topic)
+        if w is None:
+            w = DataWriter(self.publisher, self.topic(topic, cls), qos=self.qos.writer(topic))
+            with self._lock:
+                self._writers[topic] = w
+        return w
+
+    def reader(self, topic: str, cls, keep_all: bool = False) -> DataReader:
+        """keep_all: every sample, not the last per instance (a commander must see each ack)."""
+        q = self.qos.reader(topic)
+        if keep_all:
+            q = q + Qos(Policy.History.KeepAll)
+        return DataReader(self.subscriber, self.topic(topic, cls), qos=q)
+
+
+class ReaderThread:
+    """Calls on_sample(sample) for every valid sample the reader takes, in a thread."""
+
+    def __init__(self, node: Node, reader: DataReader, cls, on_sample, name: str) -> None:
+        self.reader, self.cls, self.on_sample = reader, cls, on_sample
+        self.waitset = WaitSet(node.participant)
+        self.waitset.attach(ReadCondition(reader, SampleState.Any | ViewState.Any | InstanceState.Any))
+        self.guard = GuardCondition(node.participant)
+        self.waitset.attach(self.guard)
+        self.stopping = threading.Event()
+        self.thread = threading.Thread(target=self._run, daemon=True, name=name)
+
+    def start(self) -> "ReaderThread":
+        self.thread.start()
+        return self
+
+    def _run(self) -> None:
+        while not self.stopping.is_set():
+            self.waitset.wait(duration(seconds=1))
+            for sample in self.reader.take(N=256):
+                if isinstance(sample, self.cls):
+                    self.on_sample(sample)
+
+    def stop(self) -> None:
+        self.stopping.set()
+        self.guard.set(True)
+        self.thread.join(timeout=5)

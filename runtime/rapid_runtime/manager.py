@@ -1,0 +1,392 @@
+"""Command intake and the ack lifecycle: the asset's side of rapid_command / rapid_ack.
+
+    manager = CommandManager(tables, handlers, outbox)
+    manager.receive(cmd)          # every Command read from the asset's partition
+
+Dropped without an ack (logged): a command for another asset, a repeated cmdId.
+Everything else gets exactly one final COMPLETED ack. Acks go out through the outbox
+(dds.py writes them; tests collect them), always under the manager's lock so the acks
+of one command keep their order. docs/runtime.md lists every answer.
+"""
+from __future__ import annotations
+
+import collections
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Protocol
+
+from rapid_runtime import access
+from rapid_runtime.acks import (APPEND, BAD_SYNTAX, BYPASS, CANCELED, COMPLETED, DELETE, EXEC_FAILED, EXECUTING,
+                                HEAD, INSERT, NOT, OK, QUEUED, REPLACE, REQUEUED, RESULT_OF_COMPLETION,
+                                STATUS_OF_COMPLETION, clip)
+from rapid_runtime.cmdqueue import Pending
+from rapid_runtime.command import Cmd
+from rapid_runtime.handlers import Cancelled, CommandContext, CommandFailed
+from rapid_runtime.tables import CommandEntry, Tables
+from rapid_runtime.validate import _short, check_command, kwargs_of
+
+SEEN_IDS = 100_000  # cmdIds remembered for duplicate detection (oldest forgotten first)
+COMPLETED_KEEP_S = 20.0  # finished commands stay in QueueState this long (soraCore)
+RECORDS = 64  # QueueState's SingleQueue holds at most 64 records
+VIOLATION = "RAPID access violation: "
+
+
+class Outbox(Protocol):
+    def ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None: ...
+    def queue_state(self, code: int, pending: list, active: list, completed: list) -> None: ...
+    def access_state(self, controller: str, requestors: list[str]) -> None: ...
+    def log(self, text: str) -> None: ...
+
+
+@dataclass(eq=False)
+class Run:
+    cmd: Cmd
+    entry: CommandEntry | None
+    kwargs: dict = field(default_factory=dict)
+    queued: bool = False  # came through the queue (not BYPASS)
+    ctx: CommandContext | None = None
+    requeue: bool = False  # preempted: goes back to the queue's front when its handler returns
+    done: bool = False
+    record_status: str = "Q_STATUS_INLINE"
+
+
+class CommandManager:
+    def __init__(self, tables: Tables, handlers: object, outbox: Outbox,
+                 on_shutdown: Callable[[], None] | None = None, clock: Callable[[], float] = time.monotonic) -> None:
+        self.tables, self.handlers, self.out = tables, handlers, outbox
+        self.on_shutdown = on_shutdown
+        self.clock = clock
+        self.lock = threading.RLock()
+        self.seen: collections.OrderedDict[str, None] = collections.OrderedDict()
+        self.pending = Pending()
+        self.active: Run | None = None  # the queue's running command
+        self.bypass: list[Run] = []  # BYPASS commands running
+        self.completed: collections.deque = collections.deque()  # (time, Run, completion)
+        self.suspended = False
+        self.control = access.Control()
+        self.has_queue = tables.has_type("Queue")
+        self.has_control = tables.has_type("AccessControl")
+        self.idle = threading.Condition(self.lock)
+
+    # ---- intake ---------------------------------------------------------------------------
+    def receive(self, cmd: Cmd) -> None:
+        with self.lock:
+            if cmd.asset_name != self.tables.name:
+                self.out.log(f"ignored {cmd.cmd_id!r}: addressed to asset {cmd.asset_name!r}")
+                return
+            if cmd.cmd_id in self.seen:
+                self.out.log(f"ignored {cmd.cmd_id!r}: repeated cmdId")
+                return
+            self.seen[cmd.cmd_id] = None
+            if len(self.seen) > SEEN_IDS:
+                self.seen.popitem(last=False)
+            reason = self._intake(cmd)
+            if reason is not None:
+                kind, text = reason
+                self._ack(cmd, COMPLETED, kind, text)
+                self.out.log(f"{cmd.cmd_id}: {kind.removeprefix('ACK_COMPLETED_')}: {text}")
+
+    def _intake(self, cmd: Cmd) -> tuple[str, str] | None:
+        """Checks then dispatch; (completion, message) when the command ends here."""
+        if not cmd.cmd_id:
+            return BAD_SYNTAX, "empty cmdId"
+        action, target = cmd.action, cmd.target
+        if action not in (BYPASS, APPEND, DELETE, INSERT, REPLACE):
+            return BAD_SYNTAX, f"unknown queue action {_short(str(action))}"
+        if action != BYPASS and not self.has_queue:
+            return BAD_SYNTAX, f"{action} refused: this asset has no command queue (send QUEUE_BYPASS)"
+        if action in (BYPASS, APPEND) and target:
+            return BAD_SYNTAX, f"{action} takes no targetCmdId (got '{_short(target)}')"
+        if action in (INSERT, REPLACE, DELETE) and not target:
+            return BAD_SYNTAX, f"{action} needs a targetCmdId"
+        if action == DELETE:
+            return self._delete(cmd)
+        entry, why = check_command(cmd, self.tables)
+        if why:
+            return BAD_SYNTAX, why
+        if action == INSERT and target != HEAD and not self._queued_run(target):
+            return BAD_SYNTAX, f"unknown targetCmdId '{_short(target)}' (pending ids, the running one or 'head')"
+        if action == REPLACE and not self._queued_run(target):
+            return BAD_SYNTAX, f"unknown targetCmdId '{_short(target)}' (not pending or running)"
+        denied = self._authorize(cmd, entry)
+        if denied:
+            return BAD_SYNTAX, denied
+        run = Run(cmd, entry, kwargs_of(entry, cmd), queued=action != BYPASS)
+        if action == BYPASS:
+            self._start(run)
+            return None
+        if action == REPLACE:
+            old = self._queued_run(target)
+            if old is self.active:
+                if not self._abortable(old):
+                    return EXEC_FAILED, f"target '{_short(target)}' is running and not abortable"
+                self._cancel(old)
+                self.pending.push_front(run)
+            else:
+                self.pending.replace(target, run)
+                self._finish_unstarted(old, "replaced by " + _short(cmd.cmd_id))
+        elif action == INSERT:
+            if not self.pending.insert_after(target, run):  # the running command: go next
+                self.pending.push_front(run)
+        else:
+            self.pending.append(run)
+        self._ack(cmd, QUEUED, NOT, "")
+        self._service()
+        return None
+
+    def _queued_run(self, cmd_id: str) -> Run | None:
+        if self.active is not None and self.active.cmd.cmd_id == cmd_id:
+            return self.active
+        return self.pending.find(cmd_id)
+
+    def _authorize(self, cmd: Cmd, entry: CommandEntry) -> str | None:
+        """Why the source may not send this command, or None. Allow-list, then control."""
+        if access.always_allowed(entry.subsystem_type, entry.name):
+            return None
+        if not access.allowed(self.tables.access, cmd.cmd_src, cmd.subsystem, entry.name):
+            return f"{VIOLATION}{_short(cmd.cmd_src)} may not send {_short(cmd.subsystem)}/{_short(entry.name)}"
+        if (self.has_control and entry.subsystem_type != "AccessControl" and cmd.cmd_src != self.tables.name
+                and not self.control.holds(cmd.cmd_src)):
+            return f"{VIOLATION}{_short(cmd.cmd_src)} does not have control (send requestControl)"
+        return None
+
+    def _delete(self, cmd: Cmd) -> tuple[str, str] | None:
+        target = self._queued_run(cmd.target) or next((r for r in self.bypass if r.cmd.cmd_id == cmd.target), None)
+        if target is None:
+            return BAD_SYNTAX, f"unknown targetCmdId '{_short(cmd.target)}' (not pending or running)"
+        denied = self._authorize(_as_sender(cmd, target.cmd), target.entry)
+        if denied:
+            return BAD_SYNTAX, denied
+        if target in self.pending.items:
+            self.pending.remove(target)
+            self._finish_unstarted(target, "deleted by " + _short(cmd.cmd_id))
+        elif not self._abortable(target):
+            return EXEC_FAILED, f"target '{_short(cmd.target)}' is running and not abortable"
+        else:
+            self._cancel(target)
+        self._ack(cmd, EXECUTING, NOT, "")
+        self._ack(cmd, COMPLETED, OK, f"{_short(cmd.target)} canceled")
+        self._service()
+        return None
+
+    # ---- running ----------------------------------------------------------------------------
+    def _busy(self, subsystem: str) -> bool:
+        return any(r.cmd.subsystem == subsystem and not r.done for r in self.bypass)
+
+    def _service(self) -> None:
+        """Start the queue's front command when nothing queued runs and the queue is not suspended."""
+        while self.active is None and not self.suspended:
+            run = self.pending.pop_ready(self._busy)
+            if run is None:
+                break
+            self.active = run
+            self._start(run)
+        self._publish_queue()
+
+    def _start(self, run: Run) -> None:
+        e = run.entry
+        builtin = BUILTINS.get((e.subsystem_type, e.name)) if e.standard else None
+        if not run.queued:
+            self._preempt(run)
+        self._ack(run.cmd, EXECUTING, NOT, "")
+        run.record_status = "Q_STATUS_INPROCESS"
+        if builtin is not None:
+            outcome = builtin(self, run)
+            if outcome is not None:  # done at once; None: continue with the handler
+                self._complete(run, *outcome)
+                return
+        if not run.queued:
+            self.bypass.append(run)
+        run.ctx = CommandContext(run.cmd, e, lambda text, r=run: self._progress(r, text))
+        threading.Thread(target=self._execute, args=(run,), daemon=True, name=f"cmd-{run.cmd.cmd_id[:20]}").start()
+
+    def _preempt(self, run: Run) -> None:
+        """A BYPASS command takes its subsystem over: a suspendable command running there from
+        the queue is requeued, an abortable one canceled; others keep running beside it."""
+        if run.entry.standard and (run.entry.subsystem_type, run.entry.name) in BUILTINS:
+            return
+        for other in [self.active, *self.bypass]:
+            if other is None or other.done or other.cmd.subsystem != run.cmd.subsystem or other.ctx is None:
+                continue
+            if other.queued and other.entry.suspendable:
+                other.requeue = True
+                other.ctx.cancelled.set()
+            elif self._abortable(other):
+                other.ctx.cancelled.set()
+
+    def _execute(self, run: Run) -> None:
+        method = getattr(self.handlers, run.entry.method, None)
+        try:
+            if method is None:
+                raise CommandFailed("not implemented")
+            result = method(run.ctx, **run.kwargs)
+            outcome = (CANCELED, "canceled") if run.ctx.cancelled.is_set() else (OK, result if isinstance(result, str) else "")
+        except Cancelled:
+            outcome = CANCELED, "canceled"
+        except CommandFailed as exc:
+            outcome = EXEC_FAILED, str(exc) or "failed"
+        except Exception as exc:  # a handler's bug must not stop the bridge; the commander hears of it
+            outcome = EXEC_FAILED, f"handler error: {type(exc).__name__}: {exc}"
+        with self.lock:
+            if run in self.bypass:
+                self.bypass.remove(run)
+            if run.requeue and outcome[0] == CANCELED:
+                run.requeue, run.done, run.ctx = False, False, None
+                self._ack(run.cmd, REQUEUED, NOT, "preempted; back in the queue")
+                run.record_status = "Q_STATUS_PAUSED"
+                self.active = None
+                self.pending.push_front(run)
+            else:
+                self._complete(run, *outcome)
+            self._service()
+
+    def _progress(self, run: Run, text: str) -> None:
+        with self.lock:
+            if not run.done:
+                self._ack(run.cmd, EXECUTING, NOT, text)
+
+    def _complete(self, run: Run, completion: str, message: str) -> None:
+        run.done = True
+        self._ack(run.cmd, COMPLETED, completion, message)
+        if run.queued:
+            if self.active is run:
+                self.active = None
+            self._record_done(run, completion)
+            if completion == EXEC_FAILED:
+                self.suspended = True  # a failed step stops the plan; Queue/cancelAll resumes
+        if self.active is None:
+            self.idle.notify_all()
+
+    def _finish_unstarted(self, run: Run, why: str) -> None:
+        """A pending command removed before it ran (DELETE, REPLACE, cancelAll, stopAllMotion)."""
+        run.done = True
+        self._ack(run.cmd, COMPLETED, CANCELED, why)
+        self._record_done(run, CANCELED)
+
+    def _record_done(self, run: Run, completion: str) -> None:
+        self.completed.append((self.clock(), run, completion))
+        while len(self.completed) > RECORDS:
+            self.completed.popleft()
+
+    @staticmethod
+    def _abortable(run: Run) -> bool:
+        return run.entry is not None and run.entry.abortable
+
+    def _cancel(self, run: Run) -> None:
+        if run.ctx is not None:
+            run.requeue = False
+            run.ctx.cancelled.set()
+
+    # ---- state topics ------------------------------------------------------------------------
+    def _ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None:
+        self.out.ack(cmd, status, completed, clip(message))
+
+    def _publish_queue(self) -> None:
+        if not self.has_queue:
+            return
+        now = self.clock()
+        while self.completed and now - self.completed[0][0] > COMPLETED_KEEP_S:
+            self.completed.popleft()
+        pending = [(r.cmd, "Q_RESULT_INIT", r.record_status) for r in list(self.pending)[:RECORDS]]
+        active = [(self.active.cmd, "Q_RESULT_INIT", "Q_STATUS_INPROCESS")] if self.active else []
+        done = [(r.cmd, RESULT_OF_COMPLETION[c], STATUS_OF_COMPLETION[c]) for _, r, c in self.completed]
+        code = -1 if self.suspended else (1 if self.active else 0)
+        self.out.queue_state(code, pending, active, done)
+
+    def publish_states(self) -> None:
+        """Publish QueueState and AccessControlState as they are (at start-up)."""
+        with self.lock:
+            self._publish_queue()
+            if self.has_control:
+                self.out.access_state(self.control.controller, list(self.control.requestors))
+
+    def wait_idle(self, timeout: float) -> bool:
+        """True once no queued or bypass command runs (tests, shutdown)."""
+        end = time.monotonic() + timeout
+        with self.lock:
+            while self.active is not None or self.bypass or len(self.pending):
+                left = end - time.monotonic()
+                if left <= 0 or self.suspended and self.active is None and not self.bypass:
+                    return not (self.active or self.bypass)
+                self.idle.wait(min(left, 0.05))
+            return True
+
+
+def _as_sender(delete: Cmd, target: Cmd) -> Cmd:
+    """The DELETE checked as its sender sending the target's command."""
+    from dataclasses import replace
+    return replace(target, cmd_src=delete.cmd_src)
+
+
+# ---- built-in commands: the protocol's own (Admin, Queue, AccessControl, stopAllMotion) ----------
+# Each returns (completion, message), or None to go on to the handler method.
+
+def _echo(m: CommandManager, run: Run):
+    return OK, str(run.kwargs.get(run.entry.params[0].arg, "")) if run.entry.params else ""
+
+
+def _noop(m: CommandManager, run: Run):
+    return OK, ""
+
+
+def _shutdown(m: CommandManager, run: Run):
+    if m.on_shutdown is not None:
+        threading.Thread(target=m.on_shutdown, daemon=True).start()
+    return OK, "shutting down"
+
+
+def _cancel_all(m: CommandManager, run: Run):
+    for r in list(m.pending):
+        m.pending.remove(r)
+        m._finish_unstarted(r, "cancelAll")
+    kept = 0
+    for r in [m.active, *m.bypass]:
+        if r is None or r is run:
+            continue
+        if m._abortable(r):
+            m._cancel(r)
+        else:
+            kept += 1
+    m.suspended = False
+    return OK, f"{kept} non-abortable command(s) still running" if kept else ""
+
+
+def _stop_all_motion(m: CommandManager, run: Run):
+    """Motion stops first (every Mobility command canceled, abortable or not), then the
+    handler method stops the hardware."""
+    mobility = set(m.tables.subsystems_of_type("Mobility"))
+    for r in list(m.pending):
+        if r.cmd.subsystem in mobility:
+            m.pending.remove(r)
+            m._finish_unstarted(r, "stopAllMotion")
+    for r in [m.active, *m.bypass]:
+        if r is not None and r is not run and r.cmd.subsystem in mobility:
+            m._cancel(r)
+    return None
+
+
+def _control(op: str):
+    def run_op(m: CommandManager, run: Run):
+        src = run.cmd.cmd_src
+        if op == "transfer":
+            err, note = m.control.transfer(src, str(next(iter(run.kwargs.values()), "")))
+        else:
+            err, note = getattr(m.control, op)(src)
+        if err is None:
+            m.out.access_state(m.control.controller, list(m.control.requestors))
+        return (EXEC_FAILED, err) if err else (OK, note)
+    return run_op
+
+
+BUILTINS: dict[tuple[str, str], Callable] = {
+    ("Admin", "echo"): _echo,
+    ("Admin", "noOp"): _noop,
+    ("Admin", "shutdown"): _shutdown,
+    ("Queue", "cancelAll"): _cancel_all,
+    ("Mobility", "stopAllMotion"): _stop_all_motion,
+    ("AccessControl", "requestControl"): _control("request"),
+    ("AccessControl", "grabControl"): _control("grab"),
+    ("AccessControl", "releaseControl"): _control("release"),
+    ("AccessControl", "transferControl"): _control("transfer"),
+}
