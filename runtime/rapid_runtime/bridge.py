@@ -13,6 +13,8 @@ import sys
 import threading
 import time
 
+from cyclonedds.util import duration
+
 from rapid_runtime import messages as M
 from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
@@ -24,6 +26,10 @@ COMMAND_TOPIC = "rapid_command"
 ACK_TOPIC = "rapid_ack"
 QUEUE_STATE_TOPIC = "rapid_queue_state"
 ACCESS_STATE_TOPIC = "rapid_accesscontrol_state"
+# Acks are transient-local, keyed by cmdId: a commander whose reader this writer has not
+# discovered yet when EXECUTING goes out still gets the whole sequence (QUEUED, EXECUTING,
+# REQUEUED, EXECUTING, COMPLETED and a few progress acks), not only the last one.
+ACK_HISTORY = 8
 
 
 class Bridge:
@@ -41,7 +47,7 @@ class Bridge:
 
     # ---- Outbox (manager.py) ---------------------------------------------------------------
     def ack(self, cmd, status, completed, message) -> None:
-        self.node.writer(ACK_TOPIC, self.rapid.Ack).write(M.ack(self.rapid, cmd, status, completed, message))
+        self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY).write(M.ack(self.rapid, cmd, status, completed, message))
 
     def queue_state(self, code, pending, active, completed) -> None:
         hdr = M.header(self.rapid, self.name, self.name, self.serials.start, status=code)
@@ -75,6 +81,7 @@ class Bridge:
             self.publish_config(topic)
         self.manager.publish_states()
         if self.tables.subsystems:
+            self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY)  # now: commanders wait to match it
             reader = self.node.reader(COMMAND_TOPIC, self.rapid.Command)
             self._reader = ReaderThread(self.node, reader, self.rapid.Command, self._on_command, "rapid-commands")
             self._reader.start()
@@ -93,6 +100,11 @@ class Bridge:
         self.stopped.set()
         try:
             self.handlers.on_stop()
+            if self.tables.subsystems:  # the last acks (shutdown's own) reach their readers
+                try:
+                    self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY).wait_for_acks(duration(seconds=2))
+                except Exception:  # a reader that left without acknowledging; cyclonedds 11 raises oddly here
+                    pass
         finally:
             if self._reader is not None and threading.current_thread() is not self._reader.thread:
                 self._reader.stop()

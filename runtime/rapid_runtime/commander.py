@@ -24,8 +24,8 @@ class Commander:
         self.acks: dict[str, list[tuple[str, str, str]]] = {}
         self.cond = threading.Condition()
         self._ids = itertools.count(1)
-        reader = self.node.reader(ACK_TOPIC, rapid.Ack, keep_all=True)
-        self._reader = ReaderThread(self.node, reader, rapid.Ack, self._on_ack, "rapid-acks").start()
+        self.ack_reader = self.node.reader(ACK_TOPIC, rapid.Ack, keep_all=True)
+        self._reader = ReaderThread(self.node, self.ack_reader, rapid.Ack, self._on_ack, "rapid-acks").start()
 
     def _on_ack(self, sample) -> None:
         cmd_id, status, completed, message = M.ack_fields(sample)
@@ -34,10 +34,11 @@ class Commander:
             self.cond.notify_all()
 
     def wait_for_asset(self, timeout: float) -> bool:
-        """True once an asset's command reader matched our writer (Astrobee waits likewise)."""
+        """True once an asset's command reader matched our writer (Astrobee waits likewise)
+        and its ack writer our reader."""
         end = time.monotonic() + timeout
         while time.monotonic() < end:
-            if self.writer.get_matched_subscriptions():
+            if self.writer.get_matched_subscriptions() and self.ack_reader.get_matched_publications():
                 return True
             time.sleep(0.02)
         return False
@@ -48,7 +49,7 @@ class Commander:
 
     def send(self, subsystem: str, name: str, args=(), action: str = BYPASS, target: str = "",
              cmd_id: str | None = None, source: str | None = None, asset: str | None = None) -> str:
-        cmd = Cmd(cmd_id=cmd_id or self.new_id(), cmd_src=self.source if source is None else source,
+        cmd = Cmd(cmd_id=self.new_id() if cmd_id is None else cmd_id, cmd_src=self.source if source is None else source,
                   subsystem=subsystem, name=name, args=tuple(args), action=action, target=target,
                   src_name=self.source, asset_name=self.asset if asset is None else asset)
         self.writer.write(M.command_out(self.rapid, cmd))

@@ -53,11 +53,16 @@ class Node:
                 self._topics[name] = Topic(self.participant, name, cls)
             return self._topics[name]
 
-    def writer(self, topic: str, cls) -> DataWriter:
+    def writer(self, topic: str, cls, keep_last: int | None = None) -> DataWriter:
+        """keep_last: history depth per instance instead of the profile's (not a
+        request/offered policy, so matching is unchanged)."""
         with self._lock:
             w = self._writers.get(topic)
         if w is None:
-            w = DataWriter(self.publisher, self.topic(topic, cls), qos=self.qos.writer(topic))
+            q = self.qos.writer(topic)
+            if keep_last is not None:
+                q = q + Qos(Policy.History.KeepLast(keep_last))
+            w = DataWriter(self.publisher, self.topic(topic, cls), qos=q)
             with self._lock:
                 self._writers[topic] = w
         return w

@@ -68,6 +68,7 @@ class CommandManager:
         self.has_queue = tables.has_type("Queue")
         self.has_control = tables.has_type("AccessControl")
         self.idle = threading.Condition(self.lock)
+        self.shutdown_after: Run | None = None
 
     # ---- intake ---------------------------------------------------------------------------
     def receive(self, cmd: Cmd) -> None:
@@ -249,6 +250,8 @@ class CommandManager:
     def _complete(self, run: Run, completion: str, message: str) -> None:
         run.done = True
         self._ack(run.cmd, COMPLETED, completion, message)
+        if self.shutdown_after is run and self.on_shutdown is not None:
+            threading.Thread(target=self.on_shutdown, daemon=True, name="shutdown").start()
         if run.queued:
             if self.active is run:
                 self.active = None
@@ -331,8 +334,7 @@ def _noop(m: CommandManager, run: Run):
 
 
 def _shutdown(m: CommandManager, run: Run):
-    if m.on_shutdown is not None:
-        threading.Thread(target=m.on_shutdown, daemon=True).start()
+    m.shutdown_after = run  # once its COMPLETED ack is out
     return OK, "shutting down"
 
 
