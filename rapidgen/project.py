@@ -90,7 +90,12 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
         return None
     root = os.path.dirname(path)
     targets = []
-    for t in data["targets"]:
+    for i, t in enumerate(data["targets"]):
+        if not _inside(root, t["out"]):
+            sink.error("RG0815", f"target '{t['name']}': output folder '{t['out']}' is outside the project",
+                       doc.loc(("targets", i, "out")), "`rapidgen check --fix` writes there: give a folder "
+                       "inside the project, relative to rapidgen.yaml, not through a link that leaves it")
+            continue
         if "asset" in t:
             inputs: tuple[str, ...] = (os.path.join(root, t["asset"]),)
             source = t["asset"]
@@ -107,6 +112,15 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
                               tuple(t["lang"]), os.path.join(root, t["out"]), t.get("package"), source))
     _check_outputs(targets, loc, sink)
     return None if sink.has_errors else targets
+
+
+def _inside(root: str, out: str) -> bool:
+    """True when out, relative to the project folder, stays inside it once links are resolved
+    (a project file comes from a repository; its outputs must not land elsewhere)."""
+    if os.path.isabs(out):
+        return False
+    top = os.path.realpath(root or ".")
+    return os.path.commonpath([top, os.path.realpath(os.path.join(top, out))]) == top
 
 
 def _clip(message: str, limit: int = 160) -> str:
