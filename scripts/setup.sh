@@ -12,11 +12,13 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 # Reinstall only when the project's dependency list changed since the last install.
 STAMP="$VENV/.rapidgen-installed"
-WANT="$(sha256sum "$ROOT/pyproject.toml" | cut -d' ' -f1)"
+WANT="$(cat "$ROOT/pyproject.toml" "$ROOT/runtime/pyproject.toml" | sha256sum | cut -d' ' -f1)"
 if [ ! -f "$STAMP" ] || [ "$(cat "$STAMP")" != "$WANT" ]; then
     echo "setup: installing rapidgen and test dependencies" >&2
     "$VENV/bin/python" -m pip install --quiet --upgrade pip >&2
     "$VENV/bin/python" -m pip install --quiet -e "$ROOT[test]" >&2
+    # The asset runtime (runtime/): what a generated package's bridge runs on.
+    "$VENV/bin/python" -m pip install --quiet -e "$ROOT/runtime" >&2
     echo "$WANT" > "$STAMP"
 fi
 # Debian packages (scripts/apt-packages.txt), installed only when one is missing.
