@@ -6,13 +6,14 @@ flattened once into plain dicts (lark's generic loop hashes rule objects and che
 its state on every step, which was most of the parse time). On any input the table
 rejects, parsing is handed to lark's own parser, which raises its full exception (with
 the expected tokens and an interactive parser) for the error translation in parse.py:
-error reporting is lark's, only the happy path is ours.
+error reporting is lark's, only the happy path is ours. The grammar's transformer has
+no terminal callbacks (methods named after terminals): this loop would not call them.
 """
 from __future__ import annotations
 
 from itertools import chain
 
-from lark import Lark, Token
+from lark import Lark, Token, Transformer
 from lark.parsers.lalr_analysis import Shift
 
 from rapidgen.idl.lexer import IdlLexer
@@ -26,33 +27,45 @@ class _Rejected(Exception):
 
 
 class LeanLALR:
+    """Parses with the tables of `parser` (built without a transformer); the syntax-tree
+    builder is an argument of each parse, so one LeanLALR serves any number of parses at
+    once and holds nothing of any input."""
+
     def __init__(self, parser: Lark) -> None:
         inner = parser.parser.parser.parser  # ParsingFrontend -> LALR_Parser -> _Parser
         table = inner.parse_table
-        callbacks = inner.callbacks
         self.parser = parser
         self.lexer = IdlLexer(parser.lexer_conf)
         self.start = table.start_states["start"]
         self.end = table.end_states["start"]
-        # Terminal callbacks (transformer methods named after terminals) would need calling
-        # on shift; the grammar's transformer has none, and lark's loop handles them if it ever does.
-        self.usable = not any(isinstance(k, str) for k in callbacks)
-        # state -> symbol -> next state (int: shift / goto) or (size, rule name, callback) to reduce
+        # rule number -> rule; per parse, the builder's callbacks are listed in this order
+        self.rules = list(parser.rules)
+        number = {rule: i for i, rule in enumerate(self.rules)}
+        # state -> symbol -> next state (int: shift / goto) or (size, rule name, rule number) to reduce
         self.rows: dict[int, dict[str, object]] = {
-            state: {sym: arg if action is Shift else (len(arg.expansion), arg.origin.name, callbacks[arg])
+            state: {sym: arg if action is Shift else (len(arg.expansion), arg.origin.name, number[arg])
                     for sym, (action, arg) in row.items()}
             for state, row in table.states.items()
         }
 
-    def parse(self, text: str):
-        if not self.usable:
-            return self.parser.parse(text)
-        try:
-            return self._run(text)
-        except _Rejected:
-            return self.parser.parse(text)  # raises lark's UnexpectedToken with full context
+    def parse(self, text: str, transformer: Transformer):
+        """The value of the start rule, `transformer`'s methods applied as rules reduce.
 
-    def _run(self, text: str):
+        On input the table rejects, lark's parser (a tree builder, so no callback of
+        `transformer` runs twice) raises its UnexpectedInput with the full context.
+        """
+        # lark wraps each method (dropping punctuation tokens, inlining _rules) as it would
+        # for a parser built with this transformer; terminal callbacks are not supported
+        callbacks = self.parser._parse_tree_builder.create_callback(transformer)
+        table = [callbacks[rule] for rule in self.rules]
+        try:
+            return self._run(text, table)
+        except _Rejected:
+            pass
+        self.parser.parse(text)  # raises lark's UnexpectedToken / UnexpectedCharacters
+        raise AssertionError("lark accepted an input its own table rejected")
+
+    def _run(self, text: str, callbacks: list):
         rows, end = self.rows, self.end
         state = self.start
         states = [state]
@@ -69,14 +82,14 @@ class LeanLALR:
                     break
                 if act is None:
                     raise _Rejected
-                size, origin, callback = act  # type: ignore[misc]
+                size, origin, rule = act  # type: ignore[misc]
                 if size:
                     args = values[-size:]
                     del values[-size:]
                     del states[-size:]
                 else:
                     args = []
-                push_value(callback(args))
+                push_value(callbacks[rule](args))
                 state = rows[states[-1]][origin]  # type: ignore[assignment]
                 push_state(state)
                 if state == end and kind == "$END":  # the start rule is complete

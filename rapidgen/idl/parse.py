@@ -1,8 +1,10 @@
 """Parse preprocessed IDL text into the syntax tree (rapidgen.idl.ast).
 
-The lark LALR parser is built once per process (and cached on disk by lark). Lark's
-exceptions never reach the user: they are translated into diagnostics with the
-original file:line:col and a hint.
+The lark LALR parser is built once per process (and cached on disk by lark); everything
+a parse needs to know of its input (the locator, //@key comments, the sink) lives in a
+syntax-tree builder made for that call, so parses are re-entrant and nothing keeps an
+input alive once its parse returns. Lark's exceptions never reach the user: they are
+translated into diagnostics with the original file:line:col and a hint.
 """
 from __future__ import annotations
 
@@ -41,9 +43,10 @@ _TERMINAL_NAMES = {
 
 @functools.lru_cache(maxsize=1)
 def _parser() -> Lark:
-    """The LALR parser, with the syntax-tree builder applied inline as rules reduce."""
+    """The LALR tables and lark's own parser (a plain tree builder: it only runs on input
+    the lean driver rejected, to raise its detailed syntax error)."""
     grammar = resources.files("rapidgen.idl").joinpath("grammar.lark").read_text(encoding="utf-8")
-    options = dict(parser="lalr", lexer=IdlLexer, maybe_placeholders=False, transformer=_TRANSFORMER)
+    options = dict(parser="lalr", lexer=IdlLexer, maybe_placeholders=False)
     try:
         return Lark(grammar, cache=True, **options)
     except OSError:  # unwritable temp dir: build without the on-disk cache
@@ -127,14 +130,14 @@ class _ToAst(Transformer):
 
     Lark gives inline transformers no position metadata, so locations come from tokens:
     names, literals and the type keywords, which the grammar keeps as named terminals.
-    Per-parse state (the locator, //@key comments, the sink) is set in `ctx` by parse().
+    One instance per parse() call: it holds that call's locator, //@key comments and sink.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, loc: _Locator, key_comments: dict[tuple[str, int], int], sink: DiagnosticSink) -> None:
         super().__init__()
-        self.loc: _Locator
-        self.key_comments: dict[tuple[str, int], int] = {}
-        self.sink: DiagnosticSink
+        self.loc = loc
+        self.key_comments = key_comments
+        self.sink = sink
 
     def _name(self, tok: Token) -> str:
         """A declared name; a leading underscore escapes a keyword (IDL 7.2.3.1) and is dropped."""
@@ -465,9 +468,6 @@ def _fold(operands: list[ast.Expr], op: str) -> None:
     operands.append(ast.Binary(op, left, right, loc))
 
 
-_TRANSFORMER = _ToAst()
-
-
 _TOKEN_FAMILIES = (
     ({"'struct'", "'module'", "'const'"},
      {"'#pragma keylist'", "'@'", "'@annotation'", "'bitmask'", "'bitset'", "'const'", "'enum'", "'module'",
@@ -533,7 +533,6 @@ def _prev_token_end(lines: list[str], line: int, col: int) -> tuple[int, int] | 
         if code.strip():
             return ln, len(code) + 1
         ln -= 1
-        upto = None  # type: ignore[assignment]
         upto = len(lines[ln - 1]) if ln >= 1 else 0
     return None
 
@@ -618,10 +617,10 @@ def _unclosed_brace(text: str) -> tuple[int, int] | None:
 def parse(pre: PreprocessResult, sink: DiagnosticSink) -> ast.Specification | None:
     """Parse preprocessed text; on a syntax error report it and return None."""
     locator = _Locator(pre)
-    parser = _lean()
-    _TRANSFORMER.loc, _TRANSFORMER.key_comments, _TRANSFORMER.sink = locator, pre.key_comments, sink
+    lean = _lean()
+    builder = _ToAst(locator, pre.key_comments, sink)
     try:
-        definitions = parser.parse(pre.text)
+        definitions = lean.parse(pre.text, builder)
     except UnexpectedInput as exc:
         _syntax_error(exc, pre.text, locator, sink)
         return None
