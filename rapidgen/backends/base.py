@@ -7,7 +7,7 @@ whose content depends only on its inputs, so output is byte-identical on every r
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
 from rapidgen.backends.escape import UNENCODABLE, XML_FORBIDDEN, visible
@@ -30,7 +30,6 @@ class GeneratedFile:
 class Options:
     source: str  # the spec the output comes from, named in every file header
     package: str | None = None  # base package/crate/namespace name; back ends pick a default
-    settings: dict[str, str] = field(default_factory=dict)
     qos_library: object | None = None  # rapidgen.qos.spec.QosSpec, read by the driver for the qos target
 
 
