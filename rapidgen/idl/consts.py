@@ -2,7 +2,7 @@
 
 Integers are evaluated exactly (Python ints); every intermediate result must fit in
 64 bits and the final value in the target type, otherwise an overflow error is
-reported. Integer division truncates toward zero like C. Division by zero, operators
+reported; a string over its bound is only a warning (RG0406), as with RTI's compiler. Integer division truncates toward zero like C. Division by zero, operators
 on the wrong kind of operand and type mismatches are errors with locations.
 """
 from __future__ import annotations
@@ -171,7 +171,11 @@ class ConstEvaluator:
         if cat == "string" and val.category == "string":
             text = str(val.value)
             if target.bound is not None and len(text) > target.bound:
-                self._fail("RG0402", f"string of {len(text)} characters exceeds the bound of {target.describe()}", loc)
+                # RAPID's own IDL has these (`const String16 K = "ATHLETE_HEADING_RAD";`) and
+                # RTI's compiler accepts them: warn, and keep the whole value, as it does
+                self.sink.warning("RG0406", f"string of {len(text)} characters exceeds the bound of "
+                                  f"{target.describe()}; the whole value is kept", loc,
+                                  f"shorten it to {target.bound} characters or widen the type")
             return text
         if cat == "bool" and val.category == "bool":
             return bool(val.value)
