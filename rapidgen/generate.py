@@ -90,6 +90,14 @@ def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
         except GenerationError as exc:
             exc.report(sink)
             return None
+    if "python" in out and inputs.asset is not None and qos_library is not None:
+        from rapidgen.backends.python.asset_tables import with_qos_files
+        try:
+            qos_files = out.get("qos") or backends.get("qos").generate(inputs.model, inputs.asset, options)
+        except GenerationError as exc:
+            exc.report(sink)
+            return None
+        out["python"] = with_qos_files(out["python"], qos_files)
     return out
 
 

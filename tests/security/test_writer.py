@@ -190,7 +190,8 @@ def test_renamed_package_leaves_no_empty_folders_but_keeps_user_folders(tmp_path
     res = run_rapidgen("generate", K10, "--lang", "python", "-o", "out", "--package", "renamed", cwd=tmp_path)
     assert res.code == 0, res.err
     left = sorted(str(p.relative_to(out)) for p in (out / "rapid_k10red").rglob("*"))
-    assert left == ["rapid_k10red/rapid", "rapid_k10red/rapid/notes.txt"]
+    # handlers.py is the user's (written once, user_owned): kept like notes.txt
+    assert left == ["rapid_k10red/handlers.py", "rapid_k10red/rapid", "rapid_k10red/rapid/notes.txt"]
     assert sorted(os.listdir(out)) == [writer.MANIFEST, "pyproject.toml", "rapid_k10red", "renamed"]
 
 
@@ -291,7 +292,9 @@ def test_next_generate_completes_an_interrupted_run(tmp_path):
     res = run_rapidgen("check", "--fix", cwd=tmp_path)
     assert res.code == 0 and "completed a run that was interrupted" in res.out
     assert run_rapidgen("check", cwd=tmp_path).code == 0
-    assert sorted(os.listdir(out)) == [writer.MANIFEST, "pyproject.toml", "renamed"] and manifest_matches(out)
+    # the old package's handlers.py is the user's (user_owned): it stays, alone
+    assert sorted(os.listdir(out)) == [writer.MANIFEST, "pyproject.toml", "rapid_k10red", "renamed"]
+    assert os.listdir(out / "rapid_k10red") == ["handlers.py"] and manifest_matches(out)
 
 
 # --- item 4: one run at a time -------------------------------------------------------

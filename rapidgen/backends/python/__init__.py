@@ -39,21 +39,16 @@ def view(model: Model, asset: "LoadedAsset | None", options: Options) -> Package
 
 
 def asset_files(model: Model, asset: "LoadedAsset", options: Options, pkg: PackageView) -> list[GeneratedFile]:
-    """The asset's tables, handlers, bridge and QoS files (asset_tables.py); none without a
-    QoS library (the driver passes it)."""
-    from rapidgen.backends import qos
-    from rapidgen.qos.spec import QosSpec
-
-    if not isinstance(options.qos_library, QosSpec):
-        return []
-    return asset_tables.generate(asset, pkg.package, pkg.header, qos.render(options.qos_library, model, asset, options))
+    """The asset's tables, handlers and bridge (asset_tables.py). The driver adds the QoS
+    files under <package>/qos_files/ (rapidgen.generate.render: back ends import no other)."""
+    return asset_tables.generate(asset, pkg.package, pkg.header)
 
 
 def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:
     """Raises UnsupportedInput when the model uses what cyclonedds cannot encode."""
     pkg = view(model, asset, options)
     extras = asset_files(model, asset, options, pkg) if asset is not None else []
-    runtime = asset_tables.runtime_view(pkg.package) if extras else None
+    runtime = asset_tables.runtime_view(pkg.package) if extras else None  # package data: qos_files/
     files = [GeneratedFile("pyproject.toml", render("python", "pyproject.toml.j2", p=pkg.project, runtime=runtime)),
              GeneratedFile(pkg.support_path, render("python", "_support.py.j2", header=pkg.header)),
              GeneratedFile(pkg.qos.path, render("python", "qos.py.j2", q=pkg.qos))]

@@ -195,7 +195,7 @@ def runtime_view(package: str) -> dict:
             "package_data": [f"{QOS_FOLDER}/*.json", f"{QOS_FOLDER}/*/*.xml"]}
 
 
-def generate(loaded, package: str, header: str, qos_files: list[GeneratedFile]) -> list[GeneratedFile]:
+def generate(loaded, package: str, header: str) -> list[GeneratedFile]:
     data = tables(loaded)
     body = "\n\n".join(f"{name} = {literal(value)}" for name, value in data.items())
     name = loaded.spec.name
@@ -208,5 +208,15 @@ def generate(loaded, package: str, header: str, qos_files: list[GeneratedFile]) 
                       render("python", "handlers.py.j2", package=package, asset=name,
                              methods=_handler_views(data)), user_owned=True),
     ]
-    files += [GeneratedFile(f"{package}/{QOS_FOLDER}/{f.path}", f.content) for f in qos_files]
     return files
+
+
+def with_qos_files(files: list[GeneratedFile], qos_files: list[GeneratedFile]) -> list[GeneratedFile]:
+    """The python target's files plus the qos target's under <package>/qos_files/ (the
+    driver calls this: a back end imports no other back end)."""
+    tables_file = next((f.path for f in files if f.path.endswith("/asset_tables.py")), None)
+    if tables_file is None:
+        return files
+    package = tables_file.rsplit("/", 1)[0]
+    extra = [GeneratedFile(f"{package}/{QOS_FOLDER}/{f.path}", f.content) for f in qos_files]
+    return sorted(files + extra, key=lambda f: f.path)
