@@ -145,13 +145,8 @@ class Facts:
         return decl if isinstance(decl, Struct) else None
 
     def is_message(self, name: str) -> bool:
-        cur, seen = self.struct(name), 0
-        while cur is not None and seen < 100:
-            if cur.scoped_name == MESSAGE:
-                return True
-            cur = self.struct(cur.base) if cur.base else None
-            seen += 1
-        return False
+        cur = self.struct(name)
+        return cur is not None and any(b.scoped_name == MESSAGE for b in self.model.lineage(cur))
 
     def struct_names(self) -> list[str]:
         return [d.scoped_name for d in self.model.declarations if isinstance(d, Struct)] if self.model else []

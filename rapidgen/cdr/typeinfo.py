@@ -9,7 +9,6 @@ Pure model code: no DDS library, no I/O. See docs/cdr-and-vectors.md.
 """
 from __future__ import annotations
 
-import hashlib
 import struct
 from dataclasses import dataclass
 
@@ -87,16 +86,7 @@ def int_size(bit_bound: int) -> int:
     return 8
 
 
-def name_hash(name: str) -> int:
-    """XTypes member id from a name: first 4 bytes of MD5, little-endian, low 28 bits."""
-    return int.from_bytes(hashlib.md5(name.encode("utf-8")).digest()[:4], "little") & 0x0FFFFFFF
-
-
-def label_key(label: object) -> tuple[bool, object]:
-    """Comparable key of a union label or discriminator value (True and 1 stay apart)."""
-    if isinstance(label, ir.EnumValue):
-        return (False, label.value)
-    return (type(label) is bool, label)
+label_key = ir.label_key
 
 
 def _ann(annotations: tuple[ir.Annotation, ...], name: str) -> dict[str, object] | None:
@@ -180,48 +170,23 @@ class CdrTypes:
     def bitmask_size(self, b: ir.Bitmask) -> int:
         return int_size(b.bit_bound)
 
-    def bitset_fields(self, b: ir.Bitset) -> list[ir.Bitfield]:
-        chain: list[ir.Bitset] = []
-        cur: ir.Bitset | None = b
-        while cur is not None and len(chain) < 100:
-            chain.append(cur)
-            base = self.model.get(cur.base) if cur.base else None
-            cur = base if isinstance(base, ir.Bitset) else None
-        return [f for s in reversed(chain) for f in s.fields]
+    def bitset_fields(self, b: ir.Bitset) -> tuple[ir.Bitfield, ...]:
+        return self.model.all_fields(b)
 
     def bitset_size(self, b: ir.Bitset) -> int:
         return int_size(max(1, sum(f.width for f in self.bitset_fields(b))))
 
     # -- members --------------------------------------------------------------------------
     def members(self, s: ir.Struct) -> tuple[MemberInfo, ...]:
-        """Members in wire order (base first) with their XTypes member ids."""
+        """Members in wire order (base first) with their XTypes member ids (resolved in
+        the model)."""
         cached = self._members.get(s.scoped_name)
         if cached is not None:
             return cached
-        chain: list[ir.Struct] = []
-        cur: ir.Struct | None = s
-        while cur is not None and len(chain) < 100:
-            chain.append(cur)
-            base = self.model.get(cur.base) if cur.base else None
-            cur = base if isinstance(base, ir.Struct) else None
         out: list[MemberInfo] = []
-        next_id = 0
-        for owner in reversed(chain):
-            autoid = _ann(owner.annotations, "autoid")
-            hashed = bool(autoid and str(autoid.get("value", "")).upper() == "HASH")
-            for m in owner.members:
-                hashid = _ann(m.annotations, "hashid")
-                if m.id is not None:
-                    mid = m.id
-                elif hashid is not None:
-                    mid = name_hash(str(hashid.get("value") or m.name))
-                elif hashed:
-                    mid = name_hash(m.name)
-                else:
-                    mid = next_id
-                next_id = mid + 1
-                mu = _ann(m.annotations, "must_understand")
-                out.append(MemberInfo(m, mid & 0x0FFFFFFF, m.key or bool(mu and mu.get("value", True))))
+        for m in self.model.all_members(s):
+            mu = _ann(m.annotations, "must_understand")
+            out.append(MemberInfo(m, m.member_id, m.key or bool(mu and mu.get("value", True))))
         result = tuple(out)
         self._members[s.scoped_name] = result
         return result
@@ -337,8 +302,9 @@ class CdrTypes:
                 n += sum(1 if mi.member.optional else self.default_count(mi.member.type, depth + 1)
                          for mi in self.members(d))
             elif isinstance(d, ir.Union):
-                n += 2  # the discriminator and a value: a small bound, unions default to their first case
-                n += max((self.default_count(c.member.type, depth + 1) for c in d.cases), default=0)
+                n += 2  # the discriminator and the value of the member its default selects
+                member = d.default_member
+                n += self.default_count(member.type, depth + 1) if member is not None else 0
             elif isinstance(d, ir.Bitset):
                 n += len(self.bitset_fields(d))
         self._min[key] = n  # type: ignore[index]
@@ -366,7 +332,7 @@ class CdrTypes:
         if isinstance(r, ir.TypeRef):
             d = self.decl(r)
             if isinstance(d, ir.Enum):
-                return d.enumerators[0].name if d.enumerators else 0
+                return d.default or 0  # the @default_literal enumerator, else the first
             if isinstance(d, ir.Bitmask):
                 return 0
             if isinstance(d, ir.Bitset):
@@ -379,15 +345,12 @@ class CdrTypes:
         raise CdrError(f"no default value for type '{t}'")
 
     def default_union(self, d: ir.Union, depth: int = 0) -> dict[str, object]:
-        for case in d.cases:
-            if case.labels:
-                return {"discriminator": label_value(case.labels[0]),
-                        "value": self.default_value(case.member.type, depth + 1)}
-        disc = self.default_value(d.discriminator, depth + 1)
-        case = self.union_case(d, self.disc_number(d, disc))
-        if case is None:
-            return {"discriminator": disc}
-        return {"discriminator": disc, "value": self.default_value(case.member.type, depth + 1)}
+        """The union's default value, as the model resolved it (the bindings' too)."""
+        out: dict[str, object] = {"discriminator": label_value(d.default_discriminator)}
+        member = d.default_member
+        if member is not None:
+            out["value"] = self.default_value(member.type, depth + 1)
+        return out
 
     def disc_number(self, d: ir.Union, disc: object) -> object:
         """A discriminator in value form (enumerator name) as the label it compares with."""

@@ -17,24 +17,6 @@ if TYPE_CHECKING:
     from rapidgen.idl.resolve import Resolver
 
 
-def _alias(t: ir.Type, typedefs: dict[str, ir.Typedef]) -> ir.Type:
-    for _ in range(100):
-        if isinstance(t, ir.TypeRef) and t.kind == "typedef" and t.name in typedefs:
-            t = typedefs[t.name].type
-        else:
-            break
-    return t
-
-
-def _members(s: ir.Struct, structs: dict[str, ir.Struct]) -> tuple[ir.Member, ...]:
-    chain: list[ir.Struct] = []
-    cur: ir.Struct | None = s
-    while cur is not None and len(chain) < 100:
-        chain.append(cur)
-        cur = structs.get(cur.base) if cur.base else None
-    return tuple(m for c in reversed(chain) for m in c.members)
-
-
 def apply_keylists(decls: list[ir.Declaration], pragmas: list[tuple[ast.KeylistPragma, tuple[str, ...]]],
                    resolver: "Resolver", sink: DiagnosticSink) -> list[ir.Declaration]:
     """Mark `#pragma keylist` members as keys; the struct's key paths become the listed ones."""
@@ -57,14 +39,14 @@ def apply_keylists(decls: list[ir.Declaration], pragmas: list[tuple[ast.KeylistP
             owner: ir.Struct | None = struct
             ok = True
             for i, part in enumerate(parts):
-                members = {m.name: m for m in _members(owner, structs)} if owner else {}
+                members = {m.name: m for m in ir.flatten(owner, structs.get)} if owner else {}
                 if part not in members:
                     where = owner.scoped_name if owner else ".".join(parts[:i])
                     sink.error("RG0310", f"#pragma keylist: '{where}' has no member '{part}'", loc,
                                did_you_mean(part, members))
                     ok = False
                     break
-                t = _alias(members[part].type, typedefs)
+                t = ir.unalias(members[part].type, typedefs.get)
                 owner = structs.get(t.name) if isinstance(t, ir.TypeRef) else None
             if ok:
                 paths.append(path)
@@ -82,13 +64,13 @@ def compute_keys(decls: list[ir.Declaration], sink: DiagnosticSink) -> list[ir.D
     memo: dict[str, tuple[str, ...]] = {}
 
     def expand(prefix: str, t: ir.Type, depth: int) -> list[str]:
-        real = _alias(t, typedefs)
+        real = ir.unalias(t, typedefs.get)
         if isinstance(real, ir.TypeRef) and real.name in structs and depth < 32:
             inner = keys_of(real.name, depth + 1)
             if inner:
                 return [f"{prefix}.{k}" for k in inner]
             out: list[str] = []
-            for m in _members(structs[real.name], structs):
+            for m in ir.flatten(structs[real.name], structs.get):
                 out.extend(expand(f"{prefix}.{m.name}", m.type, depth + 1))
             return out
         return [prefix]

@@ -10,12 +10,14 @@ on past errors so one run reports as many as it can.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.idl import ast
 from rapidgen.model import ir
 from rapidgen.idl.annotations import AnnotationChecker, Checked
 from rapidgen.idl.consts import ConstEvaluator, Target, Typed, target_for_primitive
+from rapidgen.idl.facts import MemberIds, discriminator_default, enum_default, union_default
 from rapidgen.idl.keys import apply_keylists, compute_keys
 from rapidgen.model.order import check_recursion, dependency_order
 
@@ -57,6 +59,12 @@ class Resolver:
         self._hints_left = _MAX_NAME_HINTS
         self.evaluator = ConstEvaluator(sink)
         self.annotations = AnnotationChecker(sink, self.evaluator)
+        # What resolves each kind of symbol (enumerators and forward declarations: nothing).
+        self._resolvers: dict[str, Callable[[_Sym], ir.Declaration | None]] = {
+            "struct": self._resolve_struct, "union": self._resolve_union, "enum": self._resolve_enum,
+            "bitmask": self._resolve_bitmask, "bitset": self._resolve_bitset,
+            "typedef": self._resolve_typedef, "const": self._resolve_const, "native": self._resolve_native,
+        }
 
     # == symbol table =====================================================================
     def _add(self, sym: _Sym) -> None:
@@ -214,13 +222,13 @@ class Resolver:
         return int(value)  # type: ignore[call-overload]
 
     # == types ============================================================================
-    def _alias(self, t: ir.Type, depth: int = 0) -> ir.Type:
-        while isinstance(t, ir.TypeRef) and t.kind == "typedef" and depth < 100:
-            decl = self.declaration(self.syms[t.name]) if t.name in self.syms else None
-            if not isinstance(decl, ir.Typedef):
-                return t
-            t, depth = decl.type, depth + 1
-        return t
+    def _alias(self, t: ir.Type) -> ir.Type:
+        return ir.unalias(t, self._get)
+
+    def _get(self, scoped: str) -> ir.Declaration | None:
+        """The declaration of a scoped name, resolved on demand."""
+        sym = self.syms.get(scoped)
+        return self.declaration(sym) if sym is not None else None
 
     def type_of(self, spec: ast.TypeSpec, scope: tuple[str, ...], depth: int = 0) -> ir.Type | None:
         if depth > _MAX_TYPE_NESTING:  # sequence<sequence<...>>: later stages recurse on types
@@ -298,8 +306,8 @@ class Resolver:
             return None
         self.busy[sym.scoped] = None
         try:
-            method = getattr(self, f"_resolve_{sym.kind}", None)
-            result = method(sym) if method else None
+            resolver = self._resolvers.get(sym.kind)
+            result = resolver(sym) if resolver else None
         except RecursionError:
             self.done[sym.scoped] = None  # the whole chain fails, and is reported once
             if len(self.busy) > 1:
@@ -318,29 +326,41 @@ class Resolver:
         return self.annotations.check(anns, where, self._name_value(scope), value_target)
 
     @staticmethod
-    def _extensibility(checked: Checked) -> str:
+    def _extensibility(checked: Checked) -> ir.Extensibility:
         for name in ("final", "appendable", "mutable"):
             if checked.has(name):
-                return name
+                return name  # type: ignore[return-value]
         ext = checked.get("extensibility")
-        return str(ext).lower() if ext else "final"
+        return str(ext).lower() if ext else "final"  # type: ignore[return-value]
 
-    def _member(self, md: ast.MemberDecl, decl: ast.Declarator, scope, where: str = "member") -> ir.Member | None:
+    @staticmethod
+    def _autoid(checked: Checked) -> ir.AutoId:
+        return "HASH" if checked.get("autoid") == "HASH" else "SEQUENTIAL"
+
+    def _member(self, md: ast.MemberDecl, decl: ast.Declarator, scope, ids: MemberIds,
+                where: str = "member") -> ir.Member | None:
         t = self._declared(md.type, decl, scope)
         if t is None:
             return None
         if not md.annotations:  # the common case
-            return ir.Member(decl.name, t, decl.loc, (), md.key_comment)
+            return ir.Member(decl.name, t, decl.loc, (), md.key_comment, member_id=ids.take(decl.name, None, None))
         checked = self._anns(md.annotations, where, scope, lambda: self._target(t))
         key = md.key_comment or bool(checked.get("key", default=False))
         if md.key_comment and checked.has("optional"):
             self.sink.error("RG0504", "a key member cannot be @optional", decl.loc)
         ident = checked.get("id")
+        explicit = int(ident) if ident is not None else None  # type: ignore[call-overload]
+        hashid = str(checked.get("hashid")) if checked.has("hashid") else None
+        try:
+            member_id = ids.take(decl.name, explicit, hashid)
+        except UnicodeEncodeError:  # a lone surrogate (\ud800 escape): no UTF-8 bytes to hash
+            self.sink.error("RG0502", f"'@hashid' of member '{decl.name}' is not valid Unicode text "
+                            "(a lone surrogate)", decl.loc, "hash ids are computed from the UTF-8 bytes")
+            member_id = ids.take(decl.name, ids.next, None)
         return ir.Member(decl.name, t, decl.loc, checked.annotations, key,
                          bool(checked.get("optional", default=False)),
                          bool(checked.get("external", default=False)),
-                         int(ident) if ident is not None else None,  # type: ignore[call-overload]
-                         checked.get("default"))  # type: ignore[arg-type]
+                         explicit, checked.get("default"), member_id)  # type: ignore[arg-type]
 
     def _check_member_names(self, members: list[ir.Member], inherited: tuple[ir.Member, ...], owner: str) -> list[ir.Member]:
         seen: dict[str, ir.Member] = {m.name: m for m in inherited}
@@ -373,10 +393,10 @@ class Resolver:
                 base = self.declaration(bsym)
                 if isinstance(base, ir.Typedef):
                     target = self._alias(base.type)
-                    base = self.declaration(self.syms[target.name]) if isinstance(target, ir.TypeRef) and target.name in self.syms else None
+                    base = self._get(target.name) if isinstance(target, ir.TypeRef) else None
                 if isinstance(base, ir.Struct):
                     base_name = base.scoped_name
-                    inherited = self._all_members(base)
+                    inherited = ir.flatten(base, self.done.get)
                 elif bsym.kind == "forward":
                     self.sink.error("RG0309", f"'{bsym.scoped}' is declared but never defined", d.base.loc,
                                     f"define it after its forward declaration at {bsym.loc}")
@@ -385,25 +405,19 @@ class Resolver:
                     kind = bsym.kind if base is None else base.kind
                     self.sink.error("RG0301", f"base of '{sym.scoped}' must be a struct or valuetype, "
                                     f"but '{d.base}' is {_article(kind)}", d.base.loc)
+        checked = self._anns(d.annotations, "struct", outer)
+        autoid = self._autoid(checked)
+        ids = MemberIds(autoid, inherited)
         members: list[ir.Member] = []
         for md in d.members:
             for decl in md.declarators:
-                m = self._member(md, decl, sym.scope)
+                m = self._member(md, decl, sym.scope, ids)
                 if m is not None:
                     members.append(m)
         members = self._check_member_names(members, inherited, sym.scoped)
-        checked = self._anns(d.annotations, "struct", outer)
         return ir.Struct(d.name, sym.scoped, d.loc, tuple(members), base_name, checked.annotations,
-                         self._extensibility(checked), (), d.origin, bool(checked.get("nested", default=False)))
-
-    def _all_members(self, s: ir.Struct) -> tuple[ir.Member, ...]:
-        chain = []
-        cur: ir.Struct | None = s
-        while cur is not None and len(chain) < 100:
-            chain.append(cur)
-            nxt = self.done.get(cur.base) if cur.base else None
-            cur = nxt if isinstance(nxt, ir.Struct) else None
-        return tuple(m for c in reversed(chain) for m in c.members)
+                         self._extensibility(checked), (), d.origin, bool(checked.get("nested", default=False)),
+                         autoid)
 
     def _resolve_union(self, sym: _Sym) -> ir.Union | None:
         d: ast.UnionDecl = sym.decl  # type: ignore[assignment]
@@ -420,6 +434,9 @@ class Resolver:
             return None
         target = self._target(disc)
         disc_checked = self._anns(d.disc_annotations, "discriminator", outer)
+        checked = self._anns(d.annotations, "union", outer)
+        autoid = self._autoid(checked)
+        ids = MemberIds(autoid)
         cases: list[ir.UnionCase] = []
         labels_seen: dict[object, SourceLoc] = {}
         default_at: SourceLoc | None = None
@@ -443,15 +460,17 @@ class Resolver:
                     continue
                 labels_seen[keyed] = expr.loc
                 labels.append(value)
-            m = self._member(case.member, case.member.declarators[0], outer)
+            m = self._member(case.member, case.member.declarators[0], outer, ids)
             if m is not None:
                 cases.append(ir.UnionCase(tuple(labels), is_default, m))  # type: ignore[arg-type]
         kept = {id(m) for m in self._check_member_names([c.member for c in cases], (), sym.scoped)}
         cases = [c for c in cases if id(c.member) in kept]  # (by identity: `in` a list was quadratic)
-        checked = self._anns(d.annotations, "union", outer)
+        enum = self._get(real.name) if isinstance(real, ir.TypeRef) else None
+        default = discriminator_default(real, enum if isinstance(enum, ir.Enum) else None)
         return ir.Union(d.name, sym.scoped, d.loc, disc, tuple(cases), checked.annotations,
                         self._extensibility(checked), bool(disc_checked.get("key", default=False)),
-                        bool(checked.get("nested", default=False)))
+                        bool(checked.get("nested", default=False)), autoid, default,
+                        union_default(tuple(cases), default))
 
     def _resolve_enum(self, sym: _Sym) -> ir.Enum | None:
         d: ast.EnumDecl = sym.decl  # type: ignore[assignment]
@@ -484,11 +503,9 @@ class Resolver:
             names[e.name], values[value] = e.loc, e.name  # type: ignore[index]
             out.append(ir.Enumerator(e.name, int(value), e.loc, eck.annotations))  # type: ignore[call-overload]
             next_value = int(value) + 1  # type: ignore[call-overload]
+        default, declared = enum_default(tuple(out))
         return ir.Enum(d.name, sym.scoped, d.loc, tuple(out), bit_bound, checked.annotations,
-                       self._extensibility(checked))
-
-    def _resolve_enumerator(self, sym: _Sym) -> None:
-        return None
+                       self._extensibility(checked), default, declared)
 
     def _resolve_bitmask(self, sym: _Sym) -> ir.Bitmask | None:
         d: ast.BitmaskDecl = sym.decl  # type: ignore[assignment]

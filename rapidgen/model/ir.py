@@ -9,8 +9,20 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from decimal import Decimal
 from functools import cached_property
+from typing import Callable, Literal
 
 from rapidgen.diagnostics import SourceLoc
+
+# The kinds, as the type checker sees them (dispatch on them is typed, never by a
+# method name built from a string).
+TypeKind = Literal["struct", "union", "enum", "bitmask", "bitset", "typedef", "native"]
+DeclKind = Literal["struct", "union", "enum", "bitmask", "bitset", "typedef", "native", "const"]
+Extensibility = Literal["final", "appendable", "mutable"]
+AutoId = Literal["SEQUENTIAL", "HASH"]
+Origin = Literal["struct", "valuetype"]
+
+MEMBER_ID_MASK = 0x0FFFFFFF  # XTypes member ids are 28 bits
+MAX_CHAIN = 1000  # typedef and inheritance chains followed (a guard: resolution refuses cycles)
 
 INTEGER_RANGES: dict[str, tuple[int, int]] = {
     "int8": (-2**7, 2**7 - 1), "uint8": (0, 2**8 - 1),
@@ -99,7 +111,7 @@ class Fixed:
 @dataclass(frozen=True, slots=True)
 class TypeRef:
     name: str  # scoped name, a::b::C
-    kind: str  # struct | union | enum | bitmask | bitset | typedef | native
+    kind: TypeKind
 
     def __str__(self) -> str:
         return self.name
@@ -121,6 +133,7 @@ class EnumValue:
 
 
 ConstValue = int | float | Decimal | str | bool | EnumValue
+Label = int | bool | str | EnumValue  # a union case label, or a discriminator value
 
 
 # -- declarations ----------------------------------------------------------------------
@@ -133,8 +146,12 @@ class Member:
     key: bool = False
     optional: bool = False
     external: bool = False
-    id: int | None = None
+    id: int | None = None  # the declared @id, if any
     default: ConstValue | None = None
+    # The effective XTypes member id, resolved once: @id, else the hash of @hashid's text
+    # or of the name (@hashid, @autoid(HASH) of the declaring type), else the previous
+    # member's id + 1 (base members come first). 28 bits.
+    member_id: int = 0
 
 
 @dataclass(frozen=True, slots=True)
@@ -145,16 +162,17 @@ class Struct:
     members: tuple[Member, ...]  # own members only; base members come first on the wire
     base: str | None = None
     annotations: tuple[Annotation, ...] = ()
-    extensibility: str = "final"
+    extensibility: Extensibility = "final"
     keys: tuple[str, ...] = ()  # full key paths, base keys first: ("hdr.srcName", "cmdId")
-    origin: str = "struct"  # struct | valuetype
+    origin: Origin = "struct"
     nested: bool = False
-    kind: str = field(default="struct", init=False)
+    autoid: AutoId = "SEQUENTIAL"  # of its own members (a base's members keep the base's)
+    kind: Literal["struct"] = field(default="struct", init=False)
 
 
 @dataclass(frozen=True, slots=True)
 class UnionCase:
-    labels: tuple[int | bool | str | EnumValue, ...]
+    labels: tuple[Label, ...]
     is_default: bool
     member: Member
 
@@ -167,10 +185,20 @@ class Union:
     discriminator: Type
     cases: tuple[UnionCase, ...]
     annotations: tuple[Annotation, ...] = ()
-    extensibility: str = "final"
+    extensibility: Extensibility = "final"
     discriminator_key: bool = False
     nested: bool = False
-    kind: str = field(default="union", init=False)
+    autoid: AutoId = "SEQUENTIAL"
+    # The union's default value, resolved once: the discriminator's type default
+    # (@default_literal enumerator, 0, FALSE, NUL) and the case it selects: the case
+    # labelled with it, else the `default:` case, else none (no member).
+    default_discriminator: Label = 0
+    default_case: int | None = None  # index into cases
+    kind: Literal["union"] = field(default="union", init=False)
+
+    @property
+    def default_member(self) -> Member | None:
+        return self.cases[self.default_case].member if self.default_case is not None else None
 
 
 @dataclass(frozen=True, slots=True)
@@ -189,8 +217,16 @@ class Enum:
     enumerators: tuple[Enumerator, ...]
     bit_bound: int = 32
     annotations: tuple[Annotation, ...] = ()
-    extensibility: str = "final"
-    kind: str = field(default="enum", init=False)
+    extensibility: Extensibility = "final"
+    # The enumerator a value defaults to, resolved once: the @default_literal one, else
+    # the first; default_declared says whether @default_literal chose it.
+    default: str = ""
+    default_declared: bool = False
+    kind: Literal["enum"] = field(default="enum", init=False)
+
+    @property
+    def default_enumerator(self) -> Enumerator | None:
+        return next((e for e in self.enumerators if e.name == self.default), None)
 
 
 @dataclass(frozen=True, slots=True)
@@ -209,7 +245,7 @@ class Bitmask:
     values: tuple[BitValue, ...]
     bit_bound: int = 32
     annotations: tuple[Annotation, ...] = ()
-    kind: str = field(default="bitmask", init=False)
+    kind: Literal["bitmask"] = field(default="bitmask", init=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -228,7 +264,7 @@ class Bitset:
     fields: tuple[Bitfield, ...]
     base: str | None = None
     annotations: tuple[Annotation, ...] = ()
-    kind: str = field(default="bitset", init=False)
+    kind: Literal["bitset"] = field(default="bitset", init=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -238,7 +274,7 @@ class Typedef:
     loc: SourceLoc
     type: Type
     annotations: tuple[Annotation, ...] = ()
-    kind: str = field(default="typedef", init=False)
+    kind: Literal["typedef"] = field(default="typedef", init=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -249,7 +285,7 @@ class Const:
     type: Type
     value: ConstValue
     annotations: tuple[Annotation, ...] = ()
-    kind: str = field(default="const", init=False)
+    kind: Literal["const"] = field(default="const", init=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -258,7 +294,7 @@ class Native:
     scoped_name: str
     loc: SourceLoc
     annotations: tuple[Annotation, ...] = ()
-    kind: str = field(default="native", init=False)
+    kind: Literal["native"] = field(default="native", init=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -287,22 +323,64 @@ class Model:
         return self.by_name.get(scoped_name.lstrip(":"))
 
     def resolve_alias(self, t: Type) -> Type:
-        """Follow typedefs to the underlying type."""
-        seen = 0
-        while isinstance(t, TypeRef) and t.kind == "typedef" and seen < 1000:
-            decl = self.by_name.get(t.name)
-            if not isinstance(decl, Typedef):
-                break
-            t = decl.type
-            seen += 1
-        return t
+        """Follow typedefs to the underlying type (the one unalias: see `unalias`)."""
+        return unalias(t, self.by_name.get)
+
+    @cached_property
+    def _flat(self) -> dict[str, tuple[Member, ...]]:
+        return {}
 
     def all_members(self, struct: Struct) -> tuple[Member, ...]:
-        """Members in wire order: base members first."""
-        chain: list[Struct] = []
-        cur: Struct | None = struct
-        while cur is not None and len(chain) < 1000:
-            chain.append(cur)
-            base = self.by_name.get(cur.base) if cur.base else None
-            cur = base if isinstance(base, Struct) else None
-        return tuple(m for s in reversed(chain) for m in s.members)
+        """Members in wire order: base members first (the one flattening: see `flatten`)."""
+        got = self._flat.get(struct.scoped_name)
+        if got is None:
+            got = self._flat[struct.scoped_name] = flatten(struct, self.by_name.get)
+        return got
+
+    def lineage(self, d: Struct | Bitset) -> tuple[Struct | Bitset, ...]:
+        """A struct's (or bitset's) base chain, the root first and `d` last."""
+        return lineage(d, self.by_name.get)
+
+    def all_fields(self, bitset: Bitset) -> tuple[Bitfield, ...]:
+        """A bitset's fields, its bases' first."""
+        return tuple(f for b in lineage(bitset, self.by_name.get) if isinstance(b, Bitset) for f in b.fields)
+
+
+# -- queries, also used by resolution (before there is a Model) -------------------------
+Lookup = Callable[[str], "Declaration | None"]
+
+
+def unalias(t: Type, get: Lookup) -> Type:
+    """Follow a typedef chain to the type it names; an unknown name stops it."""
+    for _ in range(MAX_CHAIN):
+        if not (isinstance(t, TypeRef) and t.kind == "typedef"):
+            break
+        decl = get(t.name)
+        if not isinstance(decl, Typedef):
+            break
+        t = decl.type
+    return t
+
+
+def lineage(d: Struct | Bitset, get: Lookup) -> tuple[Struct | Bitset, ...]:
+    """`d` and its bases, the root first; a base of another kind (or unknown) ends it."""
+    chain: list[Struct | Bitset] = [d]
+    while len(chain) < MAX_CHAIN:
+        base = get(chain[-1].base) if chain[-1].base else None
+        if type(base) is not type(d):
+            break
+        chain.append(base)  # type: ignore[arg-type]
+    return tuple(reversed(chain))
+
+
+def label_key(label: object) -> tuple[bool, object]:
+    """Comparable key of a union label or discriminator value (enumerators by value;
+    True and 1 stay apart)."""
+    if isinstance(label, EnumValue):
+        return (False, label.value)
+    return (type(label) is bool, label)
+
+
+def flatten(struct: Struct, get: Lookup) -> tuple[Member, ...]:
+    """A struct's members in wire order: base members first."""
+    return tuple(m for s in lineage(struct, get) if isinstance(s, Struct) for m in s.members)

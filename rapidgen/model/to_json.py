@@ -31,6 +31,7 @@ def _member(m: ir.Member) -> dict:
         out["external"] = True
     if m.id is not None:
         out["id"] = m.id
+    out["member_id"] = m.member_id
     if m.default is not None:
         out["default"] = _value(m.default)
     if m.annotations:
@@ -45,13 +46,19 @@ def declaration(d: ir.Declaration, loc: bool = True) -> dict:
                    members=[_member(m) for m in d.members], keys=list(d.keys))
         if d.nested:
             out["nested"] = True
+        if d.autoid != "SEQUENTIAL":
+            out["autoid"] = d.autoid
     elif isinstance(d, ir.Union):
         out.update(discriminator=str(d.discriminator), extensibility=d.extensibility,
                    cases=[{"labels": [_value(v) for v in c.labels], "default": c.is_default,
-                           **_member(c.member)} for c in d.cases])
+                           **_member(c.member)} for c in d.cases],
+                   default_discriminator=_value(d.default_discriminator), default_case=d.default_case)
+        if d.autoid != "SEQUENTIAL":
+            out["autoid"] = d.autoid
     elif isinstance(d, ir.Enum):
         out.update(bit_bound=d.bit_bound,
-                   enumerators=[{"name": e.name, "value": e.value} for e in d.enumerators])
+                   enumerators=[{"name": e.name, "value": e.value} for e in d.enumerators],
+                   default=d.default)
     elif isinstance(d, ir.Bitmask):
         out.update(bit_bound=d.bit_bound, values=[{"name": v.name, "position": v.position} for v in d.values])
     elif isinstance(d, ir.Bitset):

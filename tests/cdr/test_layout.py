@@ -110,7 +110,7 @@ def test_wstring_counts_bytes_without_terminator(kt):
 def test_member_ids_follow_id_and_hashid(kt):
     d = kt.model.get("kt::Hashed")
     ids = [mi.id for mi in kt.types.members(d)]
-    from rapidgen.cdr.typeinfo import name_hash
+    from rapidgen.idl.facts import name_hash
 
     assert ids == [name_hash("first"), name_hash("other")]
     mut_all = [mi.id for mi in kt.types.members(kt.model.get("kt::MutAll"))]

@@ -53,55 +53,18 @@ class Value:
     forward: bool = False  # names a class defined later in the module
 
 
-def enum_default(enum: ir.Enum) -> ir.Enumerator:
-    """The enumerator an IDL enum defaults to: @default_literal, else the first."""
-    for e in enum.enumerators:
-        if any(a.name == "default_literal" for a in e.annotations):
-            return e
-    return enum.enumerators[0]
-
-
-def union_default(model: ir.Model, u: ir.Union) -> tuple[object, ir.Member | None]:
-    """The default of a union: its discriminator's default value and the branch it selects."""
-    disc = model.resolve_alias(u.discriminator)
-    if isinstance(disc, ir.TypeRef):
-        enum = model.get(disc.name)
-        first = enum_default(enum) if isinstance(enum, ir.Enum) else None
-        label: object = ir.EnumValue(disc.name, first.name, first.value) if first else 0
-    elif isinstance(disc, ir.Primitive) and disc.name == "boolean":
-        label = False
-    elif isinstance(disc, ir.Primitive) and disc.name == "char8":
-        label = "\x00"
-    else:
-        label = 0
-    for c in u.cases:
-        if not c.is_default and any(_same_label(lab, label) for lab in c.labels):
-            return label, c.member
-    for c in u.cases:
-        if c.is_default:
-            return label, c.member
-    return label, None
-
-
-def _same_label(a: object, b: object) -> bool:
-    if isinstance(a, ir.EnumValue) and isinstance(b, ir.EnumValue):
-        return a.enum == b.enum and a.name == b.name
-    return type(a) is type(b) and a == b
-
-
 def default_refs(model: ir.Model, t: ir.Type, depth: int = 0) -> list[str]:
     """Declarations the default value of a type names (its class, an enum, a union branch)."""
     if depth > 64:
         return []
+    t = model.resolve_alias(t)
     if isinstance(t, ir.Array):
         return default_refs(model, t.element, depth + 1)
     if not isinstance(t, ir.TypeRef):
         return []
     d = model.get(t.name)
-    if isinstance(d, ir.Typedef):
-        return default_refs(model, d.type, depth + 1)
     if isinstance(d, ir.Union):
-        label, member = union_default(model, d)
+        label, member = d.default_discriminator, d.default_member
         out = [d.scoped_name] + ([label.enum] if isinstance(label, ir.EnumValue) else [])
         return out + (default_refs(model, member.type, depth + 1) if member else [])
     return [t.name] if d is not None else []
@@ -191,13 +154,13 @@ class TypeMapper:
         if isinstance(t, ir.TypeRef):
             d = self.model.get(t.name)
             if isinstance(d, ir.Typedef) and depth < 64:
-                return self.value(d.type, used, depth + 1)
+                return self.value(self.model.resolve_alias(t), used, depth + 1)
             name, forward = self.ctx.ref(t.name)
             used.add(name)
             if isinstance(d, ir.Enum):
-                return Value(f"{name}.{self.ctx.enumerator(d.scoped_name, enum_default(d).name)}", False, forward)
+                return Value(f"{name}.{self.ctx.enumerator(d.scoped_name, d.default)}", False, forward)
             if isinstance(d, ir.Union):
-                label, member = union_default(self.model, d)
+                label, member = d.default_discriminator, d.default_member
                 inner = self.value(member.type, used, depth + 1) if member else Value("None", False)
                 return Value(f"{name}(discriminator={self.literal(label, used)}, value={inner.expr})", True,
                              forward or inner.forward)

@@ -14,14 +14,14 @@ carries its full key (see docs/python-backend.md for why). Templates only print.
 """
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass, field
+from typing import Literal
 
 from rapidgen.backends.base import GenerationError
 from rapidgen.backends.escape import py_str
 from rapidgen.backends.python import namer
 from rapidgen.backends.python.layout import Layout, module_path, plan
-from rapidgen.backends.python.typemap import TypeMapper, Unsupported, enum_default
+from rapidgen.backends.python.typemap import TypeMapper, Unsupported
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.model import ir
 
@@ -52,7 +52,7 @@ class MemberView:
 
 @dataclass
 class ClassView:
-    kind: str  # struct | union | enum | bitmask: the macro that prints it
+    kind: Literal["struct", "union", "enum", "bitmask"]  # the macro that prints it
     name: str
     bases: str  # everything inside `class Name(...)`
     doc: str
@@ -64,7 +64,7 @@ class ClassView:
 
 @dataclass
 class AssignView:
-    kind: str  # typedef | const
+    kind: Literal["typedef", "const"]  # the macro that prints it
     name: str
     value: str
     lead: str = ""
@@ -319,17 +319,19 @@ class PythonViewBuilder:
             typed.append((m, ann, mapper.field_default(m.type, body, optional=m.optional, default=m.default)))
         scope = namer.Scope(f"struct {s.scoped_name}", namer.member_reserved("struct", body))
         top_keys = list(dict.fromkeys(k.split(".")[0] for k in s.keys))
-        hashed = any(a.name == "autoid" and str(dict(a.params).get("value", "")).upper() == "HASH"
-                     for a in s.annotations)
         views = []
+        sequential = 0  # the id cyclonedds gives a member with none written
         for m, ann, default in typed:
             py = scope.claim(m.name, m.name)
             lines = [f'annotate.member_name({py_str(py)}, {py_str(m.name)})'] if py != m.name else []
             if m.name in top_keys:
                 lines.append(f"annotate.key({py_str(py)})")
-            member_id = self._member_id(m, hashed)
-            if member_id is not None:
-                lines.append(f"annotate.member_id({py_str(py)}, {member_id})")
+            # The model's ids are written out wherever cyclonedds would not find the same:
+            # it hashes Python names under autoid("hash"), and in a flattened class it
+            # knows nothing of a base's @autoid. An @id is always written, as declared.
+            if s.autoid == "HASH" or m.id is not None or m.member_id != sequential:
+                lines.append(f"annotate.member_id({py_str(py)}, {m.member_id})")
+            sequential = m.member_id + 1
             if m.external:
                 lines.append(f"annotate.external({py_str(py)})")
             views.append(MemberView(py, ann, default, lines))
@@ -353,23 +355,6 @@ class PythonViewBuilder:
             return "None"
 
     @staticmethod
-    def _member_id(m: ir.Member, hashed: bool) -> int | None:
-        """An explicit member id: @id, or the XTypes name hash (@hashid, @autoid(HASH)),
-        computed here from the IDL name (cyclonedds would hash the Python name, and its
-        member_hash_id annotation fails on str in 11.0.1)."""
-        if m.id is not None:
-            return m.id
-        hashid = next((a for a in m.annotations if a.name == "hashid"), None)
-        if hashid is None and not hashed:
-            return None
-        text = str(dict(hashid.params).get("value") or "") if hashid else ""
-        try:
-            digest = hashlib.md5((text or m.name).encode("utf-8")).digest()
-        except UnicodeEncodeError:  # a lone surrogate (\ud800 escape): no UTF-8 bytes to hash
-            raise Unsupported(f"@hashid of member '{m.name}' is not valid Unicode text (lone surrogate)", m.loc)
-        return int.from_bytes(digest[:4], "little") & 0x0FFFFFFF
-
-    @staticmethod
     def _checked(mapper: TypeMapper) -> str:
         """deserialize() raises one documented error for bad bytes (_support.DeserializeError)."""
         return f"@{mapper.ctx.support()}.checked"
@@ -378,9 +363,8 @@ class PythonViewBuilder:
         out = [f"@annotate.{d.extensibility}"]
         if d.nested:
             out.append("@annotate.nested")
-        for a in d.annotations:
-            if a.name == "autoid" and str(dict(a.params).get("value", "")).upper() == "HASH":
-                out.append('@annotate.autoid("hash")')
+        if d.autoid == "HASH":
+            out.append('@annotate.autoid("hash")')
         return out
 
     def _key_notes(self, s: ir.Struct, top_keys: list[str]) -> list[str]:
@@ -435,8 +419,8 @@ class PythonViewBuilder:
     def _enum(self, e: ir.Enum, name: str, typename: str, used: set[str]) -> ClassView:
         names = self.enumerators[e.scoped_name]
         bases = f"idl.IdlEnum, typename={typename}"
-        if any(a.name == "default_literal" for en in e.enumerators for a in en.annotations):
-            bases += f", default={py_str(names[enum_default(e).name])}"
+        if e.default_declared:
+            bases += f", default={py_str(names[e.default])}"
         decorators = [f"@annotate.bit_bound({e.bit_bound})"] if e.bit_bound != 32 else []
         if e.extensibility != "final":
             decorators.append(f"@annotate.{e.extensibility}")

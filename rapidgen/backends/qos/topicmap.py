@@ -27,15 +27,8 @@ class TopicEntry:
 
 
 def _is_message(model: Model, struct: Struct) -> bool:
-    seen = 0
-    base = struct.base
-    while base and seen < 100:
-        if base.lstrip(":") == MESSAGE:
-            return True
-        decl = model.get(base)
-        base = decl.base if isinstance(decl, Struct) else None
-        seen += 1
-    return False
+    """Derived from rapid::Message (a base, not the struct itself)."""
+    return any(b.scoped_name == MESSAGE for b in model.lineage(struct)[:-1])
 
 
 def _role(type_name: str) -> str:
