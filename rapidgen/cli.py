@@ -77,6 +77,17 @@ def build_parser() -> argparse.ArgumentParser:
     _common_idl_args(vec_p)
     _diag_args(vec_p)
     vec_p.add_argument("-o", "--output", required=True, metavar="FILE", help="the JSON file to write")
+    diff_p = sub.add_parser("diff", help="report wire, protocol and source breaking changes between two versions")
+    diff_p.add_argument("paths", nargs="+", metavar="PATH", help="OLD NEW (IDL files, folders of IDL or asset "
+                        "descriptors), or one PATH with --against REV")
+    diff_p.add_argument("--against", metavar="REV", help="compare PATH with its version at git revision REV")
+    _common_idl_args(diff_p)
+    _diag_args(diff_p)
+    diff_p.add_argument("--json", action="store_true", help="print the findings as JSON")
+    diff_p.add_argument("--fail-on", default="", metavar="CAT[,CAT...]",
+                        help="exit 1 when a change of these categories is found: WIRE, PROTOCOL, SOURCE")
+    diff_p.add_argument("--ignore", action="append", default=[], metavar="RULE-ID", help="do not report a rule (repeatable)")
+    diff_p.add_argument("--waivers", metavar="FILE", help="accepted changes per rule and type (docs/diff.md)")
     return parser
 
 
@@ -195,8 +206,14 @@ def _cmd_vectors(args: argparse.Namespace) -> int:
     return run_vectors(args.inputs, args.include, args.output, _sink(args), report, _defines(args.define))
 
 
+def _cmd_diff(args: argparse.Namespace) -> int:
+    from rapidgen.diff.command import run_diff
+    return run_diff(args, _sink(args), report)
+
+
 _COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary, "validate": _cmd_validate, "describe": _cmd_describe,
-             "generate": _cmd_generate, "check": _cmd_check, "vectors": _cmd_vectors}
+             "generate": _cmd_generate, "check": _cmd_check, "vectors": _cmd_vectors,
+             "diff": _cmd_diff}
 
 
 def main(argv: Sequence[str] | None = None) -> int:
