@@ -112,7 +112,7 @@ class WireDiff:
     def struct(self, o: ir.Struct, n: ir.Struct) -> None:
         om, nm = self.old.all_members(o), self.new.all_members(n)
         if o.extensibility == "mutable":
-            self.mutable(o, om, nm)
+            self.mutable(o, n, om, nm)
         else:
             self.ordered(o, n, om, nm)
         if o.keys != n.keys:
@@ -163,10 +163,9 @@ class WireDiff:
             other = nm[renamed[i]] if i in renamed else by_new[m.name]
             self.member_type(f"{s}.{other.name}", m, other)
 
-    def mutable(self, o: ir.Struct, om: tuple, nm: tuple) -> None:
+    def mutable(self, o: ir.Struct, n: ir.Struct, om: tuple, nm: tuple) -> None:
         s = o.scoped_name
         ids = self.types.ofp.member_id, self.types.nfp.member_id
-        old_ids = {ids[0](m, i): m for i, m in enumerate(om)}
         new_ids = {ids[1](m, i): m for i, m in enumerate(nm)}
         new_names = {m.name: (ids[1](m, i), m) for i, m in enumerate(nm)}
         for i, m in enumerate(om):
@@ -185,8 +184,7 @@ class WireDiff:
                 self.add("WIRE-MEMBER-09", sub, f"member id of '{sub}' was {mid}, is now {nid}", m, nmem)
                 self.member_type(sub, m, nmem)
             elif not m.key:  # a removed key member is WIRE-KEY-01
-                self.add("SRC-MEMBER-02", sub, f"member '{sub}' removed from @mutable '{s}'", m, o)
-        del old_ids
+                self.add("SRC-MEMBER-02", sub, f"member '{sub}' removed from @mutable '{s}'", m, n)
 
     # -- unions -------------------------------------------------------------------------
     def union(self, o: ir.Union, n: ir.Union) -> None:
