@@ -26,6 +26,7 @@ def _env() -> dict[str, str]:
 
 def build(tmp: str, name: str, idl_text: str) -> str:
     """Generate bindings for one side; returns the folder holding package `name`."""
+    os.makedirs(tmp, exist_ok=True)
     src = os.path.join(tmp, f"{name}.idl")
     with open(src, "w", encoding="utf-8") as f:
         f.write(idl_text)
