@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from rapidgen.model import ir
 
+MAX_DEPTH = 100  # nested named types followed when fingerprinting
 ORDER = ("same", "grown", "alias", "shrunk", "changed")
 
 
@@ -26,12 +27,18 @@ def _bound(old: int | None, new: int | None) -> str:
 
 
 class Fingerprints:
-    """A hashable canonical form of a type: equal fingerprints, same wire form and names."""
+    """A hashable canonical form of a type: equal fingerprints, same wire form and names.
 
-    def __init__(self, model: ir.Model) -> None:
+    A named type's fingerprint is interned as a number in a table both sides share, so
+    fingerprints stay flat (a chain of 10,000 structs is not a 10,000-deep tuple), and the
+    memo is filled in dependency order, so resolving one type recurses one level."""
+
+    def __init__(self, model: ir.Model, interned: dict[object, int]) -> None:
         self.model = model
         self.memo: dict[str, object] = {}
         self.busy: set[str] = set()
+        self.interned = interned
+        self.warm = False
 
     def member_id(self, m: ir.Member, index: int) -> int:
         # Member.member_id is resolved in the IR (XTypes 7.3.1.2.1.1); index: a fallback
@@ -54,13 +61,20 @@ class Fingerprints:
         return self.decl(t.name)
 
     def decl(self, name: str) -> object:
+        if not self.warm:
+            self.warm = True
+            for d in self.model.declarations:  # dependency order
+                if not isinstance(d, ir.Const):
+                    self.decl(d.scoped_name)
         if name in self.memo:
             return self.memo[name]
         if name in self.busy:  # recursive types: the name stands for the rest
             return ("rec", name)
+        if len(self.busy) > MAX_DEPTH:  # bounded on hostile chains: deeper types compare by name
+            return ("deep", name)
         self.busy.add(name)
         try:
-            fp = self._decl(self.model.get(name), name)
+            fp = self.interned.setdefault(self._decl(self.model.get(name), name), len(self.interned))
         finally:
             self.busy.discard(name)
         self.memo[name] = fp
@@ -92,7 +106,8 @@ def labels(case: ir.UnionCase) -> frozenset:
 class TypeCompare:
     def __init__(self, old: ir.Model, new: ir.Model) -> None:
         self.old, self.new = old, new
-        self.ofp, self.nfp = Fingerprints(old), Fingerprints(new)
+        interned: dict[object, int] = {}
+        self.ofp, self.nfp = Fingerprints(old, interned), Fingerprints(new, interned)
 
     def verdict(self, o: ir.Type, n: ir.Type) -> str:
         if isinstance(o, ir.TypeRef) and isinstance(n, ir.TypeRef) and o.name == n.name and o.kind == n.kind:

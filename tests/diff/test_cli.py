@@ -139,3 +139,20 @@ def test_against_a_revision(capsys, tmp_path, monkeypatch):
     write(repo / "specs", "new.idl", "module n { const long K = 1; };\n")
     code, _, err = run(capsys, "--against", "HEAD", "specs/new.idl")
     assert code == 1 and "'specs/new.idl' does not exist at revision 'HEAD'" in err
+
+
+def test_long_chain_of_renamed_types_is_bounded(tmp_path):
+    """Regression: 3,000 structs each holding the previous, all renamed, once overflowed
+    Python's recursion comparing nested fingerprints (an internal error)."""
+    from tests.security.limits import run_rapidgen
+
+    def chain(prefix: str) -> str:
+        decls = [f"struct {prefix}0 {{ long a; }};"]
+        decls += [f"struct {prefix}{i} {{ {prefix}{i - 1} a; }};" for i in range(1, 3000)]
+        return "module t {\n" + "\n".join(decls) + "\n};\n"
+
+    old, new = write(tmp_path, "old.idl", chain("A")), write(tmp_path, "new.idl", chain("B"))
+    r = run_rapidgen("diff", old, new, "--json", mem_mib=1024, cpu_s=30)
+    assert r.code == 0, r.err[-2000:]
+    doc = json.loads(r.out)
+    assert doc["counts"]["WIRE"] == 3000 and {f["rule"] for f in doc["findings"]} == {"WIRE-TYPE-02"}
