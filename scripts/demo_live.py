@@ -2,6 +2,10 @@
 
     python scripts/demo_live.py asset  ASSET.yaml GENERATED_DIR [--seconds N]
     python scripts/demo_live.py ground ASSET.yaml GENERATED_DIR [--seconds N]
+    python scripts/demo_live.py watch  ASSET.yaml GENERATED_DIR [--seconds N]
+
+`watch` prints the position and agent telemetry a running bridge publishes
+(`python -m <package>.bridge --simulate`), read with the generated bindings.
 
 GENERATED_DIR is `rapidgen generate ASSET.yaml --lang python,qos -o GENERATED_DIR`. The
 asset publishes every config its descriptor computes (CommandConfig, AgentConfig,
@@ -163,6 +167,53 @@ def run_ground(args, loaded, configs, package: str) -> int:
     return 1 if pending or failures else 0
 
 
+def run_watch(args, loaded, configs, package: str) -> int:
+    """The last position and agent state the asset published within --seconds."""
+    from cyclonedds.domain import DomainParticipant
+    from cyclonedds.sub import DataReader, Subscriber
+    from cyclonedds.topic import Topic
+
+    tables = importlib.import_module(f"{package}.asset_tables")
+    qos = _qos(package, args.generated)
+    participant = DomainParticipant(args.domain)
+    subscriber = Subscriber(participant, qos=qos.subscriber())
+    wanted = {"position": ("sample", "rapid::PositionSample"), "agent": ("state", "rapid::AgentState")}
+    readers = {}
+    for entry in tables.TELEMETRY:
+        if entry["kind"] in wanted and entry["kind"] not in readers:
+            role, type_name = wanted[entry["kind"]]
+            topic = entry["topics"][role]
+            keys = [v["name"] for v in entry["values"]]
+            readers[entry["kind"]] = (keys, DataReader(subscriber, Topic(participant, topic, _class_of(package, type_name)),
+                                                       qos=qos.reader(topic)))
+    last: dict = {}
+    deadline = time.monotonic() + args.seconds
+    while time.monotonic() < deadline:
+        for kind, (_keys, reader) in readers.items():
+            for s in reader.take(N=16):
+                last[kind] = s
+        time.sleep(0.05)
+    for kind, (keys, _reader) in readers.items():
+        s = last.get(kind)
+        if s is None:
+            print(f"watch: no {kind} telemetry within {args.seconds:g} s", flush=True)
+            continue
+        values = ", ".join(f"{k}={_value(u.value)}" for k, u in zip(keys, s.values))
+        where = ""
+        if kind == "position":
+            where = "pose xyz=(" + ", ".join(f"{x:.2f}" for x in s.pose.xyz) + ") "
+        print(f"watch: {kind:8} from {s.hdr.srcName} at {s.hdr.timeStamp} us: {where}{values}", flush=True)
+    return 0 if len(last) == len(readers) else 1
+
+
+def _value(v) -> str:
+    if isinstance(v, float):
+        return f"{v:.2f}"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    return repr(v) if isinstance(v, str) else str(v)
+
+
 def _print_dictionary(config: dict) -> None:
     types = {t["name"]: t for t in config["availableSubsystemTypes"]}
     for sub in config["availableSubsystems"]:
@@ -173,7 +224,7 @@ def _print_dictionary(config: dict) -> None:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("role", choices=("asset", "ground"))
+    parser.add_argument("role", choices=("asset", "ground", "watch"))
     parser.add_argument("asset_file")
     parser.add_argument("generated", help="output of `rapidgen generate ASSET --lang python,qos`")
     parser.add_argument("--domain", type=int, default=30)
@@ -193,7 +244,7 @@ def main() -> int:
               f"`rapidgen generate {args.asset_file} --lang python,qos -o {args.generated}`", file=sys.stderr)
         return 2
     sys.path.insert(0, os.path.abspath(python_dir))
-    run = run_asset if args.role == "asset" else run_ground
+    run = {"asset": run_asset, "ground": run_ground, "watch": run_watch}[args.role]
     return run(args, loaded, configs, package)
 
 

@@ -34,12 +34,17 @@ def run_validate(files: list[str], rapid_dir: str | None, sink: DiagnosticSink, 
     return 1 if sink.has_errors else 0
 
 
-def run_describe(path: str, rapid_dir: str | None, sink: DiagnosticSink, report: Report) -> int:
+def run_describe(path: str, rapid_dir: str | None, sink: DiagnosticSink, report: Report,
+                 as_json: bool = False) -> int:
     loaded = load_asset(path, sink, rapid_dir)
     report(sink)
     if loaded is None or sink.has_errors:
         return 1
-    sys.stdout.write(describe(loaded))
+    if as_json:
+        import json
+        sys.stdout.write(json.dumps(describe_data(loaded), indent=2, ensure_ascii=True) + "\n")
+    else:
+        sys.stdout.write(describe(loaded))
     return 0
 
 
@@ -175,3 +180,55 @@ def _details(spec, pubs) -> list[str]:
         out += ["", "Values (index i of the sample's or state's values; initial value in the config)"]
         out += table(["topic", "#", "key", "type", "unit", "range", "initial", "warning", "critical"], values)
     return out
+
+
+# -- as data (describe --json): what the tables above show, field by field -----------------------
+def _typed(v: TypedValue) -> dict:
+    return {"name": v.name, "type": v.type, "unit": v.unit, "min": v.min, "max": v.max,
+            "allowed": list(v.allowed), "default": v.default if v.has_default else None,
+            "has_default": v.has_default, "description": v.description}
+
+
+def _limits(t: Threshold | None) -> dict | None:
+    return None if t is None else {"below": t.below, "above": t.above}
+
+
+def describe_data(loaded: LoadedAsset) -> dict:
+    spec = loaded.spec
+    subs = all_subsystems(spec)
+    pubs = publications(spec, Facts(loaded.model))
+    telemetry = []
+    for t in spec.telemetry:
+        entry = {"kind": type(t).__name__.removesuffix("Telemetry").lower(),
+                 "topics": [p.topic for p in pubs if p.source is t]}
+        if isinstance(t, PositionTelemetry):
+            entry.update(frame=t.frame, pose_encoding=t.pose_encoding, velocity_encoding=t.velocity_encoding)
+        if isinstance(t, ImageTelemetry):
+            entry.update(sensor=t.sensor, sensor_type=t.sensor_type, mime=t.mime, width=t.width, height=t.height)
+        if isinstance(t, JointTelemetry):
+            entry.update(group=t.group, fields=list(t.fields), joints=[
+                {"frame": j.frame, "dof": j.dof, "unit": j.unit, "min": j.min, "max": j.max} for j in t.joints])
+        if isinstance(t, (AgentTelemetry, PositionTelemetry)):
+            entry["values"] = [dict(_typed(v), warning=_limits(v.warning), critical=_limits(v.critical))
+                               for v in t.values]
+        telemetry.append(entry)
+    ac = spec.access_control
+    return {
+        "name": spec.name, "kind": spec.kind, "description": spec.description, "tags": list(spec.tags),
+        "domain": spec.domain, "partition": spec.partition,
+        "subsystems": [{"name": s.name, "type": s.type, "description": s.description} for s in subs],
+        "command_dictionary": [
+            {"type": t.name, "standard": t.standard, "subsystems": [s.name for s in subs if s.type == t.name],
+             "commands": [{"name": c.name, "description": c.description, "abortable": c.abortable,
+                           "suspendable": c.suspendable, "parameters": [_typed(p) for p in c.parameters]}
+                          for c in t.commands]}
+            for t in used_types(spec)],
+        "publications": [{"topic": p.topic, "type": p.type, "role": p.role, "rate": p.rate, "qos": p.qos}
+                         for p in pubs],
+        "telemetry": telemetry,
+        "native": None if spec.native is None else {
+            "subsystem": spec.native.subsystem, "command": spec.native.command,
+            "parameter": spec.native.parameter, "description": spec.native.description},
+        "access_control": None if ac is None else {
+            "default": ac.default, "rules": [{"source": r.source, "allow": list(r.allow)} for r in ac.rules]},
+    }
