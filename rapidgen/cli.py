@@ -10,7 +10,7 @@ import os
 import sys
 from typing import Sequence
 
-from rapidgen import __version__, backends
+from rapidgen import __version__, backends, codes
 from rapidgen.diagnostics import DiagnosticSink, FileLineCache, Severity, render
 
 
@@ -21,9 +21,27 @@ def _common_idl_args(p: argparse.ArgumentParser) -> None:
                    help="define a preprocessor macro (repeatable)")
 
 
+def _warn_value(text: str) -> str:
+    """One -W value: 'error', or 'no-CODE' for a registered code that can be a warning
+    (silencing an error, a note or a misspelt code would silently do nothing)."""
+    if text == "error":
+        return text
+    if not text.startswith("no-"):
+        raise argparse.ArgumentTypeError(f"unknown value '{text}'; expected no-CODE (e.g. no-RG0501) or error")
+    code = text[3:].upper()
+    entry = codes.REGISTRY.get(code)
+    if entry is None:
+        raise argparse.ArgumentTypeError(f"unknown diagnostic code '{text[3:]}' (docs/idl-frontend.md lists them)")
+    if not entry.allows("warning"):
+        raise argparse.ArgumentTypeError(f"{code} is {'a note' if entry.severity == 'note' else 'an error'}; "
+                                         "only warnings can be silenced")
+    return f"no-{code}"
+
+
 def _diag_args(p: argparse.ArgumentParser) -> None:
-    p.add_argument("-W", dest="warn", action="append", default=[], metavar="no-CODE|error",
-                   help="-W no-RG0501 silences a warning code; -W error turns warnings into errors")
+    p.add_argument("-W", dest="warn", action="append", default=[], metavar="no-CODE|error", type=_warn_value,
+                   help="-W no-RG0501 silences a warning code; -W error turns warnings into errors "
+                   "(an unknown code, or a code that is never a warning, is a usage error)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -108,6 +126,11 @@ def report(sink: DiagnosticSink, stream=None) -> None:
     """Print every diagnostic, then a count."""
     stream = stream or sys.stderr
     lines = FileLineCache()
+    if codes.checking():  # diagnostics some stages add to the sink directly (notes)
+        for d in sink.diagnostics:
+            promoted = d.severity is Severity.ERROR and sink.warnings_as_errors
+            if not (promoted and codes.can_be_silenced(d.code)):
+                codes.check(d.code, d.severity.value)
     for d in sink.sorted():
         print(render(d, lines), file=stream)
     errors = sum(1 for d in sink.diagnostics if d.severity is Severity.ERROR)

@@ -14,6 +14,8 @@ import enum
 from dataclasses import dataclass, field
 from typing import Callable, Iterable, NamedTuple
 
+from rapidgen import codes
+
 
 class SourceLoc(NamedTuple):
     """A span in a source file; lines and columns are 1-based, the span ends before end_col.
@@ -64,9 +66,13 @@ class DiagnosticSink:
     diagnostics: list[Diagnostic] = field(default_factory=list)
 
     def error(self, code: str, message: str, loc: SourceLoc, hint: str | None = None) -> None:
+        if codes.checking():
+            codes.check(code, "error")
         self.diagnostics.append(Diagnostic(Severity.ERROR, code, message, loc, hint))
 
     def warning(self, code: str, message: str, loc: SourceLoc, hint: str | None = None) -> None:
+        if codes.checking():
+            codes.check(code, "warning")
         if code in self.silenced:
             return
         sev = Severity.ERROR if self.warnings_as_errors else Severity.WARNING
@@ -85,6 +91,8 @@ class DiagnosticSink:
             if d.severity is Severity.WARNING:
                 self.warning(d.code, d.message, d.loc, d.hint)
             else:
+                if codes.checking():
+                    codes.check(d.code, d.severity.value)
                 self.diagnostics.append(d)
 
     def sorted(self) -> list[Diagnostic]:

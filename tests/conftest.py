@@ -1,4 +1,10 @@
+import os
+
 import pytest
+
+# Every diagnostic reported while the tests run (in this process and in the children the
+# tests start) is checked against rapidgen/codes.py: code registered, severity allowed.
+os.environ["RAPIDGEN_CHECK_CODES"] = "1"
 
 
 def pytest_addoption(parser):
