@@ -89,7 +89,12 @@ def build_parser() -> argparse.ArgumentParser:
     desc_p = sub.add_parser("describe", help="print an asset's subsystems, command dictionary and telemetry")
     desc_p.add_argument("file", metavar="ASSET.yaml")
     desc_p.add_argument("--rapid", metavar="DIR", help="folder of the RAPID base IDL")
+    desc_p.add_argument("--json", action="store_true", help="print the same content as JSON")
     _diag_args(desc_p)
+    init_p = sub.add_parser("init", help="write a commented starter asset descriptor (never overwrites)")
+    init_p.add_argument("name", nargs="?", default="MyRover", metavar="NAME", help="asset name (default MyRover)")
+    init_p.add_argument("-o", "--output", metavar="FILE", help="the file to write (default: <name>.yaml)")
+    _add_cmd_parser(sub)
     vec_p = sub.add_parser("vectors", help="write golden CDR vectors (sample values and their XCDR1/XCDR2 bytes)")
     vec_p.add_argument("inputs", nargs="+", metavar="ASSET.yaml|FILE.idl")
     _common_idl_args(vec_p)
@@ -107,6 +112,32 @@ def build_parser() -> argparse.ArgumentParser:
     diff_p.add_argument("--ignore", action="append", default=[], metavar="RULE-ID", help="do not report a rule (repeatable)")
     diff_p.add_argument("--waivers", metavar="FILE", help="accepted changes per rule and type (docs/diff.md)")
     return parser
+
+
+def _add_cmd_parser(sub) -> None:
+    p = sub.add_parser("cmd", help="send a command to a live asset and print its acks (needs cyclonedds)",
+                       description="Send SUBSYSTEM COMMAND to a live asset, arguments by name, checked against "
+                       "its command dictionary first; print the acks. Exit 0 on COMPLETED/OK, else 1.")
+    p.add_argument("asset", metavar="ASSET", help="asset descriptor (ASSET.yaml) or installed asset package")
+    p.add_argument("subsystem", metavar="SUBSYSTEM")
+    p.add_argument("command_name", metavar="COMMAND")
+    p.add_argument("arguments", nargs="*", metavar="key=value", help="parameters by name; defaults fill the rest")
+    p.add_argument("--action", default="BYPASS", metavar="ACTION",
+                   help="queue action: BYPASS (default), APPEND, INSERT, REPLACE, DELETE")
+    p.add_argument("--target", metavar="CMDID", help="the queued command INSERT, REPLACE or DELETE acts on")
+    p.add_argument("--id", metavar="CMDID", help="this command's cmdId (default: a fresh unique one)")
+    p.add_argument("--source", default="rapidgen", metavar="NAME", help="cmdSrc and srcName (default rapidgen)")
+    p.add_argument("--domain", type=int, metavar="N", help="DDS domain (default: the asset's)")
+    p.add_argument("--transport", choices=("local", "lan", "wan"), help="Cyclone transport of the asset's QoS "
+                   "files (default: local, loopback only, unless CYCLONEDDS_URI is set)")
+    p.add_argument("--timeout", type=float, default=30.0, metavar="S",
+                   help="seconds to wait for the asset, then for completion (default 30)")
+    p.add_argument("--discover", type=float, default=2.0, metavar="S",
+                   help="seconds to wait for the live CommandConfig before using the descriptor's (default 2)")
+    p.add_argument("--from-descriptor", action="store_true", help="use the descriptor's dictionary, not the live one")
+    p.add_argument("--no-check", action="store_true",
+                   help="send values outside their range or allowed values (the asset answers BAD_SYNTAX)")
+    p.add_argument("--no-wait", action="store_true", help="return after the first ack")
 
 
 def _sink(args: argparse.Namespace) -> DiagnosticSink:
@@ -193,7 +224,17 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
 def _cmd_describe(args: argparse.Namespace) -> int:
     from rapidgen.asset.describe import run_describe
-    return run_describe(args.file, args.rapid, _sink(args), report)
+    return run_describe(args.file, args.rapid, _sink(args), report, as_json=args.json)
+
+
+def _cmd_init(args: argparse.Namespace) -> int:
+    from rapidgen.asset.init import run_init
+    return run_init(args.name, args.output, DiagnosticSink(), report)
+
+
+def _cmd_cmd(args: argparse.Namespace) -> int:
+    from rapidgen.commander import run_cmd
+    return run_cmd(args, DiagnosticSink())
 
 
 def _langs(text: str) -> list[str]:
@@ -236,7 +277,7 @@ def _cmd_diff(args: argparse.Namespace) -> int:
 
 _COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary, "validate": _cmd_validate, "describe": _cmd_describe,
              "generate": _cmd_generate, "check": _cmd_check, "vectors": _cmd_vectors,
-             "diff": _cmd_diff}
+             "diff": _cmd_diff, "init": _cmd_init, "cmd": _cmd_cmd}
 
 
 def main(argv: Sequence[str] | None = None) -> int:
