@@ -1,0 +1,215 @@
+"""Commands and acks (rapid-protocol.md 5 and 5b). Where soraCore and Astrobee differ
+(QUEUED or not, dropping other assets' commands and repeated cmdIds), both pass."""
+from __future__ import annotations
+
+import time
+
+from rapidgen.conform.asset import valid_args, wrong_type
+from rapidgen.conform.model import RECOMMENDED, REQUIRED, Unsupported, check, expect
+from rapidgen.conform.session import describe
+
+from .dds import qos_mismatch
+
+QUIET = 1.0  # s without an ack that shows a command was ignored
+NEXT = {  # ack status -> statuses that may follow it for one cmdId (5b, both implementations)
+    None: {"ACK_QUEUED", "ACK_EXECUTING", "ACK_COMPLETED"},
+    "ACK_QUEUED": {"ACK_EXECUTING", "ACK_COMPLETED", "ACK_REQUEUED"},
+    "ACK_EXECUTING": {"ACK_EXECUTING", "ACK_REQUEUED", "ACK_COMPLETED"},
+    "ACK_REQUEUED": {"ACK_QUEUED", "ACK_EXECUTING", "ACK_COMPLETED", "ACK_REQUEUED"},
+}
+
+
+def _ready(s):
+    s.needs_commands()
+    if "ready" not in s.memo:
+        s.memo["ready"] = s.wait_command_match(s.timeout)
+        s.ensure_control()
+    expect(s.memo["ready"], "the asset's command reader and ack writer matched", "no match")
+
+
+def _harmless(s):
+    c = s.facts.harmless()
+    if c is None:
+        raise Unsupported("no command to send that moves nothing")
+    return c
+
+
+@check("CMD-01", REQUIRED, "The asset reads rapid_command and writes rapid_ack in its partition",
+       "rapid-protocol.md 4 and 5b (the Ack topic is plain rapid_ack)")
+def endpoints(s):
+    s.needs_commands()
+    r, w = s.wait_endpoint("reader", "rapid_command"), s.wait_endpoint("writer", "rapid_ack")
+    expect(bool(r and w), "a rapid_command reader and a rapid_ack writer",
+           f"{len(r)} command reader(s), {len(w)} ack writer(s)")
+    _ready(s)
+
+
+@check("CMD-02", REQUIRED, "A valid command is answered COMPLETED/OK", "rapid-protocol.md 5", needs=("CMD-01",))
+def valid(s):
+    _ready(s)
+    c = _harmless(s)
+    acks = s.run(c)
+    s.memo["valid"] = acks[0].cmd_id if acks else None
+    s.expect_ok(acks, f"{c.subsystem}/{c.name}")
+
+
+def _refused(s, what, sub, name, args):
+    _ready(s)
+    s.expect_refused(s.run((sub, name), args), what)
+
+
+@check("CMD-05", REQUIRED, "An unknown subsystem is answered non-OK", "rapid-protocol.md 5 and 5b: BAD_SYNTAX",
+       needs=("CMD-01",))
+def unknown_subsystem(s):
+    c = _harmless(s)
+    _refused(s, "an unknown subsystem", "NoSuchSubsystem", c.name, valid_args(c))
+
+
+@check("CMD-06", REQUIRED, "An unknown command name is answered non-OK", "rapid-protocol.md 5: find the CommandDef",
+       needs=("CMD-01",))
+def unknown_command(s):
+    c = _harmless(s)
+    _refused(s, "an unknown command", c.subsystem, "noSuchCommand", [])
+
+
+def _with_params(s):
+    c = s.facts.with_params()
+    if c is None:
+        raise Unsupported("no command takes arguments")
+    return c
+
+
+@check("CMD-07", REQUIRED, "A wrong argument count is answered non-OK",
+       "rapid-protocol.md 5: argument count must equal the parameter count", needs=("CMD-01",))
+def wrong_count(s):
+    c = _with_params(s)
+    _refused(s, "one argument too many", c.subsystem, c.name, valid_args(c) + [("RAPID_INT", 1)])
+
+
+@check("CMD-08", REQUIRED, "A wrong argument type is answered non-OK",
+       "rapid-protocol.md 5: each discriminator must equal the parameter's DataType", needs=("CMD-01",))
+def wrong_types(s):
+    c = _with_params(s)
+    args = valid_args(c)
+    args[0] = wrong_type(args[0][0])
+    _refused(s, f"a {args[0][0]} for a {c.params[0]['type']}", c.subsystem, c.name, args)
+
+
+@check("CMD-09", RECOMMENDED, "A command addressed to another asset is ignored",
+       "rapid-protocol.md 5 (5b: Astrobee relies on the partition instead)", needs=("CMD-01",))
+def other_asset(s):
+    _ready(s)
+    c = _harmless(s)
+    cid = s.client.send(c.subsystem, c.name, valid_args(c), source=s.source, asset=s.asset + "Other")
+    time.sleep(QUIET)
+    acks = s.client.acks_of(cid)
+    expect(not acks, f"no ack within {QUIET:g} s", describe(acks))
+
+
+@check("CMD-10", RECOMMENDED, "A repeated cmdId is ignored", "rapid-protocol.md 5 (5b: Astrobee does not check)",
+       needs=("CMD-02",))
+def repeated(s):
+    cid = s.memo.get("valid")
+    c = _harmless(s)
+    before = len(s.client.acks_of(cid))
+    s.client.send(c.subsystem, c.name, valid_args(c), source=s.source, cmd_id=cid)
+    time.sleep(QUIET)
+    after = s.client.acks_of(cid)
+    expect(len(after) == before, "no new ack for the repeated cmdId", describe(after[before:]))
+
+
+@check("CMD-13", REQUIRED, "Acks are durable: a late-joining ack reader gets the final ack",
+       "rapid-protocol.md 6: Ack -> RapidReliableDurableQos", needs=("CMD-02",))
+def late_acks(s):
+    bad = [w for ep in s.endpoints("writer", "rapid_ack") if (w := qos_mismatch(ep, "RapidReliableDurableQos"))]
+    expect(not bad, "ack writer Reliable, TransientLocal, KeepLast", "; ".join(bad))
+    cid = s.memo.get("valid")
+    reader = s.client.profile_reader("rapid_ack", "rapid::Ack")
+    end = time.monotonic() + 3.0
+    seen = []
+    while time.monotonic() < end and not any(a.cmdId == cid and a.status.name == "ACK_COMPLETED" for a in seen):
+        seen += [a for a in reader.take(N=256) if hasattr(a, "cmdId")]
+        time.sleep(0.05)
+    ok = any(a.cmdId == cid and a.status.name == "ACK_COMPLETED" for a in seen)
+    expect(ok, f"the COMPLETED ack of {cid} for a reader created after it", f"{len(seen)} acks, none of it")
+
+
+@check("CMD-14", REQUIRED, "Malformed commands do not stop the asset", "rapid-protocol.md 5: commands cannot be dropped",
+       needs=("CMD-02",))
+def survives(s):
+    c = _harmless(s)
+    p = _with_params(s) if s.facts.with_params() else c
+    odd = [dict(args=[("RAPID_DOUBLE", float("nan"))] * 16), dict(args=[("RAPID_STRING", "\x01\x7f\u00e9" * 30)]),
+           dict(args=[(t, v) for t, v in valid_args(p)], cmd_id=""), dict(args=[("RAPID_MAT33f", [float("inf")] * 9)]),
+           dict(args=[(t, v) for t, v in valid_args(p)], action="QUEUE_INSERT", target="\u00e9" * 31)]
+    for kw in odd:
+        s.client.send(p.subsystem, p.name, source=s.source, **kw)
+        s.client.send("\u00e9" * 15, "\x01x" * 31, source=s.source, **kw)
+    time.sleep(0.3)
+    acks = s.run(c)
+    s.expect_ok(acks, f"{c.subsystem}/{c.name} after {2 * len(odd)} malformed commands")
+
+
+@check("CMD-15", RECOMMENDED, "A value outside its declared range is answered non-OK",
+       "descriptor: parameter range and allowed values", needs=("CMD-01",))
+def out_of_range(s):
+    for c in s.facts.commands():
+        for i, p in enumerate(c.params):
+            if p["type"] in ("RAPID_FLOAT", "RAPID_DOUBLE", "RAPID_INT") and p.get("max") is not None:
+                args = valid_args(c)
+                args[i] = (p["type"], p["max"] + 1 if p["type"] == "RAPID_INT" else float(p["max"]) * 2 + 1)
+                _refused(s, f"{c.subsystem}/{c.name} {p['name']}={args[i][1]}", c.subsystem, c.name, args)
+                return
+    raise Unsupported("no parameter declares a numeric range")
+
+
+@check("CMD-11", REQUIRED, "Ack messages are at most 127 bytes", "rapid-protocol.md 5 and 5b: Ack.message String128",
+       needs=("CMD-01",), late=True)
+def ack_length(s):
+    echo = s.facts.command("Admin", "echo")
+    if echo is not None and echo.params:
+        s.run(echo, [("RAPID_STRING", "x" * 127)])
+    s.run((s.facts.commands()[0].subsystem, "n" * 63), [])
+    long = [f"{a.cmd_id}: {len(a.message.encode())} bytes" for a in s.client.acks if len(a.message.encode()) > 127]
+    expect(not long, "every Ack.message within 127 bytes", "; ".join(long[:3]))
+
+
+@check("CMD-03", REQUIRED, "Each cmdId's acks follow QUEUED -> EXECUTING -> COMPLETED (either implementation)",
+       "rapid-protocol.md 5b: ack sequences; completedStatus NOT until COMPLETED", needs=("CMD-02",), late=True)
+def sequence(s):
+    bad = []
+    for cid in list(s.client.sent):
+        prev = None
+        for a in s.client.acks_of(cid):
+            if prev == "ACK_COMPLETED":
+                break  # CMD-04's finding
+            if a.status not in NEXT[prev]:
+                bad.append(f"{cid}: {describe(s.client.acks_of(cid))}")
+                break
+            final = a.status == "ACK_COMPLETED"
+            if final == (a.completed == "ACK_COMPLETED_NOT") and not (a.status == "ACK_REQUEUED"):
+                bad.append(f"{cid}: {a.status} with {a.completed}")
+                break
+            prev = a.status
+    expect(not bad, "(QUEUED) (EXECUTING|REQUEUED)* COMPLETED per cmdId", "; ".join(bad[:3]))
+
+
+@check("CMD-04", REQUIRED, "Nothing follows a cmdId's final COMPLETED ack", "rapid-protocol.md 5b",
+       needs=("CMD-02",), late=True)
+def after_final(s):
+    time.sleep(0.5)
+    bad = []
+    for cid in list(s.client.sent):
+        acks = s.client.acks_of(cid)
+        i = next((n for n, a in enumerate(acks) if a.status == "ACK_COMPLETED"), None)
+        if i is not None and len(acks) > i + 1:
+            bad.append(f"{cid}: {describe(acks)}")
+    expect(not bad, "no ack after COMPLETED", "; ".join(bad[:3]))
+
+
+@check("CMD-12", REQUIRED, "Acks carry the cmdId of a command sent and the asset's name",
+       "rapid-protocol.md 5 and 5b: correlate acks by cmdId alone", needs=("CMD-02",), late=True)
+def ack_ids(s):
+    bad = [f"{a.cmd_id!r} assetName={a.asset!r}" for a in s.client.acks
+           if a.cmd_id not in s.client.sent or a.asset != s.asset]
+    expect(not bad, f"cmdIds we sent, assetName {s.asset!r}", "; ".join(bad[:3]))

@@ -1,0 +1,118 @@
+"""DDS: what the asset's endpoints announce in discovery (rapid-protocol.md 1, 5b, 6)."""
+from __future__ import annotations
+
+from rapidgen.conform.model import REQUIRED, check, expect
+
+PROFILES = {  # profile -> (reliability, durability, history kind): rapid-protocol.md 6
+    "RapidBestEffortQos": ("BestEffort", "Volatile", "KeepLast"),
+    "RapidSampleQos": ("BestEffort", "Volatile", "KeepLast"),
+    "RapidReliableQos": ("Reliable", "Volatile", "KeepAll"),
+    "RapidReliableDurableQos": ("Reliable", "TransientLocal", "KeepLast"),
+    "RapidConfigQos": ("Reliable", "TransientLocal", "KeepLast"),
+    "RapidStateQos": ("Reliable", "TransientLocal", "KeepLast"),
+}
+ALSO = {"rapid::JointSample": {"RapidReliableDurableQos"}}  # 5b: some deployments
+
+
+def qos_mismatch(ep, profile: str, accept: set[str] = frozenset()) -> str | None:
+    """Why the endpoint's announced QoS is none of the profiles, or None. History is
+    compared by kind only (depth is the endpoint's own business and is not matched)."""
+    for name in (profile, *accept):
+        want = PROFILES.get(name.split("::")[-1])
+        if want is None:
+            return None
+        got = (ep.qos.reliability, ep.qos.durability, ep.qos.history if ep.qos.history else want[2])
+        if got == want:
+            return None
+    want = PROFILES[profile.split("::")[-1]]
+    return f"{ep.topic}: {ep.qos.text()} (profile {profile.split('::')[-1]}: {', '.join(want)})"
+
+
+def profile_of(s, topic: str) -> str:
+    return s.b.qos.key(topic).split("::")[-1]
+
+
+@check("DDS-01", REQUIRED, "State and sample writers offer their topic's QoS profile", "rapid-protocol.md 6")
+def writer_qos(s):
+    own = {"rapid_ack"} | set(s.facts.configs)  # CMD-13 and CFG-02 judge these
+    bad = []
+    for p in s.facts.publications:
+        if p["topic"] in own:
+            continue
+        for ep in s.endpoints("writer", p["topic"]):
+            why = qos_mismatch(ep, p["qos"], ALSO.get(p["type"], set()))
+            if why:
+                bad.append(why)
+    expect(not bad, "each writer's reliability, durability and history as its profile", "; ".join(bad))
+
+
+@check("DDS-02", REQUIRED, "The command reader requests the Command profile (reliable, volatile, keep all)",
+       "rapid-protocol.md 6: Command -> RapidReliableQos; 5: commands cannot be dropped")
+def reader_qos(s):
+    s.needs_commands()
+    eps = s.wait_endpoint("reader", "rapid_command")
+    expect(bool(eps), "a reader of rapid_command", "none")
+    bad = [qos_mismatch(ep, "RapidReliableQos") for ep in eps]
+    bad = [b for b in bad if b]
+    expect(not bad, "Reliable, Volatile, KeepAll", "; ".join(bad))
+
+
+@check("DDS-04", REQUIRED, "Registered type names are the RAPID scoped names (rapid::X)",
+       "rapid-protocol.md 1: DDS type names carry the module path with ::")
+def type_names(s):
+    want = {p["topic"]: p["type"] for p in s.facts.publications}
+    want["rapid_command"] = "rapid::Command"
+    bad = [f"{e.topic}: {e.type_name}" for e in s.endpoints() if e.topic in want and e.type_name != want[e.topic]]
+    expect(not bad, "the descriptor's types (" + ", ".join(sorted(set(want.values()))[:4]) + ", ...)", "; ".join(bad))
+
+
+@check("DDS-05", REQUIRED, "Every endpoint is in the partition named after the asset",
+       "rapid-protocol.md 6: assets set the DDS PARTITION to their own name")
+def partition(s):
+    names = {p["topic"] for p in s.facts.publications} | {"rapid_command"}
+    bad = [f"{e.kind} {e.topic}: {list(e.qos.partitions)}" for e in s.endpoints()
+           if e.topic in names and s.facts.partition not in e.qos.partitions]
+    expect(not bad, f"partition {s.facts.partition!r}", "; ".join(bad))
+
+
+@check("DDS-06", REQUIRED, "Every declared state topic and paired telemetry topic has a writer",
+       "descriptor: publications (queue and access-control state; agent, position, joint telemetry)")
+def declared_writers(s):
+    topics = [p["topic"] for p in s.facts.publications if p["role"] == "state" and s.facts.entry_of(p["topic"]) is None]
+    topics += [p["topic"] for p in s.facts.sample_topics()]
+    missing = [t for t in topics if not s.wait_endpoint("writer", t, 1.0)]
+    expect(not missing, "a writer per declared topic", f"no writer of {', '.join(missing)}")
+
+
+@check("DDS-03", REQUIRED, "No incompatible QoS between the asset and profile endpoints",
+       "rapid-protocol.md 6 (requested/offered incompatible QoS status)", needs=("DDS-01", "DDS-02", "CFG-02", "CMD-13"),
+       late=True)
+def incompatible(s):
+    bad = [f"{t}: {', '.join(sorted(set(v)))}" for t, v in s.client.incompatible.items()]
+    expect(not bad, "no incompatible-QoS status on the runner's profile endpoints", "; ".join(bad))
+
+
+@check("DDS-07", REQUIRED, "Writers with a RAPID type name are matched (their type is RAPID's)",
+       "rapid-protocol.md 1 and dds-local: a right name with another layout matches nothing", needs=("DDS-03",),
+       late=True)
+def types_match(s):
+    bad = []
+    for topic, reader in s.client.readers.items():
+        eps = s.endpoints("writer", topic)
+        if not eps:
+            continue
+        matched = {str(k) for k in _matched_keys(reader)}
+        for ep in eps:
+            if s.facts.partition in ep.qos.partitions and ep.key not in matched:
+                bad.append(f"{topic} ({ep.type_name})")
+    expect(not bad, "every writer matched by a reader of the RAPID type", f"unmatched: {', '.join(bad)}")
+
+
+def _matched_keys(reader):
+    out = []
+    for h in reader.get_matched_publications():
+        try:
+            out.append(reader.get_matched_publication_data(h).key)
+        except Exception:  # a writer that left meanwhile
+            pass
+    return out

@@ -1,0 +1,93 @@
+"""`rapidgen conform ASSET.yaml`: load the asset's bindings, find it over DDS, run the
+suite, print progress and the table, write JUnit/JSON. Exit 0 only when every required
+check passes (or does not apply); 1 when one does not, or the asset is not found or its
+descriptor has errors; 2 usage."""
+from __future__ import annotations
+
+import os
+import sys
+import time
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("conform", help="check a live asset against the RAPID protocol (needs cyclonedds)")
+    p.add_argument("file", metavar="ASSET.yaml")
+    p.add_argument("--domain", type=int, default=None, metavar="N", help="DDS domain (default: the descriptor's)")
+    p.add_argument("--transport", choices=("local", "lan", "wan"), default=None,
+                   help="Cyclone transport from the generated QoS files (default: CYCLONEDDS_URI if set, else local)")
+    p.add_argument("--only", action="append", default=[], metavar="IDS",
+                   help="run only these checks (comma-separated ids or prefixes: CMD-,DDS-01)")
+    p.add_argument("--skip", action="append", default=[], metavar="IDS", help="leave these checks out")
+    p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report")
+    p.add_argument("--json", metavar="FILE", help="write a JSON report")
+    p.add_argument("--timeout", type=float, default=10.0, metavar="S",
+                   help="seconds to wait for an asset's answer (default 10)")
+    p.add_argument("--list", action="store_true", help="list the checks and exit")
+
+
+def _ids(values: list[str]) -> list[str]:
+    return [v.strip() for item in values for v in item.split(",") if v.strip()]
+
+
+def run_conform(args, sink, report) -> int:
+    from rapidgen.conform.model import all_checks
+    from rapidgen.conform.runner import select
+
+    checks = all_checks()
+    if args.list:
+        for c in checks.values():
+            print(f"{c.id:<7} {c.level:<11} {c.title}  [{c.rule}]")
+        return 0
+    chosen, unknown = select(checks, _ids(args.only), _ids(args.skip))
+    if unknown:
+        print(f"rapidgen conform: unknown check id(s): {', '.join(unknown)} (see --list)", file=sys.stderr)
+        return 2
+    from rapidgen.live.dds import DdsUnavailable, require_cyclonedds
+    try:
+        require_cyclonedds()
+    except DdsUnavailable as exc:
+        print(f"rapidgen conform: {exc}", file=sys.stderr)
+        return 1
+    from rapidgen.live.bindings import load_bindings
+    from rapidgen.live.dds import use_transport
+
+    bindings = load_bindings(args.file, sink, prefix="rapidconform")
+    if bindings is None:
+        report(sink)
+        return 1
+    use_transport(bindings.transport_file(args.transport or "local"), keep_environment=args.transport is None)
+    return _run(args, bindings, chosen)
+
+
+def _run(args, bindings, chosen) -> int:
+    from rapidgen.conform import report as R
+    from rapidgen.conform.runner import passed, run_checks
+    from rapidgen.conform.session import Session
+
+    domain = bindings.tables["ASSET"].get("domain", 0) if args.domain is None else args.domain
+    t0 = time.monotonic()
+    session = Session(bindings, domain, timeout=args.timeout)
+    name = session.asset
+    print(f"rapidgen conform: looking for asset {name} (partition {session.facts.partition}) in domain {domain} "
+          f"via {os.environ.get('CYCLONEDDS_URI', 'Cyclone defaults')}", flush=True)
+    if not session.find_asset(min(15.0, 1.5 * args.timeout)):
+        print(f"rapidgen conform: no participant with {name}'s topics in partition {session.facts.partition} "
+              f"on domain {domain} (is the asset running, on this domain and transport?)", file=sys.stderr)
+        session.close()
+        return 1
+    print(f"found {name}: {len(session.endpoints())} endpoints; running {len(chosen)} checks", flush=True)
+    total = len(chosen)
+    counter = iter(range(1, total + 1))
+    results = run_checks(session, chosen, lambda r: print(R.progress_line(r, next(counter), total), flush=True))
+    seconds = time.monotonic() - t0
+    session.close()
+    ok = passed(results)
+    print()
+    print(R.table(results, name, seconds), flush=True)
+    if args.junit:
+        with open(args.junit, "wb") as fh:
+            fh.write(R.junit(results, name, seconds))
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as fh:
+            fh.write(R.as_json(results, name, seconds, ok, domain))
+    return 0 if ok else 1

@@ -1,0 +1,31 @@
+"""cyclonedds, imported only when a live command runs, and the transport choice."""
+from __future__ import annotations
+
+import importlib
+import os
+
+TRANSPORTS = ("local", "lan", "wan")
+
+
+class DdsUnavailable(RuntimeError):
+    """cyclonedds is not installed: live commands cannot run."""
+
+
+def require_cyclonedds():
+    """The cyclonedds module, or DdsUnavailable with how to get it."""
+    try:
+        return importlib.import_module("cyclonedds")
+    except ImportError as exc:
+        raise DdsUnavailable(
+            f"this command talks DDS and needs the cyclonedds package ({exc}); "
+            "install it with: pip install 'rapidgen[dds]'") from None
+
+
+def use_transport(config_path: str, keep_environment: bool) -> str:
+    """Point CYCLONEDDS_URI at a generated transport file before the first participant
+    starts (Cyclone reads it then). With keep_environment, a CYCLONEDDS_URI already set
+    (e.g. a test's loopback file) wins. Returns the URI in use."""
+    if keep_environment and os.environ.get("CYCLONEDDS_URI"):
+        return os.environ["CYCLONEDDS_URI"]
+    os.environ["CYCLONEDDS_URI"] = "file://" + os.path.abspath(config_path)
+    return os.environ["CYCLONEDDS_URI"]
