@@ -111,6 +111,8 @@ def build_parser() -> argparse.ArgumentParser:
                         help="exit 1 when a change of these categories is found: WIRE, PROTOCOL, SOURCE")
     diff_p.add_argument("--ignore", action="append", default=[], metavar="RULE-ID", help="do not report a rule (repeatable)")
     diff_p.add_argument("--waivers", metavar="FILE", help="accepted changes per rule and type (docs/diff.md)")
+    from rapidgen.conform.command import add_parser as _conform_parser
+    _conform_parser(sub)
     return parser
 
 
@@ -270,6 +272,11 @@ def _cmd_vectors(args: argparse.Namespace) -> int:
     return run_vectors(args.inputs, args.include, args.output, _sink(args), report, _defines(args.define))
 
 
+def _cmd_conform(args: argparse.Namespace) -> int:
+    from rapidgen.conform.command import run_conform
+    return run_conform(args, DiagnosticSink(), report)
+
+
 def _cmd_diff(args: argparse.Namespace) -> int:
     from rapidgen.diff.command import run_diff
     return run_diff(args, _sink(args), report)
@@ -277,7 +284,8 @@ def _cmd_diff(args: argparse.Namespace) -> int:
 
 _COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary, "validate": _cmd_validate, "describe": _cmd_describe,
              "generate": _cmd_generate, "check": _cmd_check, "vectors": _cmd_vectors,
-             "diff": _cmd_diff, "init": _cmd_init, "cmd": _cmd_cmd}
+             "diff": _cmd_diff, "init": _cmd_init, "cmd": _cmd_cmd,
+             "conform": _cmd_conform}
 
 
 def main(argv: Sequence[str] | None = None) -> int:
