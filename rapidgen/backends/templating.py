@@ -37,7 +37,7 @@ def environment(target: str) -> jinja2.Environment:
         trim_blocks=True,
         lstrip_blocks=True,
         keep_trailing_newline=True,
-        autoescape=lambda name: bool(name) and name.endswith(".xml.j2"),
+        autoescape=lambda name: name is not None and name.endswith(".xml.j2"),
         finalize=escape.xml_text if target in XML_TARGETS else None,
     )
     env.filters.update(FILTERS)

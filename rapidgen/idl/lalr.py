@@ -12,6 +12,7 @@ no terminal callbacks (methods named after terminals): this loop would not call 
 from __future__ import annotations
 
 from itertools import chain
+from typing import Any
 
 from lark import Lark, Token, Transformer
 from lark.parsers.lalr_analysis import Shift
@@ -42,7 +43,8 @@ class LeanLALR:
         self.rules = list(parser.rules)
         number = {rule: i for i, rule in enumerate(self.rules)}
         # state -> symbol -> next state (int: shift / goto) or (size, rule name, rule number) to reduce
-        self.rows: dict[int, dict[str, object]] = {
+        # (Any: an int or a triple, told apart by class in the hot loop, where isinstance costs)
+        self.rows: dict[int, dict[str, Any]] = {
             state: {sym: arg if action is Shift else (len(arg.expansion), arg.origin.name, number[arg])
                     for sym, (action, arg) in row.items()}
             for state, row in table.states.items()
@@ -76,13 +78,13 @@ class LeanLALR:
             while True:
                 act = rows[state].get(kind)
                 if act.__class__ is int:
-                    state = act  # type: ignore[assignment]
+                    state = act
                     push_state(state)
                     push_value(tok)
                     break
                 if act is None:
                     raise _Rejected
-                size, origin, rule = act  # type: ignore[misc]
+                size, origin, rule = act
                 if size:
                     args = values[-size:]
                     del values[-size:]
@@ -90,7 +92,7 @@ class LeanLALR:
                 else:
                     args = []
                 push_value(callbacks[rule](args))
-                state = rows[states[-1]][origin]  # type: ignore[assignment]
+                state = rows[states[-1]][origin]
                 push_state(state)
                 if state == end and kind == "$END":  # the start rule is complete
                     return values[-1]
