@@ -10,7 +10,7 @@ on past errors so one run reports as many as it can.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, cast
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.idl import ast
@@ -248,7 +248,7 @@ class Resolver:
                 self.sink.error("RG0309", f"'{sym.scoped}' is declared but never defined", spec.loc,
                                 f"define it after its forward declaration at {sym.loc}")
                 return None
-            return ir.TypeRef(sym.scoped, sym.kind)
+            return ir.TypeRef(sym.scoped, cast(ir.TypeKind, sym.kind))  # a type kind, checked above
         if isinstance(spec, ast.SequenceType):
             elem = self.type_of(spec.element, scope, depth + 1)
             bound = self._positive(spec.bound, scope, "sequence bound") if spec.bound is not None else None
@@ -342,8 +342,11 @@ class Resolver:
         t = self._declared(md.type, decl, scope)
         if t is None:
             return None
-        if not md.annotations:  # the common case
-            return ir.Member(decl.name, t, decl.loc, (), md.key_comment, member_id=ids.take(decl.name, None, None))
+        if not md.annotations:  # the common case (its sequential id inline: thousands of members)
+            mid = ids.take(decl.name, None, None) if ids.hashed else ids.next
+            ids.next = mid + 1
+            return ir.Member(decl.name, t, decl.loc, (), md.key_comment, False, False, None, None,
+                             mid & ir.MEMBER_ID_MASK)
         checked = self._anns(md.annotations, where, scope, lambda: self._target(t))
         key = md.key_comment or bool(checked.get("key", default=False))
         if md.key_comment and checked.has("optional"):
@@ -416,7 +419,8 @@ class Resolver:
                     members.append(m)
         members = self._check_member_names(members, inherited, sym.scoped)
         return ir.Struct(d.name, sym.scoped, d.loc, tuple(members), base_name, checked.annotations,
-                         self._extensibility(checked), (), d.origin, bool(checked.get("nested", default=False)),
+                         self._extensibility(checked), (), cast(ir.Origin, d.origin),
+                         bool(checked.get("nested", default=False)),
                          autoid)
 
     def _resolve_union(self, sym: _Sym) -> ir.Union | None:

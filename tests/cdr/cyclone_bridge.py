@@ -104,17 +104,11 @@ class CycloneTypes:
                     ann["key"] = True
                 if m.key and d.extensibility == "mutable":
                     ann["must_understand"] = True  # XTypes: key members carry the M flag
-                if m.id is not None:
-                    ann["id"] = m.id
-                hashid = next((dict(a.params) for a in m.annotations if a.name == "hashid"), None)
-                if hashid is not None:
-                    ann["hash_id"] = str(hashid.get("value") or "")
+                ann["id"] = mi.id  # the model's member id (cyclonedds cannot hash a @hashid str)
                 if ann:
                     fann[m.name] = ann
             c = make_idl_struct(_pyname(scoped), scoped, fields, field_annotations=fann)
             c.__idl_annotations__["extensibility"] = d.extensibility
-            if any(a.name == "autoid" and str(dict(a.params).get("value")).upper() == "HASH" for a in d.annotations):
-                c.__idl_annotations__["autoid"] = "hash"
         elif isinstance(d, ir.Union):
             disc = self.hint(d.discriminator)
             fields = {}
