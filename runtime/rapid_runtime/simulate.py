@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import threading
+import time
 
 from rapid_runtime.handlers import Cancelled, CommandFailed, Handlers
 from rapid_runtime.tables import Tables
@@ -148,11 +149,15 @@ class Simulator(Handlers):
         tel = self.bridge.telemetry
         rates = [(t, Rate(t.get("rate") or 1.0)) for t in self.tables.telemetry]
         counts: dict[str, int] = {}
-        while not self.stopping.wait(TICK):
+        last = time.monotonic()
+        # Wake for the next sample due, not every TICK: a declared 500 Hz must go out at 500 Hz.
+        while not self.stopping.wait(max(0.0, min([TICK] + [r.next - time.monotonic() for _t, r in rates]))):
+            now = time.monotonic()
+            elapsed, last = now - last, now
             with self.lock:
                 for k, v in self.agent.items():
                     if "battery" in k.lower() and isinstance(v, float) and ("charge" in k.lower() or "%" in k):
-                        self.agent[k] = max(0.0, v - DRAIN * TICK * self.speed)
+                        self.agent[k] = max(0.0, v - DRAIN * elapsed * self.speed)
             counts.clear()
             for t, rate in rates:
                 i = counts.get(t["kind"], 0)
