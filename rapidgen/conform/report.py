@@ -14,7 +14,7 @@ MARK = {PASS: "pass", FAIL: "FAIL", UNSUPPORTED: "n/a ", BLOCKED: "blkd", ERROR:
 def progress_line(r: Result, index: int, total: int) -> str:
     c = r.check
     text = f"[{index:>2}/{total}] {MARK[r.outcome]} {c.id:<7} {c.title}"
-    if r.outcome != PASS and r.message:
+    if r.message:
         text += f"\n              {r.message}"
     return text
 

@@ -1,5 +1,6 @@
 """Run the selected checks in order (checks marked late last, they judge the whole run),
-skip those whose needs did not pass (BLOCKED), report each as it ends."""
+skip those whose needs did not pass (BLOCKED) or do not apply (UNSUPPORTED), report
+each as it ends."""
 from __future__ import annotations
 
 import time
@@ -24,9 +25,12 @@ def run_checks(session, checks: list[Check], on_result=None) -> list[Result]:
     ordered = sorted(checks, key=lambda c: c.late)
     results: dict[str, Result] = {}
     for c in ordered:
-        blockers = [n for n in c.needs if n in results and results[n].outcome != PASS]
+        blockers = [n for n in c.needs if n in results and results[n].outcome not in (PASS, UNSUPPORTED)]
+        moot = [n for n in c.needs if n in results and results[n].outcome == UNSUPPORTED]
         start = time.monotonic()
-        if blockers:
+        if moot and not blockers:
+            res = Result(c, UNSUPPORTED, f"does not apply: {', '.join(moot)} does not")
+        elif blockers:
             res = Result(c, BLOCKED, f"not judged: {', '.join(blockers)} did not pass")
         else:
             try:
