@@ -10,6 +10,7 @@ from rapidgen.backends.base import Backend, GeneratedFile, Options
 _MODULES = {
     "python": "rapidgen.backends.python",
     "qos": "rapidgen.backends.qos",
+    "cpp": "rapidgen.backends.cpp",
 }
 
 

@@ -92,3 +92,41 @@ def xml_text(value: object) -> markupsafe.Markup:
 XML_FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 # What no UTF-8 file can carry.
 UNENCODABLE = re.compile("[\ud800-\udfff]")
+
+
+# -- C++ and CMake ----------------------------------------------------------------------
+def cpp_str(text: str) -> str:
+    """A C++ narrow string literal whose value is exactly the UTF-8 bytes of `text`.
+
+    Printable ASCII stays (`"`, `\\` and `?` escaped: no early end, no trigraph), every
+    other byte is a 3-digit octal escape (fixed length, so a following digit is never
+    absorbed as \\x escapes would). A lone surrogate has no UTF-8 form: it is left in the
+    text for check_output to refuse (RG0830)."""
+    out = ['"']
+    for ch in text:
+        if " " <= ch < "\x7f":
+            out.append("\\" + ch if ch in '"\\?' else ch)
+        elif "\ud800" <= ch <= "\udfff":
+            out.append(ch)
+        else:
+            out.extend(f"\\{b:03o}" for b in ch.encode("utf-8"))
+    return "".join(out) + '"'
+
+
+def cpp_comment(text: str) -> str:
+    """One line for a `//` comment (or inside `/* */`): printable, no `*/` or `/*`, no `??`
+    (a trigraph to old compilers, a warning to new ones), no trailing backslash (a line
+    splice would swallow the next line)."""
+    text = visible(" ".join(text.split()))
+    for bad, good in (("*/", "* /"), ("/*", "/ *")):
+        text = text.replace(bad, good)
+    while "??" in text:
+        text = text.replace("??", "?_?")
+    return text + "_" if text.endswith("\\") else text
+
+
+def cmake_name(text: str) -> str:
+    """A CMake package/target name (and C++ identifier) from any text: [A-Za-z0-9_], not
+    starting with a digit."""
+    out = re.sub(r"[^A-Za-z0-9_]", "_", text) or "rapid_types"
+    return "_" + out if out[0].isdigit() else out

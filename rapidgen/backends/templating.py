@@ -21,6 +21,8 @@ FILTERS = {
     "comment": escape.line_comment,  # after `#` in Python or TOML
     "toml_str": escape.toml_str,  # a TOML basic string (value round-trips)
     "xml_comment": escape.xml_comment,  # inside <!-- ... -->
+    "cpp_str": escape.cpp_str,  # a C++ string literal (value: the UTF-8 bytes)
+    "cpp_comment": escape.cpp_comment,  # after `//` in C++ (or `#` in CMake)
 }
 
 

@@ -1,0 +1,56 @@
+"""C++ target: a CMake package of C++17 types with XCDR1 encode/decode and Fast DDS 2.9
+topic types.
+
+    generate(model, asset, options) -> [GeneratedFile]
+
+The package (and CMake target, and include folder) is named like the Python one:
+options.package, else `rapid_` + the asset name, else `rapid_types`. docs/cpp-backend.md
+has the layout and the mapping rules; view.py decides everything the templates print.
+"""
+from __future__ import annotations
+
+import re
+from typing import TYPE_CHECKING
+
+from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
+from rapidgen.backends.cpp.view import PackageView, UnsupportedInput, build
+from rapidgen.backends.escape import cmake_name
+from rapidgen.backends.templating import render
+from rapidgen.model.ir import Model
+
+if TYPE_CHECKING:
+    from rapidgen.asset import LoadedAsset
+
+NAME = "cpp"
+DEFAULT_PACKAGE = "rapid_types"
+
+__all__ = ["NAME", "DEFAULT_PACKAGE", "UnsupportedInput", "generate", "package_for", "view"]
+
+
+def package_for(asset: "LoadedAsset | None", options: Options) -> str:
+    if options.package:
+        return cmake_name(options.package)
+    if asset is not None:
+        return cmake_name("rapid_" + (re.sub(r"[^a-z0-9]+", "_", asset.spec.name.lower()).strip("_") or "asset"))
+    return DEFAULT_PACKAGE
+
+
+def view(model: Model, asset: "LoadedAsset | None", options: Options) -> PackageView:
+    p = build(model, package_for(asset, options), notice(options.source), options.source)
+    p.guard = p.package.upper()  # type: ignore[attr-defined]
+    return p
+
+
+def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:
+    """Raises UnsupportedInput when the model uses what the cpp target cannot express."""
+    p = view(model, asset, options)
+    inc = f"include/{p.package}"
+    files = [GeneratedFile("CMakeLists.txt", render("cpp", "CMakeLists.txt.j2", p=p)),
+             GeneratedFile("cmake/Config.cmake.in", render("cpp", "Config.cmake.in.j2", p=p)),
+             GeneratedFile(f"{inc}/cdr.hpp", render("cpp", "cdr.hpp.j2", header=p.header)),
+             GeneratedFile(f"{inc}/dds.hpp", render("cpp", "dds.hpp.j2", header=p.header)),
+             GeneratedFile(f"{inc}/types.hpp", render("cpp", "types.hpp.j2", p=p)),
+             GeneratedFile(f"{inc}/topics.hpp", render("cpp", "topics.hpp.j2", p=p)),
+             GeneratedFile("src/types.cpp", render("cpp", "types.cpp.j2", p=p))]
+    check_output(files, asset)
+    return sorted(files, key=lambda f: f.path)
