@@ -16,7 +16,7 @@ from typing import Literal, NamedTuple
 
 Severity = Literal["error", "warning", "note", "error or warning"]
 Stage = Literal["input", "preprocess", "parse", "resolve", "driver", "project", "writer", "generate",
-                "vectors", "descriptor", "qos", "python", "diff", "cmd", "init"]
+                "vectors", "descriptor", "qos", "python", "cpp", "diff", "cmd", "init"]
 
 
 class Code(NamedTuple):
@@ -190,6 +190,8 @@ _CODES = (
          'generation: the qos target run without a QoS library (a bug of the caller)'),
     Code("RG1701", "error", "python",
          'a construct the python target cannot express (wchar, wstring, map, fixed, bitset, native, ...), at each use'),
+    Code("RG1702", "error", "cpp",
+         'a construct the cpp target cannot express (wchar, wstring, map, fixed, bitset, bitmask, native, @optional, @mutable, ...), at each use'),
     Code("RG1801", "error", "diff", '`rapidgen diff`: a side does not exist, is not a file or folder, or is a folder without IDL files'),
     Code("RG1802", "error", "diff", '`--against REV`: not a git repository, unknown revision, or the path is not in it'),
     Code("RG1803", "error", "diff", '`--against REV`: the revision holds more than 20,000 spec files or 64 MiB of them'),
