@@ -31,7 +31,7 @@ KINDS = {
     "volatile-acks": "CMD-13",
     "crash-on-bad-input": "CMD-14",
     "sample-qos": "DDS-01",
-    "command-reader-qos": "DDS-02",
+    "command-reader-qos": ("DDS-02", "QUE-02"),  # a reader that drops commands loses queued ones too
     "no-control-gate": "ACC-03",
     "astrobee-acks": None,
 }
@@ -132,8 +132,13 @@ def main() -> int:
     elif kind == "other-asset-accepted":
         receive = m.receive
         m.receive = lambda cmd: receive(dataclasses.replace(cmd, asset_name=tables.name))
-    elif kind == "no-control-gate":
-        m.control.holds = lambda source: True
+    elif kind == "no-control-gate":  # the allow-list still holds; control is never asked for
+        authorize = m._authorize
+
+        def no_gate(cmd, entry):
+            why = authorize(cmd, entry)
+            return None if why and "does not have control" in why else why
+        m._authorize = no_gate
     elif kind == "crash-on-bad-input":
         on_command = bridge._on_command
 
