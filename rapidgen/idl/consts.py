@@ -2,8 +2,10 @@
 
 Integers are evaluated exactly (Python ints); every intermediate result must fit in
 64 bits and the final value in the target type, otherwise an overflow error is
-reported; a string over its bound is only a warning (RG0406), as with RTI's compiler. Integer division truncates toward zero like C. Division by zero, operators
-on the wrong kind of operand and type mismatches are errors with locations.
+reported. A string over its bound is an error too (RG0402), except in a const
+declaration, where it is only a warning (RG0406), as with RTI's compiler. Integer division
+truncates toward zero like C. Division by zero, operators on the wrong kind of operand and
+type mismatches are errors with locations.
 """
 from __future__ import annotations
 
@@ -62,11 +64,15 @@ class ConstEvaluator:
         self.sink = sink
 
     # -- public -------------------------------------------------------------------
-    def evaluate(self, expr: ast.Expr, target: Target, lookup: NameLookup) -> object | None:
-        """The value of expr converted to target, or None after reporting an error."""
+    def evaluate(self, expr: ast.Expr, target: Target, lookup: NameLookup,
+                 const_decl: bool = False) -> object | None:
+        """The value of expr converted to target, or None after reporting an error.
+
+        const_decl: expr is a `const` declaration's value, where a string over its bound
+        is only a warning; anywhere else (e.g. a @default) the value must fit."""
         try:
             typed = self._eval(expr, lookup, target)
-            return self._convert(typed, target, expr.loc)
+            return self._convert(typed, target, expr.loc, const_decl)
         except EvalError:
             return None
 
@@ -148,7 +154,7 @@ class ConstEvaluator:
         return _INT_OPS[op](x, y)
 
     # -- conversion to the target type ------------------------------------------------
-    def _convert(self, val: Typed, target: Target, loc: SourceLoc) -> object:
+    def _convert(self, val: Typed, target: Target, loc: SourceLoc, const_decl: bool) -> object:
         cat = target.category
         if cat == "any":
             return val.value
@@ -170,6 +176,9 @@ class ConstEvaluator:
             return val.value
         if cat == "string" and val.category == "string":
             text = str(val.value)
+            if target.bound is not None and len(text) > target.bound and not const_decl:
+                self._fail("RG0402", f"string of {len(text)} characters exceeds the bound of "
+                           f"{target.describe()}", loc, f"shorten it to {target.bound} characters")
             if target.bound is not None and len(text) > target.bound:
                 # RAPID's own IDL has these (`const String16 K = "ATHLETE_HEADING_RAD";`) and
                 # RTI's compiler accepts them: warn, and keep the whole value, as it does

@@ -591,7 +591,7 @@ class Resolver:
             self.sink.error("RG0401", f"a constant cannot have type '{real}'", d.type.loc,
                             "constants are integers, floats, fixed, chars, strings, booleans, octets or enums")
             return None
-        value = self.evaluator.evaluate(d.value, target, self._name_value(sym.scope))
+        value = self.evaluator.evaluate(d.value, target, self._name_value(sym.scope), const_decl=True)
         if value is None:
             return None
         checked = self._anns(d.annotations, "const", sym.scope)

@@ -56,3 +56,20 @@ def test_warnings_as_errors_fails_and_writes_nothing(tmp_path):
 def test_the_warning_can_be_silenced(tmp_path):
     res = rapidgen("ir", _write(tmp_path), "-W", "no-RG0406")
     assert res.code == 0 and res.err == ""
+
+
+def test_a_default_over_its_bound_stays_an_error(tmp_path):
+    """Only const declarations are lenient (RTI accepts them); a @default value that does
+    not fit its member's bounded string is an error, located at the value."""
+    path = tmp_path / "d.idl"
+    path.write_text('module m {\n  typedef string<4> S4;\n'
+                    '  struct P { @default("toolong") S4 name; @default("ok") string<4> b; };\n};\n',
+                    encoding="utf-8")
+    res = rapidgen("ir", str(path))
+    assert res.code == 1, res.err
+    assert "d.idl:3:23: error[RG0402]: string of 7 characters exceeds the bound of 'string<4>'" in res.err
+    assert "RG0406" not in res.err and res.err.count("error[") == 1  # "ok" fits
+    # the same value as a const is still only the warning
+    path.write_text('module m {\n  typedef string<4> S4;\n  const S4 K = "toolong";\n};\n', encoding="utf-8")
+    res = rapidgen("ir", str(path))
+    assert res.code == 0 and "d.idl:3:16: warning[RG0406]" in res.err and "RG0402" not in res.err
