@@ -16,7 +16,7 @@ from typing import Literal, NamedTuple
 
 Severity = Literal["error", "warning", "note", "error or warning"]
 Stage = Literal["input", "preprocess", "parse", "resolve", "driver", "project", "writer", "generate",
-                "vectors", "descriptor", "qos", "python", "cpp", "diff", "cmd", "init"]
+                "vectors", "descriptor", "qos", "python", "cpp", "rust", "diff", "cmd", "init"]
 
 
 class Code(NamedTuple):
@@ -192,6 +192,8 @@ _CODES = (
          'a construct the python target cannot express (wchar, wstring, map, fixed, bitset, native, ...), at each use'),
     Code("RG1702", "error", "cpp",
          'a construct the cpp target cannot express (wchar, wstring, map, fixed, bitset, bitmask, native, @optional, @mutable, ...), at each use'),
+    Code("RG1703", "error", "rust",
+         'a construct the rust target cannot express (wchar, wstring, map, fixed, bitset, bitmask, native, @optional, @mutable, ...), at each use'),
     Code("RG1801", "error", "diff", '`rapidgen diff`: a side does not exist, is not a file or folder, or is a folder without IDL files'),
     Code("RG1802", "error", "diff", '`--against REV`: not a git repository, unknown revision, or the path is not in it'),
     Code("RG1803", "error", "diff", '`--against REV`: the revision holds more than 20,000 spec files or 64 MiB of them'),

@@ -11,6 +11,7 @@ _MODULES = {
     "python": "rapidgen.backends.python",
     "qos": "rapidgen.backends.qos",
     "cpp": "rapidgen.backends.cpp",
+    "rust": "rapidgen.backends.rust",
 }
 
 

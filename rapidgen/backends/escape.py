@@ -130,3 +130,45 @@ def cmake_name(text: str) -> str:
     starting with a digit."""
     out = re.sub(r"[^A-Za-z0-9_]", "_", text) or "rapid_types"
     return "_" + out if out[0].isdigit() else out
+
+
+# -- Rust and Cargo ---------------------------------------------------------------------
+def rust_str(text: str) -> str:
+    """A Rust string literal whose value is exactly `text`.
+
+    Printable ASCII stays (`"` and `\\` escaped); everything else is a `\\u{...}` escape,
+    so no bidirectional-override or other invisible character (which rustc refuses in
+    literals) is ever written raw. A lone surrogate has no Rust form: it is left in the
+    text for check_output to refuse (RG0830)."""
+    out = ['"']
+    for ch in text:
+        if " " <= ch < "\x7f":
+            out.append("\\" + ch if ch in '"\\' else ch)
+        elif "\ud800" <= ch <= "\udfff":
+            out.append(ch)
+        else:
+            out.append(f"\\u{{{ord(ch):x}}}")
+    return "".join(out) + '"'
+
+
+def rust_comment(text: str) -> str:
+    """One line for a Rust `//` or `///` comment: printable (no newline ends it early, no
+    bare CR, no bidirectional override rustc refuses), whitespace runs as one space."""
+    return visible(" ".join(text.split()))
+
+
+def crate_name(text: str) -> str:
+    """A Cargo package (and Rust crate) name from any text: [a-z0-9_], starting with a
+    letter, not a name Cargo refuses (a keyword or a built-in crate)."""
+    out = re.sub(r"[^a-z0-9_]", "_", text.lower()).strip("_") or "rapid_types"
+    if not out[0].isalpha():
+        out = "rapid_" + out
+    return out + "_rs" if out in _CARGO_REFUSED else out
+
+
+_CARGO_REFUSED = frozenset("""
+    test core std alloc proc_macro self super crate as async await break const continue dyn else
+    enum extern false fn for if impl in let loop match mod move mut pub ref return static struct
+    trait true type unsafe use where while abstract become box do final macro override priv try
+    typeof unsized virtual yield gen
+""".split())

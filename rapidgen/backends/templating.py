@@ -23,6 +23,8 @@ FILTERS = {
     "xml_comment": escape.xml_comment,  # inside <!-- ... -->
     "cpp_str": escape.cpp_str,  # a C++ string literal (value: the UTF-8 bytes)
     "cpp_comment": escape.cpp_comment,  # after `//` in C++ (or `#` in CMake)
+    "rust_str": escape.rust_str,  # a Rust string literal (value round-trips)
+    "rust_comment": escape.rust_comment,  # after `//` or `///` in Rust
 }
 
 

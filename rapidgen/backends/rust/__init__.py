@@ -1,0 +1,50 @@
+"""Rust target: a Cargo crate of Rust types with straight-line XCDR1 encode/decode.
+
+    generate(model, asset, options) -> [GeneratedFile]
+
+The crate is named like the Python package: options.package, else `rapid_` + the asset
+name, else `rapid_types`. docs/rust-backend.md has the layout and the mapping rules;
+view.py decides everything the templates print.
+"""
+from __future__ import annotations
+
+import re
+from typing import TYPE_CHECKING
+
+from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
+from rapidgen.backends.escape import crate_name
+from rapidgen.backends.rust.view import CrateView, UnsupportedInput, build
+from rapidgen.backends.templating import render
+from rapidgen.model.ir import Model
+
+if TYPE_CHECKING:
+    from rapidgen.asset import LoadedAsset
+
+NAME = "rust"
+DEFAULT_CRATE = "rapid_types"
+
+__all__ = ["NAME", "DEFAULT_CRATE", "UnsupportedInput", "crate_for", "generate", "view"]
+
+
+def crate_for(asset: "LoadedAsset | None", options: Options) -> str:
+    if options.package:
+        return crate_name(options.package)
+    if asset is not None:
+        return crate_name("rapid_" + (re.sub(r"[^a-z0-9]+", "_", asset.spec.name.lower()).strip("_") or "asset"))
+    return DEFAULT_CRATE
+
+
+def view(model: Model, asset: "LoadedAsset | None", options: Options) -> CrateView:
+    return build(model, crate_for(asset, options), notice(options.source), options.source)
+
+
+def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:
+    """Raises UnsupportedInput when the model uses what the rust target cannot express."""
+    c = view(model, asset, options)
+    files = [GeneratedFile("Cargo.toml", render("rust", "Cargo.toml.j2", c=c)),
+             GeneratedFile("src/cdr.rs", render("rust", "cdr.rs.j2", header=c.header))]
+    for m in c.modules:
+        template = "lib.rs.j2" if m.file == "src/lib.rs" else "module.rs.j2"
+        files.append(GeneratedFile(m.file, render("rust", template, c=c, m=m)))
+    check_output(files, asset)
+    return sorted(files, key=lambda f: f.path)

@@ -1,0 +1,219 @@
+"""IR types -> Rust type spellings, default expressions, minimum sizes, and the XCDR1
+expressions encoding and decoding a value (straight-line calls on cdr::Writer/Reader;
+closures only for the elements of sequences and arrays).
+
+Value places: `self.x` (a struct field) or `*e` (a closure's or match's reference).
+"""
+from __future__ import annotations
+
+import math
+import struct as _struct
+from typing import Callable
+
+from rapidgen.backends.escape import rust_str
+from rapidgen.diagnostics import SourceLoc
+from rapidgen.model import ir
+
+PRIMITIVES = {
+    "int8": "i8", "uint8": "u8", "int16": "i16", "uint16": "u16", "int32": "i32", "uint32": "u32",
+    "int64": "i64", "uint64": "u64", "float32": "f32", "float64": "f64", "char8": "u8", "boolean": "bool",
+    "octet": "u8",
+}
+SIZES = {"int8": 1, "uint8": 1, "int16": 2, "uint16": 2, "int32": 4, "uint32": 4, "int64": 8, "uint64": 8,
+         "float32": 4, "float64": 8, "char8": 1, "boolean": 1, "octet": 1}
+ENUM_REPR = {1: "i8", 2: "i16", 4: "i32"}
+# Arrays up to this length have Default (the standard library's limit); longer ones are
+# built with std::array::from_fn.
+STD_ARRAY_DEFAULT = 32
+CDR = "crate::cdr"
+
+
+class Unsupported(Exception):
+    def __init__(self, msg: str, loc: SourceLoc | None = None) -> None:
+        super().__init__(msg)
+        self.loc = loc
+
+
+def enum_size(e: ir.Enum) -> int:
+    return 1 if e.bit_bound <= 8 else 2 if e.bit_bound <= 16 else 4
+
+
+def ref(place: str) -> str:
+    """A reference to the value at `place`."""
+    return place[1:] if place.startswith("*") else "&" + place
+
+
+class TypeMap:
+    """Needs the model and a function giving a declaration's path from the crate root."""
+
+    def __init__(self, model: ir.Model, path: Callable[[str], str]) -> None:
+        self.model = model
+        self.path = path
+        self.variant: Callable[[ir.Enum, str], str] = lambda e, n: n  # set by the view
+        self._n = 0
+
+    def decl(self, t: ir.Type) -> ir.Declaration | None:
+        return self.model.get(t.name) if isinstance(t, ir.TypeRef) else None
+
+    def real(self, t: ir.Type) -> ir.Type:
+        return self.model.resolve_alias(t)
+
+    def _var(self, stem: str) -> str:
+        self._n += 1
+        return f"{stem}{self._n}"
+
+    # -- spelling ---------------------------------------------------------------------
+    def rust(self, t: ir.Type, loc: SourceLoc) -> str:
+        if isinstance(t, ir.Primitive):
+            if t.name not in PRIMITIVES:
+                raise Unsupported(f"'{t}' is not supported by the rust target", loc)
+            return PRIMITIVES[t.name]
+        if isinstance(t, ir.String):
+            if t.wide:
+                raise Unsupported("'wstring' is not supported by the rust target", loc)
+            return "::std::string::String"
+        if isinstance(t, ir.Sequence):
+            return f"::std::vec::Vec<{self.rust(t.element, loc)}>"
+        if isinstance(t, ir.Array):
+            out = self.rust(t.element, loc)
+            for d in reversed(t.dims):
+                out = f"[{out}; {d}]"
+            return out
+        if isinstance(t, ir.TypeRef):
+            d = self.decl(t)
+            if d is None or d.kind not in ("struct", "union", "enum", "typedef"):
+                raise Unsupported(f"{t.kind} '{t.name}' is not supported by the rust target", loc)
+            if isinstance(d, ir.Typedef):
+                self.rust(d.type, loc)  # refuse what the alias names, at this use too
+            return self.path(t.name)
+        raise Unsupported(f"'{t}' is not supported by the rust target (map, fixed)", loc)
+
+    def default(self, t: ir.Type) -> str | None:
+        """A default expression, or None where `Default::default()` gives the IDL default
+        (zeros, empty, the enum's default enumerator, the union's default branch)."""
+        r = self.real(t)
+        if isinstance(r, ir.Array):
+            inner = self.default(ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element)
+            if inner is None and r.dims[0] <= STD_ARRAY_DEFAULT:
+                return None
+            return f"::std::array::from_fn(|_| {inner or '::core::default::Default::default()'})"
+        return None
+
+    def literal(self, value: ir.ConstValue, t: ir.Type) -> str:
+        """A Rust constant expression of type t holding value."""
+        r = self.real(t)
+        if isinstance(value, ir.EnumValue):
+            e = self.model.get(value.enum)
+            return f"{self.path(value.enum)}::{self.variant(e, value.name)}"  # type: ignore[arg-type]
+        if isinstance(value, bool):
+            return "true" if value else "false"
+        name = r.name if isinstance(r, ir.Primitive) else ""
+        if isinstance(value, str):
+            return str(ord(value)) if name == "char8" and len(value) == 1 else rust_str(value)
+        if name in ("float32", "float64") or not isinstance(value, int):
+            return _float(float(value), PRIMITIVES.get(name, "f64"))
+        return str(value)
+
+    # -- sizes ------------------------------------------------------------------------
+    def min_size(self, t: ir.Type, depth: int = 0) -> int:
+        """Fewest bytes a value takes on the wire (alignment ignored): a decoder refuses a
+        count the bytes left cannot hold before it allocates."""
+        r = self.real(t)
+        if depth > 50:
+            return 0
+        if isinstance(r, ir.Primitive):
+            return SIZES.get(r.name, 1)
+        if isinstance(r, ir.String):
+            return 5
+        if isinstance(r, ir.Sequence):
+            return 4
+        if isinstance(r, ir.Array):
+            return math.prod(r.dims) * self.min_size(r.element, depth + 1)
+        d = self.decl(r)
+        if isinstance(d, ir.Enum):
+            return enum_size(d)
+        if isinstance(d, ir.Struct):
+            return sum(self.min_size(m.type, depth + 1) for m in self.model.all_members(d))
+        if isinstance(d, ir.Union):
+            return self.min_size(d.discriminator, depth + 1)
+        return 0
+
+    # -- encode -----------------------------------------------------------------------
+    def encode(self, t: ir.Type, place: str, what: str) -> tuple[str, bool]:
+        """An expression writing the value at `place` to Writer `w`, and whether it is a
+        Result (to be followed by `?`)."""
+        r = self.real(t)
+        w = rust_str(what)
+        if isinstance(r, ir.Primitive):
+            if r.name == "boolean":
+                return f"w.put_bool({place})", False
+            return f"w.put::<{PRIMITIVES[r.name]}>({place})", False
+        if isinstance(r, ir.String):
+            return f"w.put_string({ref(place)}, {r.bound or 0}, {w})", True
+        if isinstance(r, ir.Sequence):
+            e = self._var("e")
+            return f"w.put_seq({ref(place)}, {r.bound or 0}, {w}, |w, {e}| {self._closure(r.element, e, what)})", True
+        if isinstance(r, ir.Array):
+            e = self._var("e")
+            inner = ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element
+            return f"w.put_array({ref(place)}, |w, {e}| {self._closure(inner, e, what)})", True
+        return f"{CDR}::Cdr::encode({ref(place)}, w)", True
+
+    def _closure(self, t: ir.Type, e: str, what: str) -> str:
+        expr, fallible = self.encode(t, "*" + e, what)
+        return expr if fallible else f"{{ {expr}; Ok(()) }}"
+
+    # -- decode -----------------------------------------------------------------------
+    def decode(self, t: ir.Type, what: str) -> str:
+        """An expression of the value read from Reader `r` (`?` inside)."""
+        expr, is_result = self._decode(t, what)
+        return expr + "?" if is_result else expr
+
+    def decoder(self, t: ir.Type, what: str) -> str:
+        """A function (or closure) `FnMut(&mut Reader) -> Result<T, DecodeError>`."""
+        r = self.real(t)
+        d = self.decl(r)
+        if isinstance(d, (ir.Struct, ir.Union, ir.Enum)):
+            return f"<{self.path(d.scoped_name)} as {CDR}::Cdr>::decode"
+        expr, is_result = self._decode(t, what)
+        return f"|r| {expr}" if is_result else f"|r| Ok({expr})"
+
+    def _decode(self, t: ir.Type, what: str) -> tuple[str, bool]:
+        r = self.real(t)
+        w = rust_str(what)
+        if isinstance(r, ir.Primitive):
+            if r.name == "boolean":
+                return "r.get_bool()", True
+            return f"r.get::<{PRIMITIVES[r.name]}>()", True
+        if isinstance(r, ir.String):
+            return f"r.get_string({r.bound or 0}, {w})", True
+        if isinstance(r, ir.Sequence):
+            return (f"r.get_seq({r.bound or 0}, {self.min_size(r.element)}, {w}, "
+                    f"{self.decoder(r.element, what)})"), True
+        if isinstance(r, ir.Array):
+            inner = ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element
+            a = self._var("a")
+            init = self.default(r) or "::core::default::Default::default()"
+            return (f"{{ r.need({self.min_size(r)}, {w})?; let mut {a}: {self.rust(t, SourceLoc('', 0, 0))} = {init}; "
+                    f"r.get_array(&mut {a}, {self.decoder(inner, what)})?; {a} }}"), False
+        d = self.decl(r)
+        assert d is not None
+        return f"<{self.path(d.scoped_name)} as {CDR}::Cdr>::decode(r)", True
+
+
+def _float(v: float, rtype: str) -> str:
+    if math.isnan(v):
+        return f"{rtype}::NAN"
+    if math.isinf(v):
+        return f"{rtype}::{'NEG_' if v < 0 else ''}INFINITY"
+    if rtype == "f32":  # the shortest decimal that is the same float32 (no excessive precision)
+        bits = _struct.pack("<f", v)
+        for p in range(1, 10):
+            text = f"{v:.{p}g}"
+            if _struct.pack("<f", float(text)) == bits:
+                break
+    else:
+        text = repr(v)
+    if not any(c in text for c in ".en"):
+        text += ".0"
+    return text

@@ -1,0 +1,290 @@
+"""IR -> view objects for the Rust templates: every name, type spelling and expression decided.
+
+Each IDL module is a Rust module in its own file (`rapid::ext` -> src/rapid/ext.rs), the
+crate root holds the global scope, the runtime (`cdr`) and `visit_types`. Structs are
+flattened like the Python and C++ classes (base members first); unions are Rust enums
+whose variants carry the discriminator when it is not implied (several labels, the
+default case, no member). Templates only print.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from rapidgen.backends.base import GenerationError
+from rapidgen.backends.escape import rust_str
+from rapidgen.backends.rust import namer
+from rapidgen.backends.rust.typemap import ENUM_REPR, Unsupported, TypeMap, enum_size
+from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+from rapidgen.model import ir
+
+DEFAULT = "::core::default::Default::default()"
+
+
+class UnsupportedInput(GenerationError):
+    """The model uses what the rust target cannot express; `problems` says what and where."""
+
+    CODE = "RG1703"
+
+    def __init__(self, problems: list[tuple[str, SourceLoc | None]]) -> None:
+        super().__init__("; ".join(f"{loc}: {msg}" if loc else msg for msg, loc in problems))
+        self.problems = problems
+
+    def report(self, sink: DiagnosticSink) -> None:
+        for msg, loc in self.problems:
+            sink.error(self.CODE, msg, loc or SourceLoc("<input>", 0, 0),
+                       "see docs/rust-backend.md for what the rust target supports")
+
+
+@dataclass
+class MemberView:
+    name: str
+    type: str
+    wire: str  # the IDL name
+    default: str  # expression for a hand-written Default
+    decode: str
+
+
+@dataclass
+class ArmView:
+    pattern: str  # decode match pattern ("_" for the rest)
+    build: str  # decode arm value
+    head: str  # encode match pattern
+    check: str  # encode: a condition refusing a carried discriminator ("" none)
+    encode: list[str]  # encode statements
+
+
+@dataclass
+class DeclView:
+    kind: str  # struct, union, enum, typedef, const
+    name: str
+    doc: str
+    type_name: str = ""  # the DDS type name literal
+    type: str = ""  # typedef target, const type, enum repr, union discriminator type
+    value: str = ""  # const value, union default expression
+    members: list[MemberView] = field(default_factory=list)
+    derive_default: bool = True
+    encode: list[str] = field(default_factory=list)
+    variants: list[tuple[str, int, str]] = field(default_factory=list)  # enum: name, value, IDL name
+    default_variant: str = ""
+    variant_types: list[tuple[str, str]] = field(default_factory=list)  # union: name, tuple fields
+    arms: list[ArmView] = field(default_factory=list)
+    disc_decode: str = ""
+    allow_unreachable: bool = False
+
+
+@dataclass
+class ModuleView:
+    path: str  # from the crate root ("" for the root)
+    file: str
+    doc: str
+    decls: list[DeclView] = field(default_factory=list)
+    children: list[str] = field(default_factory=list)
+
+
+@dataclass
+class CrateView:
+    crate: str
+    header: str
+    source: str
+    modules: list[ModuleView]
+    types: list[str]  # paths of the structs and unions, for visit_types
+
+
+class Builder:
+    def __init__(self, model: ir.Model) -> None:
+        self.model = model
+        self.problems: list[tuple[str, SourceLoc | None]] = []
+        self.scopes: dict[tuple[str, ...], namer.Scope] = {(): namer.Scope("crate root", namer.ROOT_RESERVED)}
+        self.mod_names: dict[tuple[str, ...], tuple[str, ...]] = {(): ()}
+        self.names: dict[str, str] = {}
+        self.enum_names: dict[str, dict[str, str]] = {}
+        for d in model.declarations:  # modules first, so declarations step aside for them
+            self._module(tuple(d.scoped_name.split("::")[:-1]))
+        for d in model.declarations:
+            scope = self.scopes[tuple(d.scoped_name.split("::")[:-1])]
+            pref = namer.upper(d.name) if isinstance(d, ir.Const) else namer.camel(d.name)
+            self.names[d.scoped_name] = scope.claim(pref, d.scoped_name)
+            if isinstance(d, ir.Enum):
+                es = namer.Scope(f"enum {d.scoped_name}")
+                self.enum_names[d.scoped_name] = {e.name: es.claim(namer.camel(e.name), e.name)
+                                                  for e in d.enumerators}
+        self.types = TypeMap(model, self.path)
+        self.types.variant = lambda e, n: self.enum_names[e.scoped_name][n]
+
+    def _module(self, path: tuple[str, ...]) -> tuple[str, ...]:
+        if path not in self.mod_names:
+            parent = self._module(path[:-1])
+            name = self.scopes[path[:-1]].claim(namer.snake(path[-1]), "module " + "::".join(path))
+            self.mod_names[path] = parent + (name,)
+            # a child named like its parent is clippy's module_inception
+            self.scopes[path] = namer.Scope("module " + "::".join(path), {name})
+        return self.mod_names[path]
+
+    def module_of(self, scoped: str) -> tuple[str, ...]:
+        return self.mod_names[tuple(scoped.split("::")[:-1])]
+
+    def path(self, scoped: str) -> str:
+        return "::".join(("crate",) + self.module_of(scoped) + (self.names[scoped],))
+
+    # -- the crate ----------------------------------------------------------------------
+    def build(self, crate: str, header: str, source: str) -> CrateView:
+        modules = {p: ModuleView("::".join(p), "src/" + "/".join(p) + ".rs" if p else "src/lib.rs",
+                                 "IDL module " + "::".join(idl) if idl else "")
+                   for idl, p in self.mod_names.items()}
+        for idl, p in self.mod_names.items():
+            if p:
+                modules[p[:-1]].children.append(p[-1])
+        types: list[str] = []
+        for d in self.model.declarations:
+            try:
+                view = self.declaration(d)
+            except Unsupported as exc:
+                self.problems.append((str(exc), exc.loc or d.loc))
+                continue
+            modules[self.module_of(d.scoped_name)].decls.append(view)
+            if view.kind in ("struct", "union"):
+                types.append(self.path(d.scoped_name))
+        if self.problems:
+            raise UnsupportedInput(self.problems)
+        for scope in self.scopes.values():
+            scope.check()
+        return CrateView(crate, header, source, [modules[p] for p in sorted(modules)], types)
+
+    def declaration(self, d: ir.Declaration) -> DeclView:
+        name = self.names[d.scoped_name]
+        if isinstance(d, ir.Typedef):
+            return DeclView("typedef", name, f"IDL typedef {d.type} {d.scoped_name}",
+                            type=self.types.rust(d.type, d.loc))
+        if isinstance(d, ir.Const):
+            real = self.types.real(d.type)
+            rtype = "&str" if isinstance(real, ir.String) and not real.wide else self.types.rust(d.type, d.loc)
+            return DeclView("const", name, f"IDL const {d.scoped_name}", type=rtype,
+                            value=self.types.literal(d.value, d.type))
+        if isinstance(d, ir.Enum):
+            names = self.enum_names[d.scoped_name]
+            return DeclView("enum", name, f"IDL enum {d.scoped_name}", type_name=rust_str(d.scoped_name),
+                            type=ENUM_REPR[enum_size(d)],
+                            variants=[(names[e.name], e.value, e.name) for e in d.enumerators],
+                            default_variant=names[d.default])
+        if isinstance(d, ir.Struct):
+            return self.struct(d, name)
+        if isinstance(d, ir.Union):
+            return self.union(d, name)
+        raise Unsupported(f"{d.kind} '{d.scoped_name}' is not supported by the rust target", d.loc)
+
+    def _check_ext(self, d: ir.Struct | ir.Union) -> None:
+        if d.extensibility == "mutable":
+            raise Unsupported(f"@mutable {d.kind} '{d.scoped_name}' is not supported by the rust target "
+                              "(XCDR1 final and appendable only)", d.loc)
+
+    def struct(self, s: ir.Struct, name: str) -> DeclView:
+        self._check_ext(s)
+        scope = namer.Scope(f"struct {s.scoped_name}")
+        members, enc = [], []
+        derive = True
+        for m in self.model.all_members(s):
+            if m.optional:
+                self.problems.append((f"@optional member '{m.name}' is not supported by the rust target", m.loc))
+                continue
+            try:
+                rtype = self.types.rust(m.type, m.loc)
+            except Unsupported as exc:
+                self.problems.append((str(exc), exc.loc or m.loc))
+                continue
+            rname = scope.claim(namer.snake(m.name), m.name)
+            what = f"{s.scoped_name}.{m.name}"
+            default = self.types.default(m.type)
+            if m.default is not None:
+                lit = self.types.literal(m.default, m.type)
+                real = self.types.real(m.type)
+                default = f"::std::string::String::from({lit})" if isinstance(real, ir.String) else lit
+            derive = derive and default is None
+            expr, fallible = self.types.encode(m.type, f"self.{rname}", what)
+            enc.append(expr + ("?;" if fallible else ";"))
+            members.append(MemberView(rname, rtype, m.name, default or DEFAULT, self.types.decode(m.type, what)))
+        scope.check()
+        doc = f"IDL {s.origin} {s.scoped_name}"
+        if s.base:
+            doc += f" : {s.base}, flattened (base members first)"
+        doc += "." + (f" Key: {', '.join(s.keys)}." if s.keys else "")
+        return DeclView("struct", name, doc, type_name=rust_str(s.scoped_name), members=members,
+                        derive_default=derive, encode=enc)
+
+    def union(self, u: ir.Union, name: str) -> DeclView:
+        self._check_ext(u)
+        t = self.types
+        disc_type = t.rust(u.discriminator, u.loc)
+        scope = namer.Scope(f"union {u.scoped_name}")
+        everything = [lab for c in u.cases for lab in c.labels]
+        covered = self._covers(u, everything)
+        need_none = u.default_case is None and not covered
+        if need_none:
+            scope.claim(namer.NO_MEMBER, "(no member)")
+        pats = {id(c): " | ".join(t.literal(lab, u.discriminator) for lab in c.labels) for c in u.cases}
+        arms, types, variant_of = [], [], {}
+        for c in u.cases:
+            m = c.member
+            try:
+                mtype = t.rust(m.type, m.loc)
+            except Unsupported as exc:
+                self.problems.append((str(exc), exc.loc or m.loc))
+                continue
+            vname = scope.claim(namer.camel(m.name), m.name)
+            variant_of[id(c)] = vname
+            what = f"{u.scoped_name}.{m.name}"
+            body, fallible = t.encode(m.type, "*x", what)
+            body += "?;" if fallible else ";"
+            carries = c.is_default or len(c.labels) != 1
+            if carries:
+                types.append((vname, f"{disc_type}, {mtype}"))
+                others = " | ".join(pats[id(o)] for o in u.cases if o is not c and o.labels)
+                check = (f"matches!(*d, {others})" if c.is_default and others
+                         else "" if c.is_default else f"!matches!(*d, {pats[id(c)]})")
+                arms.append(ArmView("_" if c.is_default else pats[id(c)], f"Self::{vname}(d, {t.decode(m.type, what)})",
+                                    f"Self::{vname}(d, x)", check, [self._disc_enc(u, "*d"), body]))
+            else:
+                types.append((vname, mtype))
+                arms.append(ArmView(pats[id(c)], f"Self::{vname}({t.decode(m.type, what)})", f"Self::{vname}(x)", "",
+                                    [self._disc_enc(u, pats[id(c)]), body]))
+        scope.check()
+        if need_none:
+            types.append((namer.NO_MEMBER, disc_type))
+            arms.append(ArmView("_", f"Self::{namer.NO_MEMBER}(d)", f"Self::{namer.NO_MEMBER}(d)",
+                                f"matches!(*d, {' | '.join(pats[id(c)] for c in u.cases)})" if everything else "",
+                                [self._disc_enc(u, "*d")]))
+        arms.sort(key=lambda a: a.pattern == "_")  # the rest last
+        if u.default_case is not None:
+            c = u.cases[u.default_case]
+            vname = variant_of.get(id(c), namer.NO_MEMBER)
+            value = t.default(c.member.type) or DEFAULT
+            carries = c.is_default or len(c.labels) != 1
+            default = (f"Self::{vname}({t.literal(u.default_discriminator, u.discriminator)}, {value})" if carries
+                       else f"Self::{vname}({value})")
+        else:
+            default = f"Self::{namer.NO_MEMBER}({t.literal(u.default_discriminator, u.discriminator)})"
+        return DeclView("union", name, f"IDL union {u.scoped_name} switch ({u.discriminator}).",
+                        type_name=rust_str(u.scoped_name), type=disc_type, value=default, variant_types=types,
+                        arms=arms, disc_decode=t.decode(u.discriminator, f"{u.scoped_name} discriminator"),
+                        allow_unreachable=covered and u.default_case is not None
+                        and u.cases[u.default_case].is_default)
+
+    def _disc_enc(self, u: ir.Union, place: str) -> str:
+        expr, fallible = self.types.encode(u.discriminator, place, f"{u.scoped_name} discriminator")
+        return expr + ("?;" if fallible else ";")
+
+    def _covers(self, u: ir.Union, labels: list[ir.Label]) -> bool:
+        """Whether the labels name every value of the discriminator's type."""
+        taken = {ir.label_key(lab) for lab in labels}
+        real = self.types.real(u.discriminator)
+        d = self.types.decl(real)
+        if isinstance(d, ir.Enum):
+            return all((False, e.value) in taken for e in d.enumerators)
+        if isinstance(real, ir.Primitive) and real.name == "boolean":
+            return len(taken) == 2
+        if isinstance(real, ir.Primitive) and real.name in ("int8", "uint8", "octet", "char8"):
+            return len(taken) >= 256
+        return False
+
+
+def build(model: ir.Model, crate: str, header: str, source: str) -> CrateView:
+    return Builder(model).build(crate, header, source)

@@ -1,0 +1,85 @@
+"""One cargo build per session of a generated Rust crate and the test programs.
+
+Built into a target folder in the pytest session's temp folder (the cache lives inside
+the run, shared by every test): K10's crate (the RAPID set plus K10's extension IDL, so
+every golden vector's type), in release mode, offline (the generated crate and the test
+programs need no crate from a registry).
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+HERE = Path(__file__).resolve().parent
+VECTORS = ROOT / "tests" / "vectors" / "rapid.json"
+K10 = ROOT / "generated" / "k10" / "rust"
+CRATE = "rapid_k10red"
+
+
+def cargo() -> str:
+    found = shutil.which("cargo") or str(Path(os.environ.get("CARGO_HOME", Path.home() / ".cargo")) / "bin" / "cargo")
+    if not Path(found).exists():
+        pytest.fail("cargo is needed (scripts/setup.sh installs Debian's when none is found)")
+    return found
+
+
+def run(cmd: list[str], cwd: Path, target: Path, timeout: float = 900) -> subprocess.CompletedProcess:
+    env = dict(os.environ, CARGO_TARGET_DIR=str(target), CARGO_TERM_COLOR="never")
+    res = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
+    assert res.returncode == 0, f"{' '.join(cmd)}\n{res.stdout[-3000:]}\n{res.stderr[-6000:]}"
+    return res
+
+
+def vector_lines() -> list[str]:
+    """'id type le_hex be_hex' per golden vector: the programs' stdin."""
+    data = json.loads(VECTORS.read_text(encoding="utf-8"))
+    return [f"{v['id']} {v['type']} {v['xcdr1_le']} {v['xcdr1_be']}" for v in data["vectors"]]
+
+
+HARNESS = """\
+[package]
+name = "rapidgen_rust_tests"
+version = "0.0.0"
+edition = "2021"
+publish = false
+
+[dependencies]
+gen = {{ package = "{crate}", path = "{path}" }}
+
+[[bin]]
+name = "vectors"
+path = "{src}/vectors.rs"
+
+[[bin]]
+name = "fuzz"
+path = "{src}/fuzz.rs"
+
+[profile.release]
+debug-assertions = true
+overflow-checks = true
+"""
+
+
+@pytest.fixture(scope="session")
+def rust_target(tmp_path_factory) -> Path:
+    """The session's cargo target folder."""
+    return tmp_path_factory.mktemp("cargo-target")
+
+
+@pytest.fixture(scope="session")
+def rust_build(tmp_path_factory, rust_target) -> Path:
+    """The test programs built against K10's crate; returns their folder."""
+    exe = cargo()
+    harness = tmp_path_factory.mktemp("rust-harness")
+    (harness / "Cargo.toml").write_text(HARNESS.format(crate=CRATE, path=K10.as_posix(), src=(HERE / "src").as_posix()))
+    start = time.monotonic()
+    run([exe, "build", "--release", "--offline", "--bins"], harness, rust_target)
+    print(f"\nrust: cargo build of {CRATE} and the test programs took {time.monotonic() - start:.1f} s")
+    return rust_target / "release"
