@@ -108,3 +108,35 @@ def test_cpp_escapes():
         assert "*/" not in c and "/*" not in c and "??" not in c and "\n" not in c and not c.endswith("\\")
         assert c.isprintable()
     assert escape.cmake_name("K10 Red!") == "K10_Red_" and escape.cmake_name("9x") == "_9x"
+
+
+RECURSIVE = "module m { struct Node; struct Node { long id; sequence<Node> kids; }; };\n"
+DEEP_MAIN = r'''
+#include <cstdio>
+#include <tricky/types.hpp>
+int main() {
+    // 100,000 nested one-element sequences: a stack overflow unless depth is limited
+    std::vector<std::uint8_t> b{0, 1, 0, 0};
+    for (int i = 0; i < 100000; ++i) { b.insert(b.end(), {0, 0, 0, 0, 1, 0, 0, 0}); }
+    try { rapidgen::cdr::deserialize<m::Node>(b); std::printf("decoded\n"); }
+    catch (const rapidgen::cdr::DecodeError& e) { std::printf("%s\n", e.what()); }
+    m::Node n;
+    n.kids.resize(1);
+    n.kids[0].id = 5;
+    std::printf("%d\n", rapidgen::cdr::deserialize<m::Node>(rapidgen::cdr::serialize(n)) == n ? 1 : 0);
+}
+'''
+
+
+def test_recursive_type_round_trips_and_deep_nesting_is_refused(tmp_path):
+    res = _generate(tmp_path, RECURSIVE)
+    assert res.returncode == 0, res.stderr
+    pkg = tmp_path / "out" / "cpp"
+    (tmp_path / "main.cpp").write_text(DEEP_MAIN, encoding="utf-8")
+    cc = subprocess.run(["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-O1", "-I", str(pkg / "include"),
+                         str(tmp_path / "main.cpp"), str(pkg / "src" / "types.cpp"), "-o", str(tmp_path / "main")],
+                        capture_output=True, text=True, timeout=300)
+    assert cc.returncode == 0, cc.stderr[-6000:]
+    run = subprocess.run([str(tmp_path / "main")], capture_output=True, text=True, timeout=30)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.splitlines() == ["nesting deeper than 100 levels at offset 800", "1"]

@@ -182,6 +182,7 @@ void ::rapid::encode(Writer& w, const ::rapid::ParameterUnion& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::ParameterUnion& v) {
+    Reader::Level level(r);
     ::rapid::DataType d{};
     d = enum_0(r.get<std::int32_t>(), r);
     v.m_d = d;
@@ -242,6 +243,7 @@ void ::rapid::encode(Writer& w, const ::rapid::KeyTypePair& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::KeyTypePair& v) {
+    Reader::Level level(r);
     r.get_string(v.key, 32u, "rapid::KeyTypePair.key");
     v.type = enum_0(r.get<std::int32_t>(), r);
 }
@@ -257,6 +259,7 @@ void ::rapid::encode(Writer& w, const ::rapid::KeyTypeValueTriple& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::KeyTypeValueTriple& v) {
+    Reader::Level level(r);
     r.get_string(v.key, 32u, "rapid::KeyTypeValueTriple.key");
     v.padding = r.get<std::int32_t>();
     decode(r, v.value);
@@ -272,6 +275,7 @@ void ::rapid::encode(Writer& w, const ::rapid::Transform3D& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::Transform3D& v) {
+    Reader::Level level(r);
     r.get_array(v.xyz.data(), 3);
     r.get_array(v.rot.data(), 9);
 }
@@ -287,6 +291,7 @@ void ::rapid::encode(Writer& w, const ::rapid::NamedFloatSequence& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::NamedFloatSequence& v) {
+    Reader::Level level(r);
     r.get_string(v.name, 16u, "rapid::NamedFloatSequence.name");
     r.get_vector(v.values, 64u, "rapid::NamedFloatSequence.values");
 }
@@ -301,6 +306,7 @@ void ::rapid::encode(Writer& w, const ::rapid::FloatRange& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::FloatRange& v) {
+    Reader::Level level(r);
     v.min = r.get<float>();
     v.max = r.get<float>();
 }
@@ -316,6 +322,7 @@ void ::rapid::encode(Writer& w, const ::rapid::FloatRangeValue& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::FloatRangeValue& v) {
+    Reader::Level level(r);
     v.min = r.get<float>();
     v.max = r.get<float>();
     v.value = r.get<float>();
@@ -334,6 +341,7 @@ void ::rapid::encode(Writer& w, const ::rapid::OptionSetValue& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::OptionSetValue& v) {
+    Reader::Level level(r);
     v.index = r.get<std::int32_t>();
     v.options.resize(r.get_count(16u, 5u, "rapid::OptionSetValue.options"));
     for (std::size_t i2 = 0; i2 < v.options.size(); ++i2) {
@@ -351,6 +359,7 @@ void ::rapid::encode(Writer& w, const ::rapid::NamedFloatRangeValue& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::NamedFloatRangeValue& v) {
+    Reader::Level level(r);
     r.get_string(v.name, 16u, "rapid::NamedFloatRangeValue.name");
     decode(r, v.range);
 }
@@ -365,6 +374,7 @@ void ::rapid::encode(Writer& w, const ::rapid::NamedOptionSetValue& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::NamedOptionSetValue& v) {
+    Reader::Level level(r);
     r.get_string(v.name, 16u, "rapid::NamedOptionSetValue.name");
     decode(r, v.option);
 }
@@ -382,6 +392,7 @@ void ::rapid::encode(Writer& w, const ::rapid::Header& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::Header& v) {
+    Reader::Level level(r);
     r.get_string(v.srcName, 32u, "rapid::Header.srcName");
     r.get_string(v.assetName, 32u, "rapid::Header.assetName");
     v.timeStamp = r.get<std::int64_t>();
@@ -403,6 +414,7 @@ void ::rapid::encode(Writer& w, const ::rapid::Message& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::Message& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
 }
 
@@ -425,6 +437,7 @@ void ::rapid::encode(Writer& w, const ::rapid::AccessControlState& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::AccessControlState& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.controller, 32u, "rapid::AccessControlState.controller");
     v.requestors.resize(r.get_count(16u, 5u, "rapid::AccessControlState.requestors"));
@@ -451,6 +464,7 @@ void ::rapid::encode(Writer& w, const ::rapid::Ack& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::Ack& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.cmdId, 64u, "rapid::Ack.cmdId");
     v.status = enum_2(r.get<std::int32_t>(), r);
@@ -485,6 +499,7 @@ void ::rapid::encode(Writer& w, const ::rapid::AgentConfig& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::AgentConfig& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     v.agentTags.resize(r.get_count(16u, 5u, "rapid::AgentConfig.agentTags"));
     for (std::size_t i6 = 0; i6 < v.agentTags.size(); ++i6) {
@@ -518,6 +533,7 @@ void ::rapid::encode(Writer& w, const ::rapid::AgentState& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::AgentState& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     v.values.resize(r.get_count(64u, 4u, "rapid::AgentState.values"));
     for (std::size_t i12 = 0; i12 < v.values.size(); ++i12) {
@@ -549,6 +565,7 @@ void ::rapid::encode(Writer& w, const ::rapid::Command& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::Command& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.cmdName, 64u, "rapid::Command.cmdName");
     r.get_string(v.cmdId, 64u, "rapid::Command.cmdId");
@@ -582,6 +599,7 @@ void ::rapid::encode(Writer& w, const ::rapid::CommandDef& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::CommandDef& v) {
+    Reader::Level level(r);
     r.get_string(v.name, 64u, "rapid::CommandDef.name");
     v.abortable = r.get_bool();
     v.suspendable = r.get_bool();
@@ -604,6 +622,7 @@ void ::rapid::encode(Writer& w, const ::rapid::SubsystemType& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::SubsystemType& v) {
+    Reader::Level level(r);
     r.get_string(v.name, 32u, "rapid::SubsystemType.name");
     v.commands.resize(r.get_count(100u, 11u, "rapid::SubsystemType.commands"));
     for (std::size_t i18 = 0; i18 < v.commands.size(); ++i18) {
@@ -621,6 +640,7 @@ void ::rapid::encode(Writer& w, const ::rapid::Subsystem& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::Subsystem& v) {
+    Reader::Level level(r);
     r.get_string(v.name, 32u, "rapid::Subsystem.name");
     r.get_string(v.subsystemTypeName, 32u, "rapid::Subsystem.subsystemTypeName");
 }
@@ -642,6 +662,7 @@ void ::rapid::encode(Writer& w, const ::rapid::CommandConfig& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::CommandConfig& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     v.availableSubsystemTypes.resize(r.get_count(64u, 9u, "rapid::CommandConfig.availableSubsystemTypes"));
     for (std::size_t i20 = 0; i20 < v.availableSubsystemTypes.size(); ++i20) {
@@ -674,6 +695,7 @@ void ::rapid::encode(Writer& w, const ::rapid::FileAnnounce& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::FileAnnounce& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.fileUuid, 64u, "rapid::FileAnnounce.fileUuid");
     r.get_string(v.fileLocator, 256u, "rapid::FileAnnounce.fileLocator");
@@ -715,6 +737,7 @@ void ::rapid::encode(Writer& w, const ::rapid::ImageMetadata& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::ImageMetadata& v) {
+    Reader::Level level(r);
     r.get_string(v.sensorName, 32u, "rapid::ImageMetadata.sensorName");
     r.get_string(v.sensorType, 32u, "rapid::ImageMetadata.sensorType");
     decode(r, v.offset);
@@ -747,6 +770,7 @@ void ::rapid::encode(Writer& w, const ::rapid::ImageSensorSample& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::ImageSensorSample& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     decode(r, v.meta);
     r.get_string(v.mimeType, 32u, "rapid::ImageSensorSample.mimeType");
@@ -768,6 +792,7 @@ void ::rapid::encode(Writer& w, const ::rapid::ImageSensorState& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::ImageSensorState& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     decode(r, v.meta);
 }
@@ -787,6 +812,7 @@ void ::rapid::encode(Writer& w, const ::rapid::JointDef& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::JointDef& v) {
+    Reader::Level level(r);
     r.get_string(v.frameName, 128u, "rapid::JointDef.frameName");
     r.get_string(v.dof, 64u, "rapid::JointDef.dof");
 }
@@ -805,6 +831,7 @@ void ::rapid::encode(Writer& w, const ::rapid::JointConfig& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::JointConfig& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.jointGroupName, 32u, "rapid::JointConfig.jointGroupName");
     v.jointDefinitions.resize(r.get_count(64u, 10u, "rapid::JointConfig.jointDefinitions"));
@@ -845,6 +872,7 @@ void ::rapid::encode(Writer& w, const ::rapid::JointSample& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::JointSample& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     r.get_vector(v.anglePos, 64u, "rapid::JointSample.anglePos");
     r.get_vector(v.angleVel, 64u, "rapid::JointSample.angleVel");
@@ -880,6 +908,7 @@ void ::rapid::encode(Writer& w, const ::rapid::PositionConfig& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::PositionConfig& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.frameName, 128u, "rapid::PositionConfig.frameName");
     v.poseEncoding = enum_1(r.get<std::int32_t>(), r);
@@ -910,6 +939,7 @@ void ::rapid::encode(Writer& w, const ::rapid::PositionSample& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::PositionSample& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     decode(r, v.pose);
     decode(r, v.velocity);
@@ -935,6 +965,7 @@ void ::rapid::encode(Writer& w, const ::rapid::CommandRecord& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::CommandRecord& v) {
+    Reader::Level level(r);
     decode(r, v.cmd);
     v.trResult = enum_5(r.get<std::int32_t>(), r);
     v.trStatus = enum_6(r.get<std::int32_t>(), r);
@@ -952,6 +983,7 @@ void ::rapid::encode(Writer& w, const ::rapid::SingleQueue& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::SingleQueue& v) {
+    Reader::Level level(r);
     v.records.resize(r.get_count(64u, 67u, "rapid::SingleQueue.records"));
     for (std::size_t i40 = 0; i40 < v.records.size(); ++i40) {
         decode(r, v.records[i40]);
@@ -971,6 +1003,7 @@ void ::rapid::encode(Writer& w, const ::rapid::QueueState& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::QueueState& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     decode(r, v.pending);
     decode(r, v.active);
@@ -995,6 +1028,7 @@ void ::rapid::encode(Writer& w, const ::rapid::TextMessage& v) {
 }
 
 void ::rapid::decode(Reader& r, ::rapid::TextMessage& v) {
+    Reader::Level level(r);
     decode(r, v.hdr);
     v.level = enum_7(r.get<std::int32_t>(), r);
     r.get_string(v.category, 64u, "rapid::TextMessage.category");

@@ -211,6 +211,21 @@ public:
         v.resize(n);
         get_array(v.data(), n);
     }
+    // Nesting of structs and unions (only recursive types get deep): at most 100 levels,
+    // so hostile bytes cannot exhaust the stack.
+    class Level {
+    public:
+        explicit Level(Reader& r) : r_(r) {
+            if (++r_.depth_ > 100) r_.fail("nesting deeper than 100 levels");
+        }
+        ~Level() { --r_.depth_; }
+        Level(const Level&) = delete;
+        Level& operator=(const Level&) = delete;
+
+    private:
+        Reader& r_;
+    };
+
     // The writer may pad the value to 4 bytes; anything more is an error.
     void finish() const {
         if (left() > 3) fail(std::to_string(left()) + " bytes after the value");
@@ -243,6 +258,7 @@ private:
     std::size_t size_;
     std::size_t pos_ = 0;
     bool swap_;
+    int depth_ = 0;
 };
 
 // A whole sample: the 4-byte encapsulation header (CDR_BE 0x0000 / CDR_LE 0x0001), then the value.
