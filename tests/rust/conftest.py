@@ -53,33 +53,38 @@ publish = false
 [dependencies]
 gen = {{ package = "{crate}", path = "{path}" }}
 
-[[bin]]
-name = "vectors"
-path = "{src}/vectors.rs"
-
-[[bin]]
-name = "fuzz"
-path = "{src}/fuzz.rs"
-
 [profile.release]
 debug-assertions = true
 overflow-checks = true
 """
+BIN = """
+[[bin]]
+name = "{name}"
+path = "{path}"
+"""
+
+
+def build_programs(folder: Path, crate_dir: Path, crate: str, target: Path, extra: dict[str, Path] | None = None) -> Path:
+    """The test programs of tests/rust/src (and `extra` ones) built against the crate in
+    crate_dir (imported as `gen`); returns the folder holding the executables."""
+    bins = {"vectors": HERE / "src" / "vectors.rs", "fuzz": HERE / "src" / "fuzz.rs", **(extra or {})}
+    text = HARNESS.format(crate=crate, path=crate_dir.as_posix())
+    text += "".join(BIN.format(name=n, path=p.as_posix()) for n, p in bins.items())
+    (folder / "Cargo.toml").write_text(text, encoding="utf-8")
+    run([cargo(), "build", "--release", "--offline", "--bins"], folder, target)
+    return target / "release"
 
 
 @pytest.fixture(scope="session")
 def rust_target(tmp_path_factory) -> Path:
-    """The session's cargo target folder."""
+    """The session's cargo target folder (shared: the programs build once per crate)."""
     return tmp_path_factory.mktemp("cargo-target")
 
 
 @pytest.fixture(scope="session")
 def rust_build(tmp_path_factory, rust_target) -> Path:
     """The test programs built against K10's crate; returns their folder."""
-    exe = cargo()
-    harness = tmp_path_factory.mktemp("rust-harness")
-    (harness / "Cargo.toml").write_text(HARNESS.format(crate=CRATE, path=K10.as_posix(), src=(HERE / "src").as_posix()))
     start = time.monotonic()
-    run([exe, "build", "--release", "--offline", "--bins"], harness, rust_target)
+    out = build_programs(tmp_path_factory.mktemp("rust-harness"), K10, CRATE, rust_target)
     print(f"\nrust: cargo build of {CRATE} and the test programs took {time.monotonic() - start:.1f} s")
-    return rust_target / "release"
+    return out

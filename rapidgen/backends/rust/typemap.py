@@ -76,8 +76,8 @@ class TypeMap:
             return f"::std::vec::Vec<{self.rust(t.element, loc)}>"
         if isinstance(t, ir.Array):
             out = self.rust(t.element, loc)
-            for d in reversed(t.dims):
-                out = f"[{out}; {d}]"
+            for n in reversed(t.dims):
+                out = f"[{out}; {n}]"
             return out
         if isinstance(t, ir.TypeRef):
             d = self.decl(t)

@@ -220,7 +220,7 @@ class Builder:
         need_none = u.default_case is None and not covered
         if need_none:
             scope.claim(namer.NO_MEMBER, "(no member)")
-        pats = {id(c): " | ".join(t.literal(lab, u.discriminator) for lab in c.labels) for c in u.cases}
+        pats = {id(c): self._pattern(u, list(c.labels)) for c in u.cases}
         arms, types, variant_of = [], [], {}
         for c in u.cases:
             m = c.member
@@ -237,7 +237,7 @@ class Builder:
             carries = c.is_default or len(c.labels) != 1
             if carries:
                 types.append((vname, f"{disc_type}, {mtype}"))
-                others = " | ".join(pats[id(o)] for o in u.cases if o is not c and o.labels)
+                others = self._pattern(u, [lab for o in u.cases if o is not c for lab in o.labels])
                 check = (f"matches!(*d, {others})" if c.is_default and others
                          else "" if c.is_default else f"!matches!(*d, {pats[id(c)]})")
                 arms.append(ArmView("_" if c.is_default else pats[id(c)], f"Self::{vname}(d, {t.decode(m.type, what)})",
@@ -250,7 +250,7 @@ class Builder:
         if need_none:
             types.append((namer.NO_MEMBER, disc_type))
             arms.append(ArmView("_", f"Self::{namer.NO_MEMBER}(d)", f"Self::{namer.NO_MEMBER}(d)",
-                                f"matches!(*d, {' | '.join(pats[id(c)] for c in u.cases)})" if everything else "",
+                                f"matches!(*d, {self._pattern(u, everything)})" if everything else "",
                                 [self._disc_enc(u, "*d")]))
         arms.sort(key=lambda a: a.pattern == "_")  # the rest last
         if u.default_case is not None:
@@ -267,6 +267,20 @@ class Builder:
                         arms=arms, disc_decode=t.decode(u.discriminator, f"{u.scoped_name} discriminator"),
                         allow_unreachable=covered and u.default_case is not None
                         and u.cases[u.default_case].is_default)
+
+    def _pattern(self, u: ir.Union, labels: list[ir.Label]) -> str:
+        """A match pattern of the labels; integer runs as ranges (`1..=3`, as clippy asks)."""
+        ints = sorted({lab for lab in labels if isinstance(lab, int) and not isinstance(lab, bool)})
+        if len(ints) != len(labels):
+            return " | ".join(self.types.literal(lab, u.discriminator) for lab in labels)
+        runs: list[list[int]] = []
+        for v in ints:
+            if runs and runs[-1][1] == v - 1:
+                runs[-1][1] = v
+            else:
+                runs.append([v, v])
+        lit = lambda v: self.types.literal(v, u.discriminator)  # noqa: E731
+        return " | ".join(lit(a) if a == b else f"{lit(a)}..={lit(b)}" for a, b in runs)
 
     def _disc_enc(self, u: ir.Union, place: str) -> str:
         expr, fallible = self.types.encode(u.discriminator, place, f"{u.scoped_name} discriminator")

@@ -94,7 +94,9 @@ impl gen::TypeVisitor for Fuzz<'_> {
                     match self.rng.below(3) {
                         0 => {
                             let i = 4 + self.rng.below(m.len() - 4);
-                            m[i] = self.rng.next() as u8;
+                            if let Some(b) = m.get_mut(i) {
+                                *b = self.rng.next() as u8;
+                            }
                         }
                         1 => {
                             // a 4-byte length or count raised to something large
