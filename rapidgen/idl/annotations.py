@@ -14,14 +14,19 @@ from rapidgen.idl import ast
 from rapidgen.model import ir
 from rapidgen.idl.consts import ConstEvaluator, NameLookup, Target
 
-REQUIRED = object()
+class _Required:
+    """The default of a parameter that must be given."""
+
+
+REQUIRED = _Required()
+Value = ir.ConstValue | None  # an evaluated parameter (None: not given, no default)
 
 _PLACEMENTS = ("BEGIN_FILE", "BEFORE_DECLARATION", "BEGIN_DECLARATION", "END_DECLARATION",
                "AFTER_DECLARATION", "END_FILE")
 
 # name -> ((parameter, kind, default), ...); kind: bool, uint16, uint32, string, const, any, or
 # "ident:A|B" for an enumerated identifier.
-KNOWN: dict[str, tuple[tuple[str, str, object], ...]] = {
+KNOWN: dict[str, tuple[tuple[str, str, Value | _Required], ...]] = {
     "key": (("value", "bool", True),),
     "optional": (("value", "bool", True),),
     "external": (("value", "bool", True),),
@@ -66,10 +71,16 @@ _WHERE = {
 @dataclass(frozen=True, slots=True)
 class Checked:
     annotations: tuple[ir.Annotation, ...]
-    values: dict[str, dict[str, object]]
+    values: dict[str, dict[str, Value]]
 
-    def get(self, name: str, param: str = "value", default: object = None) -> object:
+    def get(self, name: str, param: str = "value", default: Value = None) -> Value:
         return self.values.get(name, {}).get(param, default)
+
+    def integer(self, name: str, param: str = "value", default: int | None = None) -> int | None:
+        """A parameter of an integer kind (uint16, uint32: evaluated to an int)."""
+        value = self.get(name, param, default)
+        assert value is None or isinstance(value, int), (name, param, value)
+        return value
 
     def has(self, name: str) -> bool:
         return name in self.values
@@ -89,12 +100,12 @@ class AnnotationChecker:
         if not anns:  # the common case: nothing to check
             return _NONE
         out: list[ir.Annotation] = []
-        values: dict[str, dict[str, object]] = {}
+        values: dict[str, dict[str, Value]] = {}
         for appl in anns:
             name = appl.name.lstrip(":")
             if name not in KNOWN and name.rsplit("::", 1)[-1] in self.declared:
-                params = {p or "value": self.evaluator.evaluate(e, Target("any"), lookup) for p, e in appl.params}
-                out.append(ir.Annotation(name, tuple(params.items()), appl.loc))
+                user = {p or "value": self.evaluator.evaluate(e, Target("any"), lookup) for p, e in appl.params}
+                out.append(ir.Annotation(name, tuple(user.items()), appl.loc))
                 continue
             if name not in KNOWN:
                 self.sink.warning("RG0501", f"unknown annotation '@{appl.name}' is ignored", appl.loc,
@@ -122,7 +133,7 @@ class AnnotationChecker:
         return Checked(tuple(out), values)
 
     def _params(self, name: str, appl: ast.AnnotationAppl, lookup: NameLookup,
-                value_target: Callable[[], Target] | None) -> dict[str, object] | None:
+                value_target: Callable[[], Target] | None) -> dict[str, Value] | None:
         spec = KNOWN[name]
         names = [p[0] for p in spec]
         given: dict[str, ast.Expr] = {}
@@ -137,10 +148,10 @@ class AnnotationChecker:
                                 f"parameters: {', '.join(names)}" if names else "it takes none")
                 return None
             given[pname] = expr
-        result: dict[str, object] = {}
+        result: dict[str, Value] = {}
         for pname, kind, default in spec:
             if pname not in given:
-                if default is REQUIRED:
+                if isinstance(default, _Required):
                     self.sink.error("RG0502", f"'@{name}' needs a value for '{pname}'", appl.loc,
                                     f"write @{name}(...)")
                     return None
@@ -153,7 +164,7 @@ class AnnotationChecker:
         return result
 
     def _value(self, name: str, kind: str, expr: ast.Expr, lookup: NameLookup,
-               value_target: Callable[[], Target] | None) -> object | None:
+               value_target: Callable[[], Target] | None) -> Value:
         if kind.startswith("ident:") or kind == "any":
             if isinstance(expr, ast.NameRef):
                 word = expr.name.parts[-1]

@@ -7,6 +7,7 @@ Nodes are NamedTuples: immutable, and much cheaper to create than frozen datacla
 """
 from __future__ import annotations
 
+from decimal import Decimal
 from typing import NamedTuple
 
 from rapidgen.diagnostics import SourceLoc
@@ -24,7 +25,7 @@ class ScopedName(NamedTuple):
 # -- constant expressions ----------------------------------------------------------
 class Literal(NamedTuple):
     kind: str  # int | float | fixed | char | wchar | string | wstring | bool
-    value: object
+    value: int | float | Decimal | str | bool
     loc: SourceLoc
 
 

@@ -16,7 +16,7 @@ from typing import Callable, NoReturn
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.idl import ast
-from rapidgen.model.ir import CHAR_TYPES, FLOAT_TYPES, IDL_SPELLING, INTEGER_RANGES, EnumValue
+from rapidgen.model.ir import CHAR_TYPES, FLOAT_TYPES, IDL_SPELLING, INTEGER_RANGES, ConstValue, EnumValue
 
 _I64_MIN, _U64_MAX = -2**63, 2**64 - 1
 _INT_OPS = {"+": operator.add, "-": operator.sub, "*": operator.mul, "<<": operator.lshift,
@@ -46,7 +46,7 @@ class Target:
 @dataclass(frozen=True, slots=True)
 class Typed:
     category: str  # int | float | fixed | char | string | bool | enum
-    value: object
+    value: ConstValue
 
 
 class EvalError(Exception):
@@ -65,7 +65,7 @@ class ConstEvaluator:
 
     # -- public -------------------------------------------------------------------
     def evaluate(self, expr: ast.Expr, target: Target, lookup: NameLookup,
-                 const_decl: bool = False) -> object | None:
+                 const_decl: bool = False) -> ConstValue | None:
         """The value of expr converted to target, or None after reporting an error.
 
         const_decl: expr is a `const` declaration's value, where a string over its bound
@@ -107,11 +107,12 @@ class ConstEvaluator:
         return value
 
     def _unary(self, expr: ast.Unary, val: Typed, target: Target) -> Typed:
-        if expr.op in "+-" and val.category in ("int", "float", "fixed"):
-            v = val.value if expr.op == "+" else -val.value  # type: ignore[operator]
-            return Typed(val.category, self._check64(v, expr.loc) if val.category == "int" else v)
-        if expr.op == "~" and val.category == "int":
-            v = int(val.value)  # type: ignore[arg-type]
+        number = val.value
+        if expr.op in "+-" and isinstance(number, (int, float, Decimal)) and val.category in ("int", "float", "fixed"):
+            v = number if expr.op == "+" else -number
+            return Typed(val.category, self._check64(v, expr.loc) if isinstance(v, int) else v)
+        if expr.op == "~" and isinstance(number, int) and val.category == "int":
+            v = number
             if target.category == "int" and target.name in INTEGER_RANGES and INTEGER_RANGES[target.name][0] == 0:
                 bits = INTEGER_RANGES[target.name][1].bit_length()
                 return Typed("int", ((1 << bits) - 1) ^ v)
@@ -125,20 +126,21 @@ class ConstEvaluator:
         if a.category not in numeric or b.category not in numeric:
             bad = a if a.category not in numeric else b
             self._fail("RG0401", f"operator '{op}' cannot be applied to {_CATEGORY_WORDS[bad.category]}", loc)
-        if a.category == "int" and b.category == "int":
-            return Typed("int", self._check64(self._int_op(op, int(a.value), int(b.value), loc), loc))  # type: ignore[arg-type]
+        x, y = _number(a), _number(b)
+        if isinstance(x, int) and isinstance(y, int):
+            return Typed("int", self._check64(self._int_op(op, x, y, loc), loc))
         if op in ("%", "<<", ">>", "&", "|", "^"):
             self._fail("RG0401", f"operator '{op}' needs integer operands", loc)
+        fn = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}[op]
         if "fixed" in (a.category, b.category) and "float" not in (a.category, b.category):
-            x, y = Decimal(a.value), Decimal(b.value)  # type: ignore[arg-type]
-            cat = "fixed"
-        else:
-            x, y = float(a.value), float(b.value)  # type: ignore[arg-type,assignment]
-            cat = "float"
-        if op == "/" and y == 0:
+            dx, dy = Decimal(x), Decimal(y)
+            if op == "/" and dy == 0:
+                self._fail("RG0403", "division by zero", loc)
+            return Typed("fixed", fn(dx, dy))
+        fx, fy = float(x), float(y)
+        if op == "/" and fy == 0:
             self._fail("RG0403", "division by zero", loc)
-        result = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}[op](x, y)
-        return Typed(cat, result)
+        return Typed("float", fn(fx, fy))
 
     def _int_op(self, op: str, x: int, y: int, loc: SourceLoc) -> int:
         if op in ("/", "%") and y == 0:
@@ -154,22 +156,22 @@ class ConstEvaluator:
         return _INT_OPS[op](x, y)
 
     # -- conversion to the target type ------------------------------------------------
-    def _convert(self, val: Typed, target: Target, loc: SourceLoc, const_decl: bool) -> object:
-        cat = target.category
+    def _convert(self, val: Typed, target: Target, loc: SourceLoc, const_decl: bool) -> ConstValue:
+        cat, v = target.category, val.value
         if cat == "any":
-            return val.value
-        if cat == "int" and val.category == "int":
+            return v
+        if cat == "int" and val.category == "int" and isinstance(v, int):
             lo, hi = INTEGER_RANGES[target.name]
-            if not lo <= int(val.value) <= hi:  # type: ignore[arg-type]
-                self._fail("RG0402", f"value {val.value} does not fit in {target.describe()} ({lo}..{hi})", loc)
-            return int(val.value)  # type: ignore[arg-type]
-        if cat == "float" and val.category in ("int", "float"):
-            value = float(val.value)  # type: ignore[arg-type]
+            if not lo <= v <= hi:
+                self._fail("RG0402", f"value {v} does not fit in {target.describe()} ({lo}..{hi})", loc)
+            return int(v)
+        if cat == "float" and val.category in ("int", "float") and isinstance(v, (int, float)):
+            value = float(v)
             if target.name == "float32" and abs(value) > 3.4028234663852886e38 and value != float("inf"):
                 self._fail("RG0402", f"value {value} does not fit in 'float'", loc)
             return value
-        if cat == "fixed" and val.category in ("int", "fixed"):
-            return Decimal(val.value)  # type: ignore[arg-type]
+        if cat == "fixed" and val.category in ("int", "fixed") and isinstance(v, (int, Decimal)):
+            return Decimal(v)
         if cat == "char" and val.category == "char":
             if target.name == "char8" and ord(str(val.value)) > 255:
                 self._fail("RG0402", "character does not fit in 'char'", loc, "use wchar for wide characters")
@@ -197,6 +199,13 @@ class ConstEvaluator:
         got = _CATEGORY_WORDS[val.category]
         self._fail("RG0401", f"type mismatch: {target.describe()} cannot hold {got}", loc,
                    _mismatch_hint(target, val))
+
+
+def _number(val: Typed) -> int | float | Decimal:
+    """An arithmetic operand (the caller checked its category is numeric)."""
+    v = val.value
+    assert isinstance(v, (int, float, Decimal)) and not isinstance(v, bool), val
+    return v
 
 
 def _mismatch_hint(target: Target, val: Typed) -> str | None:

@@ -34,12 +34,12 @@ def evaluate(expr: str, macros: dict[str, str], depth: int = 0, memo: dict[str, 
     return value
 
 
-def _tokens(expr: str, macros: dict[str, str], depth: int, memo: dict[str, int]) -> list[object]:
+def _tokens(expr: str, macros: dict[str, str], depth: int, memo: dict[str, int]) -> list[int | str]:
     """Integers (macros already evaluated) and operator strings."""
     expr = _DEFINED.sub(lambda m: "1" if (m.group(1) or m.group(2)) in macros else "0", expr)
     if re.search(r"\bdefined\b", expr):
         raise ValueError("'defined' needs a macro name")
-    out: list[object] = []
+    out: list[int | str] = []
     pos = 0
     for m in _TOKEN.finditer(expr):
         if m.start() != pos:
@@ -68,7 +68,7 @@ def _tokens(expr: str, macros: dict[str, str], depth: int, memo: dict[str, int])
 
 
 class _Parser:
-    def __init__(self, tokens: list[object], text: str) -> None:
+    def __init__(self, tokens: list[int | str], text: str) -> None:
         self.tokens = tokens
         self.text = text  # for messages
 
@@ -76,13 +76,15 @@ class _Parser:
         """Parse operators of precedence >= min_prec from i; compute only when live."""
         left, i = self.unary(i, live)
         toks = self.tokens
-        while i < len(toks) and isinstance(toks[i], str) and _BINARY.get(toks[i], 0) >= min_prec:
+        while i < len(toks):
             op = toks[i]
-            prec = _BINARY[op]  # type: ignore[index]
+            prec = _BINARY.get(op, 0) if isinstance(op, str) else 0
+            if not isinstance(op, str) or prec < min_prec:
+                break
             # Short-circuit: the right side of `0 && x` / `1 || x` is parsed but not computed.
             right_live = live and not (op == "&&" and not left) and not (op == "||" and left)
             right, i = self.binary(i + 1, prec + 1, right_live)
-            left = _apply(op, left, right) if right_live else (int(bool(left)) if op in ("&&", "||") else 0)  # type: ignore[arg-type]
+            left = _apply(op, left, right) if right_live else (int(bool(left)) if op in ("&&", "||") else 0)
         return left, i
 
     def unary(self, i: int, live: bool) -> tuple[int, int]:
@@ -94,7 +96,7 @@ class _Parser:
             return tok, i + 1
         if tok in ("!", "~", "-", "+"):
             value, i = self.unary(i + 1, live)
-            return {"!": int(not value), "~": ~value, "-": -value, "+": value}[tok], i  # type: ignore[index]
+            return {"!": int(not value), "~": ~value, "-": -value, "+": value}[tok], i
         if tok == "(":
             value, i = self.binary(i + 1, 1, live)
             if i >= len(toks) or toks[i] != ")":

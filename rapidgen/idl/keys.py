@@ -51,8 +51,9 @@ def apply_keylists(decls: list[ir.Declaration], pragmas: list[tuple[ast.KeylistP
             if ok:
                 paths.append(path)
         keyed = {p.split(".")[0] for p in paths}
-        members = tuple(replace(m, key=True) if m.name in keyed and m.name in own else m for m in struct.members)
-        updated = replace(struct, members=members, keys=tuple(paths))
+        keyed_members = tuple(replace(m, key=True) if m.name in keyed and m.name in own else m
+                              for m in struct.members)
+        updated = replace(struct, members=keyed_members, keys=tuple(paths))
         structs[struct.scoped_name] = updated
         decls[index[struct.scoped_name]] = updated
     return decls

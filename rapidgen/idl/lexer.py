@@ -50,7 +50,9 @@ class IdlLexer(Lexer):
         self.greater = next((t.name for t in lexer_conf.terminals
                              if isinstance(t.pattern, PatternStr) and t.pattern.value == ">"), "MORETHAN")
 
-    def lex(self, text: str) -> Iterator[Token]:  # lark's custom-lexer interface (whole text)
+    # lark's custom-lexer interface for a whole text: lark wraps a lexer without
+    # __future_interface__ and calls lex(text), not the (lexer_state, parser_state) of its base
+    def lex(self, text: str) -> Iterator[Token]:  # type: ignore[override]
         match = self.master.match
         new_str = str.__new__
         ignore, keywords = self.ignore, self.keywords
@@ -60,7 +62,7 @@ class IdlLexer(Lexer):
             m = match(text, pos)
             if m is None:
                 raise UnexpectedCharacters(text, pos, line, pos - line_start + 1)
-            kind = m.lastgroup
+            kind = m.lastgroup or ""  # every alternative is a named group
             end = m.end()
             if kind in ignore:
                 newlines = text.count("\n", pos, end)
@@ -80,8 +82,8 @@ class IdlLexer(Lexer):
                     templates -= 1
                 elif value == ">>" and templates >= 2:
                     templates -= 2
-                    yield Token(self.greater, ">", pos, line, col, line, col + 1, pos + 1)  # type: ignore[arg-type]
-                    yield Token(self.greater, ">", pos + 1, line, col + 1, line, col + 2, end)  # type: ignore[arg-type]
+                    yield Token(self.greater, ">", pos, line, col, line, col + 1, pos + 1)
+                    yield Token(self.greater, ">", pos + 1, line, col + 1, line, col + 2, end)
                     prev, pos = ">", end
                     continue
             prev = value

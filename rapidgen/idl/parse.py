@@ -13,6 +13,7 @@ import functools
 import re
 from decimal import Decimal, InvalidOperation
 from importlib import resources
+from typing import Callable
 
 import lark
 from lark import Lark, Token, Transformer
@@ -92,6 +93,7 @@ class _Locator:
         return SourceLoc(file, oline, col, oline, col + 1)
 
     def token(self, tok: Token) -> SourceLoc:
+        assert tok.line is not None and tok.column is not None  # the lexer places every token
         return self.at(tok.line, tok.column, tok.end_line, tok.end_column)
 
 
@@ -207,8 +209,10 @@ class _ToAst(Transformer):
             _fold(operands, pending.pop())
         return operands[0]
 
-    def _un(op):  # noqa: N805 - builds methods
-        def method(self, items):
+    @staticmethod
+    def _un(op: str) -> Callable[[_ToAst, list], ast.Unary]:
+        """The transformer method for a unary operator's rule."""
+        def method(self: _ToAst, items: list) -> ast.Unary:
             operand = items[-1]
             loc = self.loc.token(items[0]) if isinstance(items[0], Token) else \
                 operand.loc._replace(col=max(1, operand.loc.col - 1))
@@ -272,8 +276,10 @@ class _ToAst(Transformer):
         return ast.Literal("bool", False, self.loc.token(items[0]))
 
     # -- types
-    def _base(name):  # noqa: N805
-        def method(self, items):
+    @staticmethod
+    def _base(name: str) -> Callable[[_ToAst, list], ast.BaseType]:
+        """The transformer method for a base type's rule."""
+        def method(self: _ToAst, items: list) -> ast.BaseType:
             first, last = self.loc.token(items[0]), self.loc.token(items[-1])
             return ast.BaseType(name, first._replace(end_col=last.end_col) if first.line == last.line else first)
         return method
@@ -506,15 +512,17 @@ def _viable(exc: UnexpectedInput, fallback) -> set[str]:
     """
     fallback = set(fallback or ())
     state = getattr(exc, "state", None)
+    if state is None:
+        return fallback
     try:
-        conf = copy.copy(state.parse_conf)  # type: ignore[union-attr]
+        conf = copy.copy(state.parse_conf)
         conf.callbacks = {}
-        candidates = [t for t in conf.states[state.position] if t.isupper()]  # type: ignore[union-attr]
+        candidates = [t for t in conf.states[state.position] if t.isupper()]
     except Exception:  # no parser state to try (other lark versions): keep lark's answer
         return fallback
     out: set[str] = set()
     for term in candidates:
-        probe = state.copy(deepcopy_values=False)  # type: ignore[union-attr]
+        probe = state.copy(deepcopy_values=False)
         probe.parse_conf = conf
         try:
             probe.feed_token(Token(term, ""), is_end=term == "$END")
@@ -540,13 +548,14 @@ def _prev_token_end(lines: list[str], line: int, col: int) -> tuple[int, int] | 
 def _syntax_error(exc: UnexpectedInput, text: str, locator: _Locator, sink: DiagnosticSink) -> None:
     lines = text.split("\n")
     if isinstance(exc, UnexpectedCharacters):
-        ch = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
+        at = exc.pos_in_stream or 0  # lark always sets it on UnexpectedCharacters
+        ch = text[at] if at < len(text) else ""
         loc = locator.at(exc.line, exc.column, exc.line, exc.column + 1)
         if ch == '"':
             sink.error("RG0202", "unterminated string literal", loc, "close the string with \" on the same line")
         elif ch == "'":
             sink.error("RG0202", "invalid character literal", loc, "a char literal holds one character, e.g. 'a' or '\\n'")
-        elif text.startswith("/*", exc.pos_in_stream):
+        elif text.startswith("/*", at):
             sink.error("RG0108", "unterminated /* comment", loc, "close the comment with */")
         else:
             shown = repr(ch)[1:-1] if ch.isprintable() is False else ch

@@ -477,6 +477,13 @@ _KEY_DIRECTIVE = re.compile(r"//\s*@key\b")
 _QUOTED = {q: re.compile(q + r"(?:[^" + q + r"\\]++|\\.)*+[" + q + r"\\]?") for q in "\"'"}
 
 
+def _quoted_end(line: str, i: int) -> int:
+    """The end of the quoted literal that starts at line[i] (the pattern always matches)."""
+    m = _QUOTED[line[i]].match(line, i)
+    assert m is not None
+    return m.end()
+
+
 def _segments(line: str):
     """Split a line into (start, end, is_code) pieces; strings and comments are not code."""
     start, n = 0, len(line)
@@ -488,7 +495,7 @@ def _segments(line: str):
         if i > start:
             yield start, i, True
         if m.group(0) in "\"'":
-            j = _QUOTED[m.group(0)].match(line, i).end()
+            j = _quoted_end(line, i)
             yield i, j, False
             start = j
         else:
@@ -523,7 +530,7 @@ def _scan_line(line: str, in_comment: SourceLoc | None, file: str, lineno: int):
             in_comment = SourceLoc(file, lineno, i + 1, lineno, i + 3)
             i += 2
             continue
-        i = _QUOTED[tok].match(line, i).end()  # a string or char literal: skip to its closing quote
+        i = _quoted_end(line, i)  # a string or char literal: skip to its closing quote
     return in_comment, None
 
 

@@ -10,7 +10,8 @@ on past errors so one run reports as many as it can.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, cast
+from decimal import Decimal
+from typing import Callable, TypeVar, cast
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.idl import ast
@@ -33,11 +34,20 @@ _DISCRIMINATOR_PRIMITIVES = frozenset({"int8", "uint8", "int16", "uint16", "int3
 class _Sym:
     kind: str  # module | struct | union | enum | bitmask | bitset | typedef | const | native | enumerator | forward
     scoped: str
-    decl: object
+    decl: object  # the syntax node, of the class its kind names (see _decl)
     scope: tuple[str, ...]  # the scope the declaration's own names are resolved in
     loc: SourceLoc
     forward_kind: str = ""  # for kind == "forward": struct | union | valuetype
-    extra: object = None  # typedef: the Declarator; enumerator: (enum scoped name, index)
+    extra: ast.Declarator | tuple[str, int] | None = None  # typedef: the Declarator; enumerator: (enum scoped name, index)
+
+
+_D = TypeVar("_D")
+
+
+def _decl(sym: _Sym, node: type[_D]) -> _D:
+    """sym's syntax node, which its kind says is a `node` (a wrong one is a resolver bug)."""
+    assert isinstance(sym.decl, node), (sym.kind, type(sym.decl))
+    return sym.decl
 
 
 def _join(parts: tuple[str, ...]) -> str:
@@ -172,11 +182,12 @@ class Resolver:
                 self._unknown(name, scope, "constant", frozenset({"const", "enumerator"}))
                 return None
             if sym.kind == "enumerator":
-                enum = self.declaration(self.syms[sym.extra[0]])  # type: ignore[index]
+                assert isinstance(sym.extra, tuple)
+                enum = self.declaration(self.syms[sym.extra[0]])
                 if not isinstance(enum, ir.Enum):
                     return None
                 # By name: enumerators with errors are left out of the IR, so indexes shift.
-                e = self._enumerators(enum).get(sym.decl.name)  # type: ignore[attr-defined]
+                e = self._enumerators(enum).get(_decl(sym, ast.EnumeratorDecl).name)
                 if e is None:  # this enumerator's own error is already reported
                     return None
                 return Typed("enum", ir.EnumValue(enum.scoped_name, e.name, e.value))
@@ -213,13 +224,14 @@ class Resolver:
         value = self.evaluator.evaluate(expr, Target("int", "int64"), self._name_value(scope))
         if value is None:
             return None
-        if int(value) <= 0:  # type: ignore[call-overload]
+        assert isinstance(value, int)  # the int64 target converts or fails
+        if value <= 0:
             self.sink.error("RG0404", f"{what} must be positive, not {value}", expr.loc)
             return None
-        if int(value) > 2**32 - 1:  # type: ignore[call-overload]
+        if value > 2**32 - 1:
             self.sink.error("RG0402", f"{what} {value} does not fit in 32 bits", expr.loc)
             return None
-        return int(value)  # type: ignore[call-overload]
+        return value
 
     # == types ============================================================================
     def _alias(self, t: ir.Type) -> ir.Type:
@@ -277,21 +289,23 @@ class Resolver:
             scale = self.evaluator.evaluate(spec.scale, Target("int", "uint16"), self._name_value(scope))
             if digits is None or scale is None:
                 return None
-            if digits > 31 or int(scale) > digits:  # type: ignore[call-overload]
+            assert isinstance(scale, int)  # the uint16 target converts or fails
+            if digits > 31 or scale > digits:
                 self.sink.error("RG0404", f"fixed<{digits}, {scale}> needs 1 <= digits <= 31 and scale <= digits",
                                 spec.loc)
                 return None
-            return ir.Fixed(digits, int(scale))  # type: ignore[call-overload]
+            return ir.Fixed(digits, scale)
         return None
 
     def _declared(self, spec: ast.TypeSpec, decl: ast.Declarator, scope: tuple[str, ...]) -> ir.Type | None:
         t = self.type_of(spec, scope)
         if not decl.dims:
             return t
-        dims = tuple(self._positive(e, scope, "array size") for e in decl.dims)
-        if t is None or any(d is None for d in dims):
+        dims = [self._positive(e, scope, "array size") for e in decl.dims]
+        sizes = tuple(d for d in dims if d is not None)
+        if t is None or len(sizes) != len(dims):
             return None
-        return ir.Array(t, dims)  # type: ignore[arg-type]
+        return ir.Array(t, sizes)
 
     # == declarations ========================================================================
     def declaration(self, sym: _Sym) -> ir.Declaration | None:
@@ -327,11 +341,13 @@ class Resolver:
 
     @staticmethod
     def _extensibility(checked: Checked) -> ir.Extensibility:
-        for name in ("final", "appendable", "mutable"):
+        names: tuple[ir.Extensibility, ...] = ("final", "appendable", "mutable")
+        for name in names:
             if checked.has(name):
-                return name  # type: ignore[return-value]
-        ext = checked.get("extensibility")
-        return str(ext).lower() if ext else "final"  # type: ignore[return-value]
+                return name
+        # @extensibility(FINAL|APPENDABLE|MUTABLE): the checker allows only these words
+        ext = str(checked.get("extensibility", default="FINAL")).lower()
+        return next((n for n in names if n == ext), "final")
 
     @staticmethod
     def _autoid(checked: Checked) -> ir.AutoId:
@@ -351,8 +367,7 @@ class Resolver:
         key = md.key_comment or bool(checked.get("key", default=False))
         if md.key_comment and checked.has("optional"):
             self.sink.error("RG0504", "a key member cannot be @optional", decl.loc)
-        ident = checked.get("id")
-        explicit = int(ident) if ident is not None else None  # type: ignore[call-overload]
+        explicit = checked.integer("id")
         hashid = str(checked.get("hashid")) if checked.has("hashid") else None
         try:
             member_id = ids.take(decl.name, explicit, hashid)
@@ -363,7 +378,7 @@ class Resolver:
         return ir.Member(decl.name, t, decl.loc, checked.annotations, key,
                          bool(checked.get("optional", default=False)),
                          bool(checked.get("external", default=False)),
-                         explicit, checked.get("default"), member_id)  # type: ignore[arg-type]
+                         explicit, checked.get("default"), member_id)
 
     def _check_member_names(self, members: list[ir.Member], inherited: tuple[ir.Member, ...], owner: str) -> list[ir.Member]:
         seen: dict[str, ir.Member] = {m.name: m for m in inherited}
@@ -384,7 +399,7 @@ class Resolver:
         return out
 
     def _resolve_struct(self, sym: _Sym) -> ir.Struct | None:
-        d: ast.StructDecl = sym.decl  # type: ignore[assignment]
+        d = _decl(sym, ast.StructDecl)
         outer = sym.scope[:-1]
         base_name = None
         inherited: tuple[ir.Member, ...] = ()
@@ -424,7 +439,7 @@ class Resolver:
                          autoid)
 
     def _resolve_union(self, sym: _Sym) -> ir.Union | None:
-        d: ast.UnionDecl = sym.decl  # type: ignore[assignment]
+        d = _decl(sym, ast.UnionDecl)
         outer = sym.scope[:-1]
         disc = self.type_of(d.discriminator, outer)
         if disc is None:
@@ -445,7 +460,7 @@ class Resolver:
         labels_seen: dict[object, SourceLoc] = {}
         default_at: SourceLoc | None = None
         for case in d.cases:
-            labels: list[object] = []
+            labels: list[ir.Label] = []
             is_default = False
             for expr in case.labels:
                 if expr is None:
@@ -457,6 +472,8 @@ class Resolver:
                 value = self.evaluator.evaluate(expr, target, self._name_value(outer))
                 if value is None:
                     continue
+                # a discriminator's target is an integer, char, boolean or enum
+                assert not isinstance(value, (float, Decimal)), value
                 keyed = value.value if isinstance(value, ir.EnumValue) else value
                 if keyed in labels_seen:
                     self.sink.error("RG0304", f"duplicate case label {value} in union '{sym.scoped}'", expr.loc,
@@ -466,7 +483,7 @@ class Resolver:
                 labels.append(value)
             m = self._member(case.member, case.member.declarators[0], outer, ids)
             if m is not None:
-                cases.append(ir.UnionCase(tuple(labels), is_default, m))  # type: ignore[arg-type]
+                cases.append(ir.UnionCase(tuple(labels), is_default, m))
         kept = {id(m) for m in self._check_member_names([c.member for c in cases], (), sym.scoped)}
         cases = [c for c in cases if id(c.member) in kept]  # (by identity: `in` a list was quadratic)
         enum = self._get(real.name) if isinstance(real, ir.TypeRef) else None
@@ -477,9 +494,9 @@ class Resolver:
                         union_default(tuple(cases), default))
 
     def _resolve_enum(self, sym: _Sym) -> ir.Enum | None:
-        d: ast.EnumDecl = sym.decl  # type: ignore[assignment]
+        d = _decl(sym, ast.EnumDecl)
         checked = self._anns(d.annotations, "enum", sym.scope)
-        bit_bound = int(checked.get("bit_bound", default=32))  # type: ignore[call-overload]
+        bit_bound = checked.integer("bit_bound", default=32) or 0
         if not 1 <= bit_bound <= 32:
             self.sink.error("RG0502", f"@bit_bound of an enum must be 1..32, not {bit_bound}", d.loc)
             bit_bound = 32
@@ -489,32 +506,33 @@ class Resolver:
         next_value = 0
         for e in d.enumerators:
             eck = self._anns(e.annotations, "enumerator", sym.scope, lambda: Target("int", "int32"))
-            value: object = next_value
+            value: ir.ConstValue | None = next_value
             if e.value is not None:
                 value = self.evaluator.evaluate(e.value, Target("int", "int32"), self._name_value(sym.scope))
             elif eck.has("value"):
                 value = eck.get("value")
             if value is None:
                 continue
+            assert isinstance(value, int)  # evaluated against int32 (a literal or @value)
             if e.name in names:
                 self.sink.error("RG0308", f"duplicate enumerator '{e.name}' in enum '{sym.scoped}'", e.loc,
                                 f"first declared at {names[e.name]}")
                 continue
             if value in values:
-                self.sink.error("RG0308", f"enumerators '{values[value]}' and '{e.name}' have the same value {value}",  # type: ignore[index]
+                self.sink.error("RG0308", f"enumerators '{values[value]}' and '{e.name}' have the same value {value}",
                                 e.loc)
                 continue
-            names[e.name], values[value] = e.loc, e.name  # type: ignore[index]
-            out.append(ir.Enumerator(e.name, int(value), e.loc, eck.annotations))  # type: ignore[call-overload]
-            next_value = int(value) + 1  # type: ignore[call-overload]
+            names[e.name], values[value] = e.loc, e.name
+            out.append(ir.Enumerator(e.name, value, e.loc, eck.annotations))
+            next_value = value + 1
         default, declared = enum_default(tuple(out))
         return ir.Enum(d.name, sym.scoped, d.loc, tuple(out), bit_bound, checked.annotations,
                        self._extensibility(checked), default, declared)
 
     def _resolve_bitmask(self, sym: _Sym) -> ir.Bitmask | None:
-        d: ast.BitmaskDecl = sym.decl  # type: ignore[assignment]
+        d = _decl(sym, ast.BitmaskDecl)
         checked = self._anns(d.annotations, "bitmask", sym.scope)
-        bit_bound = int(checked.get("bit_bound", default=32))  # type: ignore[call-overload]
+        bit_bound = checked.integer("bit_bound", default=32) or 0
         if not 1 <= bit_bound <= 64:
             self.sink.error("RG0502", f"@bit_bound of a bitmask must be 1..64, not {bit_bound}", d.loc)
             bit_bound = 32
@@ -524,7 +542,7 @@ class Resolver:
         pos = 0
         for v in d.values:
             vck = self._anns(v.annotations, "bit_value", sym.scope)
-            pos = int(vck.get("position", default=pos))  # type: ignore[call-overload]
+            pos = vck.integer("position", default=pos) or 0
             if v.name in names:
                 self.sink.error("RG0308", f"duplicate bit value '{v.name}' in bitmask '{sym.scoped}'", v.loc)
             elif pos >= bit_bound:
@@ -539,7 +557,7 @@ class Resolver:
         return ir.Bitmask(d.name, sym.scoped, d.loc, tuple(out), bit_bound, checked.annotations)
 
     def _resolve_bitset(self, sym: _Sym) -> ir.Bitset | None:
-        d: ast.BitsetDecl = sym.decl  # type: ignore[assignment]
+        d = _decl(sym, ast.BitsetDecl)
         base_name, total = None, 0
         if d.base is not None:
             bsym = self.lookup(d.base, sym.scope)
@@ -572,8 +590,9 @@ class Resolver:
         return ir.Bitset(d.name, sym.scoped, d.loc, tuple(fields), base_name, checked.annotations)
 
     def _resolve_typedef(self, sym: _Sym) -> ir.Typedef | None:
-        d: ast.TypedefDecl = sym.decl  # type: ignore[assignment]
-        decl: ast.Declarator = sym.extra  # type: ignore[assignment]
+        d = _decl(sym, ast.TypedefDecl)
+        decl = sym.extra
+        assert isinstance(decl, ast.Declarator)
         t = self._declared(d.type, decl, sym.scope)
         if t is None:
             return None
@@ -581,7 +600,7 @@ class Resolver:
         return ir.Typedef(decl.name, sym.scoped, decl.loc, t, checked.annotations)
 
     def _resolve_const(self, sym: _Sym) -> ir.Const | None:
-        d: ast.ConstDecl = sym.decl  # type: ignore[assignment]
+        d = _decl(sym, ast.ConstDecl)
         t = self.type_of(d.type, sym.scope)
         if t is None:
             return None
@@ -595,10 +614,10 @@ class Resolver:
         if value is None:
             return None
         checked = self._anns(d.annotations, "const", sym.scope)
-        return ir.Const(d.name, sym.scoped, d.loc, t, value, checked.annotations)  # type: ignore[arg-type]
+        return ir.Const(d.name, sym.scoped, d.loc, t, value, checked.annotations)
 
     def _resolve_native(self, sym: _Sym) -> ir.Native:
-        d: ast.NativeDecl = sym.decl  # type: ignore[assignment]
+        d = _decl(sym, ast.NativeDecl)
         return ir.Native(d.name, sym.scoped, d.loc)
 
     # == whole specification =================================================================

@@ -369,7 +369,7 @@ def lineage(d: Struct | Bitset, get: Lookup) -> tuple[Struct | Bitset, ...]:
         base = get(chain[-1].base) if chain[-1].base else None
         if type(base) is not type(d):
             break
-        chain.append(base)  # type: ignore[arg-type]
+        chain.append(base)
     return tuple(reversed(chain))
 
 
