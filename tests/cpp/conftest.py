@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -60,6 +61,10 @@ def cpp_build(tmp_path_factory) -> Path:
     (dispatch / "dispatch.inc").write_text("".join(f'RAPIDGEN_TYPE(::{t}, "{t}")\n' for t in types))
     topic_types = sorted({t["type"] for t in topics()})
     (dispatch / "topics.inc").write_text("".join(f'RAPIDGEN_TYPE(::{t}, "{t}")\n' for t in topic_types))
+    asset_hpp = (K10 / "cpp" / "include" / PKG / "asset.hpp").read_text(encoding="utf-8")
+    (dispatch / "configs.inc").write_text("".join(
+        f"RAPIDGEN_CONFIG({fn}, {topic})\n"
+        for topic, fn in re.findall(r"// The config published on (\"[^\"]*\")\.\ninline \S+ (\w+)\(\)", asset_hpp)))
     _cmake(HERE, base / "tests", f"-DPKG={PKG}", f"-D{PKG}_DIR={base / PKG}",
            f"-DPKG_SOURCE={K10 / 'cpp'}", f"-DDISPATCH_DIR={dispatch}")
     return base / "tests"

@@ -13,7 +13,9 @@ import re
 from typing import TYPE_CHECKING
 
 from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
-from rapidgen.backends.cpp.view import PackageView, UnsupportedInput, build
+from rapidgen.backends.cpp import asset as asset_tables
+from rapidgen.backends.cpp.typemap import Unsupported
+from rapidgen.backends.cpp.view import Builder, PackageView, UnsupportedInput
 from rapidgen.backends.escape import cmake_name
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
@@ -35,15 +37,16 @@ def package_for(asset: "LoadedAsset | None", options: Options) -> str:
     return DEFAULT_PACKAGE
 
 
-def view(model: Model, asset: "LoadedAsset | None", options: Options) -> PackageView:
-    p = build(model, package_for(asset, options), notice(options.source), options.source)
+def view(model: Model, asset: "LoadedAsset | None", options: Options) -> tuple[PackageView, Builder]:
+    b = Builder(model, package_for(asset, options))
+    p = b.build(notice(options.source), options.source)
     p.guard = p.package.upper()  # type: ignore[attr-defined]
-    return p
+    return p, b
 
 
 def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:
     """Raises UnsupportedInput when the model uses what the cpp target cannot express."""
-    p = view(model, asset, options)
+    p, b = view(model, asset, options)
     inc = f"include/{p.package}"
     files = [GeneratedFile("CMakeLists.txt", render("cpp", "CMakeLists.txt.j2", p=p)),
              GeneratedFile("cmake/Config.cmake.in", render("cpp", "Config.cmake.in.j2", p=p)),
@@ -52,5 +55,11 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
              GeneratedFile(f"{inc}/types.hpp", render("cpp", "types.hpp.j2", p=p)),
              GeneratedFile(f"{inc}/topics.hpp", render("cpp", "topics.hpp.j2", p=p)),
              GeneratedFile("src/types.cpp", render("cpp", "types.cpp.j2", p=p))]
+    if asset is not None:
+        try:
+            a = asset_tables.build(asset, b)
+        except Unsupported as exc:
+            raise UnsupportedInput([(str(exc), exc.loc or asset.spec.at("name"))]) from None
+        files.append(GeneratedFile(f"{inc}/asset.hpp", render("cpp", "asset.hpp.j2", p=p, a=a)))
     check_output(files, asset)
     return sorted(files, key=lambda f: f.path)

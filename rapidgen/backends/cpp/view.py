@@ -113,6 +113,7 @@ class Builder:
         self.ns_names: dict[tuple[str, ...], tuple[str, ...]] = {(): ()}
         self.names: dict[str, str] = {}
         self.enum_names: dict[str, dict[str, str]] = {}
+        self.ns_scopes[()].claim(package, "the package's own namespace (asset.hpp)")
         for d in model.declarations:  # modules first, so declarations step aside for them
             path = tuple(d.scoped_name.split("::")[:-1])
             self._namespace(path)
@@ -256,6 +257,10 @@ class Builder:
     def _member_names(self, s: ir.Struct) -> dict[str, str]:
         scope = namer.Scope(f"struct {s.scoped_name}", namer.RESERVED | {self.names[s.scoped_name]})
         return {m.name: scope.claim(m.name, m.name) for m in self.model.all_members(s) if not m.optional}
+
+    def _union_names(self, u: ir.Union) -> dict[str, str]:
+        scope = namer.Scope(f"union {u.scoped_name}", namer.UNION_RESERVED | {self.names[u.scoped_name]})
+        return {c.member.name: scope.claim(c.member.name, c.member.name) for c in u.cases}
 
     def _key_path(self, s: ir.Struct, path: str) -> list[str]:
         expr, t, _ = self._walk(s, path)
