@@ -3,7 +3,8 @@
     generate(model, asset, options) -> [GeneratedFile]
 
 The crate is named like the Python package: options.package, else `rapid_` + the asset
-name, else `rapid_types`. docs/rust-backend.md has the layout and the mapping rules;
+name, else `rapid_types`. An asset's crate also holds src/asset.rs (topics, command
+dictionary, computed configs). docs/rust-backend.md has the layout and the mapping rules;
 view.py decides everything the templates print.
 """
 from __future__ import annotations
@@ -13,7 +14,9 @@ from typing import TYPE_CHECKING
 
 from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
 from rapidgen.backends.escape import crate_name
-from rapidgen.backends.rust.view import CrateView, UnsupportedInput, build
+from rapidgen.backends.rust.asset import AssetView
+from rapidgen.backends.rust.asset import build as asset_view
+from rapidgen.backends.rust.view import Builder, CrateView, UnsupportedInput
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
 
@@ -34,17 +37,21 @@ def crate_for(asset: "LoadedAsset | None", options: Options) -> str:
     return DEFAULT_CRATE
 
 
-def view(model: Model, asset: "LoadedAsset | None", options: Options) -> CrateView:
-    return build(model, crate_for(asset, options), notice(options.source), options.source)
+def view(model: Model, asset: "LoadedAsset | None", options: Options) -> tuple[CrateView, AssetView | None]:
+    builder = Builder(model)
+    c = builder.build(crate_for(asset, options), notice(options.source), options.source)
+    return c, (asset_view(asset, builder) if asset is not None else None)
 
 
 def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:
     """Raises UnsupportedInput when the model uses what the rust target cannot express."""
-    c = view(model, asset, options)
+    c, a = view(model, asset, options)
     files = [GeneratedFile("Cargo.toml", render("rust", "Cargo.toml.j2", c=c)),
              GeneratedFile("src/cdr.rs", render("rust", "cdr.rs.j2", header=c.header))]
     for m in c.modules:
         template = "lib.rs.j2" if m.file == "src/lib.rs" else "module.rs.j2"
-        files.append(GeneratedFile(m.file, render("rust", template, c=c, m=m)))
+        files.append(GeneratedFile(m.file, render("rust", template, c=c, m=m, asset=a is not None)))
+    if a is not None:
+        files.append(GeneratedFile("src/asset.rs", render("rust", "asset.rs.j2", c=c, a=a)))
     check_output(files, asset)
     return sorted(files, key=lambda f: f.path)

@@ -111,7 +111,7 @@ class TypeMap:
         if isinstance(value, str):
             return str(ord(value)) if name == "char8" and len(value) == 1 else rust_str(value)
         if name in ("float32", "float64") or not isinstance(value, int):
-            return _float(float(value), PRIMITIVES.get(name, "f64"))
+            return float_literal(float(value), PRIMITIVES.get(name, "f64"))
         return str(value)
 
     # -- sizes ------------------------------------------------------------------------
@@ -201,7 +201,8 @@ class TypeMap:
         return f"<{self.path(d.scoped_name)} as {CDR}::Cdr>::decode(r)", True
 
 
-def _float(v: float, rtype: str) -> str:
+def float_literal(v: float, rtype: str) -> str:
+    """A Rust literal of v: the shortest decimal that reads back as the same f32 or f64."""
     if math.isnan(v):
         return f"{rtype}::NAN"
     if math.isinf(v):

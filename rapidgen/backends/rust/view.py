@@ -110,6 +110,8 @@ class Builder:
                                                   for e in d.enumerators}
         self.types = TypeMap(model, self.path)
         self.types.variant = lambda e, n: self.enum_names[e.scoped_name][n]
+        self.fields: dict[str, dict[str, str]] = {}  # struct -> IDL member name -> field
+        self.variants: dict[str, dict[int, tuple[str, bool]]] = {}  # union -> case index -> (variant, carries)
 
     def _module(self, path: tuple[str, ...]) -> tuple[str, ...]:
         if path not in self.mod_names:
@@ -203,6 +205,7 @@ class Builder:
             enc.append(expr + ("?;" if fallible else ";"))
             members.append(MemberView(rname, rtype, m.name, default or DEFAULT, self.types.decode(m.type, what)))
         scope.check()
+        self.fields[s.scoped_name] = {m.wire: m.name for m in members}
         doc = f"IDL {s.origin} {s.scoped_name}"
         if s.base:
             doc += f" : {s.base}, flattened (base members first)"
@@ -235,6 +238,7 @@ class Builder:
             body, fallible = t.encode(m.type, "*x", what)
             body += "?;" if fallible else ";"
             carries = c.is_default or len(c.labels) != 1
+            self.variants.setdefault(u.scoped_name, {})[u.cases.index(c)] = (vname, carries)
             if carries:
                 types.append((vname, f"{disc_type}, {mtype}"))
                 others = self._pattern(u, [lab for o in u.cases if o is not c for lab in o.labels])
@@ -298,6 +302,63 @@ class Builder:
         if isinstance(real, ir.Primitive) and real.name in ("int8", "uint8", "octet", "char8"):
             return len(taken) >= 256
         return False
+
+
+    # -- values (the asset's configs) ------------------------------------------------------
+    def value(self, t: ir.Type, v: object) -> str:
+        """A Rust expression of type t holding v, a value in the vectors' value form
+        (docs/cdr-and-vectors.md); members left out take their defaults."""
+        tm = self.types
+        r = tm.real(t)
+        if isinstance(r, ir.Primitive):
+            return tm.literal(v, r)  # type: ignore[arg-type]
+        if isinstance(r, ir.String):
+            return f"::std::string::String::from({rust_str(str(v))})"
+        if isinstance(r, (ir.Sequence, ir.Array)):
+            items = list(v)  # type: ignore[call-overload]
+            inner = ir.Array(r.element, r.dims[1:]) if isinstance(r, ir.Array) and len(r.dims) > 1 else r.element
+            body = ", ".join(self.value(inner, x) for x in items)
+            if isinstance(r, ir.Array):
+                return f"[{body}]"
+            return f"::std::vec![{body}]" if items else "::std::vec::Vec::new()"
+        d = tm.decl(r)
+        if isinstance(d, ir.Enum):
+            return tm.literal(self._enum_value(d, v), r)
+        if isinstance(d, ir.Struct):
+            given = dict(v)  # type: ignore[call-overload]
+            members = self.model.all_members(d)
+            parts = [f"{self.fields[d.scoped_name][m.name]}: {self.value(m.type, given.pop(m.name))}"
+                     for m in members if m.name in given]
+            if given:
+                raise ValueError(f"{d.scoped_name} has no member {sorted(given)[0]!r}")
+            if len(parts) < len(members):
+                parts.append("..::core::default::Default::default()")
+            return f"{self.path(d.scoped_name)} {{ {', '.join(parts)} }}"
+        if isinstance(d, ir.Union):
+            return self._union_value(d, v)  # type: ignore[arg-type]
+        raise ValueError(f"no Rust value of {t}")
+
+    def _enum_value(self, e: ir.Enum, v: object) -> ir.EnumValue:
+        for x in e.enumerators:
+            if x.name == v or (isinstance(v, int) and not isinstance(v, bool) and x.value == v):
+                return ir.EnumValue(e.scoped_name, x.name, x.value)
+        raise ValueError(f"{v!r} is not an enumerator of {e.scoped_name}")
+
+    def _union_value(self, u: ir.Union, v: dict) -> str:
+        disc = v["discriminator"]
+        dreal = self.types.real(u.discriminator)
+        de = self.types.decl(dreal)
+        if isinstance(de, ir.Enum):
+            disc = self._enum_value(de, disc)
+        key = ir.label_key(disc)
+        dlit = self.types.literal(disc, u.discriminator)
+        index = next((i for i, c in enumerate(u.cases) if any(ir.label_key(lab) == key for lab in c.labels)),
+                     next((i for i, c in enumerate(u.cases) if c.is_default), None))
+        if index is None:
+            return f"{self.path(u.scoped_name)}::{namer.NO_MEMBER}({dlit})"
+        vname, carries = self.variants[u.scoped_name][index]
+        inner = self.value(u.cases[index].member.type, v["value"])
+        return f"{self.path(u.scoped_name)}::{vname}({dlit + ', ' if carries else ''}{inner})"
 
 
 def build(model: ir.Model, crate: str, header: str, source: str) -> CrateView:

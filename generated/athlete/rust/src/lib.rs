@@ -4,6 +4,7 @@
 #![forbid(unsafe_code)]
 
 pub mod cdr;
+pub mod asset;
 
 /// Called by `visit_types` with every struct and union type of the crate.
 pub trait TypeVisitor {

@@ -1,0 +1,86 @@
+"""The asset as Rust data (src/asset.rs): name, domain, partition, subsystems, the topics
+it publishes, the command dictionary, and the computed configs as values of the generated
+types. Literals only; every string goes through rust_str."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from rapidgen.asset.dictionary import all_subsystems, used_types
+from rapidgen.asset.facts import Facts
+from rapidgen.asset.publish import configs
+from rapidgen.asset.topics import publications
+from rapidgen.backends.escape import rust_str
+from rapidgen.backends.rust import namer
+from rapidgen.backends.rust.typemap import float_literal
+from rapidgen.model import ir
+
+if TYPE_CHECKING:
+    from rapidgen.asset import LoadedAsset
+    from rapidgen.backends.rust.view import Builder
+
+
+@dataclass
+class ParameterView:
+    name: str
+    data_type: str
+    unit: str
+    min: str
+    max: str
+
+
+@dataclass
+class CommandView:
+    subsystem_type: str
+    name: str
+    abortable: bool
+    suspendable: bool
+    parameters: list[ParameterView]
+
+
+@dataclass
+class ConfigView:
+    function: str
+    type: str
+    topic: str
+    type_name: str
+    value: str
+
+
+@dataclass
+class AssetView:
+    name: str
+    domain: int
+    partition: str
+    subsystems: list[tuple[str, str]]
+    topics: list[tuple[str, str, str, str, str]]  # role, type, topic, qos profile, rate
+    commands: list[CommandView]
+    configs: list[ConfigView]
+
+
+def _opt_str(text: str | None) -> str:
+    return "None" if text is None else f"Some({rust_str(text)})"
+
+
+def _opt_f64(x: float | int | None) -> str:
+    return "None" if x is None else f"Some({float_literal(float(x), 'f64')})"
+
+
+def build(loaded: "LoadedAsset", b: "Builder") -> AssetView:
+    spec = loaded.spec
+    facts = Facts(loaded.model)
+    commands = [CommandView(rust_str(t.name), rust_str(c.name), c.abortable, c.suspendable,
+                            [ParameterView(rust_str(p.name), rust_str(p.type), _opt_str(p.unit), _opt_f64(p.min),
+                                           _opt_f64(p.max)) for p in c.parameters])
+                for t in used_types(spec) for c in t.commands]
+    topics = [(rust_str(p.role), rust_str(p.type), rust_str(p.topic), rust_str(p.qos), _opt_f64(p.rate))
+              for p in publications(spec, facts)]
+    scope = namer.Scope("asset", {"NAME", "DOMAIN", "PARTITION", "SUBSYSTEMS", "TOPICS", "COMMANDS", "Topic",
+                                  "Command", "Parameter"})
+    views = []
+    for topic, (type_name, value) in configs(loaded).items():
+        t = ir.TypeRef(type_name, "struct")
+        views.append(ConfigView(scope.claim("config_" + namer.snake(topic), topic), b.path(type_name),
+                                rust_str(topic), rust_str(type_name), b.value(t, value)))
+    return AssetView(rust_str(spec.name), spec.domain, rust_str(spec.partition),
+                     [(rust_str(s.name), rust_str(s.type)) for s in all_subsystems(spec)], topics, commands, views)
