@@ -72,15 +72,24 @@ class Decoder:
             self.need(pad)
             self.pos += pad
 
-    def get(self, fmt: str, size: int) -> object:
+    def get(self, fmt: str, size: int) -> int | float:
+        """One primitive of a struct format: a float for 'f'/'d', an int otherwise."""
         self.align(size)
         self.need(size)
-        value = packer(self.e + fmt).unpack_from(self.data, self.pos)[0]
+        value: int | float = packer(self.e + fmt).unpack_from(self.data, self.pos)[0]
+        self.pos += size
+        return value
+
+    def get_int(self, fmt: str, size: int) -> int:
+        """One integer (fmt is an integer format)."""
+        self.align(size)
+        self.need(size)
+        value: int = packer(self.e + fmt).unpack_from(self.data, self.pos)[0]
         self.pos += size
         return value
 
     def u32(self) -> int:
-        return self.get("I", 4)  # type: ignore[return-value]
+        return self.get_int("I", 4)
 
     def charge(self, n: int, what: str) -> None:
         """Spend n values of the budget before making them."""
@@ -166,14 +175,14 @@ class Decoder:
             return float128_value(raw, self.little)
         self.align(size)
         at = self.pos
-        x = self.get(fmt, size)
         if name == "boolean":
-            if x > 1:  # type: ignore[operator]
+            x = self.get_int(fmt, size)
+            if x > 1:
                 raise self.fail(f"boolean byte is {x}, not 0 or 1", at)
             return x == 1
         if name in ("char8", "char16"):
-            return chr(x)  # type: ignore[arg-type]
-        return x
+            return chr(self.get_int(fmt, size))
+        return self.get(fmt, size)
 
     def primitives(self, name: str, n: int) -> list:
         if n == 0:
@@ -329,25 +338,25 @@ class Decoder:
         size = self.t.enum_size(d)
         self.align(size)
         at = self.pos
-        number = self.get({1: "b", 2: "h", 4: "i"}[size], size)
+        number = self.get_int({1: "b", 2: "h", 4: "i"}[size], size)
         _, by_value = self.t.enum_maps(d)
         if number not in by_value:
             raise self.fail(f"{number} is not a value of enum {d.scoped_name}", at)
-        return by_value[number]  # type: ignore[index]
+        return by_value[number]
 
     def bitmask(self, d: ir.Bitmask) -> int:
         size = self.t.bitmask_size(d)
         self.align(size)
         at = self.pos
-        mask = self.get({1: "B", 2: "H", 4: "I", 8: "Q"}[size], size)
+        mask = self.get_int({1: "B", 2: "H", 4: "I", 8: "Q"}[size], size)
         allowed = sum(1 << b.position for b in d.values)
-        if mask & ~allowed:  # type: ignore[operator]
+        if mask & ~allowed:
             raise self.fail(f"mask 0x{mask:x} sets bits that {d.scoped_name} does not define", at)
-        return mask  # type: ignore[return-value]
+        return mask
 
     def bitset(self, d: ir.Bitset) -> dict:
         size = self.t.bitset_size(d)
-        bits: int = self.get({1: "B", 2: "H", 4: "I", 8: "Q"}[size], size)  # type: ignore[assignment]
+        bits = self.get_int({1: "B", 2: "H", 4: "I", 8: "Q"}[size], size)
         out: dict[str, object] = {}
         shift = 0
         for f in self.t.bitset_fields(d):

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import struct
+from collections.abc import Sequence
 from decimal import Decimal, InvalidOperation
 
 from rapidgen.model import ir
@@ -127,7 +128,7 @@ class Encoder:
             raise self.fail(f"type '{t}' cannot be encoded")
 
     # -- primitives -----------------------------------------------------------------------
-    def check_primitive(self, name: str, v: object) -> object:
+    def check_primitive(self, name: str, v: object) -> int | float:
         """The value to pack for a primitive, after type and range checks."""
         if name in _INT_FORMATS:
             if type(v) is not int:
@@ -137,7 +138,7 @@ class Encoder:
                 raise self.fail(f"{v} is out of range for {name} ({lo}..{hi})")
             return v
         if name in ir.FLOAT_TYPES:
-            if type(v) not in (float, int):
+            if type(v) is not float and type(v) is not int:  # not bool
                 raise self.fail(f"expected a number for {name}, got {type(v).__name__}")
             f = float(v)
             if name == "float32" and math.isfinite(f) and abs(f) >= 3.4028235677973366e38:
@@ -161,11 +162,11 @@ class Encoder:
         fmt, size = PRIMITIVES[name]
         if name == "float128":
             self.align(16)
-            self.buf += float128_bytes(value, self.little)  # type: ignore[arg-type]
+            self.buf += float128_bytes(value, self.little)
             return
         self.put(fmt, size, value)
 
-    def primitives(self, name: str, items: object, n: int) -> None:
+    def primitives(self, name: str, items: Sequence[object], n: int) -> None:
         """n primitives of one kind, packed at once."""
         if n == 0:
             return
@@ -174,7 +175,7 @@ class Encoder:
             self.buf += bytes(items)
             return
         if name == "float128":
-            for i, x in enumerate(items):  # type: ignore[attr-defined]
+            for i, x in enumerate(items):
                 try:
                     self.primitive(name, x)
                 except CdrError as err:
@@ -182,14 +183,14 @@ class Encoder:
             return
         self.align(size)
         kinds = _FAST_KINDS.get(name)
-        if kinds is not None and all(type(x) in kinds for x in items):  # type: ignore[attr-defined]
+        if kinds is not None and all(type(x) in kinds for x in items):
             try:  # struct checks the ranges; on failure, find the culprit below
-                self.buf += packer(f"{self.e}{n}{fmt}").pack(*items)  # type: ignore[misc]
+                self.buf += packer(f"{self.e}{n}{fmt}").pack(*items)
                 return
             except (struct.error, OverflowError):
                 pass
         values = []
-        for i, x in enumerate(items):  # type: ignore[attr-defined]
+        for i, x in enumerate(items):
             try:
                 values.append(self.check_primitive(name, x))
             except CdrError as err:
@@ -233,24 +234,24 @@ class Encoder:
         if pos is not None:
             self.patch_u32(pos, len(self.buf) - pos - 4)
 
-    def elements(self, elem: ir.Type, items: object, n: int) -> None:
+    def elements(self, elem: ir.Type, items: Sequence[object], n: int) -> None:
         r = self.t.resolve(elem)
         if isinstance(r, ir.Primitive):
             self.primitives(r.name, items, n)
             return
-        for i, x in enumerate(items):  # type: ignore[attr-defined]
+        for i, x in enumerate(items):
             try:
                 self.value(elem, x)
             except CdrError as err:
                 raise err.within(f"[{i}]") from None
 
     def sequence(self, r: ir.Sequence, v: object) -> None:
-        octets = isinstance(v, (bytes, bytearray, memoryview))
-        if not isinstance(v, (list, tuple)) and not octets:
+        if isinstance(v, (bytes, bytearray, memoryview)):
+            if self.t.resolve(r.element) != ir.Primitive("octet"):
+                raise self.fail(f"bytes are only accepted for sequences of octet, not {r}")
+        elif not isinstance(v, (list, tuple)):
             raise self.fail(f"expected a list for {r}, got {type(v).__name__}")
-        if octets and self.t.resolve(r.element) != ir.Primitive("octet"):
-            raise self.fail(f"bytes are only accepted for sequences of octet, not {r}")
-        n = len(v)  # type: ignore[arg-type]
+        n = len(v)
         if r.bound is not None and n > r.bound:
             raise self.fail(f"sequence of {n} elements exceeds its bound {r.bound}")
         self.enter()
@@ -272,16 +273,16 @@ class Encoder:
 
     def flatten(self, v: object, dims: tuple[int, ...], level: int, out: list, octets: bool) -> None:
         want = dims[level]
-        ok = isinstance(v, (list, tuple)) or (octets and level == len(dims) - 1 and
-                                              isinstance(v, (bytes, bytearray, memoryview)))
-        if not ok:
+        octet_row = octets and level == len(dims) - 1  # bytes are accepted for the last dimension
+        if not isinstance(v, (list, tuple, bytes, bytearray, memoryview)) or \
+                (not octet_row and not isinstance(v, (list, tuple))):
             raise self.fail(f"expected a list of {want} elements for an array, got {type(v).__name__}")
-        if len(v) != want:  # type: ignore[arg-type]
-            raise self.fail(f"array dimension {level + 1} needs {want} elements, got {len(v)}")  # type: ignore[arg-type]
+        if len(v) != want:
+            raise self.fail(f"array dimension {level + 1} needs {want} elements, got {len(v)}")
         if level == len(dims) - 1:
-            out.extend(v)  # type: ignore[arg-type]
+            out.extend(v)
             return
-        for i, x in enumerate(v):  # type: ignore[arg-type]
+        for i, x in enumerate(v):
             try:
                 self.flatten(x, dims, level + 1, out, octets)
             except CdrError as err:

@@ -25,6 +25,7 @@ from __future__ import annotations
 import struct
 import zlib
 from dataclasses import dataclass
+from decimal import Decimal
 
 from rapidgen.model import ir
 from rapidgen.cdr.typeinfo import CdrTypes, format_fixed, label_key, label_value
@@ -301,9 +302,7 @@ class _Gen:
         return {"discriminator": label_value(case.labels[0]), "value": self.value(case.member.type, cdepth)}
 
 
-def _scaled(n: int, scale: int) -> object:
-    from decimal import Decimal
-
+def _scaled(n: int, scale: int) -> Decimal:
     return Decimal(n).scaleb(-scale)
 
 
@@ -339,9 +338,9 @@ def _free_discriminator(types: CdrTypes, d: ir.Union) -> object | None:
     if isinstance(r, ir.TypeRef):
         e = types.decl(r)
         if isinstance(e, ir.Enum):
-            for x in e.enumerators:
-                if (False, x.value) not in used:
-                    return x.name
+            for en in e.enumerators:
+                if (False, en.value) not in used:
+                    return en.name
         return None
     if isinstance(r, ir.Primitive):
         if r.name == "boolean":
@@ -385,7 +384,7 @@ def samples(model: ir.Model, types: CdrTypes | None = None) -> list[Sample]:
                 out.append(Sample(name, "no-branch", {"discriminator": free}))
         else:
             unions = _unions_inside(t, ref, set())
-            labels: list[object] = []
+            labels: list[ir.Label] = []
             for u in unions:
                 for case in u.cases:
                     for label in case.labels:

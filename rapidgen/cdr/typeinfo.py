@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import struct
 from dataclasses import dataclass
+from decimal import Decimal
 
 from rapidgen.model import ir
 
@@ -101,9 +102,10 @@ class CdrTypes:
 
     def __init__(self, model: ir.Model) -> None:
         self.model = model
-        self._resolved: dict[object, object] = {}
+        self._resolved: dict[ir.Type, ir.Type] = {}
         self._members: dict[str, tuple[MemberInfo, ...]] = {}
-        self._min: dict[tuple[object, int], int] = {}
+        self._min: dict[tuple[ir.Type, int], int] = {}
+        self._default_counts: dict[ir.Type, int] = {}
         self._enums: dict[str, tuple[dict[str, int], dict[int, str]]] = {}
         self._unions: dict[str, tuple[dict[object, ir.UnionCase], ir.UnionCase | None]] = {}
 
@@ -111,7 +113,7 @@ class CdrTypes:
     def resolve(self, t: ir.Type) -> ir.Type:
         """Follow typedefs; raise CdrError for names the model does not hold."""
         try:
-            return self._resolved[t]  # type: ignore[return-value]
+            return self._resolved[t]
         except KeyError:
             pass
         r = self.model.resolve_alias(t)
@@ -247,8 +249,8 @@ class CdrTypes:
         if isinstance(r, ir.Array):
             dims, elem = self.array_shape(r)
             n = 1
-            for d in dims:
-                n *= d
+            for size in dims:
+                n *= size
             return n * self.min_size(elem, v) + (4 if v == 2 and not self.is_primitive(elem) else 0)
         if isinstance(r, ir.Fixed):
             return (r.digits + 2) // 2
@@ -281,8 +283,7 @@ class CdrTypes:
     def default_count(self, t: ir.Type, depth: int = 0) -> int:
         """How many values default_value(t) builds (lists and dicts included), without
         building them: the decoder charges its budget before filling in an absent member."""
-        key = ("default", t)
-        got = self._min.get(key)  # type: ignore[call-overload]
+        got = self._default_counts.get(t)
         if got is not None:
             return got
         if depth > MAX_DEPTH:
@@ -292,9 +293,9 @@ class CdrTypes:
         if isinstance(r, ir.Array):
             dims, elem = self.array_shape(r)
             total, lists = 1, 0
-            for d in dims:
+            for size in dims:
                 lists += total
-                total *= d
+                total *= size
             n = lists + total * self.default_count(elem, depth + 1)
         elif isinstance(r, ir.TypeRef):
             d = self.decl(r)
@@ -307,7 +308,7 @@ class CdrTypes:
                 n += self.default_count(member.type, depth + 1) if member is not None else 0
             elif isinstance(d, ir.Bitset):
                 n += len(self.bitset_fields(d))
-        self._min[key] = n  # type: ignore[index]
+        self._default_counts[t] = n
         return n
 
     def default_value(self, t: ir.Type, depth: int = 0) -> object:
@@ -375,10 +376,8 @@ def label_value(label: object) -> object:
     return label.name if isinstance(label, ir.EnumValue) else label
 
 
-def format_fixed(number: object, scale: int) -> str:
+def format_fixed(number: Decimal | int, scale: int) -> str:
     """A fixed-point value as the decimal string of the value form ("-12.50" for scale 2)."""
-    from decimal import Decimal
-
-    q = Decimal(number).quantize(Decimal(1).scaleb(-scale))  # type: ignore[arg-type]
+    q = Decimal(number).quantize(Decimal(1).scaleb(-scale))
     text = format(q, "f")
     return text[1:] if text.startswith("-") and q == 0 else text
