@@ -10,7 +10,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
-from tests.conformance.broken import KINDS
+from tests.conformance.broken import KINDS, MAY_ALSO
 from tests.conformance.harness import DOMAIN_BASE, BridgeProcess, broken_bridge, conform, outcomes
 from tests.runtime.live import ROOT, SEEDS, python_dir
 
@@ -89,7 +89,9 @@ def test_broken_asset_fails_exactly_its_check(broken_runs, kind):
     failed = sorted(c for c, o in got.items() if o in ("FAIL", "ERROR"))
     aimed = KINDS[kind] if isinstance(KINDS[kind], tuple) else (KINDS[kind],) if KINDS[kind] else ()
     known = ["TEL-08"]  # the simulator publishes no image or extension telemetry (docs/runtime.md)
-    assert failed == sorted([*aimed, *known]), (kind, failed, run["stdout"][-4000:])
+    extra = set(failed) - set(aimed) - set(known)
+    assert set(aimed) | set(known) <= set(failed) and extra <= MAY_ALSO.get(kind, set()), \
+        (kind, failed, run["stdout"][-4000:])
     checks = {c["id"]: c for c in run["report"]["checks"]}
     assert run["code"] == (1 if any(checks[a]["level"] == "required" for a in aimed) else 0)
     for a in aimed:
