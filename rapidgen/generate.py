@@ -9,17 +9,21 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from rapidgen import backends
 from rapidgen.backends.base import GeneratedFile, GenerationError, Options, printable
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.model.ir import Model
 
+if TYPE_CHECKING:  # the asset package is loaded only for descriptors
+    from rapidgen.asset import LoadedAsset
+
 
 @dataclass
 class Inputs:
     model: Model
-    asset: object | None  # rapidgen.asset.LoadedAsset
+    asset: LoadedAsset | None
     source: str  # how headers name the source
 
 

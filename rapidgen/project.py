@@ -86,8 +86,9 @@ def load_project(path: str, sink: DiagnosticSink) -> list[Target] | None:
     errors = jsonschema.Draft202012Validator(_SCHEMA).iter_errors(data)
     if report_capped(errors, sink, lambda err: [(
             "RG0812", f"project file: at {'/'.join(str(p) for p in err.absolute_path) or '(top level)'}: "
-            f"{_clip(err.message)}", doc.loc(err.absolute_path), None)], end_of(doc), "RG0812"):
+            f"{_clip(err.message)}", doc.loc(tuple(err.absolute_path)), None)], end_of(doc), "RG0812"):
         return None
+    assert isinstance(data, dict)  # the schema's top level is an object
     root = os.path.dirname(path)
     targets = []
     for i, t in enumerate(data["targets"]):

@@ -475,7 +475,9 @@ def _read_journal(staging: str) -> tuple[list[str], list[list[str]]] | None:
     """A committed journal's (removes, renames), None when absent or not a valid journal."""
     try:
         data = _read_limited(os.path.join(staging, JOURNAL), MAX_MANIFEST_BYTES)
-        doc = json.loads(data.decode("utf-8")) if data is not None else None
+        if data is None:
+            return None
+        doc = json.loads(data.decode("utf-8"))
         removes, renames = doc["removes"], doc["renames"]
         if doc["version"] != 1:
             return None

@@ -21,7 +21,7 @@ def available() -> list[str]:
 
 
 def get(name: str) -> Backend:
-    return importlib.import_module(_MODULES[name])  # type: ignore[return-value]
+    return importlib.import_module(_MODULES[name])
 
 
 def known() -> list[str]:

@@ -9,12 +9,15 @@ import os
 import sys
 import tempfile
 from dataclasses import replace
-from typing import Callable
+from typing import TYPE_CHECKING, Callable, overload
 
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.diff.render import as_json, text
 from rapidgen.diff.rules import CATEGORIES, RULES, Finding
 from rapidgen.diff.sides import Side, kind_of, load_side
+
+if TYPE_CHECKING:  # imported when --waivers is given
+    from rapidgen.diff.waivers import Waiver
 
 
 def _usage(msg: str) -> int:
@@ -39,6 +42,11 @@ class _Remap:
     def __init__(self, root: str | None, rev: str | None) -> None:
         self.root = os.path.realpath(root) + os.sep if root else None
         self.rev = rev
+
+    @overload
+    def loc(self, loc: SourceLoc) -> SourceLoc: ...
+    @overload
+    def loc(self, loc: None) -> None: ...
 
     def loc(self, loc: SourceLoc | None) -> SourceLoc | None:
         if loc is None or self.root is None:
@@ -68,13 +76,14 @@ def run_diff(args, sink: DiagnosticSink, report: Callable[[DiagnosticSink], None
         return _usage("with --against REV give one path (its NEW version; OLD is read from REV)")
     new_path = args.paths[-1]
     defines = dict(d.partition("=")[::2] for d in args.define)
-    waivers = []
+    waivers: list[Waiver] = []
     if args.waivers:
         from rapidgen.diff.waivers import load_waivers
-        waivers = load_waivers(args.waivers, sink)
-        if waivers is None:
+        loaded = load_waivers(args.waivers, sink)
+        if loaded is None:
             report(sink)
             return 1
+        waivers = loaded
     with tempfile.TemporaryDirectory(prefix="rapidgen-diff-") as tmp:
         remap = _Remap(None, None)
         include = list(args.include)

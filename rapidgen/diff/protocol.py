@@ -127,7 +127,7 @@ class ProtocolDiff:
                 continue  # its topics are gone: PROTO-TOPIC-01
             owner = t.suffix or t.kind
             if hasattr(t, "values") and hasattr(nt, "values"):
-                self.values(owner, t.values, nt.values, nt.loc, "VALUE")  # type: ignore[attr-defined]
+                self.values(owner, t.values, nt.values, nt.loc, "VALUE")
             if isinstance(t, JointTelemetry) and isinstance(nt, JointTelemetry):
                 new_frames = [j.frame for j in nt.joints]
                 for i, j in enumerate(t.joints):

@@ -5,6 +5,7 @@ Members of structs are compared flattened (base members first, as on the wire): 
 """
 from __future__ import annotations
 
+from rapidgen.diagnostics import SourceLoc
 from rapidgen.diff.rules import Finding, rule
 from rapidgen.diff.types import TypeCompare, labels
 from rapidgen.model import ir
@@ -19,7 +20,7 @@ class WireDiff:
         self.out: list[Finding] = []
 
     def add(self, rule_id: str, subject: str, message: str, old: object, new: object) -> None:
-        self.out.append(Finding(rule(rule_id), subject, message, getattr(old, "loc", old), getattr(new, "loc", new)))
+        self.out.append(Finding(rule(rule_id), subject, message, _loc(old), _loc(new)))
 
     # -- declarations -------------------------------------------------------------------
     def run(self) -> list[Finding]:
@@ -252,3 +253,9 @@ class WireDiff:
 
 def wire_diff(old: ir.Model, new: ir.Model) -> list[Finding]:
     return WireDiff(old, new).run()
+
+
+def _loc(x: object) -> SourceLoc | None:
+    """Where a declaration, member or enumerator is (x itself when it is a location)."""
+    loc = getattr(x, "loc", x)
+    return loc if isinstance(loc, SourceLoc) else None

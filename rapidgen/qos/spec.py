@@ -15,6 +15,7 @@ import dataclasses
 import fnmatch
 import functools
 import json
+from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
 
@@ -281,17 +282,18 @@ def _schema_error(err: jsonschema.ValidationError, doc: YamlDoc, sink: Diagnosti
     path = tuple(err.absolute_path)
     where = ".".join(str(p) for p in path) or "the QoS library"
     v = err.validator
+    # (err.schema and err.validator_value are typed loosely: a schema may be a bool)
     if v == "additionalProperties" and isinstance(err.instance, dict):
-        allowed = sorted(err.schema.get("properties", {}))
+        allowed = sorted(err.schema.get("properties", {})) if isinstance(err.schema, Mapping) else []
         for key in sorted(k for k in err.instance if k not in allowed):
             sink.error("RG1602", f"unknown key '{_clip(key)}' in {where}", doc.key_loc(path + (key,)),
                        did_you_mean(key, allowed) or (f"expected one of: {', '.join(allowed)}" if allowed else None))
         return
     if v == "required":
-        missing = [k for k in err.validator_value if isinstance(err.instance, dict) and k not in err.instance]
+        missing = [k for k in _items(err.validator_value) if isinstance(err.instance, dict) and k not in err.instance]
         msg = f"{where}: missing key '{missing[0]}'" if missing else f"{where}: missing key"
     elif v == "enum":
-        msg = f"{where}: '{_clip(err.instance)}' is not one of {', '.join(map(str, err.validator_value))}"
+        msg = f"{where}: '{_clip(err.instance)}' is not one of {', '.join(map(str, _items(err.validator_value)))}"
     elif v == "const":
         msg = f"{where}: must be {err.validator_value!r}"
     elif v == "type":
@@ -309,6 +311,11 @@ def _schema_error(err: jsonschema.ValidationError, doc: YamlDoc, sink: Diagnosti
     sink.error("RG1602", msg, doc.loc(path))
 
 
+def _items(value: object) -> list:
+    """A schema keyword's list value (required, enum)."""
+    return list(value) if isinstance(value, (list, tuple)) else []
+
+
 def _history(d: dict | None) -> History | None:
     return None if d is None else History(d["kind"], d.get("depth"))
 
@@ -320,6 +327,7 @@ def _policies(d: dict | None) -> Policies:
 
 def _build(doc: YamlDoc) -> QosSpec:
     data = doc.data
+    assert isinstance(data, dict)  # validated: the schema's top level is an object
     profiles = []
     for name, p in data["profiles"].items():
         part = p.get("participant") or {}

@@ -197,7 +197,7 @@ class PythonViewBuilder:
 
     def _packages(self) -> list[ModuleView]:
         """One package per IDL module (and the root): re-exports and subpackage imports."""
-        paths = [()] + self.layout.modules
+        paths: list[tuple[str, ...]] = [(), *self.layout.modules]
         dir_names: dict[tuple[str, ...], str] = {(): self.package}
         scopes: dict[tuple[str, ...], namer.Scope] = {}
         for path in paths:
@@ -255,6 +255,7 @@ class PythonViewBuilder:
         decls: list[ClassView | AssignView] = []
         for scoped in chunk.decls:
             d = self.model.get(scoped)
+            assert d is not None  # a chunk lists the model's own declarations
             try:
                 view = self._declaration(d, mapper, used)
             except Unsupported as exc:

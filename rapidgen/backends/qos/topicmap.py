@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from rapidgen.diagnostics import UNKNOWN_LOC, SourceLoc
+from rapidgen.model import ir
 from rapidgen.model.ir import Model, Struct
 from rapidgen.qos.spec import QosSpec
 
@@ -47,7 +48,7 @@ def from_model(model: Model, spec: QosSpec) -> list[TopicEntry]:
             structs[(module, d.name.upper())] = d
     out = []
     for d in model.declarations:
-        if d.kind != "const" or not d.name.endswith("_TOPIC") or not isinstance(getattr(d, "value", None), str):
+        if not isinstance(d, ir.Const) or not d.name.endswith("_TOPIC") or not isinstance(d.value, str):
             continue
         module = d.scoped_name.rsplit("::", 1)[0] if "::" in d.scoped_name else ""
         struct = structs.get((module, d.name[: -len("_TOPIC")].replace("_", "")))

@@ -180,7 +180,7 @@ def rti_transports(spec: QosSpec) -> list[RtiTransport]:
         if t.multicast:
             group = t.multicast_address or FASTDDS_DEFAULT_MULTICAST
             peers = tuple(f"builtin.udpv4://{a}" for a in (group, *t.peers))
-            receive = (f"udpv4://{group}",)
+            receive: tuple[str, ...] = (f"udpv4://{group}",)
         else:
             peers = tuple(f"{index}builtin.udpv4://{a}" for a in t.peers)
             receive = ()
