@@ -36,7 +36,7 @@ void bench(const char* name, const Ours& value, long iters) {
     std::vector<char> buf(bytes.size() + 1024);
     // ours: into a fixed buffer (as the TopicDataType does), and back into a reused value
     double our_ser = ns_per_op([&] {
-        rapidgen::cdr::Writer w(reinterpret_cast<std::uint8_t*>(buf.data()) + 4, buf.size() - 4, rapidgen::cdr::host);
+        rapidgen::cdr::Writer w(reinterpret_cast<std::uint8_t*>(buf.data()) + 4, buf.size() - 4);
         encode(w, value);
         sink = w.size();
     }, iters);

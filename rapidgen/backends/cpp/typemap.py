@@ -166,7 +166,7 @@ class TypeMap:
         """Statements writing `expr` (of type t) to Writer `w`."""
         r = self.real(t)
         if isinstance(r, ir.Primitive):
-            return [f"w.put_bool({expr});" if r.name == "boolean" else f"w.put<{PRIMITIVES[r.name]}>({expr});"]
+            return [f"w.put_bool({expr});" if r.name == "boolean" else f"w.template put<{PRIMITIVES[r.name]}>({expr});"]
         if isinstance(r, ir.String):
             return [f"w.put_string({expr}, {r.bound or 0}u, {cpp_str(what)});"]
         if isinstance(r, ir.Sequence):
@@ -185,14 +185,14 @@ class TypeMap:
                     *("    " + s for s in self.encode(inner, f"{expr}[{i}]", what)), "}"]
         d = self.decl(r)
         if isinstance(d, ir.Enum):
-            return [f"w.put<{ENUM_TYPES[enum_size(d)]}>(static_cast<{ENUM_TYPES[enum_size(d)]}>({expr}));"]
+            return [f"w.template put<{ENUM_TYPES[enum_size(d)]}>(static_cast<{ENUM_TYPES[enum_size(d)]}>({expr}));"]
         return [f"encode(w, {expr});"]
 
     def decode(self, t: ir.Type, lhs: str, what: str, enum_check: Callable[[ir.Enum], str]) -> list[str]:
         """Statements reading into lvalue `lhs` (of type t) from Reader `r`."""
         r = self.real(t)
         if isinstance(r, ir.Primitive):
-            return [f"{lhs} = r.get_bool();" if r.name == "boolean" else f"{lhs} = r.get<{PRIMITIVES[r.name]}>();"]
+            return [f"{lhs} = r.get_bool();" if r.name == "boolean" else f"{lhs} = r.template get<{PRIMITIVES[r.name]}>();"]
         if isinstance(r, ir.String):
             return [f"r.get_string({lhs}, {r.bound or 0}u, {cpp_str(what)});"]
         if isinstance(r, ir.Sequence):
@@ -212,7 +212,7 @@ class TypeMap:
                     *("    " + s for s in self.decode(inner, f"{lhs}[{i}]", what, enum_check)), "}"]
         d = self.decl(r)
         if isinstance(d, ir.Enum):
-            return [f"{lhs} = {enum_check(d)}(r.get<{ENUM_TYPES[enum_size(d)]}>(), r);"]
+            return [f"{lhs} = {enum_check(d)}(r.template get<{ENUM_TYPES[enum_size(d)]}>(), r);"]
         return [f"decode(r, {lhs});"]
 
     def _bulk(self, t: ir.Type) -> bool:

@@ -4,11 +4,9 @@
 
 namespace {
 
-using ::rapidgen::cdr::Reader;
-using ::rapidgen::cdr::Writer;
-
 // ::rapid::DataType: only declared values decode.
-::rapid::DataType enum_0(std::int32_t x, const Reader& r) {
+template <class R>
+::rapid::DataType enum_0(std::int32_t x, const R& r) {
     switch (x) {
     case 0:
     case 1:
@@ -25,7 +23,8 @@ using ::rapidgen::cdr::Writer;
 }
 
 // ::rapid::RotationEncoding: only declared values decode.
-::rapid::RotationEncoding enum_1(std::int32_t x, const Reader& r) {
+template <class R>
+::rapid::RotationEncoding enum_1(std::int32_t x, const R& r) {
     switch (x) {
     case 0:
     case 1:
@@ -41,7 +40,8 @@ using ::rapidgen::cdr::Writer;
 }
 
 // ::rapid::AckStatus: only declared values decode.
-::rapid::AckStatus enum_2(std::int32_t x, const Reader& r) {
+template <class R>
+::rapid::AckStatus enum_2(std::int32_t x, const R& r) {
     switch (x) {
     case 0:
     case 1:
@@ -54,7 +54,8 @@ using ::rapidgen::cdr::Writer;
 }
 
 // ::rapid::AckCompletedStatus: only declared values decode.
-::rapid::AckCompletedStatus enum_3(std::int32_t x, const Reader& r) {
+template <class R>
+::rapid::AckCompletedStatus enum_3(std::int32_t x, const R& r) {
     switch (x) {
     case 0:
     case 1:
@@ -68,7 +69,8 @@ using ::rapidgen::cdr::Writer;
 }
 
 // ::rapid::QueueAction: only declared values decode.
-::rapid::QueueAction enum_4(std::int32_t x, const Reader& r) {
+template <class R>
+::rapid::QueueAction enum_4(std::int32_t x, const R& r) {
     switch (x) {
     case 0:
     case 1:
@@ -82,7 +84,8 @@ using ::rapidgen::cdr::Writer;
 }
 
 // ::rapid::ResultType: only declared values decode.
-::rapid::ResultType enum_5(std::int32_t x, const Reader& r) {
+template <class R>
+::rapid::ResultType enum_5(std::int32_t x, const R& r) {
     switch (x) {
     case 0:
     case 1:
@@ -94,7 +97,8 @@ using ::rapidgen::cdr::Writer;
 }
 
 // ::rapid::StatusType: only declared values decode.
-::rapid::StatusType enum_6(std::int32_t x, const Reader& r) {
+template <class R>
+::rapid::StatusType enum_6(std::int32_t x, const R& r) {
     switch (x) {
     case 0:
     case 1:
@@ -117,7 +121,8 @@ using ::rapidgen::cdr::Writer;
 }
 
 // ::rapid::MessageLevel: only declared values decode.
-::rapid::MessageLevel enum_7(std::int32_t x, const Reader& r) {
+template <class R>
+::rapid::MessageLevel enum_7(std::int32_t x, const R& r) {
     switch (x) {
     case 0:
     case 1:
@@ -133,8 +138,9 @@ using ::rapidgen::cdr::Writer;
 
 }  // namespace
 
-void ::rapid::encode(Writer& w, const ::rapid::ParameterUnion& v) {
-    w.put<std::int32_t>(static_cast<std::int32_t>(v._d()));
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::ParameterUnion& v) {
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v._d()));
     switch (v.m_v.index()) {
     case 1: {
         const auto& x = std::get<1>(v.m_v);
@@ -143,22 +149,22 @@ void ::rapid::encode(Writer& w, const ::rapid::ParameterUnion& v) {
     }
     case 2: {
         const auto& x = std::get<2>(v.m_v);
-        w.put<double>(x);
+        w.template put<double>(x);
         break;
     }
     case 3: {
         const auto& x = std::get<3>(v.m_v);
-        w.put<float>(x);
+        w.template put<float>(x);
         break;
     }
     case 4: {
         const auto& x = std::get<4>(v.m_v);
-        w.put<std::int32_t>(x);
+        w.template put<std::int32_t>(x);
         break;
     }
     case 5: {
         const auto& x = std::get<5>(v.m_v);
-        w.put<std::int64_t>(x);
+        w.template put<std::int64_t>(x);
         break;
     }
     case 6: {
@@ -181,10 +187,11 @@ void ::rapid::encode(Writer& w, const ::rapid::ParameterUnion& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::ParameterUnion& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::ParameterUnion& v) {
+    typename R::Level level(r);
     ::rapid::DataType d{};
-    d = enum_0(r.get<std::int32_t>(), r);
+    d = enum_0(r.template get<std::int32_t>(), r);
     v.m_d = d;
     switch (::rapid::ParameterUnion::case_of(d)) {
     case 1: {
@@ -194,22 +201,22 @@ void ::rapid::decode(Reader& r, ::rapid::ParameterUnion& v) {
     }
     case 2: {
         auto& x = v.m_v.emplace<2>(double{});
-        x = r.get<double>();
+        x = r.template get<double>();
         break;
     }
     case 3: {
         auto& x = v.m_v.emplace<3>(float{});
-        x = r.get<float>();
+        x = r.template get<float>();
         break;
     }
     case 4: {
         auto& x = v.m_v.emplace<4>(std::int32_t{});
-        x = r.get<std::int32_t>();
+        x = r.template get<std::int32_t>();
         break;
     }
     case 5: {
         auto& x = v.m_v.emplace<5>(std::int64_t{});
-        x = r.get<std::int64_t>();
+        x = r.template get<std::int64_t>();
         break;
     }
     case 6: {
@@ -237,31 +244,35 @@ bool ::rapid::operator==(const ::rapid::KeyTypePair& a, const ::rapid::KeyTypePa
     return a.key == b.key && a.type == b.type;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::KeyTypePair& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::KeyTypePair& v) {
     w.put_string(v.key, 32u, "rapid::KeyTypePair.key");
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.type));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.type));
 }
 
-void ::rapid::decode(Reader& r, ::rapid::KeyTypePair& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::KeyTypePair& v) {
+    typename R::Level level(r);
     r.get_string(v.key, 32u, "rapid::KeyTypePair.key");
-    v.type = enum_0(r.get<std::int32_t>(), r);
+    v.type = enum_0(r.template get<std::int32_t>(), r);
 }
 
 bool ::rapid::operator==(const ::rapid::KeyTypeValueTriple& a, const ::rapid::KeyTypeValueTriple& b) {
     return a.key == b.key && a.padding == b.padding && a.value == b.value;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::KeyTypeValueTriple& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::KeyTypeValueTriple& v) {
     w.put_string(v.key, 32u, "rapid::KeyTypeValueTriple.key");
-    w.put<std::int32_t>(v.padding);
+    w.template put<std::int32_t>(v.padding);
     encode(w, v.value);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::KeyTypeValueTriple& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::KeyTypeValueTriple& v) {
+    typename R::Level level(r);
     r.get_string(v.key, 32u, "rapid::KeyTypeValueTriple.key");
-    v.padding = r.get<std::int32_t>();
+    v.padding = r.template get<std::int32_t>();
     decode(r, v.value);
 }
 
@@ -269,13 +280,15 @@ bool ::rapid::operator==(const ::rapid::Transform3D& a, const ::rapid::Transform
     return a.xyz == b.xyz && a.rot == b.rot;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::Transform3D& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::Transform3D& v) {
     w.put_array(v.xyz.data(), 3);
     w.put_array(v.rot.data(), 9);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::Transform3D& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::Transform3D& v) {
+    typename R::Level level(r);
     r.get_array(v.xyz.data(), 3);
     r.get_array(v.rot.data(), 9);
 }
@@ -284,14 +297,16 @@ bool ::rapid::operator==(const ::rapid::NamedFloatSequence& a, const ::rapid::Na
     return a.name == b.name && a.values == b.values;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::NamedFloatSequence& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::NamedFloatSequence& v) {
     w.put_string(v.name, 16u, "rapid::NamedFloatSequence.name");
     w.put_count(v.values.size(), 64u, "rapid::NamedFloatSequence.values");
     w.put_array(v.values.data(), v.values.size());
 }
 
-void ::rapid::decode(Reader& r, ::rapid::NamedFloatSequence& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::NamedFloatSequence& v) {
+    typename R::Level level(r);
     r.get_string(v.name, 16u, "rapid::NamedFloatSequence.name");
     r.get_vector(v.values, 64u, "rapid::NamedFloatSequence.values");
 }
@@ -300,49 +315,55 @@ bool ::rapid::operator==(const ::rapid::FloatRange& a, const ::rapid::FloatRange
     return a.min == b.min && a.max == b.max;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::FloatRange& v) {
-    w.put<float>(v.min);
-    w.put<float>(v.max);
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::FloatRange& v) {
+    w.template put<float>(v.min);
+    w.template put<float>(v.max);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::FloatRange& v) {
-    Reader::Level level(r);
-    v.min = r.get<float>();
-    v.max = r.get<float>();
+template <class R>
+void ::rapid::decode(R& r, ::rapid::FloatRange& v) {
+    typename R::Level level(r);
+    v.min = r.template get<float>();
+    v.max = r.template get<float>();
 }
 
 bool ::rapid::operator==(const ::rapid::FloatRangeValue& a, const ::rapid::FloatRangeValue& b) {
     return a.min == b.min && a.max == b.max && a.value == b.value;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::FloatRangeValue& v) {
-    w.put<float>(v.min);
-    w.put<float>(v.max);
-    w.put<float>(v.value);
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::FloatRangeValue& v) {
+    w.template put<float>(v.min);
+    w.template put<float>(v.max);
+    w.template put<float>(v.value);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::FloatRangeValue& v) {
-    Reader::Level level(r);
-    v.min = r.get<float>();
-    v.max = r.get<float>();
-    v.value = r.get<float>();
+template <class R>
+void ::rapid::decode(R& r, ::rapid::FloatRangeValue& v) {
+    typename R::Level level(r);
+    v.min = r.template get<float>();
+    v.max = r.template get<float>();
+    v.value = r.template get<float>();
 }
 
 bool ::rapid::operator==(const ::rapid::OptionSetValue& a, const ::rapid::OptionSetValue& b) {
     return a.index == b.index && a.options == b.options;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::OptionSetValue& v) {
-    w.put<std::int32_t>(v.index);
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::OptionSetValue& v) {
+    w.template put<std::int32_t>(v.index);
     w.put_count(v.options.size(), 16u, "rapid::OptionSetValue.options");
     for (std::size_t i1 = 0; i1 < v.options.size(); ++i1) {
         w.put_string(v.options[i1], 32u, "rapid::OptionSetValue.options");
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::OptionSetValue& v) {
-    Reader::Level level(r);
-    v.index = r.get<std::int32_t>();
+template <class R>
+void ::rapid::decode(R& r, ::rapid::OptionSetValue& v) {
+    typename R::Level level(r);
+    v.index = r.template get<std::int32_t>();
     v.options.resize(r.get_count(16u, 5u, "rapid::OptionSetValue.options"));
     for (std::size_t i2 = 0; i2 < v.options.size(); ++i2) {
         r.get_string(v.options[i2], 32u, "rapid::OptionSetValue.options");
@@ -353,13 +374,15 @@ bool ::rapid::operator==(const ::rapid::NamedFloatRangeValue& a, const ::rapid::
     return a.name == b.name && a.range == b.range;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::NamedFloatRangeValue& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::NamedFloatRangeValue& v) {
     w.put_string(v.name, 16u, "rapid::NamedFloatRangeValue.name");
     encode(w, v.range);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::NamedFloatRangeValue& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::NamedFloatRangeValue& v) {
+    typename R::Level level(r);
     r.get_string(v.name, 16u, "rapid::NamedFloatRangeValue.name");
     decode(r, v.range);
 }
@@ -368,13 +391,15 @@ bool ::rapid::operator==(const ::rapid::NamedOptionSetValue& a, const ::rapid::N
     return a.name == b.name && a.option == b.option;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::NamedOptionSetValue& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::NamedOptionSetValue& v) {
     w.put_string(v.name, 16u, "rapid::NamedOptionSetValue.name");
     encode(w, v.option);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::NamedOptionSetValue& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::NamedOptionSetValue& v) {
+    typename R::Level level(r);
     r.get_string(v.name, 16u, "rapid::NamedOptionSetValue.name");
     decode(r, v.option);
 }
@@ -383,24 +408,27 @@ bool ::rapid::operator==(const ::rapid::Header& a, const ::rapid::Header& b) {
     return a.srcName == b.srcName && a.assetName == b.assetName && a.timeStamp == b.timeStamp && a.statusCode == b.statusCode && a.serial == b.serial;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::Header& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::Header& v) {
     w.put_string(v.srcName, 32u, "rapid::Header.srcName");
     w.put_string(v.assetName, 32u, "rapid::Header.assetName");
-    w.put<std::int64_t>(v.timeStamp);
-    w.put<std::int32_t>(v.statusCode);
-    w.put<std::int32_t>(v.serial);
+    w.template put<std::int64_t>(v.timeStamp);
+    w.template put<std::int32_t>(v.statusCode);
+    w.template put<std::int32_t>(v.serial);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::Header& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::Header& v) {
+    typename R::Level level(r);
     r.get_string(v.srcName, 32u, "rapid::Header.srcName");
     r.get_string(v.assetName, 32u, "rapid::Header.assetName");
-    v.timeStamp = r.get<std::int64_t>();
-    v.statusCode = r.get<std::int32_t>();
-    v.serial = r.get<std::int32_t>();
+    v.timeStamp = r.template get<std::int64_t>();
+    v.statusCode = r.template get<std::int32_t>();
+    v.serial = r.template get<std::int32_t>();
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::Header& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::Header& v) {
     w.put_string(v.srcName, 32u, "rapid::Header key srcName");
     w.put_string(v.assetName, 32u, "rapid::Header key assetName");
 }
@@ -409,16 +437,19 @@ bool ::rapid::operator==(const ::rapid::Message& a, const ::rapid::Message& b) {
     return a.hdr == b.hdr;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::Message& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::Message& v) {
     encode(w, v.hdr);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::Message& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::Message& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::Message& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::Message& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::Message key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::Message key hdr.assetName");
 }
@@ -427,7 +458,8 @@ bool ::rapid::operator==(const ::rapid::AccessControlState& a, const ::rapid::Ac
     return a.hdr == b.hdr && a.controller == b.controller && a.requestors == b.requestors;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::AccessControlState& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::AccessControlState& v) {
     encode(w, v.hdr);
     w.put_string(v.controller, 32u, "rapid::AccessControlState.controller");
     w.put_count(v.requestors.size(), 16u, "rapid::AccessControlState.requestors");
@@ -436,8 +468,9 @@ void ::rapid::encode(Writer& w, const ::rapid::AccessControlState& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::AccessControlState& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::AccessControlState& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.controller, 32u, "rapid::AccessControlState.controller");
     v.requestors.resize(r.get_count(16u, 5u, "rapid::AccessControlState.requestors"));
@@ -446,7 +479,8 @@ void ::rapid::decode(Reader& r, ::rapid::AccessControlState& v) {
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::AccessControlState& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::AccessControlState& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::AccessControlState key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::AccessControlState key hdr.assetName");
 }
@@ -455,24 +489,27 @@ bool ::rapid::operator==(const ::rapid::Ack& a, const ::rapid::Ack& b) {
     return a.hdr == b.hdr && a.cmdId == b.cmdId && a.status == b.status && a.completedStatus == b.completedStatus && a.message == b.message;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::Ack& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::Ack& v) {
     encode(w, v.hdr);
     w.put_string(v.cmdId, 64u, "rapid::Ack.cmdId");
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.status));
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.completedStatus));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.status));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.completedStatus));
     w.put_string(v.message, 128u, "rapid::Ack.message");
 }
 
-void ::rapid::decode(Reader& r, ::rapid::Ack& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::Ack& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.cmdId, 64u, "rapid::Ack.cmdId");
-    v.status = enum_2(r.get<std::int32_t>(), r);
-    v.completedStatus = enum_3(r.get<std::int32_t>(), r);
+    v.status = enum_2(r.template get<std::int32_t>(), r);
+    v.completedStatus = enum_3(r.template get<std::int32_t>(), r);
     r.get_string(v.message, 128u, "rapid::Ack.message");
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::Ack& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::Ack& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::Ack key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::Ack key hdr.assetName");
     w.put_string(v.cmdId, 64u, "rapid::Ack key cmdId");
@@ -482,7 +519,8 @@ bool ::rapid::operator==(const ::rapid::AgentConfig& a, const ::rapid::AgentConf
     return a.hdr == b.hdr && a.agentTags == b.agentTags && a.topics == b.topics && a.valueKeys == b.valueKeys;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::AgentConfig& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::AgentConfig& v) {
     encode(w, v.hdr);
     w.put_count(v.agentTags.size(), 16u, "rapid::AgentConfig.agentTags");
     for (std::size_t i5 = 0; i5 < v.agentTags.size(); ++i5) {
@@ -498,8 +536,9 @@ void ::rapid::encode(Writer& w, const ::rapid::AgentConfig& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::AgentConfig& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::AgentConfig& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     v.agentTags.resize(r.get_count(16u, 5u, "rapid::AgentConfig.agentTags"));
     for (std::size_t i6 = 0; i6 < v.agentTags.size(); ++i6) {
@@ -515,7 +554,8 @@ void ::rapid::decode(Reader& r, ::rapid::AgentConfig& v) {
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::AgentConfig& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::AgentConfig& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::AgentConfig key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::AgentConfig key hdr.assetName");
 }
@@ -524,7 +564,8 @@ bool ::rapid::operator==(const ::rapid::AgentState& a, const ::rapid::AgentState
     return a.hdr == b.hdr && a.values == b.values;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::AgentState& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::AgentState& v) {
     encode(w, v.hdr);
     w.put_count(v.values.size(), 64u, "rapid::AgentState.values");
     for (std::size_t i11 = 0; i11 < v.values.size(); ++i11) {
@@ -532,8 +573,9 @@ void ::rapid::encode(Writer& w, const ::rapid::AgentState& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::AgentState& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::AgentState& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     v.values.resize(r.get_count(64u, 4u, "rapid::AgentState.values"));
     for (std::size_t i12 = 0; i12 < v.values.size(); ++i12) {
@@ -541,7 +583,8 @@ void ::rapid::decode(Reader& r, ::rapid::AgentState& v) {
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::AgentState& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::AgentState& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::AgentState key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::AgentState key hdr.assetName");
 }
@@ -550,7 +593,8 @@ bool ::rapid::operator==(const ::rapid::Command& a, const ::rapid::Command& b) {
     return a.hdr == b.hdr && a.cmdName == b.cmdName && a.cmdId == b.cmdId && a.cmdSrc == b.cmdSrc && a.subsysName == b.subsysName && a.arguments == b.arguments && a.cmdAction == b.cmdAction && a.targetCmdId == b.targetCmdId;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::Command& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::Command& v) {
     encode(w, v.hdr);
     w.put_string(v.cmdName, 64u, "rapid::Command.cmdName");
     w.put_string(v.cmdId, 64u, "rapid::Command.cmdId");
@@ -560,12 +604,13 @@ void ::rapid::encode(Writer& w, const ::rapid::Command& v) {
     for (std::size_t i13 = 0; i13 < v.arguments.size(); ++i13) {
         encode(w, v.arguments[i13]);
     }
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.cmdAction));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.cmdAction));
     w.put_string(v.targetCmdId, 64u, "rapid::Command.targetCmdId");
 }
 
-void ::rapid::decode(Reader& r, ::rapid::Command& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::Command& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.cmdName, 64u, "rapid::Command.cmdName");
     r.get_string(v.cmdId, 64u, "rapid::Command.cmdId");
@@ -575,11 +620,12 @@ void ::rapid::decode(Reader& r, ::rapid::Command& v) {
     for (std::size_t i14 = 0; i14 < v.arguments.size(); ++i14) {
         decode(r, v.arguments[i14]);
     }
-    v.cmdAction = enum_4(r.get<std::int32_t>(), r);
+    v.cmdAction = enum_4(r.template get<std::int32_t>(), r);
     r.get_string(v.targetCmdId, 64u, "rapid::Command.targetCmdId");
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::Command& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::Command& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::Command key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::Command key hdr.assetName");
 }
@@ -588,7 +634,8 @@ bool ::rapid::operator==(const ::rapid::CommandDef& a, const ::rapid::CommandDef
     return a.name == b.name && a.abortable == b.abortable && a.suspendable == b.suspendable && a.parameters == b.parameters;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::CommandDef& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::CommandDef& v) {
     w.put_string(v.name, 64u, "rapid::CommandDef.name");
     w.put_bool(v.abortable);
     w.put_bool(v.suspendable);
@@ -598,8 +645,9 @@ void ::rapid::encode(Writer& w, const ::rapid::CommandDef& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::CommandDef& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::CommandDef& v) {
+    typename R::Level level(r);
     r.get_string(v.name, 64u, "rapid::CommandDef.name");
     v.abortable = r.get_bool();
     v.suspendable = r.get_bool();
@@ -613,7 +661,8 @@ bool ::rapid::operator==(const ::rapid::SubsystemType& a, const ::rapid::Subsyst
     return a.name == b.name && a.commands == b.commands;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::SubsystemType& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::SubsystemType& v) {
     w.put_string(v.name, 32u, "rapid::SubsystemType.name");
     w.put_count(v.commands.size(), 100u, "rapid::SubsystemType.commands");
     for (std::size_t i17 = 0; i17 < v.commands.size(); ++i17) {
@@ -621,8 +670,9 @@ void ::rapid::encode(Writer& w, const ::rapid::SubsystemType& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::SubsystemType& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::SubsystemType& v) {
+    typename R::Level level(r);
     r.get_string(v.name, 32u, "rapid::SubsystemType.name");
     v.commands.resize(r.get_count(100u, 11u, "rapid::SubsystemType.commands"));
     for (std::size_t i18 = 0; i18 < v.commands.size(); ++i18) {
@@ -634,13 +684,15 @@ bool ::rapid::operator==(const ::rapid::Subsystem& a, const ::rapid::Subsystem& 
     return a.name == b.name && a.subsystemTypeName == b.subsystemTypeName;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::Subsystem& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::Subsystem& v) {
     w.put_string(v.name, 32u, "rapid::Subsystem.name");
     w.put_string(v.subsystemTypeName, 32u, "rapid::Subsystem.subsystemTypeName");
 }
 
-void ::rapid::decode(Reader& r, ::rapid::Subsystem& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::Subsystem& v) {
+    typename R::Level level(r);
     r.get_string(v.name, 32u, "rapid::Subsystem.name");
     r.get_string(v.subsystemTypeName, 32u, "rapid::Subsystem.subsystemTypeName");
 }
@@ -649,7 +701,8 @@ bool ::rapid::operator==(const ::rapid::CommandConfig& a, const ::rapid::Command
     return a.hdr == b.hdr && a.availableSubsystemTypes == b.availableSubsystemTypes && a.availableSubsystems == b.availableSubsystems;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::CommandConfig& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::CommandConfig& v) {
     encode(w, v.hdr);
     w.put_count(v.availableSubsystemTypes.size(), 64u, "rapid::CommandConfig.availableSubsystemTypes");
     for (std::size_t i19 = 0; i19 < v.availableSubsystemTypes.size(); ++i19) {
@@ -661,8 +714,9 @@ void ::rapid::encode(Writer& w, const ::rapid::CommandConfig& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::CommandConfig& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::CommandConfig& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     v.availableSubsystemTypes.resize(r.get_count(64u, 9u, "rapid::CommandConfig.availableSubsystemTypes"));
     for (std::size_t i20 = 0; i20 < v.availableSubsystemTypes.size(); ++i20) {
@@ -674,7 +728,8 @@ void ::rapid::decode(Reader& r, ::rapid::CommandConfig& v) {
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::CommandConfig& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::CommandConfig& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::CommandConfig key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::CommandConfig key hdr.assetName");
 }
@@ -683,30 +738,33 @@ bool ::rapid::operator==(const ::rapid::FileAnnounce& a, const ::rapid::FileAnno
     return a.hdr == b.hdr && a.fileUuid == b.fileUuid && a.fileLocator == b.fileLocator && a.fileSize == b.fileSize && a.metaData == b.metaData;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::FileAnnounce& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::FileAnnounce& v) {
     encode(w, v.hdr);
     w.put_string(v.fileUuid, 64u, "rapid::FileAnnounce.fileUuid");
     w.put_string(v.fileLocator, 256u, "rapid::FileAnnounce.fileLocator");
-    w.put<std::int64_t>(v.fileSize);
+    w.template put<std::int64_t>(v.fileSize);
     w.put_count(v.metaData.size(), 16u, "rapid::FileAnnounce.metaData");
     for (std::size_t i23 = 0; i23 < v.metaData.size(); ++i23) {
         encode(w, v.metaData[i23]);
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::FileAnnounce& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::FileAnnounce& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.fileUuid, 64u, "rapid::FileAnnounce.fileUuid");
     r.get_string(v.fileLocator, 256u, "rapid::FileAnnounce.fileLocator");
-    v.fileSize = r.get<std::int64_t>();
+    v.fileSize = r.template get<std::int64_t>();
     v.metaData.resize(r.get_count(16u, 13u, "rapid::FileAnnounce.metaData"));
     for (std::size_t i24 = 0; i24 < v.metaData.size(); ++i24) {
         decode(r, v.metaData[i24]);
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::FileAnnounce& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::FileAnnounce& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::FileAnnounce key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::FileAnnounce key hdr.assetName");
     w.put_string(v.fileUuid, 64u, "rapid::FileAnnounce key fileUuid");
@@ -716,12 +774,13 @@ bool ::rapid::operator==(const ::rapid::ImageMetadata& a, const ::rapid::ImageMe
     return a.sensorName == b.sensorName && a.sensorType == b.sensorType && a.offset == b.offset && a.width == b.width && a.height == b.height && a.rangeSettings == b.rangeSettings && a.optionSettings == b.optionSettings && a.extras == b.extras;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::ImageMetadata& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::ImageMetadata& v) {
     w.put_string(v.sensorName, 32u, "rapid::ImageMetadata.sensorName");
     w.put_string(v.sensorType, 32u, "rapid::ImageMetadata.sensorType");
     encode(w, v.offset);
-    w.put<std::int32_t>(v.width);
-    w.put<std::int32_t>(v.height);
+    w.template put<std::int32_t>(v.width);
+    w.template put<std::int32_t>(v.height);
     w.put_count(v.rangeSettings.size(), 16u, "rapid::ImageMetadata.rangeSettings");
     for (std::size_t i25 = 0; i25 < v.rangeSettings.size(); ++i25) {
         encode(w, v.rangeSettings[i25]);
@@ -736,13 +795,14 @@ void ::rapid::encode(Writer& w, const ::rapid::ImageMetadata& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::ImageMetadata& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::ImageMetadata& v) {
+    typename R::Level level(r);
     r.get_string(v.sensorName, 32u, "rapid::ImageMetadata.sensorName");
     r.get_string(v.sensorType, 32u, "rapid::ImageMetadata.sensorType");
     decode(r, v.offset);
-    v.width = r.get<std::int32_t>();
-    v.height = r.get<std::int32_t>();
+    v.width = r.template get<std::int32_t>();
+    v.height = r.template get<std::int32_t>();
     v.rangeSettings.resize(r.get_count(16u, 17u, "rapid::ImageMetadata.rangeSettings"));
     for (std::size_t i26 = 0; i26 < v.rangeSettings.size(); ++i26) {
         decode(r, v.rangeSettings[i26]);
@@ -761,7 +821,8 @@ bool ::rapid::operator==(const ::rapid::ImageSensorSample& a, const ::rapid::Ima
     return a.hdr == b.hdr && a.meta == b.meta && a.mimeType == b.mimeType && a.data == b.data;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::ImageSensorSample& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::ImageSensorSample& v) {
     encode(w, v.hdr);
     encode(w, v.meta);
     w.put_string(v.mimeType, 32u, "rapid::ImageSensorSample.mimeType");
@@ -769,15 +830,17 @@ void ::rapid::encode(Writer& w, const ::rapid::ImageSensorSample& v) {
     w.put_array(v.data.data(), v.data.size());
 }
 
-void ::rapid::decode(Reader& r, ::rapid::ImageSensorSample& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::ImageSensorSample& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     decode(r, v.meta);
     r.get_string(v.mimeType, 32u, "rapid::ImageSensorSample.mimeType");
     r.get_vector(v.data, 1048576u, "rapid::ImageSensorSample.data");
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::ImageSensorSample& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::ImageSensorSample& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::ImageSensorSample key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::ImageSensorSample key hdr.assetName");
 }
@@ -786,18 +849,21 @@ bool ::rapid::operator==(const ::rapid::ImageSensorState& a, const ::rapid::Imag
     return a.hdr == b.hdr && a.meta == b.meta;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::ImageSensorState& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::ImageSensorState& v) {
     encode(w, v.hdr);
     encode(w, v.meta);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::ImageSensorState& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::ImageSensorState& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     decode(r, v.meta);
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::ImageSensorState& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::ImageSensorState& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::ImageSensorState key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::ImageSensorState key hdr.assetName");
 }
@@ -806,13 +872,15 @@ bool ::rapid::operator==(const ::rapid::JointDef& a, const ::rapid::JointDef& b)
     return a.frameName == b.frameName && a.dof == b.dof;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::JointDef& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::JointDef& v) {
     w.put_string(v.frameName, 128u, "rapid::JointDef.frameName");
     w.put_string(v.dof, 64u, "rapid::JointDef.dof");
 }
 
-void ::rapid::decode(Reader& r, ::rapid::JointDef& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::JointDef& v) {
+    typename R::Level level(r);
     r.get_string(v.frameName, 128u, "rapid::JointDef.frameName");
     r.get_string(v.dof, 64u, "rapid::JointDef.dof");
 }
@@ -821,7 +889,8 @@ bool ::rapid::operator==(const ::rapid::JointConfig& a, const ::rapid::JointConf
     return a.hdr == b.hdr && a.jointGroupName == b.jointGroupName && a.jointDefinitions == b.jointDefinitions;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::JointConfig& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::JointConfig& v) {
     encode(w, v.hdr);
     w.put_string(v.jointGroupName, 32u, "rapid::JointConfig.jointGroupName");
     w.put_count(v.jointDefinitions.size(), 64u, "rapid::JointConfig.jointDefinitions");
@@ -830,8 +899,9 @@ void ::rapid::encode(Writer& w, const ::rapid::JointConfig& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::JointConfig& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::JointConfig& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.jointGroupName, 32u, "rapid::JointConfig.jointGroupName");
     v.jointDefinitions.resize(r.get_count(64u, 10u, "rapid::JointConfig.jointDefinitions"));
@@ -840,7 +910,8 @@ void ::rapid::decode(Reader& r, ::rapid::JointConfig& v) {
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::JointConfig& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::JointConfig& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::JointConfig key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::JointConfig key hdr.assetName");
 }
@@ -849,7 +920,8 @@ bool ::rapid::operator==(const ::rapid::JointSample& a, const ::rapid::JointSamp
     return a.hdr == b.hdr && a.anglePos == b.anglePos && a.angleVel == b.angleVel && a.angleAcc == b.angleAcc && a.current == b.current && a.torque == b.torque && a.temperature == b.temperature && a.status == b.status && a.auxFloat == b.auxFloat;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::JointSample& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::JointSample& v) {
     encode(w, v.hdr);
     w.put_count(v.anglePos.size(), 64u, "rapid::JointSample.anglePos");
     w.put_array(v.anglePos.data(), v.anglePos.size());
@@ -871,8 +943,9 @@ void ::rapid::encode(Writer& w, const ::rapid::JointSample& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::JointSample& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::JointSample& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     r.get_vector(v.anglePos, 64u, "rapid::JointSample.anglePos");
     r.get_vector(v.angleVel, 64u, "rapid::JointSample.angleVel");
@@ -887,7 +960,8 @@ void ::rapid::decode(Reader& r, ::rapid::JointSample& v) {
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::JointSample& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::JointSample& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::JointSample key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::JointSample key hdr.assetName");
 }
@@ -896,30 +970,33 @@ bool ::rapid::operator==(const ::rapid::PositionConfig& a, const ::rapid::Positi
     return a.hdr == b.hdr && a.frameName == b.frameName && a.poseEncoding == b.poseEncoding && a.velocityEncoding == b.velocityEncoding && a.valueKeys == b.valueKeys;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::PositionConfig& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::PositionConfig& v) {
     encode(w, v.hdr);
     w.put_string(v.frameName, 128u, "rapid::PositionConfig.frameName");
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.poseEncoding));
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.velocityEncoding));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.poseEncoding));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.velocityEncoding));
     w.put_count(v.valueKeys.size(), 64u, "rapid::PositionConfig.valueKeys");
     for (std::size_t i35 = 0; i35 < v.valueKeys.size(); ++i35) {
         encode(w, v.valueKeys[i35]);
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::PositionConfig& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::PositionConfig& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     r.get_string(v.frameName, 128u, "rapid::PositionConfig.frameName");
-    v.poseEncoding = enum_1(r.get<std::int32_t>(), r);
-    v.velocityEncoding = enum_1(r.get<std::int32_t>(), r);
+    v.poseEncoding = enum_1(r.template get<std::int32_t>(), r);
+    v.velocityEncoding = enum_1(r.template get<std::int32_t>(), r);
     v.valueKeys.resize(r.get_count(64u, 13u, "rapid::PositionConfig.valueKeys"));
     for (std::size_t i36 = 0; i36 < v.valueKeys.size(); ++i36) {
         decode(r, v.valueKeys[i36]);
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::PositionConfig& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::PositionConfig& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::PositionConfig key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::PositionConfig key hdr.assetName");
 }
@@ -928,7 +1005,8 @@ bool ::rapid::operator==(const ::rapid::PositionSample& a, const ::rapid::Positi
     return a.hdr == b.hdr && a.pose == b.pose && a.velocity == b.velocity && a.values == b.values;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::PositionSample& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::PositionSample& v) {
     encode(w, v.hdr);
     encode(w, v.pose);
     encode(w, v.velocity);
@@ -938,8 +1016,9 @@ void ::rapid::encode(Writer& w, const ::rapid::PositionSample& v) {
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::PositionSample& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::PositionSample& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     decode(r, v.pose);
     decode(r, v.velocity);
@@ -949,7 +1028,8 @@ void ::rapid::decode(Reader& r, ::rapid::PositionSample& v) {
     }
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::PositionSample& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::PositionSample& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::PositionSample key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::PositionSample key hdr.assetName");
 }
@@ -958,32 +1038,36 @@ bool ::rapid::operator==(const ::rapid::CommandRecord& a, const ::rapid::Command
     return a.cmd == b.cmd && a.trResult == b.trResult && a.trStatus == b.trStatus;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::CommandRecord& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::CommandRecord& v) {
     encode(w, v.cmd);
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.trResult));
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.trStatus));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.trResult));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.trStatus));
 }
 
-void ::rapid::decode(Reader& r, ::rapid::CommandRecord& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::CommandRecord& v) {
+    typename R::Level level(r);
     decode(r, v.cmd);
-    v.trResult = enum_5(r.get<std::int32_t>(), r);
-    v.trStatus = enum_6(r.get<std::int32_t>(), r);
+    v.trResult = enum_5(r.template get<std::int32_t>(), r);
+    v.trStatus = enum_6(r.template get<std::int32_t>(), r);
 }
 
 bool ::rapid::operator==(const ::rapid::SingleQueue& a, const ::rapid::SingleQueue& b) {
     return a.records == b.records;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::SingleQueue& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::SingleQueue& v) {
     w.put_count(v.records.size(), 64u, "rapid::SingleQueue.records");
     for (std::size_t i39 = 0; i39 < v.records.size(); ++i39) {
         encode(w, v.records[i39]);
     }
 }
 
-void ::rapid::decode(Reader& r, ::rapid::SingleQueue& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::SingleQueue& v) {
+    typename R::Level level(r);
     v.records.resize(r.get_count(64u, 67u, "rapid::SingleQueue.records"));
     for (std::size_t i40 = 0; i40 < v.records.size(); ++i40) {
         decode(r, v.records[i40]);
@@ -994,7 +1078,8 @@ bool ::rapid::operator==(const ::rapid::QueueState& a, const ::rapid::QueueState
     return a.hdr == b.hdr && a.pending == b.pending && a.active == b.active && a.completed == b.completed && a.sent == b.sent;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::QueueState& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::QueueState& v) {
     encode(w, v.hdr);
     encode(w, v.pending);
     encode(w, v.active);
@@ -1002,8 +1087,9 @@ void ::rapid::encode(Writer& w, const ::rapid::QueueState& v) {
     encode(w, v.sent);
 }
 
-void ::rapid::decode(Reader& r, ::rapid::QueueState& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::QueueState& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
     decode(r, v.pending);
     decode(r, v.active);
@@ -1011,7 +1097,8 @@ void ::rapid::decode(Reader& r, ::rapid::QueueState& v) {
     decode(r, v.sent);
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::QueueState& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::QueueState& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::QueueState key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::QueueState key hdr.assetName");
 }
@@ -1020,22 +1107,248 @@ bool ::rapid::operator==(const ::rapid::TextMessage& a, const ::rapid::TextMessa
     return a.hdr == b.hdr && a.level == b.level && a.category == b.category && a.message == b.message;
 }
 
-void ::rapid::encode(Writer& w, const ::rapid::TextMessage& v) {
+template <class W>
+void ::rapid::encode(W& w, const ::rapid::TextMessage& v) {
     encode(w, v.hdr);
-    w.put<std::int32_t>(static_cast<std::int32_t>(v.level));
+    w.template put<std::int32_t>(static_cast<std::int32_t>(v.level));
     w.put_string(v.category, 64u, "rapid::TextMessage.category");
     w.put_string(v.message, 2048u, "rapid::TextMessage.message");
 }
 
-void ::rapid::decode(Reader& r, ::rapid::TextMessage& v) {
-    Reader::Level level(r);
+template <class R>
+void ::rapid::decode(R& r, ::rapid::TextMessage& v) {
+    typename R::Level level(r);
     decode(r, v.hdr);
-    v.level = enum_7(r.get<std::int32_t>(), r);
+    v.level = enum_7(r.template get<std::int32_t>(), r);
     r.get_string(v.category, 64u, "rapid::TextMessage.category");
     r.get_string(v.message, 2048u, "rapid::TextMessage.message");
 }
 
-void ::rapid::encode_key(Writer& w, const ::rapid::TextMessage& v) {
+template <class W>
+void ::rapid::encode_key(W& w, const ::rapid::TextMessage& v) {
     w.put_string(v.hdr.srcName, 32u, "rapid::TextMessage key hdr.srcName");
     w.put_string(v.hdr.assetName, 32u, "rapid::TextMessage key hdr.assetName");
 }
+
+// The instantiations the package provides: both byte orders, and the counter.
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::ParameterUnion&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::ParameterUnion&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::ParameterUnion&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::ParameterUnion&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::ParameterUnion&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::KeyTypePair&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::KeyTypePair&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::KeyTypePair&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::KeyTypePair&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::KeyTypePair&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::KeyTypeValueTriple&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::KeyTypeValueTriple&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::KeyTypeValueTriple&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::KeyTypeValueTriple&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::KeyTypeValueTriple&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::Transform3D&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::Transform3D&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::Transform3D&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::Transform3D&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::Transform3D&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::NamedFloatSequence&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::NamedFloatSequence&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::NamedFloatSequence&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::NamedFloatSequence&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::NamedFloatSequence&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::FloatRange&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::FloatRange&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::FloatRange&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::FloatRange&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::FloatRange&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::FloatRangeValue&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::FloatRangeValue&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::FloatRangeValue&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::FloatRangeValue&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::FloatRangeValue&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::OptionSetValue&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::OptionSetValue&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::OptionSetValue&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::OptionSetValue&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::OptionSetValue&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::NamedFloatRangeValue&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::NamedFloatRangeValue&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::NamedFloatRangeValue&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::NamedFloatRangeValue&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::NamedFloatRangeValue&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::NamedOptionSetValue&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::NamedOptionSetValue&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::NamedOptionSetValue&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::NamedOptionSetValue&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::NamedOptionSetValue&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::Header&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::Header&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::Header&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::Header&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::Header&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::Header&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::Header&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::Header&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::Message&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::Message&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::Message&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::Message&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::Message&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::Message&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::Message&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::Message&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::AccessControlState&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::AccessControlState&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::AccessControlState&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::AccessControlState&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::AccessControlState&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::AccessControlState&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::AccessControlState&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::AccessControlState&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::Ack&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::Ack&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::Ack&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::Ack&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::Ack&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::Ack&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::Ack&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::Ack&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::AgentConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::AgentConfig&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::AgentConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::AgentConfig&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::AgentConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::AgentConfig&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::AgentConfig&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::AgentConfig&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::AgentState&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::AgentState&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::AgentState&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::AgentState&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::AgentState&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::AgentState&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::AgentState&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::AgentState&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::Command&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::Command&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::Command&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::Command&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::Command&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::Command&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::Command&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::Command&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::CommandDef&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::CommandDef&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::CommandDef&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::CommandDef&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::CommandDef&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::SubsystemType&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::SubsystemType&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::SubsystemType&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::SubsystemType&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::SubsystemType&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::Subsystem&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::Subsystem&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::Subsystem&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::Subsystem&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::Subsystem&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::CommandConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::CommandConfig&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::CommandConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::CommandConfig&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::CommandConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::CommandConfig&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::CommandConfig&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::CommandConfig&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::FileAnnounce&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::FileAnnounce&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::FileAnnounce&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::FileAnnounce&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::FileAnnounce&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::FileAnnounce&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::FileAnnounce&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::FileAnnounce&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::ImageMetadata&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::ImageMetadata&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::ImageMetadata&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::ImageMetadata&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::ImageMetadata&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::ImageSensorSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::ImageSensorSample&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::ImageSensorSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::ImageSensorSample&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::ImageSensorSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::ImageSensorSample&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::ImageSensorSample&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::ImageSensorSample&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::ImageSensorState&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::ImageSensorState&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::ImageSensorState&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::ImageSensorState&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::ImageSensorState&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::ImageSensorState&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::ImageSensorState&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::ImageSensorState&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::JointDef&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::JointDef&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::JointDef&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::JointDef&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::JointDef&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::JointConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::JointConfig&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::JointConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::JointConfig&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::JointConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::JointConfig&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::JointConfig&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::JointConfig&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::JointSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::JointSample&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::JointSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::JointSample&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::JointSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::JointSample&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::JointSample&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::JointSample&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::PositionConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::PositionConfig&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::PositionConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::PositionConfig&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::PositionConfig&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::PositionConfig&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::PositionConfig&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::PositionConfig&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::PositionSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::PositionSample&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::PositionSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::PositionSample&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::PositionSample&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::PositionSample&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::PositionSample&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::PositionSample&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::CommandRecord&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::CommandRecord&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::CommandRecord&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::CommandRecord&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::CommandRecord&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::SingleQueue&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::SingleQueue&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::SingleQueue&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::SingleQueue&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::SingleQueue&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::QueueState&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::QueueState&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::QueueState&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::QueueState&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::QueueState&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::QueueState&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::QueueState&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::QueueState&);
+template void ::rapid::encode(::rapidgen::cdr::Writer&, const ::rapid::TextMessage&);
+template void ::rapid::encode_key(::rapidgen::cdr::Writer&, const ::rapid::TextMessage&);
+template void ::rapid::encode(::rapidgen::cdr::SwappedWriter&, const ::rapid::TextMessage&);
+template void ::rapid::encode_key(::rapidgen::cdr::SwappedWriter&, const ::rapid::TextMessage&);
+template void ::rapid::encode(::rapidgen::cdr::Counter&, const ::rapid::TextMessage&);
+template void ::rapid::encode_key(::rapidgen::cdr::Counter&, const ::rapid::TextMessage&);
+template void ::rapid::decode(::rapidgen::cdr::Reader&, ::rapid::TextMessage&);
+template void ::rapid::decode(::rapidgen::cdr::SwappedReader&, ::rapid::TextMessage&);

@@ -88,7 +88,8 @@ struct Traits<::rapid::Header> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 113u;
-    static void key(cdr::Writer& w, const ::rapid::Header& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::Header& v) { encode_key(w, v); }
 };
 
 template <>
@@ -97,7 +98,8 @@ struct Traits<::rapid::Message> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 113u;
-    static void key(cdr::Writer& w, const ::rapid::Message& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::Message& v) { encode_key(w, v); }
 };
 
 template <>
@@ -106,7 +108,8 @@ struct Traits<::rapid::AccessControlState> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 800u;
-    static void key(cdr::Writer& w, const ::rapid::AccessControlState& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::AccessControlState& v) { encode_key(w, v); }
 };
 
 template <>
@@ -115,7 +118,8 @@ struct Traits<::rapid::Ack> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 152u;
     static constexpr std::uint32_t initial_size = 335u;
-    static void key(cdr::Writer& w, const ::rapid::Ack& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::Ack& v) { encode_key(w, v); }
 };
 
 template <>
@@ -124,7 +128,8 @@ struct Traits<::rapid::AgentConfig> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 21382u;
-    static void key(cdr::Writer& w, const ::rapid::AgentConfig& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::AgentConfig& v) { encode_key(w, v); }
 };
 
 template <>
@@ -133,7 +138,8 @@ struct Traits<::rapid::AgentState> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 9272u;
-    static void key(cdr::Writer& w, const ::rapid::AgentState& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::AgentState& v) { encode_key(w, v); }
 };
 
 template <>
@@ -142,7 +148,8 @@ struct Traits<::rapid::Command> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 2711u;
-    static void key(cdr::Writer& w, const ::rapid::Command& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::Command& v) { encode_key(w, v); }
 };
 
 template <>
@@ -175,7 +182,8 @@ struct Traits<::rapid::CommandConfig> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 65536u;
-    static void key(cdr::Writer& w, const ::rapid::CommandConfig& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::CommandConfig& v) { encode_key(w, v); }
 };
 
 template <>
@@ -184,7 +192,8 @@ struct Traits<::rapid::FileAnnounce> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 152u;
     static constexpr std::uint32_t initial_size = 3511u;
-    static void key(cdr::Writer& w, const ::rapid::FileAnnounce& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::FileAnnounce& v) { encode_key(w, v); }
 };
 
 template <>
@@ -201,7 +210,8 @@ struct Traits<::rapid::ImageSensorSample> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 65536u;
-    static void key(cdr::Writer& w, const ::rapid::ImageSensorSample& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::ImageSensorSample& v) { encode_key(w, v); }
 };
 
 template <>
@@ -210,7 +220,8 @@ struct Traits<::rapid::ImageSensorState> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 14944u;
-    static void key(cdr::Writer& w, const ::rapid::ImageSensorState& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::ImageSensorState& v) { encode_key(w, v); }
 };
 
 template <>
@@ -227,7 +238,8 @@ struct Traits<::rapid::JointConfig> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 13472u;
-    static void key(cdr::Writer& w, const ::rapid::JointConfig& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::JointConfig& v) { encode_key(w, v); }
 };
 
 template <>
@@ -236,7 +248,8 @@ struct Traits<::rapid::JointSample> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 10969u;
-    static void key(cdr::Writer& w, const ::rapid::JointSample& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::JointSample& v) { encode_key(w, v); }
 };
 
 template <>
@@ -245,7 +258,8 @@ struct Traits<::rapid::PositionConfig> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 12430u;
-    static void key(cdr::Writer& w, const ::rapid::PositionConfig& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::PositionConfig& v) { encode_key(w, v); }
 };
 
 template <>
@@ -254,7 +268,8 @@ struct Traits<::rapid::PositionSample> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 9488u;
-    static void key(cdr::Writer& w, const ::rapid::PositionSample& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::PositionSample& v) { encode_key(w, v); }
 };
 
 template <>
@@ -279,7 +294,8 @@ struct Traits<::rapid::QueueState> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 65536u;
-    static void key(cdr::Writer& w, const ::rapid::QueueState& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::QueueState& v) { encode_key(w, v); }
 };
 
 template <>
@@ -288,7 +304,8 @@ struct Traits<::rapid::TextMessage> {
     static constexpr bool keyed = true;
     static constexpr std::size_t key_max = 80u;
     static constexpr std::uint32_t initial_size = 2248u;
-    static void key(cdr::Writer& w, const ::rapid::TextMessage& v) { encode_key(w, v); }
+    template <class W>
+    static void key(W& w, const ::rapid::TextMessage& v) { encode_key(w, v); }
 };
 
 }  // namespace dds

@@ -48,34 +48,30 @@ inline T byteswap(T v) noexcept {
     return v;
 }
 
-// Writes into a growing vector, into a fixed buffer (a Fast DDS payload), or only counts.
-// Alignment counts from where the writer starts (the end of the encapsulation header).
-class Writer {
+// Writes into a buffer of known size (a Fast DDS payload, or a vector sized by Counter);
+// Swap: the other byte order than the host's, fixed at compile time so every put is a
+// plain store. Alignment counts from where the writer starts (after the 4-byte header).
+template <bool Swap>
+class BasicWriter {
 public:
-    Writer(std::vector<std::uint8_t>& out, Endianness e)
-        : grow_(&out), base_(out.size()), swap_(e != host) {}
-    Writer(std::uint8_t* buf, std::size_t cap, Endianness e) : buf_(buf), cap_(cap), swap_(e != host) {}
-    static Writer counter() { return Writer(); }
+    BasicWriter(std::uint8_t* buf, std::size_t cap) : buf_(buf), cap_(cap) {}
 
     std::size_t size() const noexcept { return pos_; }
-    // A growing writer's vector ends where the value does.
-    void finish() {
-        if (grow_ != nullptr) grow_->resize(base_ + pos_);
-    }
 
     void align(std::size_t n) {
         std::size_t pad = (n - pos_ % n) % n;
-        if (pad != 0) {
-            if (std::uint8_t* p = reserve(pad)) std::memset(p, 0, pad);
-        }
+        if (pad != 0) std::memset(reserve(pad), 0, pad);
     }
     template <class T>
     void put(T v) {
         align(sizeof(T));
-        if (std::uint8_t* p = reserve(sizeof(T))) {
-            if (swap_) v = byteswap(v);
-            std::memcpy(p, &v, sizeof(T));
-        }
+        put_aligned(v);
+    }
+    // The generator knows the offset is aligned: no padding to compute.
+    template <class T>
+    void put_aligned(T v) {
+        if (Swap) v = byteswap(v);
+        std::memcpy(reserve(sizeof(T)), &v, sizeof(T));
     }
     void put_bool(bool v) { put<std::uint8_t>(v ? 1 : 0); }
     void put_count(std::size_t n, std::size_t bound, const char* what) {
@@ -90,64 +86,82 @@ public:
             throw EncodeError(std::string(what) + ": string of " + std::to_string(s.size()) +
                               " bytes, bound " + std::to_string(bound));
         }
-        if (s.find('\0') != std::string::npos) throw EncodeError(std::string(what) + ": string holds a NUL");
+        if (std::memchr(s.data(), 0, s.size()) != nullptr) throw EncodeError(std::string(what) + ": string holds a NUL");
         put<std::uint32_t>(static_cast<std::uint32_t>(s.size() + 1));
-        if (std::uint8_t* p = reserve(s.size() + 1)) {
-            std::memcpy(p, s.data(), s.size());
-            p[s.size()] = 0;
-        }
+        std::uint8_t* p = reserve(s.size() + 1);
+        std::memcpy(p, s.data(), s.size());
+        p[s.size()] = 0;
     }
     // Numbers as one block (no padding before an empty run).
     template <class T>
     void put_array(const T* v, std::size_t n) {
         if (n == 0) return;
         align(sizeof(T));
-        if (std::uint8_t* p = reserve(n * sizeof(T))) {
-            if (!swap_ || sizeof(T) == 1) {
-                std::memcpy(p, v, n * sizeof(T));
-            } else {
-                for (std::size_t i = 0; i < n; ++i) {
-                    T x = byteswap(v[i]);
-                    std::memcpy(p + i * sizeof(T), &x, sizeof(T));
-                }
+        if (n > (cap_ - pos_) / sizeof(T)) overflow();
+        std::uint8_t* p = reserve(n * sizeof(T));
+        if (!Swap || sizeof(T) == 1) {
+            std::memcpy(p, v, n * sizeof(T));
+        } else {
+            for (std::size_t i = 0; i < n; ++i) {
+                T x = byteswap(v[i]);
+                std::memcpy(p + i * sizeof(T), &x, sizeof(T));
             }
         }
     }
 
 private:
-    Writer() : count_(true) {}
+    [[noreturn]] static void overflow() { throw EncodeError("the value does not fit the buffer"); }
     std::uint8_t* reserve(std::size_t n) {
-        if (count_) {
-            pos_ += n;
-            return nullptr;
-        }
-        if (n > cap_ - pos_) {
-            if (grow_ == nullptr) throw EncodeError("the value does not fit the buffer");
-            std::size_t want = pos_ + n > 2 * cap_ ? pos_ + n : 2 * cap_;
-            grow_->resize(base_ + want);
-            buf_ = grow_->data() + base_;
-            cap_ = want;
-        }
+        if (n > cap_ - pos_) overflow();
         std::uint8_t* p = buf_ + pos_;
         pos_ += n;
         return p;
     }
 
-    std::uint8_t* buf_ = nullptr;
-    std::size_t cap_ = 0;
+    std::uint8_t* buf_;
+    std::size_t cap_;
     std::size_t pos_ = 0;
-    std::vector<std::uint8_t>* grow_ = nullptr;
-    std::size_t base_ = 0;
-    bool swap_ = false;
-    bool count_ = false;
 };
 
-// Reads what Writer writes, in either byte order; every length is checked against the
-// bound and against the bytes left before anything is allocated.
-class Reader {
+// The host's byte order, and the other one.
+using Writer = BasicWriter<false>;
+using SwappedWriter = BasicWriter<true>;
+
+// Counts the bytes a value takes (sizes the buffer before writing; Fast DDS's size provider).
+class Counter {
 public:
-    Reader(const std::uint8_t* data, std::size_t size, Endianness e)
-        : buf_(data), size_(size), swap_(e != host) {}
+    std::size_t size() const noexcept { return pos_; }
+    void align(std::size_t n) { pos_ += (n - pos_ % n) % n; }
+    template <class T>
+    void put(T) {
+        align(sizeof(T));
+        pos_ += sizeof(T);
+    }
+    template <class T>
+    void put_aligned(T) { pos_ += sizeof(T); }
+    void put_bool(bool) { put<std::uint8_t>(0); }
+    void put_count(std::size_t, std::size_t, const char*) { put<std::uint32_t>(0); }
+    void put_string(const std::string& s, std::size_t, const char*) {
+        put<std::uint32_t>(0);
+        pos_ += s.size() + 1;
+    }
+    template <class T>
+    void put_array(const T*, std::size_t n) {
+        if (n == 0) return;
+        align(sizeof(T));
+        pos_ += n * sizeof(T);
+    }
+
+private:
+    std::size_t pos_ = 0;
+};
+
+// Reads what the writers write (Swap: the other byte order than the host's); every length
+// is checked against the bound and against the bytes left before anything is allocated.
+template <bool Swap>
+class BasicReader {
+public:
+    BasicReader(const std::uint8_t* data, std::size_t size) : buf_(data), size_(size) {}
 
     std::size_t position() const noexcept { return pos_; }
     std::size_t left() const noexcept { return size_ - pos_; }
@@ -165,11 +179,16 @@ public:
     template <class T>
     T get() {
         align(sizeof(T));
+        return get_aligned<T>();
+    }
+    // The generator knows the offset is aligned.
+    template <class T>
+    T get_aligned() {
         need(sizeof(T));
         T v;
         std::memcpy(&v, buf_ + pos_, sizeof(T));
         pos_ += sizeof(T);
-        return swap_ ? byteswap(v) : v;
+        return Swap ? byteswap(v) : v;
     }
     bool get_bool() {
         std::uint8_t b = get<std::uint8_t>();
@@ -189,8 +208,8 @@ public:
         if (bound != 0 && n - 1 > bound) fail(std::string(what) + ": string of " + std::to_string(n - 1) + " bytes over bound " + std::to_string(bound));
         need(n);
         const char* p = reinterpret_cast<const char*>(buf_ + pos_);
-        if (p[n - 1] != '\0' || std::memchr(p, 0, n - 1) != nullptr) fail(std::string(what) + ": string not NUL-terminated or holding a NUL");
-        if (!utf8(p, n - 1)) fail(std::string(what) + ": string is not UTF-8");
+        if (p[n - 1] != '\0') fail(std::string(what) + ": string not NUL-terminated");
+        if (!text(p, n - 1)) fail(std::string(what) + ": string is not UTF-8 or holds a NUL");
         s.assign(p, n - 1);
         pos_ += n;
     }
@@ -201,7 +220,7 @@ public:
         if (n > left() / sizeof(T)) fail("truncated: " + std::to_string(n) + " elements needed");
         std::memcpy(static_cast<void*>(v), buf_ + pos_, n * sizeof(T));
         pos_ += n * sizeof(T);
-        if (swap_ && sizeof(T) > 1) {
+        if (Swap && sizeof(T) > 1) {
             for (std::size_t i = 0; i < n; ++i) v[i] = byteswap(v[i]);
         }
     }
@@ -215,7 +234,7 @@ public:
     // so hostile bytes cannot exhaust the stack.
     class Level {
     public:
-        explicit Level(Reader& r) : r_(r) {
+        explicit Level(BasicReader& r) : r_(r) {
             if (++r_.depth_ > 100) r_.fail("nesting deeper than 100 levels");
         }
         ~Level() { --r_.depth_; }
@@ -223,7 +242,7 @@ public:
         Level& operator=(const Level&) = delete;
 
     private:
-        Reader& r_;
+        BasicReader& r_;
     };
 
     // The writer may pad the value to 4 bytes; anything more is an error.
@@ -232,12 +251,23 @@ public:
     }
 
 private:
-    // Well-formed UTF-8 (RFC 3629): no overlong forms, surrogates or values over U+10FFFF.
-    static bool utf8(const char* s, std::size_t n) noexcept {
+    // Well-formed UTF-8 (RFC 3629: no overlong forms, surrogates or values over U+10FFFF)
+    // without NUL; ASCII is checked 8 bytes at a time.
+    static bool text(const char* s, std::size_t n) noexcept {
         const auto* p = reinterpret_cast<const unsigned char*>(s);
         std::size_t i = 0;
         while (i < n) {
+            if (n - i >= 8) {
+                std::uint64_t w;
+                std::memcpy(&w, p + i, 8);
+                const std::uint64_t high = 0x8080808080808080ull, ones = 0x0101010101010101ull;
+                if ((w & high) == 0 && ((w - ones) & ~w & high) == 0) {
+                    i += 8;
+                    continue;
+                }
+            }
             unsigned c = p[i];
+            if (c == 0) return false;
             if (c < 0x80) { ++i; continue; }
             std::size_t len = c >= 0xf0 ? 4 : c >= 0xe0 ? 3 : c >= 0xc0 ? 2 : 0;
             if (len == 0 || c > 0xf4 || c == 0xc0 || c == 0xc1 || len > n - i) return false;
@@ -257,17 +287,26 @@ private:
     const std::uint8_t* buf_;
     std::size_t size_;
     std::size_t pos_ = 0;
-    bool swap_;
     int depth_ = 0;
 };
+
+using Reader = BasicReader<false>;
+using SwappedReader = BasicReader<true>;
 
 // A whole sample: the 4-byte encapsulation header (CDR_BE 0x0000 / CDR_LE 0x0001), then the value.
 template <class T>
 std::vector<std::uint8_t> serialize(const T& value, Endianness e = Endianness::little) {
-    std::vector<std::uint8_t> out{0, e == Endianness::little ? std::uint8_t{1} : std::uint8_t{0}, 0, 0};
-    Writer w(out, e);
-    encode(w, value);
-    w.finish();
+    Counter c;
+    encode(c, value);
+    std::vector<std::uint8_t> out(4 + c.size());
+    out[1] = e == Endianness::little ? 1 : 0;
+    if (e == host) {
+        Writer w(out.data() + 4, c.size());
+        encode(w, value);
+    } else {
+        SwappedWriter w(out.data() + 4, c.size());
+        encode(w, value);
+    }
     return out;
 }
 
@@ -278,9 +317,15 @@ void deserialize(const std::uint8_t* data, std::size_t size, T& value) {
         throw DecodeError("encapsulation " + std::to_string(data[0] * 256 + data[1]) +
                           " is not XCDR1 CDR_BE/CDR_LE");
     }
-    Reader r(data + 4, size - 4, data[1] == 1 ? Endianness::little : Endianness::big);
-    decode(r, value);
-    r.finish();
+    if ((data[1] == 1) == (host == Endianness::little)) {
+        Reader r(data + 4, size - 4);
+        decode(r, value);
+        r.finish();
+    } else {
+        SwappedReader r(data + 4, size - 4);
+        decode(r, value);
+        r.finish();
+    }
 }
 
 template <class T>

@@ -37,7 +37,7 @@ public:
     bool serialize(void* data, eprosima::fastrtps::rtps::SerializedPayload_t* payload) override {
         if (payload->max_size < 4) return false;
         try {
-            cdr::Writer w(payload->data + 4, payload->max_size - 4, cdr::host);
+            cdr::Writer w(payload->data + 4, payload->max_size - 4);
             encode(w, *static_cast<const T*>(data));
             payload->data[0] = 0;
             payload->data[1] = cdr::host == cdr::Endianness::little ? 1 : 0;
@@ -62,7 +62,7 @@ public:
 
     std::function<std::uint32_t()> getSerializedSizeProvider(void* data) override {
         return [data]() -> std::uint32_t {
-            cdr::Writer w = cdr::Writer::counter();
+            cdr::Counter w;
             encode(w, *static_cast<const T*>(data));
             return static_cast<std::uint32_t>(w.size() + 4);
         };
@@ -80,11 +80,17 @@ public:
             (void)force_md5;
             return false;
         } else {
-            std::vector<std::uint8_t> key;
-            key.reserve(64);
-            cdr::Writer w(key, cdr::Endianness::big);
-            Traits<T>::key(w, *static_cast<const T*>(data));
-            w.finish();
+            const T& value = *static_cast<const T*>(data);
+            cdr::Counter c;
+            Traits<T>::key(c, value);
+            std::vector<std::uint8_t> key(c.size());
+            if (cdr::host == cdr::Endianness::big) {
+                cdr::Writer w(key.data(), key.size());
+                Traits<T>::key(w, value);
+            } else {
+                cdr::SwappedWriter w(key.data(), key.size());
+                Traits<T>::key(w, value);
+            }
             if (force_md5 || Traits<T>::key_max > 16) {
                 ::MD5 md5;  // Fast DDS 2.9 declares it at global scope
                 md5.init();
