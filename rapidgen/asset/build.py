@@ -9,6 +9,7 @@ import os
 
 from rapidgen.asset import spec as S
 from rapidgen.asset.yamlread import YamlDoc
+from rapidgen.diagnostics import SourceLoc
 
 
 class _Builder:
@@ -18,7 +19,7 @@ class _Builder:
 
     def locs(self, path: tuple, obj: dict) -> dict:
         """loc and field_locs of the mapping at path: its fields and their list items."""
-        out = []
+        out: list[tuple[tuple, SourceLoc]] = []
         for k, v in obj.items():
             out.append(((k,), self.doc.loc(path + (k,))))
             if isinstance(v, (list, dict)):
@@ -100,6 +101,7 @@ class _Builder:
 
     def asset(self) -> S.AssetSpec:
         d = self.doc.data
+        assert isinstance(d, dict)  # validated: the schema's top level is a mapping
         a, dds, idl = d["asset"], d.get("dds", {}), d.get("idl", {})
         field_locs = []  # the root keeps locs of the small sections it flattens
         for section in ("asset", "dds", "idl"):

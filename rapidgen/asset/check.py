@@ -25,7 +25,7 @@ class Checker:
     def bound(self, text: str, loc: SourceLoc, what: str, struct: str, member: str) -> None:
         """A name must fit the IDL string it is published in."""
         n = self.facts.str_bound(struct, member)
-        if not fits(text, n):
+        if n is not None and not fits(text, n):
             self.sink.error("RG1106", f"{what} '{text}' is {utf8_len(text)} bytes; "
                             f"{struct.split('::')[-1]}.{member} holds at most {n - 1} (string<{n}>)",
                             loc, f"shorten it to {n - 1} bytes or fewer")

@@ -11,6 +11,7 @@ from rapidgen.diagnostics import did_you_mean
 
 if TYPE_CHECKING:
     from rapidgen.asset.check import Checker
+    from rapidgen.asset.topics import Publication
 
 _ROLES = {kind: tuple(r for r, _, _ in msgs) for kind, msgs in STANDARD_MESSAGES.items()}
 
@@ -85,7 +86,8 @@ def _types(c: "Checker", t: Telemetry) -> None:
 
 def _topics(c: "Checker") -> None:
     pubs = publications(c.spec, c.facts)
-    first, reported = {}, set()
+    first: dict[str, Publication] = {}
+    reported: set[int] = set()
     for p in pubs:
         if p.topic in first and id(p.source) not in reported:  # one error per entry
             reported.add(id(p.source))

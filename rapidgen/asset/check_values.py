@@ -69,7 +69,7 @@ class ValueChecker:
         if ranged:
             self.limits(v, shape)
         for i, text in enumerate(v.allowed if shape.kind == "string" else ()):
-            if not fits(text, shape.bound):
+            if shape.bound is not None and not fits(text, shape.bound):
                 self.sink.error("RG1106", f"allowed value is {utf8_len(text)} bytes; a RAPID_STRING holds at most "
                                 f"{shape.bound - 1}", v.at("allowed", i), "shorten it")
         if v.has_default:
@@ -115,7 +115,8 @@ class ValueChecker:
             self.sink.error("RG1204", f"default of {v.type} {what} '{v.name}' must be {want}", loc,
                             "quote it to make it a string" if shape.kind == "string" else None)
             return
-        elements = d if shape.kind == "array" else [d] if shape.kind in ("int", "float") else []
+        # (ok above: an array's default is a list, a number's is not, a string's is a str)
+        elements = d if isinstance(d, list) else [d] if shape.kind in ("int", "float") else []
         for x in elements:
             err = self.number_error(x, shape, v.type)
             if err:
@@ -123,12 +124,13 @@ class ValueChecker:
                 return
             if _reversed(v):
                 continue  # RG1203 names the real mistake; no value lies in a reversed range
+            assert isinstance(x, (int, float))  # number_error accepted it
             if (v.min is not None and x < v.min) or (v.max is not None and x > v.max):
                 self.sink.error("RG1204", f"default {_g(x)} of '{v.name}' is outside its range "
                                 f"{_range_text(v)}", loc, "change the default or widen the range")
                 return
-        if shape.kind == "string":
-            if not fits(d, shape.bound):
+        if shape.kind == "string" and isinstance(d, str):
+            if shape.bound is not None and not fits(d, shape.bound):
                 self.sink.error("RG1106", f"default is {utf8_len(d)} bytes; a RAPID_STRING holds at most "
                                 f"{shape.bound - 1}", loc, "shorten it")
             elif v.allowed and d not in v.allowed:

@@ -152,7 +152,8 @@ def describe(loaded: LoadedAsset) -> str:
 
 def _details(spec, pubs) -> list[str]:
     out: list[str] = []
-    topic_of, data_topic_of = {}, {}  # config topic (or the only one); sample/state topic
+    topic_of: dict[int, str] = {}  # config topic (or the only one)
+    data_topic_of: dict[int, str] = {}  # sample/state topic
     for p in pubs:
         if p.source is not None:
             topic_of.setdefault(id(p.source), p.topic)
@@ -199,7 +200,7 @@ def describe_data(loaded: LoadedAsset) -> dict:
     pubs = publications(spec, Facts(loaded.model))
     telemetry = []
     for t in spec.telemetry:
-        entry = {"kind": type(t).__name__.removesuffix("Telemetry").lower(),
+        entry: dict[str, object] = {"kind": type(t).__name__.removesuffix("Telemetry").lower(),
                  "topics": [p.topic for p in pubs if p.source is t]}
         if isinstance(t, PositionTelemetry):
             entry.update(frame=t.frame, pose_encoding=t.pose_encoding, velocity_encoding=t.velocity_encoding)

@@ -61,18 +61,24 @@ class Facts:
     def __init__(self, model: Model | None) -> None:
         self.model = model
 
+    @property
+    def _model(self) -> Model:
+        """The model, where something was already found in it."""
+        assert self.model is not None
+        return self.model
+
     # -- members ------------------------------------------------------------------
     def _member_type(self, struct: str, member: str):
         decl = self.model.get(struct) if self.model else None
         if not isinstance(decl, Struct):
             return None
-        for m in self.model.all_members(decl):
+        for m in self._model.all_members(decl):
             if m.name == member:
-                return self.model.resolve_alias(m.type)
+                return self._model.resolve_alias(m.type)
         return None
 
     def _string_bound(self, t) -> int | None:
-        t = self.model.resolve_alias(t) if t is not None else None
+        t = self._model.resolve_alias(t) if t is not None else None
         return t.bound if isinstance(t, String) else None
 
     def str_bound(self, struct: str, member: str) -> int | None:
@@ -108,7 +114,7 @@ class Facts:
         return out
 
     def _shape(self, t, member: str) -> Shape | None:
-        t = self.model.resolve_alias(t)
+        t = self._model.resolve_alias(t)
         if isinstance(t, Primitive):
             if t.name == "boolean":
                 return Shape("bool", member=member)
@@ -121,7 +127,7 @@ class Facts:
         if isinstance(t, String):
             return Shape("string", bound=t.bound, member=member)
         if isinstance(t, Array):
-            elem = self.model.resolve_alias(t.element)
+            elem = self._model.resolve_alias(t.element)
             count = 1
             for d in t.dims:
                 count *= d
@@ -136,8 +142,8 @@ class Facts:
     def is_idl_type(self, name: str) -> bool:
         if name in IDL_TO_DATATYPE:
             return True
-        return bool(self.model) and any(d.name == name for d in self.model.declarations
-                                        if isinstance(d, (Struct, Typedef, Union, Enum)))
+        return self.model is not None and any(d.name == name for d in self.model.declarations
+                                              if isinstance(d, (Struct, Typedef, Union, Enum)))
 
     # -- messages and topics ----------------------------------------------------------
     def struct(self, name: str) -> Struct | None:
@@ -146,7 +152,7 @@ class Facts:
 
     def is_message(self, name: str) -> bool:
         cur = self.struct(name)
-        return cur is not None and any(b.scoped_name == MESSAGE for b in self.model.lineage(cur))
+        return cur is not None and any(b.scoped_name == MESSAGE for b in self._model.lineage(cur))
 
     def struct_names(self) -> list[str]:
         return [d.scoped_name for d in self.model.declarations if isinstance(d, Struct)] if self.model else []
@@ -162,7 +168,7 @@ class Facts:
         if decl is None:
             return None
         return tuple(m.name for m in decl.members
-                     if isinstance(self.model.resolve_alias(m.type), Sequence))
+                     if isinstance(self._model.resolve_alias(m.type), Sequence))
 
 
 def utf8_len(text: str) -> int:

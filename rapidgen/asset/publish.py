@@ -34,17 +34,25 @@ def command_config(spec: AssetSpec) -> dict | None:
 def union_value(facts: Facts, data_type: str, value: object = None) -> dict:
     """A ParameterUnion holding value (the type's zero when None), in the codec's value form."""
     shape = facts.shapes.get(data_type) or STATIC_SHAPES[data_type]
+    v: bool | int | float | str | list[float]
     if shape.kind == "bool":
         v = bool(value) if value is not None else False
     elif shape.kind == "int":
-        v = int(value) if value is not None else 0
+        v = int(_number(value)) if value is not None else 0
     elif shape.kind == "float":
-        v = float(value) if value is not None else 0.0
+        v = float(_number(value)) if value is not None else 0.0
     elif shape.kind == "string":
         v = str(value) if value is not None else ""
     else:
-        v = [float(x) for x in value] if value is not None else [0.0] * shape.count
+        assert value is None or isinstance(value, (list, tuple)), value  # checked: a list of numbers
+        v = [float(_number(x)) for x in value] if value is not None else [0.0] * shape.count
     return {"discriminator": data_type, "value": v}
+
+
+def _number(x: object) -> int | float:
+    """A descriptor value the checks (check_values.py) already found to be a number."""
+    assert isinstance(x, (int, float)), x
+    return x
 
 
 def value_keys(facts: Facts, values: tuple[ValueKey, ...]) -> list[dict]:
@@ -79,7 +87,10 @@ def configs(loaded: LoadedAsset) -> dict[str, tuple[str, dict]]:
             continue
         t = p.source
         if p.type == "rapid::CommandConfig":
-            value = command_config(spec)
+            command = command_config(spec)
+            if command is None:
+                continue  # no subsystems: nothing to command
+            value = command
         elif isinstance(t, AgentTelemetry):
             value = agent_config(spec, t, facts)
         elif isinstance(t, PositionTelemetry):

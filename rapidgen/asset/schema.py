@@ -11,7 +11,7 @@ import heapq
 import json
 from functools import lru_cache
 from importlib import resources
-from typing import Callable, Iterable
+from typing import Any, Callable, Iterable
 
 import jsonschema
 from jsonschema.exceptions import ValidationError
@@ -127,9 +127,12 @@ def check_schema(doc: YamlDoc, sink: DiagnosticSink) -> bool:
 def _translate(e: ValidationError, doc: YamlDoc):
     path = tuple(e.absolute_path)
     where = _what(path)
-    inst, kw, val, sch = e.instance, e.validator, e.validator_value, e.schema
+    kw = e.validator
+    inst: Any = e.instance  # the value that failed: any JSON value
+    val: Any = e.validator_value  # the keyword's value: any JSON value
+    sch: dict = e.schema if isinstance(e.schema, dict) else {}  # (our schemas are never bare booleans)
     loc = doc.loc(path)
-    hint = sch.get("x-hint") if isinstance(sch, dict) else None
+    hint = sch.get("x-hint")
     if kw == "required":
         missing = [k for k in val if isinstance(inst, dict) and k not in inst]
         for k in missing:
@@ -141,7 +144,7 @@ def _translate(e: ValidationError, doc: YamlDoc):
             yield ("RG1021", f"unknown key {_shown(k)} in {where}", doc.key_loc(path + (k,)),
                    did_you_mean(k, allowed) or _comma_hint(doc, path, k) or f"allowed here: {', '.join(allowed)}")
     elif kw == "type":
-        want = " or ".join(_SCHEMA_TYPES.get(t, t) for t in (val if isinstance(val, list) else [val]))
+        want = " or ".join(_SCHEMA_TYPES.get(t, str(t)) for t in (val if isinstance(val, list) else [val]))
         got = _NAMES.get(type(inst), "a value")
         if not isinstance(inst, (dict, list)) and inst is not None:
             shown = _shown(inst)
@@ -201,8 +204,9 @@ def _string_hint(doc: YamlDoc, path: tuple, written: str) -> str:
 
 def _value_at(data: object, path: tuple) -> object:
     for p in path:
-        if isinstance(p, int) and isinstance(data, list) and p < len(data) or \
-                isinstance(p, str) and isinstance(data, dict) and p in data:
+        if isinstance(p, int) and isinstance(data, list) and p < len(data):
+            data = data[p]
+        elif isinstance(p, str) and isinstance(data, dict) and p in data:
             data = data[p]
         else:
             return None

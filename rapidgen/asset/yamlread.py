@@ -153,7 +153,7 @@ def read_text(path: str, shown: str, sink: DiagnosticSink) -> str | None:
         except UnicodeDecodeError as exc:
             bad = exc.start
     if nul >= 0 or bad is not None:
-        at = nul if nul >= 0 else bad
+        at = bad if nul < 0 and bad is not None else nul
         line = data.count(b"\n", 0, at) + 1
         col = at - (data.rfind(b"\n", 0, at) + 1) + 1
         msg = ("file contains a NUL byte; is it a binary file?" if nul >= 0
@@ -216,8 +216,8 @@ def _syntax_error(exc: yaml.MarkedYAMLError, text: str, file: str, sink: Diagnos
     mark = exc.problem_mark or exc.context_mark
     indentation = _indentation_error(exc, text)
     if indentation is not None:  # at the offending line's first character, not at PyYAML's token
-        message, hint, line, col = indentation
-        sink.error("RG1010", f"YAML indentation error: {message}", SourceLoc(file, line, col, line, col + 1), hint)
+        message, where, line, col = indentation
+        sink.error("RG1010", f"YAML indentation error: {message}", SourceLoc(file, line, col, line, col + 1), where)
         return
     problem = (exc.problem or "syntax error").strip()
     hint = None
@@ -278,7 +278,8 @@ def _indentation_error(exc: yaml.MarkedYAMLError, text: str) -> tuple[str, str, 
         if colon is None or colon.start() != p.column or above is None:
             return None
         prev = lines[above]
-        qi = re.match(r" *(?:- +)*", prev).end()  # where its text starts, after any list dashes
+        lead = re.match(r" *(?:- +)*", prev)  # (matches every line, maybe empty)
+        qi = lead.end() if lead else 0  # where its text starts, after any list dashes
         if pi <= qi or prev.rstrip().endswith((":", "{", "[", ",")):
             return None
         return (f"line {p.line + 1} is indented more than line {above + 1}, so YAML reads it as more "
@@ -346,6 +347,7 @@ class _Converter:
         try:
             if isinstance(node, yaml.SequenceNode):
                 return [self.value(item, path + (i,), depth + 1) for i, item in enumerate(node.value)]
+            assert isinstance(node, yaml.MappingNode)  # scalars and sequences are handled above
             return self.mapping(node, path, depth)
         finally:
             self.active.discard(id(node))
