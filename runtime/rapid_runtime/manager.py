@@ -42,7 +42,7 @@ class Outbox(Protocol):
 @dataclass(eq=False)
 class Run:
     cmd: Cmd
-    entry: CommandEntry | None
+    entry: CommandEntry
     kwargs: dict = field(default_factory=dict)
     queued: bool = False  # came through the queue (not BYPASS)
     ctx: CommandContext | None = None
@@ -106,6 +106,7 @@ class CommandManager:
         entry, why = check_command(cmd, self.tables)
         if why:
             return BAD_SYNTAX, why
+        assert entry is not None  # check_command: an entry when there is no reason
         if action == INSERT and target != HEAD and not self._queued_run(target):
             return BAD_SYNTAX, f"unknown targetCmdId '{_short(target)}' (pending ids, the running one or 'head')"
         if action == REPLACE and not self._queued_run(target):
@@ -119,6 +120,7 @@ class CommandManager:
             return None
         if action == REPLACE:
             old = self._queued_run(target)
+            assert old is not None  # checked above, under the same lock
             if old is self.active:
                 if not self._abortable(old):
                     return EXEC_FAILED, f"target '{_short(target)}' is running and not abortable"
@@ -218,11 +220,13 @@ class CommandManager:
 
     def _execute(self, run: Run) -> None:
         method = getattr(self.handlers, run.entry.method, None)
+        ctx = run.ctx
+        assert ctx is not None  # _start sets it before this thread starts
         try:
             if method is None:
                 raise CommandFailed("not implemented")
-            result = method(run.ctx, **run.kwargs)
-            outcome = (CANCELED, "canceled") if run.ctx.cancelled.is_set() else (OK, result if isinstance(result, str) else "")
+            result = method(ctx, **run.kwargs)
+            outcome = (CANCELED, "canceled") if ctx.cancelled.is_set() else (OK, result if isinstance(result, str) else "")
         except Cancelled:
             outcome = CANCELED, "canceled"
         except CommandFailed as exc:

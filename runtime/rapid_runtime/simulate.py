@@ -8,10 +8,14 @@ from __future__ import annotations
 import math
 import threading
 import time
+from typing import TYPE_CHECKING
 
 from rapid_runtime.handlers import Cancelled, CommandFailed, Handlers
 from rapid_runtime.tables import Tables
 from rapid_runtime.telemetry import Rate
+
+if TYPE_CHECKING:  # (the bridge imports the handlers it runs)
+    from rapid_runtime.bridge import Bridge
 
 DRIVE_SPEED = 0.5  # m/s
 TURN_SPEED = 0.5  # rad/s
@@ -37,7 +41,7 @@ class Simulator(Handlers):
             if t["kind"] == "agent":
                 for v in t["values"]:
                     self.agent[v["name"]] = self._initial(v)
-        self.bridge = None
+        self.bridge: Bridge | None = None  # set by on_start
         self.stopping = threading.Event()
         self.odometer = 0.0
 
@@ -146,7 +150,9 @@ class Simulator(Handlers):
         self.stopping.set()
 
     def _publish(self) -> None:
-        tel = self.bridge.telemetry
+        bridge = self.bridge
+        assert bridge is not None  # started by on_start, after it is set
+        tel = bridge.telemetry
         rates = [(t, Rate(t.get("rate") or 1.0)) for t in self.tables.telemetry]
         counts: dict[str, int] = {}
         last = time.monotonic()
@@ -167,7 +173,7 @@ class Simulator(Handlers):
                 try:
                     self._sample(tel, t, i)
                 except Exception as exc:  # telemetry may be dropped; the bridge keeps running
-                    self.bridge.log(f"simulated {t['kind']} telemetry not sent: {exc}")
+                    bridge.log(f"simulated {t['kind']} telemetry not sent: {exc}")
 
     def _sample(self, tel, t: dict, i: int) -> None:
         with self.lock:

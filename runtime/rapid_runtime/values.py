@@ -29,7 +29,7 @@ def shape_error(dtype: str, value: object) -> str | None:
             return "not an integer"
         return None if lo <= value <= hi else f"{value} does not fit {'32' if dtype == 'RAPID_INT' else '64'} bits"
     if dtype in ("RAPID_FLOAT", "RAPID_DOUBLE"):
-        if not _number(value):
+        if not isinstance(value, (int, float)) or isinstance(value, bool):
             return "not a number"
         if dtype == "RAPID_FLOAT" and math.isfinite(value) and abs(value) > FLOAT32_MAX:
             return "out of float range"
@@ -64,7 +64,7 @@ def limit_error(param, value: object) -> str | None:
         return None
     items = value if isinstance(value, (list, tuple)) else [value]
     for x in items:
-        if not _number(x):
+        if not isinstance(x, (int, float)) or isinstance(x, bool):
             continue
         if math.isnan(x) or (param.min is not None and x < param.min) or (param.max is not None and x > param.max):
             lo = "-inf" if param.min is None else _fmt(param.min)
@@ -76,7 +76,7 @@ def limit_error(param, value: object) -> str | None:
 def coerce(dtype: str, value: object) -> object:
     """A value a handler or commander gave, in the form the DataType carries (ints where
     floats are wanted become floats; tuples become lists). Shape is checked separately."""
-    if dtype in ("RAPID_FLOAT", "RAPID_DOUBLE") and _number(value):
+    if dtype in ("RAPID_FLOAT", "RAPID_DOUBLE") and isinstance(value, (int, float)) and not isinstance(value, bool):
         return float(value)
     if dtype in COUNTS and isinstance(value, (list, tuple)):
         return [float(x) if _number(x) else x for x in value]
