@@ -158,42 +158,42 @@ void ::rapid::encode(W& w, const ::rapid::ParameterUnion& v) {
     w.template put<std::int32_t>(static_cast<std::int32_t>(v._d()));
     switch (v.m_v.index()) {
     case 1: {
-        const auto& x = std::get<1>(v.m_v);
+        const auto& x = *std::get_if<1>(&v.m_v);
         w.put_bool(x);
         break;
     }
     case 2: {
-        const auto& x = std::get<2>(v.m_v);
+        const auto& x = *std::get_if<2>(&v.m_v);
         w.template put<double>(x);
         break;
     }
     case 3: {
-        const auto& x = std::get<3>(v.m_v);
+        const auto& x = *std::get_if<3>(&v.m_v);
         w.template put<float>(x);
         break;
     }
     case 4: {
-        const auto& x = std::get<4>(v.m_v);
+        const auto& x = *std::get_if<4>(&v.m_v);
         w.template put<std::int32_t>(x);
         break;
     }
     case 5: {
-        const auto& x = std::get<5>(v.m_v);
+        const auto& x = *std::get_if<5>(&v.m_v);
         w.template put<std::int64_t>(x);
         break;
     }
     case 6: {
-        const auto& x = std::get<6>(v.m_v);
+        const auto& x = *std::get_if<6>(&v.m_v);
         w.put_string(x, 128u, "rapid::ParameterUnion.s");
         break;
     }
     case 7: {
-        const auto& x = std::get<7>(v.m_v);
+        const auto& x = *std::get_if<7>(&v.m_v);
         w.put_array(x.data(), 3);
         break;
     }
     case 8: {
-        const auto& x = std::get<8>(v.m_v);
+        const auto& x = *std::get_if<8>(&v.m_v);
         w.put_array(x.data(), 9);
         break;
     }

@@ -20,6 +20,9 @@ namespace cdr {
 
 enum class Endianness { little, big };
 
+#define RAPIDGEN_COLD __attribute__((noinline, cold))
+#define RAPIDGEN_HOT __attribute__((always_inline))
+
 constexpr Endianness host = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ ? Endianness::little : Endianness::big;
 
 // Bad bytes: truncated, a count over its bound or over what the bytes can hold, a
@@ -34,6 +37,20 @@ class EncodeError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };
+
+// Whether a NUL is among n bytes (8 at a time: inlined, cheaper than memchr on short text).
+inline bool has_nul(const char* s, std::size_t n) noexcept {
+    std::size_t i = 0;
+    for (; n - i >= 8; i += 8) {
+        std::uint64_t w;
+        std::memcpy(&w, s + i, 8);
+        if (((w - 0x0101010101010101ull) & ~w & 0x8080808080808080ull) != 0) return true;
+    }
+    for (; i < n; ++i) {
+        if (s[i] == 0) return true;
+    }
+    return false;
+}
 
 template <class T>
 inline T byteswap(T v) noexcept {
@@ -58,35 +75,29 @@ public:
 
     std::size_t size() const noexcept { return pos_; }
 
-    void align(std::size_t n) {
+    RAPIDGEN_HOT void align(std::size_t n) {
         std::size_t pad = (n - pos_ % n) % n;
         if (pad != 0) std::memset(reserve(pad), 0, pad);
     }
     template <class T>
-    void put(T v) {
+    RAPIDGEN_HOT void put(T v) {
         align(sizeof(T));
         put_aligned(v);
     }
     // The generator knows the offset is aligned: no padding to compute.
     template <class T>
-    void put_aligned(T v) {
+    RAPIDGEN_HOT void put_aligned(T v) {
         if (Swap) v = byteswap(v);
         std::memcpy(reserve(sizeof(T)), &v, sizeof(T));
     }
     void put_bool(bool v) { put<std::uint8_t>(v ? 1 : 0); }
-    void put_count(std::size_t n, std::size_t bound, const char* what) {
-        if ((bound != 0 && n > bound) || n > 0xffffffffu) {
-            throw EncodeError(std::string(what) + ": " + std::to_string(n) + " elements, bound " +
-                              std::to_string(bound));
-        }
+    RAPIDGEN_HOT void put_count(std::size_t n, std::size_t bound, const char* what) {
+        if ((bound != 0 && n > bound) || n > 0xffffffffu) over(what, "elements", n, bound);
         put<std::uint32_t>(static_cast<std::uint32_t>(n));
     }
-    void put_string(const std::string& s, std::size_t bound, const char* what) {
-        if ((bound != 0 && s.size() > bound) || s.size() >= 0xffffffffu) {
-            throw EncodeError(std::string(what) + ": string of " + std::to_string(s.size()) +
-                              " bytes, bound " + std::to_string(bound));
-        }
-        if (std::memchr(s.data(), 0, s.size()) != nullptr) throw EncodeError(std::string(what) + ": string holds a NUL");
+    RAPIDGEN_HOT void put_string(const std::string& s, std::size_t bound, const char* what) {
+        if ((bound != 0 && s.size() > bound) || s.size() >= 0xffffffffu) over(what, "bytes", s.size(), bound);
+        if (has_nul(s.data(), s.size())) over(what, "bytes, one a NUL", s.size(), bound);
         put<std::uint32_t>(static_cast<std::uint32_t>(s.size() + 1));
         std::uint8_t* p = reserve(s.size() + 1);
         std::memcpy(p, s.data(), s.size());
@@ -110,8 +121,11 @@ public:
     }
 
 private:
-    [[noreturn]] static void overflow() { throw EncodeError("the value does not fit the buffer"); }
-    std::uint8_t* reserve(std::size_t n) {
+    [[noreturn]] RAPIDGEN_COLD static void overflow() { throw EncodeError("the value does not fit the buffer"); }
+    [[noreturn]] RAPIDGEN_COLD static void over(const char* what, const char* unit, std::size_t n, std::size_t bound) {
+        throw EncodeError(std::string(what) + ": " + std::to_string(n) + " " + unit + ", bound " + std::to_string(bound));
+    }
+    RAPIDGEN_HOT std::uint8_t* reserve(std::size_t n) {
         if (n > cap_ - pos_) overflow();
         std::uint8_t* p = buf_ + pos_;
         pos_ += n;
@@ -131,7 +145,7 @@ using SwappedWriter = BasicWriter<true>;
 class Counter {
 public:
     std::size_t size() const noexcept { return pos_; }
-    void align(std::size_t n) { pos_ += (n - pos_ % n) % n; }
+    RAPIDGEN_HOT void align(std::size_t n) { pos_ += (n - pos_ % n) % n; }
     template <class T>
     void put(T) {
         align(sizeof(T));
@@ -165,25 +179,25 @@ public:
 
     std::size_t position() const noexcept { return pos_; }
     std::size_t left() const noexcept { return size_ - pos_; }
-    [[noreturn]] void fail(const std::string& why) const {
+    [[noreturn]] RAPIDGEN_COLD void fail(const std::string& why) const {
         throw DecodeError(why + " at offset " + std::to_string(pos_));
     }
-    void need(std::size_t n) const {
-        if (n > size_ - pos_) fail("truncated: " + std::to_string(n) + " bytes needed");
+    RAPIDGEN_HOT void need(std::size_t n) const {
+        if (n > size_ - pos_) fail_need(n);
     }
-    void align(std::size_t n) {
+    RAPIDGEN_HOT void align(std::size_t n) {
         std::size_t pad = (n - pos_ % n) % n;
         need(pad);
         pos_ += pad;
     }
     template <class T>
-    T get() {
+    RAPIDGEN_HOT T get() {
         align(sizeof(T));
         return get_aligned<T>();
     }
     // The generator knows the offset is aligned.
     template <class T>
-    T get_aligned() {
+    RAPIDGEN_HOT T get_aligned() {
         need(sizeof(T));
         T v;
         std::memcpy(&v, buf_ + pos_, sizeof(T));
@@ -192,24 +206,21 @@ public:
     }
     bool get_bool() {
         std::uint8_t b = get<std::uint8_t>();
-        if (b > 1) fail("boolean " + std::to_string(b) + " is not 0 or 1");
+        if (b > 1) fail_bool(b);
         return b == 1;
     }
     // A count of elements that take at least min_size bytes each.
-    std::size_t get_count(std::size_t bound, std::size_t min_size, const char* what) {
+    RAPIDGEN_HOT std::size_t get_count(std::size_t bound, std::size_t min_size, const char* what) {
         std::uint32_t n = get<std::uint32_t>();
-        if (bound != 0 && n > bound) fail(std::string(what) + ": " + std::to_string(n) + " elements over bound " + std::to_string(bound));
-        if (min_size != 0 ? n > left() / min_size : n > 65536u) fail(std::string(what) + ": " + std::to_string(n) + " elements do not fit the bytes left");
+        if ((bound != 0 && n > bound) || (min_size != 0 ? n > left() / min_size : n > 65536u)) fail_count(what, n, bound);
         return n;
     }
-    void get_string(std::string& s, std::size_t bound, const char* what) {
+    RAPIDGEN_HOT void get_string(std::string& s, std::size_t bound, const char* what) {
         std::uint32_t n = get<std::uint32_t>();
-        if (n == 0) fail(std::string(what) + ": string length 0 (no NUL)");
-        if (bound != 0 && n - 1 > bound) fail(std::string(what) + ": string of " + std::to_string(n - 1) + " bytes over bound " + std::to_string(bound));
+        if (n == 0 || (bound != 0 && n - 1 > bound)) fail_string(what, n, bound);
         need(n);
         const char* p = reinterpret_cast<const char*>(buf_ + pos_);
-        if (p[n - 1] != '\0') fail(std::string(what) + ": string not NUL-terminated");
-        if (!text(p, n - 1)) fail(std::string(what) + ": string is not UTF-8 or holds a NUL");
+        if (p[n - 1] != '\0' || !text(p, n - 1)) fail(std::string(what) + ": string not NUL-terminated, not UTF-8 or holding a NUL");
         s.assign(p, n - 1);
         pos_ += n;
     }
@@ -217,7 +228,7 @@ public:
     void get_array(T* v, std::size_t n) {
         if (n == 0) return;
         align(sizeof(T));
-        if (n > left() / sizeof(T)) fail("truncated: " + std::to_string(n) + " elements needed");
+        if (n > left() / sizeof(T)) fail_need(n * sizeof(T));
         std::memcpy(static_cast<void*>(v), buf_ + pos_, n * sizeof(T));
         pos_ += n * sizeof(T);
         if (Swap && sizeof(T) > 1) {
@@ -251,6 +262,17 @@ public:
     }
 
 private:
+    // Failures build their messages out of line, so the checks stay small enough to inline.
+    [[noreturn]] RAPIDGEN_COLD void fail_need(std::size_t n) const { fail("truncated: " + std::to_string(n) + " bytes needed"); }
+    [[noreturn]] RAPIDGEN_COLD void fail_bool(unsigned b) const { fail("boolean " + std::to_string(b) + " is not 0 or 1"); }
+    [[noreturn]] RAPIDGEN_COLD void fail_count(const char* what, std::size_t n, std::size_t bound) const {
+        fail(std::string(what) + ": " + std::to_string(n) + " elements over the bound (" + std::to_string(bound) +
+             ") or the bytes left");
+    }
+    [[noreturn]] RAPIDGEN_COLD void fail_string(const char* what, std::size_t n, std::size_t bound) const {
+        fail(std::string(what) + ": string length " + std::to_string(n) + " (0, or over bound " + std::to_string(bound) + ")");
+    }
+
     // Well-formed UTF-8 (RFC 3629: no overlong forms, surrogates or values over U+10FFFF)
     // without NUL; ASCII is checked 8 bytes at a time.
     static bool text(const char* s, std::size_t n) noexcept {
