@@ -119,19 +119,20 @@ class TypeCompare:
     def _resolved(self, o: ir.Type, n: ir.Type) -> str:
         if type(o) is not type(n):
             return "changed"
-        if isinstance(o, ir.Primitive):
-            return "same" if o.name == n.name else "changed"  # type: ignore[union-attr]
-        if isinstance(o, ir.String):
-            return "changed" if o.wide != n.wide else _bound(o.bound, n.bound)  # type: ignore[union-attr]
-        if isinstance(o, ir.Sequence):
-            return worst(self.verdict(o.element, n.element), _bound(o.bound, n.bound))  # type: ignore[union-attr]
-        if isinstance(o, ir.Array):
-            if o.dims != n.dims:  # type: ignore[union-attr]
+        # (same class from here: each test names it on both sides for the checker)
+        if isinstance(o, ir.Primitive) and isinstance(n, ir.Primitive):
+            return "same" if o.name == n.name else "changed"
+        if isinstance(o, ir.String) and isinstance(n, ir.String):
+            return "changed" if o.wide != n.wide else _bound(o.bound, n.bound)
+        if isinstance(o, ir.Sequence) and isinstance(n, ir.Sequence):
+            return worst(self.verdict(o.element, n.element), _bound(o.bound, n.bound))
+        if isinstance(o, ir.Array) and isinstance(n, ir.Array):
+            if o.dims != n.dims:
                 return "changed"
-            return self.verdict(o.element, n.element)  # type: ignore[union-attr]
-        if isinstance(o, ir.Map):
-            return worst(self.verdict(o.key, n.key), self.verdict(o.value, n.value),  # type: ignore[union-attr]
-                         _bound(o.bound, n.bound))  # type: ignore[union-attr]
+            return self.verdict(o.element, n.element)
+        if isinstance(o, ir.Map) and isinstance(n, ir.Map):
+            return worst(self.verdict(o.key, n.key), self.verdict(o.value, n.value),
+                         _bound(o.bound, n.bound))
         if isinstance(o, ir.Fixed):
             return "same" if o == n else "changed"
         assert isinstance(o, ir.TypeRef) and isinstance(n, ir.TypeRef)
