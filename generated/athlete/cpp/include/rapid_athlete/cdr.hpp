@@ -82,11 +82,6 @@ public:
     template <class T>
     RAPIDGEN_HOT void put(T v) {
         align(sizeof(T));
-        put_aligned(v);
-    }
-    // The generator knows the offset is aligned: no padding to compute.
-    template <class T>
-    RAPIDGEN_HOT void put_aligned(T v) {
         if (Swap) v = byteswap(v);
         std::memcpy(reserve(sizeof(T)), &v, sizeof(T));
     }
@@ -151,8 +146,6 @@ public:
         align(sizeof(T));
         pos_ += sizeof(T);
     }
-    template <class T>
-    void put_aligned(T) { pos_ += sizeof(T); }
     void put_bool(bool) { put<std::uint8_t>(0); }
     void put_count(std::size_t, std::size_t, const char*) { put<std::uint32_t>(0); }
     void put_string(const std::string& s, std::size_t, const char*) {
@@ -193,11 +186,6 @@ public:
     template <class T>
     RAPIDGEN_HOT T get() {
         align(sizeof(T));
-        return get_aligned<T>();
-    }
-    // The generator knows the offset is aligned.
-    template <class T>
-    RAPIDGEN_HOT T get_aligned() {
         need(sizeof(T));
         T v;
         std::memcpy(&v, buf_ + pos_, sizeof(T));
