@@ -3,6 +3,7 @@ only, the package's local transport) exits 0 having shown each step's result."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 from pathlib import Path
 
@@ -21,4 +22,5 @@ def test_demo_runs_end_to_end():
     assert "COMPLETED BAD_SYNTAX  argument 1 (pan)" in out  # ... and answered when sent anyway
     assert "COMPLETED OK  demo-long-drive canceled" in out and "COMPLETED CANCELED" in out
     assert "watch: position from K10Red" in out and "watch: agent    from K10Red" in out
+    assert re.search(r"^K10Red: \d+ checks, .*; every required check passed$", out, re.M)  # the conformance run
     assert out.rstrip().endswith("bridge stopped\ndemo: ok")
