@@ -70,6 +70,7 @@ class DeclView:
     arms: list[ArmView] = field(default_factory=list)
     disc_decode: str = ""
     allow_unreachable: bool = False
+    key: list[str] = field(default_factory=list)  # struct: statements writing the key members
 
 
 @dataclass
@@ -210,8 +211,27 @@ class Builder:
         if s.base:
             doc += f" : {s.base}, flattened (base members first)"
         doc += "." + (f" Key: {', '.join(s.keys)}." if s.keys else "")
+        key = []
+        for path in s.keys:
+            place, t = self._walk(s, path)
+            expr, fallible = self.types.encode(t, place, f"{s.scoped_name} key {path}")
+            key.append(expr + ("?;" if fallible else ";"))
         return DeclView("struct", name, doc, type_name=rust_str(s.scoped_name), members=members,
-                        derive_default=derive, encode=enc)
+                        derive_default=derive, encode=enc, key=key)
+
+    def _walk(self, s: ir.Struct, path: str) -> tuple[str, ir.Type]:
+        """A key path ('hdr.srcName') as a Rust place (`self.hdr.src_name`) and the leaf's type."""
+        place, t, current = "self", None, s
+        for part in path.split("."):
+            member = next((m for m in self.model.all_members(current) if m.name == part), None) if current else None
+            if member is None or current is None:
+                raise Unsupported(f"key path '{path}' does not name a member", s.loc)
+            place += "." + self.fields[current.scoped_name][part]
+            t = member.type
+            d = self.types.decl(self.types.real(t))
+            current = d if isinstance(d, ir.Struct) else None
+        assert t is not None
+        return place, t
 
     def union(self, u: ir.Union, name: str) -> DeclView:
         self._check_ext(u)

@@ -733,6 +733,14 @@ impl crate::cdr::Cdr for Header {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.src_name, 32, "rapid::Header key srcName")?;
+        w.put_string(&self.asset_name, 32, "rapid::Header key assetName")?;
+        Ok(())
+    }
 }
 
 /// IDL valuetype rapid::Message. Key: hdr.srcName, hdr.assetName.
@@ -757,6 +765,14 @@ impl crate::cdr::Cdr for Message {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::Message key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::Message key hdr.assetName")?;
+        Ok(())
     }
 }
 
@@ -793,6 +809,14 @@ impl crate::cdr::Cdr for AccessControlState {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::AccessControlState key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::AccessControlState key hdr.assetName")?;
+        Ok(())
     }
 }
 
@@ -936,6 +960,15 @@ impl crate::cdr::Cdr for Ack {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::Ack key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::Ack key hdr.assetName")?;
+        w.put_string(&self.cmd_id, 64, "rapid::Ack key cmdId")?;
+        Ok(())
+    }
 }
 
 /// IDL const rapid::AGENT_CONFIG_TOPIC
@@ -976,6 +1009,14 @@ impl crate::cdr::Cdr for AgentConfig {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::AgentConfig key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::AgentConfig key hdr.assetName")?;
+        Ok(())
+    }
 }
 
 /// IDL const rapid::AGENT_STATE_TOPIC
@@ -1007,6 +1048,14 @@ impl crate::cdr::Cdr for AgentState {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::AgentState key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::AgentState key hdr.assetName")?;
+        Ok(())
     }
 }
 
@@ -1114,6 +1163,14 @@ impl crate::cdr::Cdr for Command {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::Command key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::Command key hdr.assetName")?;
+        Ok(())
     }
 }
 
@@ -1245,6 +1302,14 @@ impl crate::cdr::Cdr for CommandConfig {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::CommandConfig key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::CommandConfig key hdr.assetName")?;
+        Ok(())
     }
 }
 
@@ -1419,6 +1484,15 @@ impl crate::cdr::Cdr for FileAnnounce {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::FileAnnounce key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::FileAnnounce key hdr.assetName")?;
+        w.put_string(&self.file_uuid, 64, "rapid::FileAnnounce key fileUuid")?;
+        Ok(())
+    }
 }
 
 /// IDL const rapid::IMG_V_FOV
@@ -1530,6 +1604,14 @@ impl crate::cdr::Cdr for ImageSensorSample {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::ImageSensorSample key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::ImageSensorSample key hdr.assetName")?;
+        Ok(())
+    }
 }
 
 /// IDL const rapid::IMAGESENSOR_STATE_TOPIC
@@ -1561,6 +1643,14 @@ impl crate::cdr::Cdr for ImageSensorState {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::ImageSensorState key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::ImageSensorState key hdr.assetName")?;
+        Ok(())
     }
 }
 
@@ -1626,6 +1716,14 @@ impl crate::cdr::Cdr for JointConfig {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::JointConfig key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::JointConfig key hdr.assetName")?;
+        Ok(())
     }
 }
 
@@ -1708,6 +1806,14 @@ impl crate::cdr::Cdr for JointSample {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::JointSample key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::JointSample key hdr.assetName")?;
+        Ok(())
+    }
 }
 
 /// IDL const rapid::POSITION_CONFIG_TOPIC
@@ -1752,6 +1858,14 @@ impl crate::cdr::Cdr for PositionConfig {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::PositionConfig key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::PositionConfig key hdr.assetName")?;
+        Ok(())
+    }
 }
 
 /// IDL const rapid::POSITION_SAMPLE_TOPIC
@@ -1791,6 +1905,14 @@ impl crate::cdr::Cdr for PositionSample {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::PositionSample key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::PositionSample key hdr.assetName")?;
+        Ok(())
     }
 }
 
@@ -2027,6 +2149,14 @@ impl crate::cdr::Cdr for QueueState {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::QueueState key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::QueueState key hdr.assetName")?;
+        Ok(())
+    }
 }
 
 /// IDL const rapid::TEXTMESSAGE_TOPIC
@@ -2121,6 +2251,14 @@ impl crate::cdr::Cdr for TextMessage {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::TextMessage key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::TextMessage key hdr.assetName")?;
+        Ok(())
     }
 }
 

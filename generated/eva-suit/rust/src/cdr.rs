@@ -51,6 +51,12 @@ pub trait Cdr: Sized {
     const TYPE_NAME: &'static str;
     fn encode(&self, w: &mut Writer) -> ::core::result::Result<(), EncodeError>;
     fn decode(r: &mut Reader<'_>) -> ::core::result::Result<Self, DecodeError>;
+    /// Whether the type has key members (`@key`, `//@key`, `#pragma keylist`).
+    const KEYED: bool = false;
+    /// Writes the key members, in key order (nothing for a type without keys).
+    fn encode_key(&self, _w: &mut Writer) -> ::core::result::Result<(), EncodeError> {
+        Ok(())
+    }
 }
 
 /// Deepest nesting of structs and unions a decoder follows (recursive types).
@@ -64,6 +70,14 @@ pub fn serialize<T: Cdr>(value: &T, order: Endianness) -> ::core::result::Result
     let mut w = Writer::new(order);
     value.encode(&mut w)?;
     Ok(w.into_bytes())
+}
+
+/// The key members of `value` in big-endian CDR from offset 0 (no header): the input of
+/// the RTPS key hash (used as is when it fits 16 bytes, else its MD5).
+pub fn key_bytes<T: Cdr>(value: &T) -> ::core::result::Result<::std::vec::Vec<u8>, EncodeError> {
+    let mut w = Writer { out: ::std::vec::Vec::new(), little: false, origin: 0 };
+    value.encode_key(&mut w)?;
+    Ok(w.out)
 }
 
 /// A value from its encapsulated bytes, in either byte order; at most 3 bytes (a writer's
@@ -111,12 +125,13 @@ primitive!(i8, u8, i16, u16, i32, u32, i64, u64, f32, f64);
 pub struct Writer {
     out: ::std::vec::Vec<u8>,
     little: bool,
+    origin: usize,
 }
 
 impl Writer {
     pub fn new(order: Endianness) -> Self {
         let little = order == Endianness::Little;
-        Writer { out: ::std::vec![0, u8::from(little), 0, 0], little }
+        Writer { out: ::std::vec![0, u8::from(little), 0, 0], little, origin: HEADER }
     }
 
     pub fn into_bytes(self) -> ::std::vec::Vec<u8> {
@@ -124,7 +139,7 @@ impl Writer {
     }
 
     fn align(&mut self, n: usize) {
-        while (self.out.len() - HEADER) % n != 0 {
+        while (self.out.len() - self.origin) % n != 0 {
             self.out.push(0);
         }
     }

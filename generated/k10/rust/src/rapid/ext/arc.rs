@@ -93,6 +93,14 @@ impl crate::cdr::Cdr for GpsConfig {
         r.leave();
         Ok(v)
     }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::ext::arc::GpsConfig key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::ext::arc::GpsConfig key hdr.assetName")?;
+        Ok(())
+    }
 }
 
 /// IDL valuetype rapid::ext::arc::GpsSample : rapid::Message, flattened (base members first). Key: hdr.srcName, hdr.assetName.
@@ -141,6 +149,14 @@ impl crate::cdr::Cdr for GpsSample {
         };
         r.leave();
         Ok(v)
+    }
+
+    const KEYED: bool = true;
+
+    fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
+        w.put_string(&self.hdr.src_name, 32, "rapid::ext::arc::GpsSample key hdr.srcName")?;
+        w.put_string(&self.hdr.asset_name, 32, "rapid::ext::arc::GpsSample key hdr.assetName")?;
+        Ok(())
     }
 }
 

@@ -1,0 +1,83 @@
+"""Live interop on loopback: the generated Rust crate on RustDDS 0.15 and the generated
+Python bindings on cyclonedds exchange every RAPID message type (K10's 18 topics with their
+generated QoS, plus FileAnnounce, JointConfig and JointSample on test topics) in both
+directions, each field-equal to the golden vector's `max` value.
+
+RustDDS 0.15 has no Partition QoS, so the Python side here uses the default partition
+(tests/rust/py_peer.py); RTPS stays on 127.0.0.1 (RustDDS `with_only_networks`, Cyclone
+through K10's generated loopback configuration)."""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from tests.rust.conftest import HERE, K10, ROOT, VECTORS, cargo, run
+
+DOMAIN_RUST_TO_PY = 73
+DOMAIN_PY_TO_RUST = 74
+SECONDS = 25
+EXTRA = ["rapid::FileAnnounce", "rapid::JointConfig", "rapid::JointSample"]
+
+
+@pytest.fixture(scope="session")
+def rust_peer(rust_target) -> Path:
+    """The RustDDS peer (tests/rust/peer, Cargo.lock pinned), built in the session's target folder."""
+    start = time.monotonic()
+    run([cargo(), "build", "--locked"], HERE / "peer", rust_target, timeout=1200)
+    print(f"\nrust: cargo build of the RustDDS peer took {time.monotonic() - start:.1f} s")
+    return rust_target / "debug" / "peer"
+
+
+def _lines() -> list[str]:
+    vectors = {v["id"]: v for v in json.loads(VECTORS.read_text(encoding="utf-8"))["vectors"]}
+    topics = json.loads((K10.parent / "qos" / "topics.json").read_text(encoding="utf-8"))["topics"]
+    lines = [f"{t['topic']} {t['type']} {t['profile']} {vectors[t['type'] + '/max']['xcdr1_le']}" for t in topics]
+    covered = {t["type"] for t in topics}
+    lines += [f"rapidgen_test_{t.split('::')[-1].lower()} {t} - {vectors[t + '/max']['xcdr1_le']}"
+              for t in EXTRA if t not in covered]
+    return lines
+
+
+def _start(cmd: list[str], stdin: str, env: dict) -> subprocess.Popen:
+    p = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=env, start_new_session=True)
+    assert p.stdin is not None
+    p.stdin.write(stdin)
+    p.stdin.close()
+    p.stdin = None  # written and closed: communicate() must not flush it
+    return p
+
+
+def test_rust_and_python_exchange_every_message_type_both_ways(rust_peer):
+    lines = _lines()
+    assert len(lines) == 21
+    stdin = "\n".join(lines) + "\n"
+    env = dict(os.environ, CYCLONEDDS_URI="file://" + str(K10.parent / "qos" / "cyclonedds" / "local.xml"),
+               PYTHONPATH=os.pathsep.join([str(K10.parent / "python"), str(ROOT)]))
+    peer, py = str(rust_peer), [sys.executable, str(HERE / "py_peer.py")]
+    procs = {
+        "py_sub": _start(py + ["sub", str(DOMAIN_RUST_TO_PY), str(SECONDS)], stdin, env),
+        "rust_pub": _start([peer, "pub", str(DOMAIN_RUST_TO_PY), str(SECONDS)], stdin, env),
+        "rust_sub": _start([peer, "sub", str(DOMAIN_PY_TO_RUST), str(SECONDS)], stdin, env),
+        "py_pub": _start(py + ["pub", str(DOMAIN_PY_TO_RUST), str(SECONDS)], stdin, env),
+    }
+    try:
+        out = {}
+        for name in ("py_sub", "rust_sub"):
+            stdout, stderr = procs[name].communicate(timeout=SECONDS + 30)
+            out[name] = (procs[name].returncode, stdout, stderr)
+    finally:
+        for p in procs.values():
+            if p.poll() is None:
+                p.kill()
+            p.wait(timeout=30)
+    want = sorted(f"ok {line.split()[0]}" for line in lines)
+    for name, (code, stdout, stderr) in out.items():
+        assert sorted(stdout.split("\n")[:-1]) == want, f"{name}: {stdout}\n{stderr[-3000:]}"
+        assert code == 0, name
