@@ -29,11 +29,12 @@ if [ -z "${RAPIDGEN_SKIP_APT:-}" ] && command -v dpkg-query >/dev/null; then
     for p in "${PKGS[@]}"; do
         dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || MISSING+=("$p")
     done
-    # cargo (tests/qos fetches cyclonedds.xsd from the cyclors crate): rustup's when there is
-    # one (on PATH or in $CARGO_HOME/bin), else Debian's. Not in apt-packages.txt: the dpkg
-    # check by name would install Debian's beside rustup's.
+    # cargo (tests/qos fetches cyclonedds.xsd from the cyclors crate; tests/rust builds the
+    # generated crates): rustup's when there is one (on PATH or in $CARGO_HOME/bin), else
+    # Debian's, with its clippy. Not in apt-packages.txt: the dpkg check by name would
+    # install Debian's beside rustup's.
     if ! command -v cargo >/dev/null && [ ! -x "${CARGO_HOME:-$HOME/.cargo}/bin/cargo" ]; then
-        MISSING+=(cargo)
+        MISSING+=(cargo rust-clippy)
     fi
     if [ "${#MISSING[@]}" -gt 0 ]; then
         echo "setup: installing Debian packages: ${MISSING[*]}" >&2

@@ -38,6 +38,7 @@ module m {
     };
     struct Empty { };
     struct HasEmpty { sequence<Empty> es; };
+    struct K { @key string<8> id; long value; @key short n; };
 };
 '''
 TXT_VALUE = 'q"b\\s \u202e bidi */ /* tab\t nl\n e\u00e9 \u706b end\\'
@@ -45,7 +46,8 @@ TXT_VALUE = 'q"b\\s \u202e bidi */ /* tab\t nl\n e\u00e9 \u706b end\\'
 # Prints the constants' values and round-trips values the vectors do not hold.
 MAIN = r'''
 use gen::cdr::{deserialize, serialize, Endianness};
-use gen::m::{E, HasEmpty, S, U, V, TXT, LOW, HIGH, F, C};
+use gen::cdr::{key_bytes, Cdr};
+use gen::m::{E, HasEmpty, K, S, U, V, TXT, LOW, HIGH, F, C};
 
 fn main() {
     let hex: String = TXT.bytes().map(|b| format!("{b:02x}")).collect();
@@ -75,6 +77,10 @@ fn main() {
     // 70000 empty structs announced in 8 bytes: over the limit for zero-size elements
     let bytes = [0u8, 1, 0, 0, 0x70, 0x11, 0x01, 0x00];
     println!("{}", deserialize::<HasEmpty>(&bytes).is_err());
+    // key members in big-endian CDR from offset 0: "ab" (length 3 with NUL), pad to 2, 7
+    let k = K { id: "ab".into(), value: 5, n: 7 };
+    let hex: String = key_bytes(&k).unwrap().iter().map(|b| format!("{b:02x}")).collect();
+    println!("{hex} {} {}", K::KEYED, S::KEYED);
 }
 '''
 
@@ -110,7 +116,7 @@ def test_hostile_names_and_shapes_compile_clippy_clean_and_round_trip(tmp_path, 
     assert out.returncode == 0, out.stderr
     f_bits = int.from_bytes(struct.pack("<f", 0.1), "little")
     assert out.stdout.split() == [TXT_VALUE.encode().hex(), str(-2**63), str(2**64 - 1), str(f_bits), str(ord("x")),
-                                  "true", "true", "true", "true", "true", "true"]
+                                  "true", "true", "true", "true", "true", "true", "00000003616200000007", "true", "false"]
     # the reference encoder's vectors of these types: byte-identical both ways, and fuzzed
     res = _generate(tmp_path, TRICKY, "vectors", "-o", str(tmp_path / "v.json"))
     assert res.returncode == 0, res.stderr

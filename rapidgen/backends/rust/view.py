@@ -50,6 +50,7 @@ class ArmView:
     build: str  # decode arm value
     head: str  # encode match pattern
     check: str  # encode: a condition refusing a carried discriminator ("" none)
+    variant: str  # the variant's name (in the refusal's message)
     encode: list[str]  # encode statements
 
 
@@ -156,16 +157,16 @@ class Builder:
     def declaration(self, d: ir.Declaration) -> DeclView:
         name = self.names[d.scoped_name]
         if isinstance(d, ir.Typedef):
-            return DeclView("typedef", name, f"IDL typedef {d.type} {d.scoped_name}",
+            return DeclView("typedef", name, f"IDL typedef `{d.type} {d.scoped_name}`",
                             type=self.types.rust(d.type, d.loc))
         if isinstance(d, ir.Const):
             real = self.types.real(d.type)
             rtype = "&str" if isinstance(real, ir.String) and not real.wide else self.types.rust(d.type, d.loc)
-            return DeclView("const", name, f"IDL const {d.scoped_name}", type=rtype,
+            return DeclView("const", name, f"IDL const `{d.scoped_name}`", type=rtype,
                             value=self.types.literal(d.value, d.type))
         if isinstance(d, ir.Enum):
             names = self.enum_names[d.scoped_name]
-            return DeclView("enum", name, f"IDL enum {d.scoped_name}", type_name=rust_str(d.scoped_name),
+            return DeclView("enum", name, f"IDL enum `{d.scoped_name}`", type_name=rust_str(d.scoped_name),
                             type=ENUM_REPR[enum_size(d)],
                             variants=[(names[e.name], e.value, e.name) for e in d.enumerators],
                             default_variant=names[d.default])
@@ -207,10 +208,10 @@ class Builder:
             members.append(MemberView(rname, rtype, m.name, default or DEFAULT, self.types.decode(m.type, what)))
         scope.check()
         self.fields[s.scoped_name] = {m.wire: m.name for m in members}
-        doc = f"IDL {s.origin} {s.scoped_name}"
+        doc = f"IDL {s.origin} `{s.scoped_name}`"
         if s.base:
-            doc += f" : {s.base}, flattened (base members first)"
-        doc += "." + (f" Key: {', '.join(s.keys)}." if s.keys else "")
+            doc += f" : `{s.base}`, flattened (base members first)"
+        doc += "." + (f" Key: `{', '.join(s.keys)}`." if s.keys else "")
         key = []
         for path in s.keys:
             place, t = self._walk(s, path)
@@ -265,17 +266,17 @@ class Builder:
                 check = (f"matches!(*d, {others})" if c.is_default and others
                          else "" if c.is_default else f"!matches!(*d, {pats[id(c)]})")
                 arms.append(ArmView("_" if c.is_default else pats[id(c)], f"Self::{vname}(d, {t.decode(m.type, what)})",
-                                    f"Self::{vname}(d, x)", check, [self._disc_enc(u, "*d"), body]))
+                                    f"Self::{vname}(d, x)", check, vname, [self._disc_enc(u, "*d"), body]))
             else:
                 types.append((vname, mtype))
                 arms.append(ArmView(pats[id(c)], f"Self::{vname}({t.decode(m.type, what)})", f"Self::{vname}(x)", "",
-                                    [self._disc_enc(u, pats[id(c)]), body]))
+                                    vname, [self._disc_enc(u, pats[id(c)]), body]))
         scope.check()
         if need_none:
             types.append((namer.NO_MEMBER, disc_type))
             arms.append(ArmView("_", f"Self::{namer.NO_MEMBER}(d)", f"Self::{namer.NO_MEMBER}(d)",
                                 f"matches!(*d, {self._pattern(u, everything)})" if everything else "",
-                                [self._disc_enc(u, "*d")]))
+                                namer.NO_MEMBER, [self._disc_enc(u, "*d")]))
         arms.sort(key=lambda a: a.pattern == "_")  # the rest last
         if u.default_case is not None:
             c = u.cases[u.default_case]
@@ -286,7 +287,7 @@ class Builder:
                        else f"Self::{vname}({value})")
         else:
             default = f"Self::{namer.NO_MEMBER}({t.literal(u.default_discriminator, u.discriminator)})"
-        return DeclView("union", name, f"IDL union {u.scoped_name} switch ({u.discriminator}).",
+        return DeclView("union", name, f"IDL union `{u.scoped_name}` switch (`{u.discriminator}`).",
                         type_name=rust_str(u.scoped_name), type=disc_type, value=default, variant_types=types,
                         arms=arms, disc_decode=t.decode(u.discriminator, f"{u.scoped_name} discriminator"),
                         allow_unreachable=covered and u.default_case is not None
