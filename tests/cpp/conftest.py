@@ -59,7 +59,10 @@ def cpp_build(tmp_path_factory) -> Path:
     dispatch.mkdir()
     types = sorted({line.split()[1] for line in vector_lines()})
     (dispatch / "dispatch.inc").write_text("".join(f'RAPIDGEN_TYPE(::{t}, "{t}")\n' for t in types))
-    topic_types = sorted({t["type"] for t in topics()})
+    # every RAPID message type (the vectors' types with a header): K10's topics and the rest
+    vectors = json.loads(VECTORS.read_text(encoding="utf-8"))["vectors"]
+    topic_types = sorted({t["type"] for t in topics()} |
+                         {v["type"] for v in vectors if isinstance(v["value"], dict) and "hdr" in v["value"]})
     (dispatch / "topics.inc").write_text("".join(f'RAPIDGEN_TYPE(::{t}, "{t}")\n' for t in topic_types))
     asset_hpp = (K10 / "cpp" / "include" / PKG / "asset.hpp").read_text(encoding="utf-8")
     (dispatch / "configs.inc").write_text("".join(

@@ -10,6 +10,7 @@ loopback configuration (the test sets it).
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 import time
 
@@ -18,7 +19,11 @@ from cyclonedds.pub import DataWriter, Publisher
 from cyclonedds.sub import DataReader, Subscriber
 from cyclonedds.topic import Topic
 
-from rapid_k10red.qos import RapidQos
+from cyclonedds.qos_provider import QosProvider
+
+from rapid_k10red.qos import RapidQos, UnknownTopic, default_qos_dir
+
+LIBRARY = "RapidQosLibrary::"
 
 
 def type_of(scoped: str) -> type:
@@ -29,17 +34,27 @@ def type_of(scoped: str) -> type:
 def main() -> int:
     mode, domain, seconds = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
     qos = RapidQos()
+    # message types K10 does not publish (JointSample, ...): the line's profile, from the same files
+    provider = QosProvider(os.path.join(default_qos_dir(), "dds-xml", "rapid_qos.xml"))
     dp = DomainParticipant(domain)
     ends = []
     for line in sys.stdin.read().splitlines():
-        topic, scoped, _profile, hexbytes = line.split()
+        topic, scoped, profile, hexbytes = line.split()
         cls = type_of(scoped)
         expected = cls.deserialize(bytes.fromhex(hexbytes))
         t = Topic(dp, topic, cls)
+        try:
+            qos.key(topic)
+            group, endpoint = ((qos.publisher(topic), qos.writer(topic)) if mode == "pub"
+                               else (qos.subscriber(topic), qos.reader(topic)))
+        except UnknownTopic:
+            key = LIBRARY + profile
+            group, endpoint = ((provider.get_publisher_qos(key), provider.get_datawriter_qos(key)) if mode == "pub"
+                               else (provider.get_subscriber_qos(key), provider.get_datareader_qos(key)))
         if mode == "pub":
-            ends.append((topic, DataWriter(Publisher(dp, qos=qos.publisher(topic)), t, qos=qos.writer(topic)), expected))
+            ends.append((topic, DataWriter(Publisher(dp, qos=group), t, qos=endpoint), expected))
         else:
-            ends.append((topic, DataReader(Subscriber(dp, qos=qos.subscriber(topic)), t, qos=qos.reader(topic)), expected))
+            ends.append((topic, DataReader(Subscriber(dp, qos=group), t, qos=endpoint), expected))
     end = time.monotonic() + seconds
     done: set[str] = set()
     while time.monotonic() < end:

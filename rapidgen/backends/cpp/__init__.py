@@ -40,7 +40,6 @@ def package_for(asset: "LoadedAsset | None", options: Options) -> str:
 def view(model: Model, asset: "LoadedAsset | None", options: Options) -> tuple[PackageView, Builder]:
     b = Builder(model, package_for(asset, options))
     p = b.build(notice(options.source), options.source)
-    p.guard = p.package.upper()  # type: ignore[attr-defined]
     return p, b
 
 

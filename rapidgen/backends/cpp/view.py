@@ -97,6 +97,7 @@ class TopicView:
 @dataclass
 class PackageView:
     package: str
+    guard: str  # include-guard prefix
     header: str
     source: str
     blocks: list[BlockView]
@@ -175,7 +176,7 @@ class Builder:
             scope.check()
         for e in enums:
             e.helper = self.enum_helpers[e.scoped]
-        return PackageView(self.package, header, source, blocks, topics, enums)
+        return PackageView(self.package, self.package.upper(), header, source, blocks, topics, enums)
 
     def declaration(self, d: ir.Declaration) -> DeclView:
         name = self.names[d.scoped_name]
