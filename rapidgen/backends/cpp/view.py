@@ -323,7 +323,3 @@ class Builder:
         while (False, n) in taken or (disc.name == "char8" and (False, chr(n)) in taken):  # type: ignore[union-attr]
             n += 1
         return self.types.literal(n, disc, u.loc)
-
-
-def build(model: ir.Model, package: str, header: str, source: str) -> PackageView:
-    return Builder(model, package).build(header, source)
