@@ -113,6 +113,8 @@ def build_parser() -> argparse.ArgumentParser:
     diff_p.add_argument("--waivers", metavar="FILE", help="accepted changes per rule and type (docs/diff.md)")
     from rapidgen.conform.command import add_parser as _conform_parser
     _conform_parser(sub)
+    from rapidgen.spy.command import add_parser as _spy_parser
+    _spy_parser(sub)
     return parser
 
 
@@ -277,6 +279,11 @@ def _cmd_conform(args: argparse.Namespace) -> int:
     return run_conform(args, DiagnosticSink(), report)
 
 
+def _cmd_spy(args: argparse.Namespace) -> int:
+    from rapidgen.spy.command import run_spy
+    return run_spy(args, DiagnosticSink(), report)
+
+
 def _cmd_diff(args: argparse.Namespace) -> int:
     from rapidgen.diff.command import run_diff
     return run_diff(args, _sink(args), report)
@@ -285,7 +292,7 @@ def _cmd_diff(args: argparse.Namespace) -> int:
 _COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary, "validate": _cmd_validate, "describe": _cmd_describe,
              "generate": _cmd_generate, "check": _cmd_check, "vectors": _cmd_vectors,
              "diff": _cmd_diff, "init": _cmd_init, "cmd": _cmd_cmd,
-             "conform": _cmd_conform}
+             "conform": _cmd_conform, "spy": _cmd_spy}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,0 +1,109 @@
+"""From a Watcher's state (and the descriptors given with --asset) to a Snapshot: per
+partition, its topics with endpoints, role, profile, rate and latest config; the
+participants; the findings."""
+from __future__ import annotations
+
+import time
+
+from rapidgen.spy.diagnose import diagnose
+from rapidgen.spy.model import AssetView, EndpointView, Snapshot, TopicView, plain, profile_of, rate, role_of
+
+
+class Declared:
+    """What the descriptors (--asset) say, by partition: roles, rates, config pairs."""
+
+    def __init__(self, tables_list: list[dict]) -> None:
+        self.roles: dict[tuple[str, str], str] = {}
+        self.rates: dict[tuple[str, str], float] = {}
+        self.pairs: dict[str, dict[str, str]] = {}
+        self.names: dict[str, str] = {}
+        for t in tables_list:
+            part = t["ASSET"].get("partition", t["ASSET"]["name"])
+            self.names[part] = t["ASSET"]["name"]
+            for p in t["PUBLICATIONS"]:
+                self.roles[(part, p["topic"])] = p["role"]
+                if p.get("rate"):
+                    self.rates[(part, p["topic"])] = float(p["rate"])
+            for e in t["TELEMETRY"]:
+                cfg = e["topics"].get("config")
+                for role, topic in e["topics"].items():
+                    if cfg and role != "config":
+                        self.pairs.setdefault(part, {})[topic] = cfg
+
+
+def snapshot(w, declared: Declared) -> Snapshot:
+    eps = [e for e in w.discovery.endpoints.values() if w.wanted(e.partitions)]
+    parts = sorted({p for e in eps for p in e.partitions})
+    roles = {}
+    for e in eps:
+        for p in e.partitions:
+            roles[(p, e.topic)] = role_of(e.type_name, declared.roles.get((p, e.topic)))
+    snap = Snapshot(w.domain, time.monotonic() - w.started)
+    for key, p in sorted(w.discovery.participants.items()):
+        props = p.properties
+        snap.participants.append({"key": key, "process": props.get("__ProcessName"), "pid": props.get("__Pid"),
+                                  "host": props.get("__Hostname"),
+                                  "partitions": sorted({x for e in eps if e.participant == key for x in e.partitions})})
+    for part in parts:
+        here = [e for e in eps if part in e.partitions]
+        asset = AssetView(part, declared.names.get(part, part), sorted({e.participant for e in here}))
+        for topic in sorted({e.topic for e in here}):
+            mine = [e for e in here if e.topic == topic]
+            type_name = next((e.type_name for e in mine if e.kind == "writer"), mine[0].type_name)
+            tv = TopicView(part, topic, type_name, roles[(part, topic)], declared_rate=declared.rates.get((part, topic)))
+            for e in mine:
+                prof, expected = profile_of(e.qos, e.type_name, e.kind == "writer")
+                tv.expected_profile = expected
+                view = EndpointView(e.kind, e.key, e.participant, e.type_name, e.qos.text(), prof)
+                (tv.writers if e.kind == "writer" else tv.readers).append(view)
+            seen = w.seen(topic, part)
+            tv.samples = len(seen)
+            tv.decodable = (topic, type_name) not in w.undecodable
+            for view in tv.writers:
+                mine_seen = [s for s in seen if s.writer == view.key]
+                stamps = sorted(s.stamp for s in mine_seen if s.stamp is not None)
+                view.rate = rate(stamps) if len(stamps) == len(mine_seen) else rate(sorted(s.at for s in mine_seen))
+            rates = sorted(v.rate for v in tv.writers if v.rate is not None)
+            tv.rate = rates[len(rates) // 2] if rates else None
+            if seen and tv.role in ("config", "state"):
+                tv.latest = plain(seen[-1].sample)
+                if tv.role == "config":
+                    name = tv.latest.get("hdr", {}).get("assetName")
+                    if name and part not in declared.names:
+                        asset.name = name
+            asset.topics.append(tv)
+        snap.assets.append(asset)
+    snap.findings = diagnose(w, roles, declared.pairs)
+    return snap
+
+
+def config_lines(cfg: dict) -> list[str]:
+    """A decoded config as the operator reads it: CommandConfig as describe prints the
+    command dictionary; joint definitions; value keys; other configs' scalar fields."""
+    out = []
+    if "availableSubsystemTypes" in cfg:
+        users: dict[str, list[str]] = {}
+        for s in cfg.get("availableSubsystems", []):
+            users.setdefault(s["subsystemTypeName"], []).append(s["name"])
+        for t in cfg["availableSubsystemTypes"]:
+            out.append(f"{t['name']}: {', '.join(users.get(t['name'], [])) or '(no subsystem)'}")
+            for c in t["commands"]:
+                flags = [f for f in ("abortable", "suspendable") if c.get(f)]
+                params = ", ".join(f"{p['key']}: {p['type']}" for p in c["parameters"])
+                out.append(f"  {c['name']}({params})" + (f"  [{', '.join(flags)}]" if flags else ""))
+    if "jointDefinitions" in cfg:
+        out.append(f"joint group {cfg.get('jointGroupName', '')!r}: "
+                   + ", ".join(f"{j['frameName']}/{j['dof']}" for j in cfg["jointDefinitions"]))
+    if "valueKeys" in cfg:
+        out.append("value keys: " + ", ".join(f"{v['key']}:{_union_type(v)}" for v in cfg["valueKeys"]))
+    if not out:
+        out.append(", ".join(f"{k}={v!r}" for k, v in cfg.items() if k != "hdr" and not isinstance(v, (dict, list))))
+    return out
+
+
+def _union_type(v: dict) -> str:
+    """KeyTypePair has its type; KeyTypeValueTriple's is its value's discriminator."""
+    if isinstance(v.get("type"), str):
+        return v["type"].removeprefix("RAPID_")
+    value = v.get("value")
+    return next(iter(value)).removeprefix("RAPID_") if isinstance(value, dict) and value else "?"
