@@ -17,11 +17,13 @@ class Declared:
         self.rates: dict[tuple[str, str], float] = {}
         self.pairs: dict[str, dict[str, str]] = {}
         self.names: dict[str, str] = {}
+        self.profiles: dict[tuple[str, str], str] = {}
         for t in tables_list:
             part = t["ASSET"].get("partition", t["ASSET"]["name"])
             self.names[part] = t["ASSET"]["name"]
             for p in t["PUBLICATIONS"]:
                 self.roles[(part, p["topic"])] = p["role"]
+                self.profiles[(part, p["topic"])] = p["qos"]
                 if p.get("rate"):
                     self.rates[(part, p["topic"])] = float(p["rate"])
             for e in t["TELEMETRY"]:
@@ -52,7 +54,8 @@ def snapshot(w, declared: Declared) -> Snapshot:
             type_name = next((e.type_name for e in mine if e.kind == "writer"), mine[0].type_name)
             tv = TopicView(part, topic, type_name, roles[(part, topic)], declared_rate=declared.rates.get((part, topic)))
             for e in mine:
-                prof, expected = profile_of(e.qos, e.type_name, e.kind == "writer")
+                prof, expected = profile_of(e.qos, e.type_name, e.kind == "writer",
+                                            declared=declared.profiles.get((part, topic)))
                 tv.expected_profile = expected
                 view = EndpointView(e.kind, e.key, e.participant, e.type_name, e.qos.text(), prof)
                 (tv.writers if e.kind == "writer" else tv.readers).append(view)

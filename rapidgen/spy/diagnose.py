@@ -85,7 +85,7 @@ def _qos(w, roles, _pairs):
             wq, rq = lib.effective(expected) if expected else (None, None)
             problems = []
             if rd.qos.reliability == "Reliable" and wr.qos.reliability == "BestEffort":
-                side = _side(wq and wq.reliability == "reliable", rq and rq.reliability == "reliable")
+                side = _side(wq and wq.reliability == "reliable", rq and rq.reliability != "reliable")
                 problems.append(f"reliability: reader requests RELIABLE, writer offers BEST_EFFORT ({side})")
             wd, rdur = _DURABILITY_RANK.get(wr.qos.durability or "", 0), _DURABILITY_RANK.get(rd.qos.durability or "", 0)
             if rdur > wd:
@@ -145,7 +145,7 @@ def layout_diff(w, endpoint, stream) -> str:
         return "layout differs (the writer sent no type information)"
     try:
         from cyclonedds.dynamic import get_types_for_typeid
-        theirs, _ = get_types_for_typeid(w.dp, tid, 1.0)
+        theirs, _ = get_types_for_typeid(w.dp, tid, 1_000_000_000)  # timeout in ns
     except Exception as exc:  # type lookup failed or timed out
         return f"layout differs (type information not resolved: {type(exc).__name__})"
     a = [(f.name, _tname(f.type)) for f in dataclasses.fields(ours)]
@@ -256,10 +256,10 @@ def _acks(w, roles, _pairs):
         if not st.type_name.endswith("::Ack"):
             continue
         since = max(w.started, listening.get(st.partition, w.started))
-        for s in st.seen:
-            # only acks sent well after we listened for commands: earlier ones answer commands we could not see
-            if s.at < since + 1.0 or (s.stamp is not None and s.stamp < w.started_wall + 1.0):
-                continue
-            if s.sample.cmdId not in sent:
-                yield Finding("SPY-ACK-01", st.partition, st.topic, f"ack {s.sample.status.name if hasattr(s.sample.status, 'name') else s.sample.status} "
-                              f"for cmdId {s.sample.cmdId!r} from {s.sample.hdr.srcName or '?'}: no command with that cmdId was seen")
+        ghosts = [s.sample for s in st.seen if s.at >= since + 1.0
+                  and (s.stamp is None or s.stamp >= w.started_wall + 1.0)  # earlier: commands we could not see
+                  and s.sample.cmdId not in sent]
+        if ghosts:
+            ids = sorted({a.cmdId for a in ghosts})
+            yield Finding("SPY-ACK-01", st.partition, st.topic, f"{len(ghosts)} ack(s) name {len(ids)} cmdId(s) no "
+                          f"command seen carried (e.g. {ids[0]!r} from {ghosts[0].hdr.srcName or '?'!r})")

@@ -27,13 +27,15 @@ def role_of(type_name: str, declared: str | None = None) -> str:
     return next((role for suffix, role in ROLE_BY_SUFFIX if last.endswith(suffix)), "other")
 
 
-def profile_of(qos, type_name: str, writer: bool, library: QosSpec | None = None) -> tuple[str | None, str | None]:
+def profile_of(qos, type_name: str, writer: bool, library: QosSpec | None = None,
+               declared: str | None = None) -> tuple[str | None, str | None]:
     """(the library profile whose effective policies the announced QoS has, the profile
     the library assigns to the type). Reliability, durability and history kind are
     compared; depth is the endpoint's own (runtime ack writers keep 8) and is not.
-    The expected profile wins among equals (Config, State and ReliableDurable agree)."""
+    The expected profile (the descriptor's, else the library's rule for the type) wins
+    among equals (Config, State and ReliableDurable agree)."""
     lib = library or default_library()
-    expected = lib.profile_for_type(type_name.replace(".", "::"))
+    expected = declared if declared and lib.has_profile(declared) else lib.profile_for_type(type_name.replace(".", "::"))
     seen = (_RELIABILITY.get(qos.reliability or ""), _DURABILITY.get(qos.durability or ""),
             _HISTORY.get(qos.history or "") if qos.history else None)
     names = [expected] if expected else []
@@ -121,7 +123,8 @@ class Snapshot:
 
     def as_dict(self) -> dict:
         return {"domain": self.domain, "seconds": round(self.seconds, 3), "participants": self.participants,
-                "assets": [dataclasses.asdict(a) for a in self.assets],
+                "assets": [dict(dataclasses.asdict(a), topics=[dict(dataclasses.asdict(t), profile=t.profile)
+                                                               for t in a.topics]) for a in self.assets],
                 "findings": [f.as_dict() for f in self.findings]}
 
 
