@@ -21,11 +21,20 @@ def qos_mismatch(ep, profile: str, accept: set[str] = frozenset()) -> str | None
         want = PROFILES.get(name.split("::")[-1])
         if want is None:
             return None
-        got = (ep.qos.reliability, ep.qos.durability, ep.qos.history if ep.qos.history else want[2])
+        got = (ep.qos.reliability, ep.qos.durability, _history(ep.qos) or want[2])
         if got == want:
             return None
     want = PROFILES[profile.split("::")[-1]]
     return f"{ep.topic}: {ep.qos.text()} (profile {profile.split('::')[-1]}: {', '.join(want)})"
+
+
+def _history(qos) -> str | None:
+    """The announced history kind, or None when it may not have been announced: DDSI's
+    discovery data need not carry history (Fast DDS 2.9 leaves it out) and Cyclone shows
+    a missing policy as its default KeepLast(1), so that value proves nothing."""
+    if qos.history == "KeepLast" and qos.depth in (1, None):
+        return None
+    return qos.history
 
 
 def profile_of(s, topic: str) -> str:

@@ -78,8 +78,9 @@ def main() -> int:
     elif kind == "sample-qos":  # reliable where the profile says best effort: compatible, but not the profile
         topic = next(p["topic"] for p in tables.publications if p["qos"] == "RapidSampleQos" and p.get("rate"))
         qos = PatchedQos(qos, {topic: Qos(Policy.Reliability.Reliable(duration_ms := 100_000_000))})  # noqa: F841
-    elif kind == "command-reader-qos":  # keeps only the last command: commands can be dropped
-        qos = PatchedQos(qos, readers={"rapid_command": Qos(Policy.History.KeepLast(1))})
+    elif kind == "command-reader-qos":  # keeps only the last 2 commands: commands can be dropped
+        # (not KeepLast(1): discovery shows an unannounced history as KeepLast(1), see DDS-02)
+        qos = PatchedQos(qos, readers={"rapid_command": Qos(Policy.History.KeepLast(2))})
     elif kind == "wrong-config":
         cfg = tables.configs["rapid_command_config"]
         value = dict(cfg[1], availableSubsystems=cfg[1]["availableSubsystems"][:-1])
