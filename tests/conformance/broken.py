@@ -33,6 +33,9 @@ KINDS = {
     "sample-qos": "DDS-01",
     "command-reader-qos": "DDS-02",
     "no-control-gate": "ACC-03",
+    "wrong-partition": "DDS-05",
+    "queue-status-code": "QUE-01",
+    "queue-record-status": "QUE-05",
     "astrobee-acks": None,
 }
 # What a kind may break besides its check, depending on timing: a keep-last-1 command
@@ -152,7 +155,22 @@ def main() -> int:
             on_command(sample)
         bridge._on_command = fragile
 
+    if kind == "queue-status-code":  # 2 is none of suspended (-1), idle (0), active (1)
+        queue_state = bridge.queue_state
+        bridge.queue_state = lambda code, *lists: queue_state(2, *lists)
+    elif kind == "queue-record-status":  # pending commands reported as already succeeded
+        records = M.queue_state
+
+        def succeeded(rapid_, hdr, pending, active, completed):
+            return records(rapid_, hdr, [(c, r, "Q_STATUS_SUCCEEDED") for c, r, _ in pending], active, completed)
+        M.queue_state = succeeded
+
     bridge.start()
+    if kind == "wrong-partition":  # one more agent-state writer, in the default partition
+        from cyclonedds.pub import DataWriter, Publisher
+        stray = DataWriter(Publisher(bridge.node.participant), bridge.node.topic("rapid_agent_state", rapid.AgentState),
+                           qos=qos.writer("rapid_agent_state"))
+        stray.write(rapid.AgentState(hdr=M.header(rapid, tables.name, tables.name, bridge.serials.start)))
     print(f"bridge ready: broken asset ({kind}) {tables.name}, domain {domain}", flush=True)
     try:
         bridge.wait(float(os.environ.get("BROKEN_SECONDS", "120")))
