@@ -12,6 +12,7 @@ from typing import Sequence
 
 from rapidgen import __version__, backends, codes
 from rapidgen.diagnostics import DiagnosticSink, FileLineCache, Severity, render
+from rapidgen.argtypes import domain_id
 
 
 def _common_idl_args(p: argparse.ArgumentParser) -> None:
@@ -131,7 +132,7 @@ def _add_cmd_parser(sub) -> None:
     p.add_argument("--target", metavar="CMDID", help="the queued command INSERT, REPLACE or DELETE acts on")
     p.add_argument("--id", metavar="CMDID", help="this command's cmdId (default: a fresh unique one)")
     p.add_argument("--source", default="rapidgen", metavar="NAME", help="cmdSrc and srcName (default rapidgen)")
-    p.add_argument("--domain", type=int, metavar="N", help="DDS domain (default: the asset's)")
+    p.add_argument("--domain", type=domain_id, metavar="N", help="DDS domain (default: the asset's)")
     p.add_argument("--transport", choices=("local", "lan", "wan"), help="Cyclone transport of the asset's QoS "
                    "files (default: local, loopback only, unless CYCLONEDDS_URI is set)")
     p.add_argument("--timeout", type=float, default=30.0, metavar="S",

@@ -7,12 +7,13 @@ from __future__ import annotations
 import os
 import sys
 import time
+from rapidgen.argtypes import domain_id
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("conform", help="check a live asset against the RAPID protocol (needs cyclonedds)")
     p.add_argument("file", metavar="ASSET.yaml")
-    p.add_argument("--domain", type=int, default=None, metavar="N", help="DDS domain (default: the descriptor's)")
+    p.add_argument("--domain", type=domain_id, default=None, metavar="N", help="DDS domain (default: the descriptor's)")
     p.add_argument("--transport", choices=("local", "lan", "wan"), default=None,
                    help="Cyclone transport from the generated QoS files (default: CYCLONEDDS_URI if set, else local)")
     p.add_argument("--only", action="append", default=[], metavar="IDS",

@@ -8,6 +8,7 @@ import os
 import sys
 import tempfile
 import time
+from rapidgen.argtypes import domain_id
 
 BASE_DESCRIPTOR = """version: 1
 asset: {name: RapidSpy, kind: other}
@@ -23,7 +24,7 @@ def add_parser(sub) -> None:
                        "QoS profile, rate and latest configs, and diagnose known faults (docs/spy.md). "
                        "`rapidgen spy echo TOPIC` prints a topic's samples.")
     p.add_argument("echo", nargs="*", metavar="echo TOPIC", help="print TOPIC's samples instead of the overview")
-    p.add_argument("--domain", type=int, metavar="N", help="DDS domain (default: the first --asset's, else 0)")
+    p.add_argument("--domain", type=domain_id, metavar="N", help="DDS domain (default: the first --asset's, else 0)")
     p.add_argument("--transport", choices=("local", "lan", "wan"),
                    help="Cyclone transport (default: CYCLONEDDS_URI if set, else local: loopback only)")
     p.add_argument("--partition", action="append", default=[], metavar="P", help="watch only partition P (repeatable)")

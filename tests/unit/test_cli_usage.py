@@ -27,3 +27,11 @@ def test_help_lists_the_targets(args):
 def test_package_help_names_the_real_defaults():
     out = rapidgen("generate", "--help").out
     assert "rapid_types" in out and "crate" not in out
+
+
+@pytest.mark.parametrize("args", [["cmd", "specs/assets/k10.yaml", "Admin", "noOp"], ["spy", "--once"],
+                                  ["conform", "specs/assets/k10.yaml"]])
+@pytest.mark.parametrize("domain", ["233", "-1", "x"])
+def test_a_domain_outside_0_232_is_a_usage_error(args, domain):
+    res = rapidgen(*args, "--domain", domain)
+    assert res.code == 2 and "0..232" in res.err
