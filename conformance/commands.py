@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import time
+from typing import Any
 
 from rapidgen.conform.asset import valid_args, wrong_type
 from rapidgen.conform.model import RECOMMENDED, REQUIRED, Unsupported, check, expect
@@ -128,7 +129,7 @@ def late_acks(s):
     cid = s.memo.get("valid")
     reader = s.client.profile_reader("rapid_ack", "rapid::Ack")
     end = time.monotonic() + 3.0
-    seen = []
+    seen: list[Any] = []  # rapid::Ack samples
     while time.monotonic() < end and not any(a.cmdId == cid for a in seen):
         seen += [a for a in reader.take(N=256) if hasattr(a, "cmdId")]
         time.sleep(0.05)
@@ -212,9 +213,10 @@ def _judged(s) -> list[str]:
 def survives(s):
     c = _harmless(s)
     p = _with_params(s) if s.facts.with_params() else c
-    odd = [dict(args=[("RAPID_DOUBLE", float("nan"))] * 16), dict(args=[("RAPID_STRING", "\x01\x7f\u00e9" * 30)]),
-           dict(args=[(t, v) for t, v in valid_args(p)], cmd_id=""), dict(args=[("RAPID_MAT33f", [float("inf")] * 9)]),
-           dict(args=[(t, v) for t, v in valid_args(p)], action="QUEUE_INSERT", target="\u00e9" * 31)]
+    odd: list[dict[str, Any]] = [  # keyword arguments of send()
+        dict(args=[("RAPID_DOUBLE", float("nan"))] * 16), dict(args=[("RAPID_STRING", "\x01\x7f\u00e9" * 30)]),
+        dict(args=[(t, v) for t, v in valid_args(p)], cmd_id=""), dict(args=[("RAPID_MAT33f", [float("inf")] * 9)]),
+        dict(args=[(t, v) for t, v in valid_args(p)], action="QUEUE_INSERT", target="\u00e9" * 31)]
     for kw in odd:
         s.client.send(p.subsystem, p.name, source=s.source, **kw)
         s.client.send("\u00e9" * 15, "\x01x" * 31, source=s.source, **kw)

@@ -1,6 +1,8 @@
 """DDS: what the asset's endpoints announce in discovery (rapid-protocol.md 1, 5b, 6)."""
 from __future__ import annotations
 
+from collections.abc import Set as AbstractSet
+
 from rapidgen.conform.model import REQUIRED, check, expect
 
 PROFILES = {  # profile -> (reliability, durability, history kind): rapid-protocol.md 6
@@ -14,7 +16,7 @@ PROFILES = {  # profile -> (reliability, durability, history kind): rapid-protoc
 ALSO = {"rapid::JointSample": {"RapidReliableDurableQos"}}  # 5b: some deployments
 
 
-def qos_mismatch(ep, profile: str, accept: set[str] = frozenset()) -> str | None:
+def qos_mismatch(ep, profile: str, accept: AbstractSet[str] = frozenset()) -> str | None:
     """Why the endpoint's announced QoS is none of the profiles, or None. History is
     compared by kind only (depth is the endpoint's own business and is not matched)."""
     for name in (profile, *accept):
@@ -61,8 +63,7 @@ def reader_qos(s):
     s.needs_commands()
     eps = s.wait_endpoint("reader", "rapid_command")
     expect(bool(eps), "a reader of rapid_command", "none")
-    bad = [qos_mismatch(ep, "RapidReliableQos") for ep in eps]
-    bad = [b for b in bad if b]
+    bad = [b for ep in eps if (b := qos_mismatch(ep, "RapidReliableQos"))]
     expect(not bad, "Reliable, Volatile, KeepAll", "; ".join(bad))
 
 

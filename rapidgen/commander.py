@@ -19,6 +19,7 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass
+from types import ModuleType
 
 from rapidgen.diagnostics import DiagnosticSink, FileLineCache, SourceLoc, render
 
@@ -66,7 +67,7 @@ def _did_you_mean(name: str, choices) -> str:
 @dataclass
 class Asset:
     rapid: object  # the package's `rapid` module
-    qos_mod: object  # the package's `qos` module
+    qos_mod: ModuleType  # the package's `qos` module
     tables_data: dict  # the asset_tables module's literals
 
 
@@ -125,7 +126,7 @@ def merged_tables(data: dict, config: dict) -> dict:
     """The tables with the live config's subsystems and commands; a parameter keeps the
     descriptor's unit, range, allowed values and default when its name and type agree."""
     known = data["COMMANDS"]
-    commands = {}
+    commands: dict[str, dict] = {}
     for t in config["availableSubsystemTypes"]:
         out = commands[t["name"]] = {}
         for c in t["commands"]:

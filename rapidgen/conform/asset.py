@@ -135,6 +135,14 @@ class AssetFacts:
         return next((t for t in self.telemetry if topic in t["topics"].values()), None)
 
 
+def _end(lo: float | None, hi: float | None) -> float:
+    """The range's lower end, else its upper one (a range outside 0.1 has one)."""
+    end = lo if lo is not None else hi
+    if end is None:
+        raise ValueError("a parameter range with neither end")
+    return end
+
+
 def valid_value(p: dict):
     """A value the parameter accepts: its default, its first allowed value, else one
     inside its range."""
@@ -142,16 +150,17 @@ def valid_value(p: dict):
         return p["default"]
     if p.get("allowed"):
         return p["allowed"][0]
-    lo, hi = p.get("min"), p.get("max")
+    lo: float | None = p.get("min")
+    hi: float | None = p.get("max")
     t = p["type"]
     if t == "RAPID_BOOL":
         return True
     if t == "RAPID_STRING":
         return "conformance"
-    mid = 0.1 if (lo is None or lo <= 0.1) and (hi is None or hi >= 0.1) else (lo if lo is not None else hi)
+    mid = 0.1 if (lo is None or lo <= 0.1) and (hi is None or hi >= 0.1) else _end(lo, hi)
     if t in ("RAPID_INT", "RAPID_LONGLONG"):
         v = int(math.ceil(mid))
-        return v if (lo is None or v >= lo) and (hi is None or v <= hi) else int(lo)
+        return v if (lo is None or v >= lo) and (hi is None or v <= hi) else int(_end(lo, hi))
     zero = 0.0 if lo is None or lo <= 0 else float(lo)
     if t == "RAPID_VEC3d":
         return [float(mid), zero, zero]

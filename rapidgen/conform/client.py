@@ -10,6 +10,10 @@ import os
 import threading
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from cyclonedds.sub import DataReader
 
 COMMAND, ACK = "rapid_command", "rapid_ack"
 
@@ -52,7 +56,7 @@ class Client:
         self.incompatible: dict[str, list[str]] = {}  # topic -> ["requested: policy 2", ...]
         self._topics: dict[str, object] = {}
         self.lock = threading.Condition()
-        self.readers: dict[str, object] = {}
+        self.readers: dict[str, DataReader[Any]] = {}
         self.received: dict[str, list[Received]] = {}
         self.acks: list[AckSeen] = []
         self.sent: dict[str, object] = {}  # cmdId -> Command we wrote
@@ -160,6 +164,8 @@ class Client:
                         targetCmdId=target)
         with self.lock:
             self.sent.setdefault(cmd_id, cmd)
+        if self.command_writer is None:  # callers check Session.needs_commands() first
+            raise RuntimeError("the asset takes no commands: no command writer")
         self.command_writer.write(cmd)
         return cmd_id
 

@@ -44,8 +44,7 @@ def junit(results: list[Result], asset: str, seconds: float) -> bytes:
         c = r.check
         case = ET.SubElement(suite, "testcase", classname=f"conformance.{c.id.split('-')[0]}",
                              name=f"{c.id} {c.title}", time=f"{r.seconds:.3f}")
-        ET.SubElement(case, "properties")
-        props = case.find("properties")
+        props = ET.SubElement(case, "properties")
         for k, v in (("level", c.level), ("rule", c.rule)):
             ET.SubElement(props, "property", name=k, value=v)
         if r.outcome == FAIL:

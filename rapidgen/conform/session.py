@@ -79,6 +79,8 @@ class Session:
     def wait_command_match(self, timeout: float = 10.0) -> bool:
         """Our command writer matched the asset's reader, and our ack reader its writer."""
         w, r = self.client.command_writer, self.client.ack_reader
+        if w is None or r is None:  # no subsystems: needs_commands() reports it
+            return False
         end = time.monotonic() + timeout
         while time.monotonic() < end:
             if w.get_matched_subscriptions() and r.get_matched_publications():

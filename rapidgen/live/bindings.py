@@ -11,8 +11,25 @@ import sys
 import tempfile
 from dataclasses import dataclass, field
 from types import ModuleType
+from typing import TYPE_CHECKING, Protocol
 
 from rapidgen.diagnostics import DiagnosticSink
+
+if TYPE_CHECKING:
+    from cyclonedds.qos import Qos
+
+
+class RapidQosLike(Protocol):
+    """What the live tools use of a generated package's RapidQos (a class imported at run
+    time from the temporary folder, so the checker cannot see it)."""
+    topics: tuple[str, ...]
+
+    def key(self, topic: str) -> str: ...
+    def writer(self, topic: str) -> Qos: ...
+    def reader(self, topic: str) -> Qos: ...
+    def publisher(self, topic: str | None = None) -> Qos: ...
+    def subscriber(self, topic: str | None = None) -> Qos: ...
+    def cyclonedds_config(self, transport: str | None = None) -> str: ...
 
 
 @dataclass
@@ -21,7 +38,7 @@ class AssetBindings:
     folder: str  # the temporary output folder (python/, qos/)
     rapid: ModuleType  # the generated `rapid` module: rapid.Command, rapid.Ack, ...
     tables: dict  # the generated asset_tables module's literals (ASSET, COMMANDS, ...)
-    qos: object  # the package's RapidQos
+    qos: RapidQosLike  # the package's RapidQos
     _tmp: object = field(default=None, repr=False)
 
     def type_class(self, scoped: str):

@@ -64,8 +64,8 @@ class TypeMap:
                 out = f"std::array<{out}, {d}>"
             return out
         if isinstance(t, ir.TypeRef):
-            d = self.decl(t)
-            if d is None or d.kind not in ("struct", "union", "enum", "typedef"):
+            decl = self.decl(t)
+            if decl is None or decl.kind not in ("struct", "union", "enum", "typedef"):
                 raise Unsupported(f"{t.kind} '{t.name}' is not supported by the cpp target", loc)
             return self.q(t.name)
         raise Unsupported(f"'{t}' is not supported by the cpp target (map, fixed)", loc)
