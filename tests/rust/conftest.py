@@ -32,7 +32,10 @@ def cargo() -> str:
 
 def run(cmd: list[str], cwd: Path, target: Path, timeout: float = 900) -> subprocess.CompletedProcess:
     env = dict(os.environ, CARGO_TARGET_DIR=str(target), CARGO_TERM_COLOR="never")
-    res = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
+    # stdin closed: cargo probes `rustc -` with the inherited stdin, which under a full
+    # test run may hold another test's output
+    res = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env,
+                         stdin=subprocess.DEVNULL)
     assert res.returncode == 0, f"{' '.join(cmd)}\n{res.stdout[-3000:]}\n{res.stderr[-6000:]}"
     return res
 

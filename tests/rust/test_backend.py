@@ -93,7 +93,7 @@ def _generate(tmp_path, idl: str, *args: str) -> subprocess.CompletedProcess:
 
 def _clippy(crate: Path, target, tmp_path) -> subprocess.CompletedProcess | None:
     """clippy -D warnings on a copy of the crate (cargo writes Cargo.lock beside it)."""
-    if subprocess.run([cargo(), "clippy", "--version"], capture_output=True).returncode != 0:
+    if subprocess.run([cargo(), "clippy", "--version"], capture_output=True, stdin=subprocess.DEVNULL).returncode != 0:
         return None
     copy = tmp_path / "clippy" / crate.name
     shutil.copytree(crate, copy)

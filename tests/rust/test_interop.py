@@ -29,7 +29,8 @@ EXTRA = ["rapid::FileAnnounce", "rapid::JointConfig", "rapid::JointSample"]
 @pytest.fixture(scope="session")
 def rust_peer(rust_target) -> Path:
     """The RustDDS peer (tests/rust/peer, Cargo.lock pinned), built in the session's target folder."""
-    version = subprocess.run([cargo(), "--version"], capture_output=True, text=True).stdout.split()
+    version = subprocess.run([cargo(), "--version"], capture_output=True, text=True,
+                             stdin=subprocess.DEVNULL).stdout.split()
     if tuple(int(x) for x in version[1].split(".")[:2]) < RUSTDDS_MSRV:
         pytest.skip(f"RustDDS 0.15 needs Rust >= 1.88, this is {version[1]} (Debian 12's cargo is 1.63: use rustup)")
     start = time.monotonic()
