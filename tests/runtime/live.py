@@ -30,7 +30,13 @@ class BridgeProcess:
                                       "--sim-speed", "20", *extra], cwd=pydir, env=env_for(pydir, package),
                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.lines: queue.Queue = queue.Queue()
-        threading.Thread(target=self._pump, daemon=True).start()
+        self.err: list[str] = []
+        # One reader thread per pipe: stop() must not read stdout too (it would close the
+        # pipe under the pump), and stderr must be drained so a chatty bridge never blocks.
+        self._threads = [threading.Thread(target=self._pump, daemon=True),
+                         threading.Thread(target=lambda: self.err.extend(self.proc.stderr), daemon=True)]
+        for t in self._threads:
+            t.start()
 
     def _pump(self) -> None:
         for line in self.proc.stdout:
@@ -41,18 +47,22 @@ class BridgeProcess:
         line = self.lines.get(timeout=timeout)
         if line is None or not line.startswith("bridge ready"):
             self.proc.kill()
-            raise AssertionError(f"bridge did not start: {line!r} {self.proc.stderr.read()[-2000:]}")
+            self.proc.wait()
+            self._threads[1].join(timeout=5)
+            raise AssertionError(f"bridge did not start: {line!r} {''.join(self.err)[-2000:]}")
         return line
 
     def stop(self) -> str:
         if self.proc.poll() is None:
             self.proc.terminate()
         try:
-            _out, err = self.proc.communicate(timeout=20)
+            self.proc.wait(timeout=20)
         except subprocess.TimeoutExpired:
             self.proc.kill()
-            _out, err = self.proc.communicate()
-        return err
+            self.proc.wait()
+        for t in self._threads:
+            t.join(timeout=5)
+        return "".join(self.err)
 
 
 def ground(check: str, pydir: Path, package: str, domain: int, python: str = sys.executable) -> dict:
