@@ -40,6 +40,24 @@ class GenerationError(Exception):
         raise NotImplementedError
 
 
+class UnsupportedInput(GenerationError):
+    """The model uses what a target cannot express; `problems` says what and where. Each
+    target subclasses it with its diagnostic code and the doc that lists what it supports."""
+
+    CODE = ""
+    TARGET = ""
+
+    def __init__(self, problems: list[tuple[str, SourceLoc | None]]) -> None:
+        super().__init__("; ".join(f"{loc}: {msg}" if loc else msg for msg, loc in problems))
+        self.problems = problems
+
+    def report(self, sink: "DiagnosticSink") -> None:
+        """Every problem as an error diagnostic at its IDL location."""
+        for msg, loc in self.problems:
+            sink.error(self.CODE, msg, loc or SourceLoc("<input>", 0, 0),
+                       f"see docs/{self.TARGET}-backend.md for what the {self.TARGET} target supports")
+
+
 class Backend(Protocol):
     NAME: str
 

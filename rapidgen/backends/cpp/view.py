@@ -9,11 +9,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from rapidgen.backends.base import GenerationError
+from rapidgen.backends import base
 from rapidgen.backends.cpp import namer
 from rapidgen.backends.cpp.typemap import ENUM_TYPES, UNBOUNDED, TypeMap, Unsupported, enum_size
 from rapidgen.backends.escape import cpp_str
-from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
 
 # The initial payload size Fast DDS preallocates per sample (it grows as needed): the
@@ -21,19 +21,11 @@ from rapidgen.model import ir
 INITIAL_PAYLOAD = 64 * 1024
 
 
-class UnsupportedInput(GenerationError):
-    """The model uses what the cpp target cannot express; `problems` says what and where."""
+class UnsupportedInput(base.UnsupportedInput):
+    """The model uses what the cpp target cannot express."""
 
     CODE = "RG1702"
-
-    def __init__(self, problems: list[tuple[str, SourceLoc | None]]) -> None:
-        super().__init__("; ".join(f"{loc}: {msg}" if loc else msg for msg, loc in problems))
-        self.problems = problems
-
-    def report(self, sink: DiagnosticSink) -> None:
-        for msg, loc in self.problems:
-            sink.error(self.CODE, msg, loc or SourceLoc("<input>", 0, 0),
-                       "see docs/cpp-backend.md for what the cpp target supports")
+    TARGET = "cpp"
 
 
 @dataclass

@@ -17,12 +17,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Literal
 
-from rapidgen.backends.base import GenerationError
+from rapidgen.backends import base
 from rapidgen.backends.escape import py_str
 from rapidgen.backends.python import namer
 from rapidgen.backends.python.layout import Layout, module_path, plan
 from rapidgen.backends.python.typemap import TypeMapper, Unsupported
-from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
 
 CYCLONEDDS_REQUIREMENT = "cyclonedds>=11.0.1,<12"
@@ -111,20 +111,11 @@ class PackageView:
     qos: QosRuntimeView
 
 
-class UnsupportedInput(GenerationError):
-    """The model uses what the python target cannot express; `problems` says what and where."""
+class UnsupportedInput(base.UnsupportedInput):
+    """The model uses what the python target cannot express."""
 
     CODE = "RG1701"
-
-    def __init__(self, problems: list[tuple[str, SourceLoc | None]]) -> None:
-        super().__init__("; ".join(f"{loc}: {msg}" if loc else msg for msg, loc in problems))
-        self.problems = problems
-
-    def report(self, sink: DiagnosticSink) -> None:
-        """Every problem as an error diagnostic (error[RG1701]) at its IDL location."""
-        for msg, loc in self.problems:
-            sink.error(self.CODE, msg, loc or SourceLoc("<input>", 0, 0),
-                       "see docs/python-backend.md for what the python target supports")
+    TARGET = "python"
 
 
 # -- building -------------------------------------------------------------------------------
