@@ -10,29 +10,21 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from rapidgen.backends.base import GenerationError
+from rapidgen.backends import base
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.rust import namer
 from rapidgen.backends.rust.typemap import ENUM_REPR, Unsupported, TypeMap, enum_size
-from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
 
 DEFAULT = "::core::default::Default::default()"
 
 
-class UnsupportedInput(GenerationError):
-    """The model uses what the rust target cannot express; `problems` says what and where."""
+class UnsupportedInput(base.UnsupportedInput):
+    """The model uses what the rust target cannot express."""
 
     CODE = "RG1703"
-
-    def __init__(self, problems: list[tuple[str, SourceLoc | None]]) -> None:
-        super().__init__("; ".join(f"{loc}: {msg}" if loc else msg for msg, loc in problems))
-        self.problems = problems
-
-    def report(self, sink: DiagnosticSink) -> None:
-        for msg, loc in self.problems:
-            sink.error(self.CODE, msg, loc or SourceLoc("<input>", 0, 0),
-                       "see docs/rust-backend.md for what the rust target supports")
+    TARGET = "rust"
 
 
 @dataclass
