@@ -214,7 +214,8 @@ class Builder:
 
     def _walk(self, s: ir.Struct, path: str) -> tuple[str, ir.Type]:
         """A key path ('hdr.srcName') as a Rust place (`self.hdr.src_name`) and the leaf's type."""
-        place, t, current = "self", None, s
+        place, t = "self", None
+        current: ir.Struct | None = s
         for part in path.split("."):
             member = next((m for m in self.model.all_members(current) if m.name == part), None) if current else None
             if member is None or current is None:
