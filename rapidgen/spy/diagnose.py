@@ -85,11 +85,13 @@ def _qos(w, roles, _pairs):
             wq, rq = lib.effective(expected) if expected else (None, None)
             problems = []
             if rd.qos.reliability == "Reliable" and wr.qos.reliability == "BestEffort":
-                side = _side(wq and wq.reliability == "reliable", rq and rq.reliability != "reliable")
+                side = _side(wq is not None and wq.reliability == "reliable",
+                             rq is not None and rq.reliability != "reliable")
                 problems.append(f"reliability: reader requests RELIABLE, writer offers BEST_EFFORT ({side})")
             wd, rdur = _DURABILITY_RANK.get(wr.qos.durability or "", 0), _DURABILITY_RANK.get(rd.qos.durability or "", 0)
             if rdur > wd:
-                side = _side(wq and wq.durability != "volatile", rq and rq.durability == "volatile")
+                side = _side(wq is not None and wq.durability != "volatile",
+                             rq is not None and rq.durability == "volatile")
                 problems.append(f"durability: reader requests {rd.qos.durability}, writer offers "
                                 f"{wr.qos.durability} ({side})")
             if wr.qos.ownership and rd.qos.ownership and wr.qos.ownership != rd.qos.ownership:
@@ -148,12 +150,12 @@ def layout_diff(w, endpoint, stream) -> str:
         theirs, _ = get_types_for_typeid(w.dp, tid, 1_000_000_000)  # timeout in ns
     except Exception as exc:  # type lookup failed or timed out
         return f"layout differs (type information not resolved: {type(exc).__name__})"
-    a = [(f.name, _tname(f.type)) for f in dataclasses.fields(ours)]
-    b = [(f.name, _tname(f.type)) for f in dataclasses.fields(theirs)] if dataclasses.is_dataclass(theirs) else []
+    a: list[tuple[str, str]] = [(f.name, _tname(f.type)) for f in dataclasses.fields(ours)]
+    b: list[tuple[str, str]] = [(f.name, _tname(f.type)) for f in dataclasses.fields(theirs)] if dataclasses.is_dataclass(theirs) else []
     for i in range(max(len(a), len(b))):
         x, y = (a[i] if i < len(a) else None), (b[i] if i < len(b) else None)
-        if x is None:
-            return f"member #{i + 1} '{y[0]}' is extra (RAPID's type has {len(a)} members)"
+        if x is None:  # i < max(len(a), len(b)), so b has member i
+            return f"member #{i + 1} '{b[i][0]}' is extra (RAPID's type has {len(a)} members)"
         if y is None:
             return f"member #{i + 1} '{x[0]}' ({x[1]}) is missing"
         if x[0] != y[0]:
@@ -196,7 +198,7 @@ def _partitions(w, roles, _pairs):
 
 def _asset_partitions(w) -> dict[str, str]:
     """asset name -> the partition its configs are published in."""
-    out = {}
+    out: dict[str, str] = {}
     for st in w.streams.values():
         if st.type_name.endswith("Config"):
             for s in st.seen[-1:]:

@@ -13,7 +13,8 @@ from rapidgen.spy.model import plain
 def echo(w, topic: str, as_json: bool, seconds: float | None, count: int | None, out=None) -> int:
     """Print until seconds pass, count samples were printed, or Ctrl-C. Returns how many."""
     out = out or sys.stdout
-    printed, cursor = 0, {}
+    printed = 0
+    cursor: dict[tuple[str, str, bool, bool], int] = {}  # stream key -> how many of its samples were printed
     end = None if seconds is None else time.monotonic() + seconds
     while end is None or time.monotonic() < end:
         w.step()

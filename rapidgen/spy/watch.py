@@ -6,6 +6,12 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from cyclonedds.domain import DomainParticipant
+    from cyclonedds.sub import DataReader, Subscriber
+    from cyclonedds.topic import Topic
 
 DURABLE = ("TransientLocal", "Transient", "Persistent")
 
@@ -24,28 +30,33 @@ class Stream:
     topic: str
     partition: str
     type_name: str
-    reader: object
+    reader: DataReader[Any]
     created: float
     seen: list[Seen] = field(default_factory=list)
-    _handles: dict = field(default_factory=dict)
+    _handles: dict[int, str] = field(default_factory=dict)
 
     def matched(self) -> set[str]:
         """GUIDs of the writers this reader matched (a RAPID-named writer missing here while
         its QoS allows a match has another layout)."""
-        out = set()
+        out: set[str] = set()
         for h in self.reader.get_matched_publications():
             try:
-                out.add(str(self.reader.get_matched_publication_data(h).key))
+                data = self.reader.get_matched_publication_data(h)
             except Exception:  # it left between the two calls
-                pass
+                continue
+            if data is not None:  # None: it left between the two calls
+                out.add(str(data.key))
         return out
 
-    def writer_of(self, handle) -> str | None:
+    def writer_of(self, handle: int) -> str | None:
         if handle not in self._handles:
             try:
-                self._handles[handle] = str(self.reader.get_matched_publication_data(handle).key)
+                data = self.reader.get_matched_publication_data(handle)
             except Exception:
                 return None
+            if data is None:
+                return None
+            self._handles[handle] = str(data.key)
         return self._handles[handle]
 
 
@@ -60,14 +71,14 @@ class Watcher:
         self.bindings = bindings
         self.partitions = partitions or []
         self.keep = keep
-        self.dp = DomainParticipant(domain)
+        self.dp: DomainParticipant | None = DomainParticipant(domain)
         self.discovery = Discovery(self.dp)
         self._types = BuiltinDataReader(self.dp, BuiltinTopicDcpsPublication)  # type ids, for layout diffs
         self.type_ids: dict[str, object] = {}
-        self.streams: dict[tuple, Stream] = {}
+        self.streams: dict[tuple[str, str, bool, bool], Stream] = {}
         self.undecodable: set[tuple[str, str]] = set()  # (topic, type name) we have no type for
-        self._topics: dict[str, object] = {}
-        self._subscribers: dict[str, object] = {}
+        self._topics: dict[str, Topic[Any]] = {}
+        self._subscribers: dict[str, Subscriber] = {}
         self.started = time.monotonic()
         self.started_wall = time.time()
 
@@ -85,11 +96,16 @@ class Watcher:
         return not self.partitions or any(p in self.partitions or p == "*" for p in partitions)
 
     # ---- readers -------------------------------------------------------------------------
-    def _subscriber(self, partition: str):
+    def _participant(self) -> DomainParticipant:
+        if self.dp is None:
+            raise RuntimeError("the watcher is closed")
+        return self.dp
+
+    def _subscriber(self, partition: str) -> Subscriber:
         if partition not in self._subscribers:
             from cyclonedds.qos import Policy, Qos
             from cyclonedds.sub import Subscriber
-            self._subscribers[partition] = Subscriber(self.dp, qos=Qos(Policy.Partition([partition])))
+            self._subscribers[partition] = Subscriber(self._participant(), qos=Qos(Policy.Partition([partition])))
         return self._subscribers[partition]
 
     def _stream(self, ep, partition: str) -> Stream | None:
@@ -107,11 +123,11 @@ class Watcher:
             return None
         try:
             if ep.topic not in self._topics:
-                self._topics[ep.topic] = Topic(self.dp, ep.topic, cls)
+                self._topics[ep.topic] = Topic(self._participant(), ep.topic, cls)
             qos = Qos(Policy.Reliability.Reliable(100_000_000) if reliable else Policy.Reliability.BestEffort,
                       Policy.Durability.TransientLocal if durable else Policy.Durability.Volatile,
                       Policy.History.KeepLast(256))
-            reader = DataReader(self._subscriber(partition), self._topics[ep.topic], qos=qos)
+            reader: DataReader[Any] = DataReader(self._subscriber(partition), self._topics[ep.topic], qos=qos)
         except Exception:  # e.g. one topic name used with two types: shown, not read
             self.undecodable.add((ep.topic, ep.type_name))
             return None
