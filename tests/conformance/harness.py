@@ -32,15 +32,9 @@ def conform(asset: str, domain: int, out: Path, *extra: str) -> dict:
 def broken_bridge(kind: str, asset: str, domain: int) -> BridgeProcess:
     """A BridgeProcess running tests/conformance/broken.py instead of the package's bridge."""
     pydir, package = python_dir(asset), SEEDS[asset]
-    bp = BridgeProcess.__new__(BridgeProcess)
     env = dict(env_for(pydir, package), BROKEN_SECONDS="180")
-    bp.proc = subprocess.Popen([sys.executable, "-m", "tests.conformance.broken", kind, str(pydir), package, str(domain)],
-                               cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    import queue
-    import threading
-    bp.lines = queue.Queue()
-    threading.Thread(target=bp._pump, daemon=True).start()
-    return bp
+    return BridgeProcess.of_command([sys.executable, "-m", "tests.conformance.broken", kind, str(pydir), package,
+                                     str(domain)], ROOT, env)
 
 
 def outcomes(report: dict) -> dict[str, str]:

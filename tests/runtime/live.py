@@ -26,9 +26,18 @@ def env_for(pydir: Path, package: str) -> dict:
 
 class BridgeProcess:
     def __init__(self, pydir: Path, package: str, domain: int, *extra: str, python: str = sys.executable) -> None:
-        self.proc = subprocess.Popen([python, "-m", f"{package}.bridge", "--simulate", "--domain", str(domain),
-                                      "--sim-speed", "20", *extra], cwd=pydir, env=env_for(pydir, package),
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self._spawn([python, "-m", f"{package}.bridge", "--simulate", "--domain", str(domain), "--sim-speed", "20",
+                     *extra], pydir, env_for(pydir, package))
+
+    @classmethod
+    def of_command(cls, argv: list[str], cwd: Path, env: dict) -> "BridgeProcess":
+        """Another program in the bridge's place (e.g. a deliberately broken asset)."""
+        bp = cls.__new__(cls)
+        bp._spawn(argv, cwd, env)
+        return bp
+
+    def _spawn(self, argv: list[str], cwd: Path, env: dict) -> None:
+        self.proc = subprocess.Popen(argv, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.lines: queue.Queue = queue.Queue()
         self.err: list[str] = []
         # One reader thread per pipe: stop() must not read stdout too (it would close the
