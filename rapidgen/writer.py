@@ -79,7 +79,17 @@ def digest(text: str) -> str:
 # --- single files (`ir -o`, `vectors -o`) ---------------------------------------------
 
 def write_text_atomic(path: str, text: str) -> bool:
-    """Write text to path unless it already holds exactly that; returns True if written."""
+    """Write text to path unless it already holds exactly that; returns True if written.
+    A device or pipe (`-o /dev/null`) is written into, never replaced: renaming a file over
+    it would turn /dev/null into a regular file for every process on the machine."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        mode = 0
+    if mode and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        return True
     staged = _stage(path, text)
     if staged is None:
         return False

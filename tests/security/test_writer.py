@@ -348,3 +348,24 @@ def test_a_run_that_cannot_get_the_lock_fails_clearly(demo, monkeypatch):
     with writer._locked(str(out.resolve()), exclusive=True):
         assert not write_outputs(str(work / "out"), {"python": [F("x.py", "1\n")]}, sink)
     assert [d.code for d in sink.diagnostics] == ["RG0824"] and snapshot(out) == before
+
+
+def test_output_to_a_device_writes_into_it_and_never_replaces_it(tmp_path):
+    # `rapidgen ir -o /dev/null` as root replaced the device with a regular file (then every
+    # program's "discarded" output piled up in it); a FIFO stands in for the device here
+    import os
+    import stat
+    import threading
+
+    from tests.helpers import rapidgen as run
+
+    (tmp_path / "t.idl").write_text("module m { struct S { long a; }; };\n")
+    fifo = tmp_path / "sink"
+    os.mkfifo(fifo)
+    got: list[bytes] = []
+    reader = threading.Thread(target=lambda: got.append(fifo.read_bytes()))
+    reader.start()
+    res = run("ir", str(tmp_path / "t.idl"), "-o", str(fifo))
+    reader.join(timeout=10)
+    assert res.code == 0, res.err
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode) and b'"m::S"' in got[0]
