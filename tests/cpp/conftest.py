@@ -47,12 +47,12 @@ def topics() -> list[dict]:
     return json.loads((K10 / "qos" / "topics.json").read_text(encoding="utf-8"))["topics"]
 
 
-@pytest.fixture(scope="session")
-def cpp_build(tmp_path_factory) -> Path:
+def build_cpp_tests(base: Path) -> Path:
+    """The generated packages and the test programs built under base (the session's
+    `cpp_build` fixture, tests/conftest.py); returns the programs' folder."""
     if shutil.which("cmake") is None or shutil.which("g++") is None or \
             not Path("/usr/include/fastdds/dds/topic/TopicDataType.hpp").exists():
         pytest.fail("cmake, g++ and libfastrtps-dev/libfastcdr-dev are needed (scripts/setup.sh installs them)")
-    base = tmp_path_factory.mktemp("cpp")
     _cmake(ROOT / "generated" / "rapid" / "cpp", base / "rapid_types")
     _cmake(K10 / "cpp", base / PKG)
     dispatch = base / "dispatch"

@@ -21,6 +21,7 @@ HERE = Path(__file__).resolve().parent
 VECTORS = ROOT / "tests" / "vectors" / "rapid.json"
 K10 = ROOT / "generated" / "k10" / "rust"
 CRATE = "rapid_k10red"
+RUSTDDS_MSRV = (1, 88)  # rustdds 0.15.0's rust-version
 
 
 def cargo() -> str:
@@ -79,12 +80,6 @@ def build_programs(folder: Path, crate_dir: Path, crate: str, target: Path, extr
 
 
 @pytest.fixture(scope="session")
-def rust_target(tmp_path_factory) -> Path:
-    """The session's cargo target folder (shared: the programs build once per crate)."""
-    return tmp_path_factory.mktemp("cargo-target")
-
-
-@pytest.fixture(scope="session")
 def rust_build(tmp_path_factory, rust_target) -> Path:
     """The test programs built against K10's crate; returns their folder."""
     start = time.monotonic()
@@ -92,3 +87,16 @@ def rust_build(tmp_path_factory, rust_target) -> Path:
                          {"configs": HERE / "src" / "configs.rs"})
     print(f"\nrust: cargo build of {CRATE} and the test programs took {time.monotonic() - start:.1f} s")
     return out
+
+
+def build_rust_peer(target: Path) -> Path:
+    """The RustDDS peer (tests/rust/peer, Cargo.lock pinned) built in target (the session's
+    `rust_peer` fixture, tests/conftest.py); skips on a toolchain RustDDS cannot use."""
+    version = subprocess.run([cargo(), "--version"], capture_output=True, text=True,
+                             stdin=subprocess.DEVNULL).stdout.split()
+    if tuple(int(x) for x in version[1].split(".")[:2]) < RUSTDDS_MSRV:
+        pytest.skip(f"RustDDS 0.15 needs Rust >= 1.88, this is {version[1]} (Debian 12's cargo is 1.63: use rustup)")
+    start = time.monotonic()
+    run([cargo(), "build", "--locked"], HERE / "peer", target, timeout=1200)
+    print(f"\nrust: cargo build of the RustDDS peer took {time.monotonic() - start:.1f} s")
+    return target / "debug" / "peer"

@@ -12,31 +12,13 @@ import json
 import os
 import subprocess
 import sys
-import time
-from pathlib import Path
 
-import pytest
-
-from tests.rust.conftest import HERE, K10, ROOT, VECTORS, cargo, run
+from tests.rust.conftest import HERE, K10, ROOT, VECTORS
 
 DOMAIN_RUST_TO_PY = 73
 DOMAIN_PY_TO_RUST = 74
 SECONDS = 25
-RUSTDDS_MSRV = (1, 88)  # rustdds 0.15.0's rust-version
 EXTRA = ["rapid::FileAnnounce", "rapid::JointConfig", "rapid::JointSample"]
-
-
-@pytest.fixture(scope="session")
-def rust_peer(rust_target) -> Path:
-    """The RustDDS peer (tests/rust/peer, Cargo.lock pinned), built in the session's target folder."""
-    version = subprocess.run([cargo(), "--version"], capture_output=True, text=True,
-                             stdin=subprocess.DEVNULL).stdout.split()
-    if tuple(int(x) for x in version[1].split(".")[:2]) < RUSTDDS_MSRV:
-        pytest.skip(f"RustDDS 0.15 needs Rust >= 1.88, this is {version[1]} (Debian 12's cargo is 1.63: use rustup)")
-    start = time.monotonic()
-    run([cargo(), "build", "--locked"], HERE / "peer", rust_target, timeout=1200)
-    print(f"\nrust: cargo build of the RustDDS peer took {time.monotonic() - start:.1f} s")
-    return rust_target / "debug" / "peer"
 
 
 def _lines() -> list[str]:
