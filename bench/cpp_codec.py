@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import argparse
 import glob
-import os
 import shutil
 import subprocess
 import sys
@@ -108,19 +107,30 @@ def _decl(model: ir.Model, d: ir.Declaration) -> list[str]:
     return [f"{head} {body} {tail}"]
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--keep", help="build in this folder and keep it")
-    args = ap.parse_args()
-    for tool in ("cmake", "g++", "fastddsgen"):
-        if shutil.which(tool) is None:
-            print(f"{tool} is not installed (apt: {'fastddsgen' if tool == 'fastddsgen' else tool})")
-            return 1
+TOOLS = {"cmake": "cmake", "g++": "g++", "fastddsgen": "fastddsgen"}  # tool: its Debian package
+# the program's columns after the case name (bench/cpp_codec/bench.cpp prints them)
+COLUMNS = ("bytes", "ser_ours", "ser_fdg", "de_ours", "de_fdg", "memcpy", "ser_x", "de_x")
+
+
+class BuildFailed(Exception):
+    """The C++ program could not be built (the message says what to look at)."""
+
+
+def missing_tools() -> list[str]:
+    """'tool (apt: package)' for each build tool not on PATH."""
+    return [f"{tool} (apt: {pkg})" for tool, pkg in TOOLS.items() if shutil.which(tool) is None]
+
+
+def build(work: Path) -> Path:
+    """Writes fastddsgen's code and a CMake project into `work`, builds it (Release, -O2)
+    and returns the program's path; raises BuildFailed."""
+    missing = missing_tools()
+    if missing:
+        raise BuildFailed("not installed: " + ", ".join(missing))
     sink = DiagnosticSink()
     model, _ = load_idl(sorted(glob.glob(str(ROOT / "specs/rapid/*.idl"))), [str(ROOT / "specs/rapid")], sink)
     if model is None:
-        return 1
-    work = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="cpp_codec_"))
+        raise BuildFailed("specs/rapid/*.idl did not load: " + "; ".join(str(d) for d in sink.errors))
     work.mkdir(parents=True, exist_ok=True)
     fdg = work / "fastddsgen"
     fdg.mkdir(exist_ok=True)
@@ -128,10 +138,9 @@ def main() -> int:
         (fdg / name).write_text(text, encoding="utf-8")
     res = subprocess.run(["fastddsgen", "-replace", "-d", str(fdg), "-I", str(fdg),
                           *[str(fdg / n) for n in ("Base.idl", "Command.idl", "JointSample.idl", "ImageSensorSample.idl")]],
-                         capture_output=True, text=True, cwd=fdg)
+                         capture_output=True, text=True, cwd=fdg, stdin=subprocess.DEVNULL)
     if res.returncode != 0:
-        print(res.stdout, res.stderr)
-        return 1
+        raise BuildFailed(f"fastddsgen failed:\n{res.stdout}{res.stderr}")
     (work / "CMakeLists.txt").write_text(f"""cmake_minimum_required(VERSION 3.16)
 project(cpp_codec_bench CXX)
 set(CMAKE_CXX_STANDARD 17)
@@ -145,13 +154,54 @@ target_compile_options(bench PRIVATE -O2)
 target_link_libraries(bench PRIVATE fastcdr)
 """, encoding="utf-8")
     for cmd in (["cmake", "-S", str(work), "-B", str(work / "build")], ["cmake", "--build", str(work / "build"), "-j2"]):
-        res = subprocess.run(cmd, capture_output=True, text=True)
+        res = subprocess.run(cmd, capture_output=True, text=True, stdin=subprocess.DEVNULL)
         if res.returncode != 0:
-            print(res.stdout[-3000:], res.stderr[-6000:])
-            return 1
+            raise BuildFailed(f"{' '.join(cmd)} failed:\n{res.stdout[-3000:]}{res.stderr[-6000:]}")
+    return work / "build" / "bench"
+
+
+def parse(text: str) -> tuple[dict[str, dict[str, float]], list[str]]:
+    """The program's output as {case: {column: value}}, and its other lines (the header
+    aside: a round trip or a byte comparison that failed)."""
+    rows: dict[str, dict[str, float]] = {}
+    notes: list[str] = []
+    for line in text.splitlines():
+        fields = line.split()
+        if not fields or fields[0] == "type":
+            continue
+        try:
+            values = [float(f.rstrip("x")) for f in fields[-len(COLUMNS):]]
+        except ValueError:
+            values = []
+        if len(fields) > len(COLUMNS) and len(values) == len(COLUMNS):
+            rows[" ".join(fields[:-len(COLUMNS)])] = dict(zip(COLUMNS, values))
+        else:
+            notes.append(line)
+    return rows, notes
+
+
+def measure(program: Path) -> tuple[dict[str, dict[str, float]], list[str]]:
+    """One run of the program (each figure the best of its 5 loops), parsed."""
+    res = subprocess.run([str(program)], capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    rows, notes = parse(res.stdout)
+    if res.returncode != 0:
+        notes.append(f"{program} exited {res.returncode}: {res.stderr.strip()[-500:]}")
+    return rows, notes
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--keep", help="build in this folder and keep it")
+    args = ap.parse_args()
+    work = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="cpp_codec_"))
+    try:
+        program = build(work)
+    except BuildFailed as err:
+        print(err)
+        return 1
     print("ns/op, best of 5 runs; ser/de x: fastddsgen's time over ours (above 1: ours is faster)")
     sys.stdout.flush()
-    return subprocess.run([str(work / "build" / "bench")]).returncode
+    return subprocess.run([str(program)]).returncode
 
 
 if __name__ == "__main__":
