@@ -4,7 +4,8 @@
 
 The crate is named like the Python package: options.package, else `rapid_` + the asset
 name, else `rapid_types`. An asset's crate also holds src/asset.rs (topics, command
-dictionary, computed configs). docs/rust-backend.md has the layout and the mapping rules;
+dictionary, computed configs). Features: `serde` (derives; src/serde_arrays.rs when a
+member holds an array longer than 32) and `dds` (src/dds.rs, the RustDDS glue). docs/rust-backend.md has the layout and the mapping rules;
 view.py decides everything the templates print.
 """
 from __future__ import annotations
@@ -53,5 +54,8 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
         files.append(GeneratedFile(m.file, render("rust", template, c=c, m=m, asset=a is not None)))
     if a is not None:
         files.append(GeneratedFile("src/asset.rs", render("rust", "asset.rs.j2", c=c, a=a)))
+    files.append(GeneratedFile("src/dds.rs", render("rust", "dds.rs.j2", c=c, asset=a is not None)))
+    if c.serde_arrays:
+        files.append(GeneratedFile("src/serde_arrays.rs", render("rust", "serde_arrays.rs.j2", header=c.header)))
     check_output(files, asset)
     return sorted(files, key=lambda f: f.path)

@@ -19,9 +19,10 @@ KEYWORDS = frozenset("""
     while abstract become box do final macro override priv try typeof unsized virtual yield gen
     macro_rules union
 """.split())
-# The crate root also holds the runtime and asset modules and the type visitor; paths start with
-# these names, so no IDL module may take them.
-ROOT_RESERVED = KEYWORDS | {"cdr", "asset", "std", "core", "alloc", "TypeVisitor", "visit_types"}
+# The crate root also holds the runtime, asset, dds and serde_arrays modules, the type visitor
+# and the crates the features bring; paths start with these names, so no IDL module may take them.
+ROOT_RESERVED = KEYWORDS | {"cdr", "asset", "dds", "serde_arrays", "serde", "rustdds", "std", "core", "alloc",
+                             "TopicType", "TypeVisitor", "visit_types"}
 # A union's variant for a discriminator value that selects no member.
 NO_MEMBER = "NoMember"
 

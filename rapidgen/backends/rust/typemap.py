@@ -25,7 +25,13 @@ ENUM_REPR = {1: "i8", 2: "i16", 4: "i32"}
 # Arrays up to this length have Default (the standard library's limit); longer ones are
 # built with std::array::from_fn.
 STD_ARRAY_DEFAULT = 32
+# serde's derive handles arrays up to this length; a member holding a longer one (at any
+# depth, also inside sequences) goes through the generated module serde_arrays.
+SERDE_ARRAY_MAX = 32
+SERDE_ARRAYS = "crate::serde_arrays"
 CDR = "crate::cdr"
+# KEY_MAX_SIZE of a key with no bound (or past any size a key hash cares about).
+KEY_UNBOUNDED = 1 << 20
 
 
 class Unsupported(Exception):
@@ -36,6 +42,10 @@ class Unsupported(Exception):
 
 def enum_size(e: ir.Enum) -> int:
     return 1 if e.bit_bound <= 8 else 2 if e.bit_bound <= 16 else 4
+
+
+def _align(offset: int, n: int) -> int:
+    return -(-offset // n) * n
 
 
 def ref(place: str) -> str:
@@ -137,6 +147,58 @@ class TypeMap:
         if isinstance(d, ir.Union):
             return self.min_size(d.discriminator, depth + 1)
         return 0
+
+    def key_end(self, t: ir.Type, offset: int, depth: int = 0) -> int:
+        """Where the largest encoding of a t written at `offset` (big-endian, from 0) ends;
+        KEY_UNBOUNDED or more when it has no bound. Alignment is monotonic, so aligning the
+        largest offset bounds every smaller one: exact for fixed-size keys."""
+        r = self.real(t)
+        if offset >= KEY_UNBOUNDED or depth > 50:
+            return KEY_UNBOUNDED
+        if isinstance(r, ir.Primitive):
+            return _align(offset, SIZES.get(r.name, 1)) + SIZES.get(r.name, 1)
+        if isinstance(r, ir.String):
+            return _align(offset, 4) + 4 + r.bound + 1 if r.bound else KEY_UNBOUNDED
+        if isinstance(r, (ir.Sequence, ir.Array)):
+            if isinstance(r, ir.Sequence):
+                if not r.bound:
+                    return KEY_UNBOUNDED
+                count, offset = r.bound, _align(offset, 4) + 4
+            else:
+                count = math.prod(r.dims)
+            for _ in range(count):
+                end = self.key_end(r.element, offset, depth + 1)
+                if end == offset or end >= KEY_UNBOUNDED:  # zero-size elements, or no bound
+                    return end
+                offset = end
+            return offset
+        d = self.decl(r)
+        if isinstance(d, ir.Enum):
+            return _align(offset, enum_size(d)) + enum_size(d)
+        if isinstance(d, ir.Struct):
+            for m in self.model.all_members(d):
+                offset = self.key_end(m.type, offset, depth + 1)
+            return offset
+        if isinstance(d, ir.Union):
+            start = self.key_end(d.discriminator, offset, depth + 1)
+            return max([start] + [self.key_end(c.member.type, start, depth + 1) for c in d.cases])
+        return KEY_UNBOUNDED
+
+    # -- serde --------------------------------------------------------------------------
+    def serde_with(self, t: ir.Type) -> str | None:
+        """The `#[serde(with = ...)]` path for a value of type t holding an array longer than
+        serde's derive takes (`Arr::<Plain>` for `[f64; 40]`, `Seq::<Arr::<Plain>>` for a
+        sequence of them); None when serde's own impls do."""
+        r = self.real(t)
+        if isinstance(r, ir.Sequence):
+            inner = self.serde_with(r.element)
+            return None if inner is None else f"{SERDE_ARRAYS}::Seq::<{inner}>"
+        if isinstance(r, ir.Array):
+            inner = self.serde_with(ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element)
+            if inner is None and r.dims[0] <= SERDE_ARRAY_MAX:
+                return None
+            return f"{SERDE_ARRAYS}::Arr::<{inner or SERDE_ARRAYS + '::Plain'}>"
+        return None
 
     # -- encode -----------------------------------------------------------------------
     def encode(self, t: ir.Type, place: str, what: str) -> tuple[str, bool]:

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from rapidgen.backends import base
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.rust import namer
-from rapidgen.backends.rust.typemap import ENUM_REPR, Unsupported, TypeMap, enum_size
+from rapidgen.backends.rust.typemap import ENUM_REPR, KEY_UNBOUNDED, Unsupported, TypeMap, enum_size
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
 
@@ -34,6 +34,7 @@ class MemberView:
     wire: str  # the IDL name
     default: str  # expression for a hand-written Default
     decode: str
+    serde: str = ""  # the member's #[serde(...)] arguments ("" none)
 
 
 @dataclass
@@ -60,10 +61,14 @@ class DeclView:
     variants: list[tuple[str, int, str]] = field(default_factory=list)  # enum: name, value, IDL name
     default_variant: str = ""
     variant_types: list[tuple[str, str]] = field(default_factory=list)  # union: name, tuple fields
+    serde: str = ""  # the type's #[serde(...)] arguments ("" none)
+    variant_serde: dict[str, str] = field(default_factory=dict)  # enum/union variant -> #[serde(...)] arguments
     arms: list[ArmView] = field(default_factory=list)
     disc_decode: str = ""
     allow_unreachable: bool = False
     key: list[str] = field(default_factory=list)  # struct: statements writing the key members
+    key_max: int = 0  # struct: KEY_MAX_SIZE
+    transcode: list[str] = field(default_factory=list)  # struct: statements re-writing the key members
 
 
 @dataclass
@@ -82,6 +87,7 @@ class CrateView:
     source: str
     modules: list[ModuleView]
     types: list[str]  # paths of the structs and unions, for visit_types
+    serde_arrays: bool = False  # a member needs src/serde_arrays.rs (an array longer than 32)
 
 
 class Builder:
@@ -106,6 +112,17 @@ class Builder:
         self.types.variant = lambda e, n: self.enum_names[e.scoped_name][n]
         self.fields: dict[str, dict[str, str]] = {}  # struct -> IDL member name -> field
         self.variants: dict[str, dict[int, tuple[str, bool]]] = {}  # union -> case index -> (variant, carries)
+        self.serde_arrays = False
+
+    def _serde(self, rust: str, wire: str, t: ir.Type | None = None) -> str:
+        """#[serde(...)] arguments: the IDL name where Rust's differs (JSON and the like show
+        the names the IDL, the Python bindings and the vectors use), the helper for long arrays."""
+        args = [] if rust == wire else [f"rename = {rust_str(wire)}"]
+        with_ = self.types.serde_with(t) if t is not None else None
+        if with_:
+            self.serde_arrays = True
+            args.append(f'with = "{with_}"')
+        return ", ".join(args)
 
     def _module(self, path: tuple[str, ...]) -> tuple[str, ...]:
         if path not in self.mod_names:
@@ -144,7 +161,7 @@ class Builder:
             raise UnsupportedInput(self.problems)
         for scope in self.scopes.values():
             scope.check()
-        return CrateView(crate, header, source, [modules[p] for p in sorted(modules)], types)
+        return CrateView(crate, header, source, [modules[p] for p in sorted(modules)], types, self.serde_arrays)
 
     def declaration(self, d: ir.Declaration) -> DeclView:
         name = self.names[d.scoped_name]
@@ -161,7 +178,8 @@ class Builder:
             return DeclView("enum", name, f"IDL enum `{d.scoped_name}`", type_name=rust_str(d.scoped_name),
                             type=ENUM_REPR[enum_size(d)],
                             variants=[(names[e.name], e.value, e.name) for e in d.enumerators],
-                            default_variant=names[d.default])
+                            default_variant=names[d.default], serde=self._serde(name, d.name),
+                            variant_serde={names[e.name]: self._serde(names[e.name], e.name) for e in d.enumerators})
         if isinstance(d, ir.Struct):
             return self.struct(d, name)
         if isinstance(d, ir.Union):
@@ -197,20 +215,30 @@ class Builder:
             derive = derive and default is None
             expr, fallible = self.types.encode(m.type, f"self.{rname}", what)
             enc.append(expr + ("?;" if fallible else ";"))
-            members.append(MemberView(rname, rtype, m.name, default or DEFAULT, self.types.decode(m.type, what)))
+            members.append(MemberView(rname, rtype, m.name, default or DEFAULT, self.types.decode(m.type, what),
+                                      self._serde(rname, m.name, m.type)))
         scope.check()
         self.fields[s.scoped_name] = {m.wire: m.name for m in members}
         doc = f"IDL {s.origin} `{s.scoped_name}`"
         if s.base:
             doc += f" : `{s.base}`, flattened (base members first)"
         doc += "." + (f" Key: `{', '.join(s.keys)}`." if s.keys else "")
-        key = []
+        key, transcode, key_end = [], [], 0
         for path in s.keys:
             place, t = self._walk(s, path)
-            expr, fallible = self.types.encode(t, place, f"{s.scoped_name} key {path}")
+            what = f"{s.scoped_name} key {path}"
+            expr, fallible = self.types.encode(t, place, what)
             key.append(expr + ("?;" if fallible else ";"))
+            # the key member read, then written in the writer's byte order
+            k = self.types._var("k")
+            expr, fallible = self.types.encode(t, k, what)
+            again = f"{expr}.map_err(|e| r.error(format_args!(\"{{e}}\")))?;" if fallible else expr + ";"
+            transcode.append(f"let {k} = {self.types.decode(t, what)};")
+            transcode.append(again)
+            key_end = self.types.key_end(t, key_end)
         return DeclView("struct", name, doc, type_name=rust_str(s.scoped_name), members=members,
-                        derive_default=derive, encode=enc, key=key)
+                        derive_default=derive, encode=enc, key=key, key_max=min(key_end, KEY_UNBOUNDED),
+                        transcode=transcode, serde=self._serde(name, s.name))
 
     def _walk(self, s: ir.Struct, path: str) -> tuple[str, ir.Type]:
         """A key path ('hdr.srcName') as a Rust place (`self.hdr.src_name`) and the leaf's type."""
@@ -239,6 +267,7 @@ class Builder:
             scope.claim(namer.NO_MEMBER, "(no member)")
         pats = {id(c): self._pattern(u, list(c.labels)) for c in u.cases}
         arms, types, variant_of = [], [], {}
+        variant_serde: dict[str, str] = {}
         for c in u.cases:
             m = c.member
             try:
@@ -248,6 +277,10 @@ class Builder:
                 continue
             vname = scope.claim(namer.camel(m.name), m.name)
             variant_of[id(c)] = vname
+            variant_serde[vname] = self._serde(vname, m.name)
+            with_ = self._serde(vname, vname, m.type)  # a long array's helper on the branch's value
+            if with_:
+                mtype = f'#[cfg_attr(feature = "serde", serde({with_}))] {mtype}'
             what = f"{u.scoped_name}.{m.name}"
             body, fallible = t.encode(m.type, "*x", what)
             body += "?;" if fallible else ";"
@@ -283,6 +316,7 @@ class Builder:
         return DeclView("union", name, f"IDL union `{u.scoped_name}` switch (`{u.discriminator}`).",
                         type_name=rust_str(u.scoped_name), type=disc_type, value=default, variant_types=types,
                         arms=arms, disc_decode=t.decode(u.discriminator, f"{u.scoped_name} discriminator"),
+                        serde=self._serde(name, u.name), variant_serde=variant_serde,
                         allow_unreachable=covered and u.default_case is not None
                         and u.cases[u.default_case].is_default)
 

@@ -1,11 +1,13 @@
 //! A bounded fuzz loop: every truncation of every golden vector, bytes flipped, counts
 //! raised, and random bytes go to the decoder of its type. A panic fails the run (exit
 //! 101); so does an allocation the input cannot justify (a counting allocator keeps the
-//! peak of live heap bytes during each decode). Prints `seeds N decoded N refused N`.
+//! peak of live heap bytes during each decode). The body of each input also goes to the
+//! type's key transcoder (`transcode_key`), under the same rules. Prints
+//! `seeds N decoded N refused N`.
 
 mod common;
 
-use gen::cdr::{deserialize, Cdr};
+use gen::cdr::{deserialize, transcode_key, Cdr, Endianness};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
@@ -62,6 +64,9 @@ impl Fuzz<'_> {
         let base = LIVE.load(Relaxed);
         PEAK.store(base, Relaxed);
         let ok = deserialize::<T>(data).is_ok();
+        let body = data.get(4..).unwrap_or_default();
+        let _ = transcode_key::<T>(body, Endianness::Little, Endianness::Big);
+        let _ = transcode_key::<T>(body, Endianness::Big, Endianness::Little);
         let used = PEAK.load(Relaxed) - base;
         if used > allowed(data.len()) {
             self.over.push(format!("{what}: {used} bytes for {} input bytes", data.len()));
@@ -76,10 +81,7 @@ impl Fuzz<'_> {
 }
 
 impl gen::TypeVisitor for Fuzz<'_> {
-    fn visit<T>(&mut self)
-    where
-        T: Cdr + std::fmt::Debug + Clone + PartialEq + Default + 'static,
-    {
+    fn visit<T: gen::TopicType>(&mut self) {
         let vectors = self.vectors;
         for v in vectors.iter().filter(|v| v.type_name == T::TYPE_NAME) {
             for seed in [&v.le, &v.be] {

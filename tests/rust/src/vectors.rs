@@ -1,9 +1,10 @@
 //! Every golden vector decodes from both byte orders to equal values, and re-encodes to
-//! exactly its bytes in both orders. Prints `ok N` (N vectors checked).
+//! exactly its bytes in both orders; its key bytes go to little-endian and back unchanged
+//! (`transcode_key`). Prints `ok N` (N vectors checked).
 
 mod common;
 
-use gen::cdr::{deserialize, serialize, Cdr, Endianness};
+use gen::cdr::{deserialize, key_bytes, serialize, transcode_key, Cdr, Endianness, Writer};
 use std::collections::HashSet;
 
 struct Check<'a> {
@@ -14,10 +15,7 @@ struct Check<'a> {
 }
 
 impl gen::TypeVisitor for Check<'_> {
-    fn visit<T>(&mut self)
-    where
-        T: Cdr + std::fmt::Debug + Clone + PartialEq + Default + 'static,
-    {
+    fn visit<T: gen::TopicType>(&mut self) {
         self.seen.insert(T::TYPE_NAME.to_owned());
         for v in self.vectors.iter().filter(|v| v.type_name == T::TYPE_NAME) {
             self.done += 1;
@@ -35,6 +33,17 @@ impl gen::TypeVisitor for Check<'_> {
                 // bit-exact floats: a value cloned and re-encoded gives the same bytes again
                 if serialize(&a.clone(), Endianness::Little).ok() != Some(le) {
                     return Err("clone encodes differently".into());
+                }
+                let key = key_bytes(&a).map_err(|e| format!("key: {e}"))?;
+                if key.len() > T::KEY_MAX_SIZE || T::KEYED == key.is_empty() {
+                    return Err(format!("{} key bytes, KEY_MAX_SIZE {}", key.len(), T::KEY_MAX_SIZE));
+                }
+                let little = transcode_key::<T>(&key, Endianness::Big, Endianness::Little).map_err(|e| format!("key BE: {e}"))?;
+                let big = transcode_key::<T>(&little, Endianness::Little, Endianness::Big).map_err(|e| format!("key LE: {e}"))?;
+                let mut w = Writer::new(Endianness::Little);
+                a.encode_key(&mut w).map_err(|e| format!("key LE: {e}"))?;
+                if big != key || little != w.into_bytes()[4..] {
+                    return Err(format!("key transcoding: {key:02x?} -> {little:02x?} -> {big:02x?}"));
                 }
                 Ok(())
             })();

@@ -57,6 +57,14 @@ pub trait Cdr: Sized {
     fn encode_key(&self, _w: &mut Writer) -> ::core::result::Result<(), EncodeError> {
         Ok(())
     }
+    /// Bytes of the largest key encoding (`key_bytes`), 1048576 for a key without bound:
+    /// RTPS takes a key of at most 16 bytes as its hash, a longer one's MD5.
+    const KEY_MAX_SIZE: usize = 0;
+    /// Reads the key members as `encode_key` writes them and writes them again (the key in
+    /// the writer's byte order; see `transcode_key`).
+    fn transcode_key(_r: &mut Reader<'_>, _w: &mut Writer) -> ::core::result::Result<(), DecodeError> {
+        Ok(())
+    }
 }
 
 /// Deepest nesting of structs and unions a decoder follows (recursive types).
@@ -77,6 +85,23 @@ pub fn serialize<T: Cdr>(value: &T, order: Endianness) -> ::core::result::Result
 pub fn key_bytes<T: Cdr>(value: &T) -> ::core::result::Result<::std::vec::Vec<u8>, EncodeError> {
     let mut w = Writer { out: ::std::vec::Vec::new(), little: false, origin: 0 };
     value.encode_key(&mut w)?;
+    Ok(w.out)
+}
+
+/// Key bytes of `T` (`encode_key` from offset 0, no header) from one byte order into the
+/// other, checked like any decoded input: a serialized key in a DDS message (a dispose)
+/// is written in the sample's byte order, its hash input is big-endian.
+pub fn transcode_key<T: Cdr>(key: &[u8], from: Endianness, to: Endianness) -> ::core::result::Result<::std::vec::Vec<u8>, DecodeError> {
+    let mut data = ::std::vec::Vec::with_capacity(HEADER + key.len());
+    data.extend_from_slice(&[0; HEADER]);
+    data.extend_from_slice(key);
+    let mut r = Reader { data: &data, pos: HEADER, little: from == Endianness::Little, depth: 0 };
+    let mut w = Writer { out: ::std::vec::Vec::new(), little: to == Endianness::Little, origin: 0 };
+    let moved = |e: DecodeError| DecodeError { offset: e.offset.saturating_sub(HEADER), message: e.message };
+    T::transcode_key(&mut r, &mut w).map_err(moved)?;
+    if data.len() - r.pos > 3 {
+        return Err(moved(r.error(format_args!("{} bytes after the key", data.len() - r.pos))));
+    }
     Ok(w.out)
 }
 

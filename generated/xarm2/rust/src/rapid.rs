@@ -165,25 +165,34 @@ pub type DoubleSequence2K = ::std::vec::Vec<f64>;
 
 /// IDL enum `rapid::DataType`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum DataType {
     /// RAPID_BOOL
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_BOOL"))]
     RapidBool = 0,
     /// RAPID_DOUBLE
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_DOUBLE"))]
     RapidDouble = 1,
     /// RAPID_FLOAT
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_FLOAT"))]
     RapidFloat = 2,
     /// RAPID_INT
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_INT"))]
     RapidInt = 3,
     /// RAPID_LONGLONG
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_LONGLONG"))]
     RapidLonglong = 4,
     /// RAPID_STRING
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_STRING"))]
     RapidString = 5,
     /// RAPID_VEC3d
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_VEC3d"))]
     RapidVec3d = 6,
     /// RAPID_MAT33f
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_MAT33f"))]
     RapidMat33f = 7,
 }
 
@@ -229,15 +238,24 @@ impl crate::cdr::Cdr for DataType {
 /// IDL union `rapid::ParameterUnion` switch (`rapid::DataType`).
 /// The variant selects the branch; it holds the discriminator when one label does not imply it.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[allow(clippy::large_enum_variant)] // the IDL's branches, as they are on the wire
 pub enum ParameterUnion {
+    #[cfg_attr(feature = "serde", serde(rename = "b"))]
     B(bool),
+    #[cfg_attr(feature = "serde", serde(rename = "d"))]
     D(f64),
+    #[cfg_attr(feature = "serde", serde(rename = "f"))]
     F(f32),
+    #[cfg_attr(feature = "serde", serde(rename = "i"))]
     I(i32),
+    #[cfg_attr(feature = "serde", serde(rename = "ll"))]
     Ll(i64),
+    #[cfg_attr(feature = "serde", serde(rename = "s"))]
     S(crate::rapid::String128),
+    #[cfg_attr(feature = "serde", serde(rename = "vec3d"))]
     Vec3d(crate::rapid::Vec3d),
+    #[cfg_attr(feature = "serde", serde(rename = "mat33f"))]
     Mat33f(crate::rapid::Mat33f),
 }
 
@@ -306,6 +324,8 @@ impl crate::cdr::Cdr for ParameterUnion {
     }
 }
 
+impl crate::TopicType for ParameterUnion {}
+
 /// IDL typedef `sequence<rapid::ParameterUnion, 8> rapid::ParameterSequence8`
 pub type ParameterSequence8 = ::std::vec::Vec<crate::rapid::ParameterUnion>;
 
@@ -338,10 +358,12 @@ pub type ValueSequence128 = ::std::vec::Vec<crate::rapid::ParameterUnion>;
 
 /// IDL struct `rapid::KeyTypePair`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct KeyTypePair {
     /// IDL `key`
     pub key: crate::rapid::String32,
     /// IDL `type`
+    #[cfg_attr(feature = "serde", serde(rename = "type"))]
     pub type_: crate::rapid::DataType,
 }
 
@@ -365,6 +387,8 @@ impl crate::cdr::Cdr for KeyTypePair {
     }
 }
 
+impl crate::TopicType for KeyTypePair {}
+
 /// IDL typedef `sequence<rapid::KeyTypePair, 8> rapid::KeyTypeSequence8`
 pub type KeyTypeSequence8 = ::std::vec::Vec<crate::rapid::KeyTypePair>;
 
@@ -382,6 +406,7 @@ pub type KeyTypeSequence128 = ::std::vec::Vec<crate::rapid::KeyTypePair>;
 
 /// IDL struct `rapid::KeyTypeValueTriple`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct KeyTypeValueTriple {
     /// IDL `key`
     pub key: crate::rapid::String32,
@@ -413,6 +438,8 @@ impl crate::cdr::Cdr for KeyTypeValueTriple {
     }
 }
 
+impl crate::TopicType for KeyTypeValueTriple {}
+
 /// IDL typedef `sequence<rapid::KeyTypeValueTriple, 8> rapid::KeyTypeValueSequence8`
 pub type KeyTypeValueSequence8 = ::std::vec::Vec<crate::rapid::KeyTypeValueTriple>;
 
@@ -430,6 +457,7 @@ pub type KeyTypeValueSequence128 = ::std::vec::Vec<crate::rapid::KeyTypeValueTri
 
 /// IDL struct `rapid::Transform3D`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct Transform3D {
     /// IDL `xyz`
     pub xyz: crate::rapid::Vec3d,
@@ -457,8 +485,11 @@ impl crate::cdr::Cdr for Transform3D {
     }
 }
 
+impl crate::TopicType for Transform3D {}
+
 /// IDL struct `rapid::NamedFloatSequence`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct NamedFloatSequence {
     /// IDL `name`
     pub name: crate::rapid::String16,
@@ -486,8 +517,11 @@ impl crate::cdr::Cdr for NamedFloatSequence {
     }
 }
 
+impl crate::TopicType for NamedFloatSequence {}
+
 /// IDL struct `rapid::FloatRange`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct FloatRange {
     /// IDL `min`
     pub min: f32,
@@ -515,8 +549,11 @@ impl crate::cdr::Cdr for FloatRange {
     }
 }
 
+impl crate::TopicType for FloatRange {}
+
 /// IDL struct `rapid::FloatRangeValue`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct FloatRangeValue {
     /// IDL `min`
     pub min: f32,
@@ -548,8 +585,11 @@ impl crate::cdr::Cdr for FloatRangeValue {
     }
 }
 
+impl crate::TopicType for FloatRangeValue {}
+
 /// IDL struct `rapid::OptionSetValue`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct OptionSetValue {
     /// IDL `index`
     pub index: i32,
@@ -577,8 +617,11 @@ impl crate::cdr::Cdr for OptionSetValue {
     }
 }
 
+impl crate::TopicType for OptionSetValue {}
+
 /// IDL struct `rapid::NamedFloatRangeValue`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct NamedFloatRangeValue {
     /// IDL `name`
     pub name: crate::rapid::String16,
@@ -606,8 +649,11 @@ impl crate::cdr::Cdr for NamedFloatRangeValue {
     }
 }
 
+impl crate::TopicType for NamedFloatRangeValue {}
+
 /// IDL struct `rapid::NamedOptionSetValue`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct NamedOptionSetValue {
     /// IDL `name`
     pub name: crate::rapid::String16,
@@ -635,25 +681,35 @@ impl crate::cdr::Cdr for NamedOptionSetValue {
     }
 }
 
+impl crate::TopicType for NamedOptionSetValue {}
+
 /// IDL enum `rapid::RotationEncoding`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum RotationEncoding {
     /// RAPID_ROT_NONE
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_ROT_NONE"))]
     RapidRotNone = 0,
     /// RAPID_ROT_M33
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_ROT_M33"))]
     RapidRotM33 = 1,
     /// RAPID_ROT_QUAT
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_ROT_QUAT"))]
     RapidRotQuat = 2,
     /// RAPID_ROT_XYZ
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_ROT_XYZ"))]
     RapidRotXyz = 3,
     /// RAPID_ROT_ZYX
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_ROT_ZYX"))]
     RapidRotZyx = 4,
     /// RAPID_ROT_ZYZ
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_ROT_ZYZ"))]
     RapidRotZyz = 5,
     /// RAPID_ROT_VEL
+    #[cfg_attr(feature = "serde", serde(rename = "RAPID_ROT_VEL"))]
     RapidRotVel = 6,
 }
 
@@ -696,14 +752,19 @@ impl crate::cdr::Cdr for RotationEncoding {
 
 /// IDL struct `rapid::Header`. Key: `srcName, assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct Header {
     /// IDL `srcName`
+    #[cfg_attr(feature = "serde", serde(rename = "srcName"))]
     pub src_name: crate::rapid::String32,
     /// IDL `assetName`
+    #[cfg_attr(feature = "serde", serde(rename = "assetName"))]
     pub asset_name: crate::rapid::String32,
     /// IDL `timeStamp`
+    #[cfg_attr(feature = "serde", serde(rename = "timeStamp"))]
     pub time_stamp: i64,
     /// IDL `statusCode`
+    #[cfg_attr(feature = "serde", serde(rename = "statusCode"))]
     pub status_code: i32,
     /// IDL `serial`
     pub serial: i32,
@@ -735,16 +796,28 @@ impl crate::cdr::Cdr for Header {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.src_name, 32, "rapid::Header key srcName")?;
         w.put_string(&self.asset_name, 32, "rapid::Header key assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k11 = r.get_string(32, "rapid::Header key srcName")?;
+        w.put_string(&k11, 32, "rapid::Header key srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k12 = r.get_string(32, "rapid::Header key assetName")?;
+        w.put_string(&k12, 32, "rapid::Header key assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for Header {}
 
 /// IDL valuetype `rapid::Message`. Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct Message {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
@@ -768,19 +841,31 @@ impl crate::cdr::Cdr for Message {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::Message key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::Message key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k13 = r.get_string(32, "rapid::Message key hdr.srcName")?;
+        w.put_string(&k13, 32, "rapid::Message key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k14 = r.get_string(32, "rapid::Message key hdr.assetName")?;
+        w.put_string(&k14, 32, "rapid::Message key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for Message {}
 
 /// IDL const `rapid::ACCESSCONTROL_STATE_TOPIC`
 pub const ACCESSCONTROL_STATE_TOPIC: &str = "rapid_accesscontrol_state";
 
 /// IDL valuetype `rapid::AccessControlState` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct AccessControlState {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
@@ -796,7 +881,7 @@ impl crate::cdr::Cdr for AccessControlState {
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         w.put_string(&self.controller, 32, "rapid::AccessControlState.controller")?;
-        w.put_seq(&self.requestors, 16, "rapid::AccessControlState.requestors", |w, e11| w.put_string(e11, 32, "rapid::AccessControlState.requestors"))?;
+        w.put_seq(&self.requestors, 16, "rapid::AccessControlState.requestors", |w, e15| w.put_string(e15, 32, "rapid::AccessControlState.requestors"))?;
         Ok(())
     }
 
@@ -812,30 +897,46 @@ impl crate::cdr::Cdr for AccessControlState {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::AccessControlState key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::AccessControlState key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k16 = r.get_string(32, "rapid::AccessControlState key hdr.srcName")?;
+        w.put_string(&k16, 32, "rapid::AccessControlState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k17 = r.get_string(32, "rapid::AccessControlState key hdr.assetName")?;
+        w.put_string(&k17, 32, "rapid::AccessControlState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for AccessControlState {}
 
 /// IDL const `rapid::ACK_TOPIC`
 pub const ACK_TOPIC: &str = "rapid_ack";
 
 /// IDL enum `rapid::AckStatus`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum AckStatus {
     /// ACK_QUEUED
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_QUEUED"))]
     AckQueued = 0,
     /// ACK_EXECUTING
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_EXECUTING"))]
     AckExecuting = 1,
     /// ACK_REQUEUED
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_REQUEUED"))]
     AckRequeued = 2,
     /// ACK_COMPLETED
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_COMPLETED"))]
     AckCompleted = 3,
 }
 
@@ -872,19 +973,25 @@ impl crate::cdr::Cdr for AckStatus {
 
 /// IDL enum `rapid::AckCompletedStatus`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum AckCompletedStatus {
     /// ACK_COMPLETED_NOT
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_COMPLETED_NOT"))]
     AckCompletedNot = 0,
     /// ACK_COMPLETED_OK
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_COMPLETED_OK"))]
     AckCompletedOk = 1,
     /// ACK_COMPLETED_BAD_SYNTAX
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_COMPLETED_BAD_SYNTAX"))]
     AckCompletedBadSyntax = 2,
     /// ACK_COMPLETED_EXEC_FAILED
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_COMPLETED_EXEC_FAILED"))]
     AckCompletedExecFailed = 3,
     /// ACK_COMPLETED_CANCELED
+    #[cfg_attr(feature = "serde", serde(rename = "ACK_COMPLETED_CANCELED"))]
     AckCompletedCanceled = 4,
 }
 
@@ -923,14 +1030,17 @@ impl crate::cdr::Cdr for AckCompletedStatus {
 
 /// IDL valuetype `rapid::Ack` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName, cmdId`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct Ack {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `cmdId`
+    #[cfg_attr(feature = "serde", serde(rename = "cmdId"))]
     pub cmd_id: crate::rapid::String64,
     /// IDL `status`
     pub status: crate::rapid::AckStatus,
     /// IDL `completedStatus`
+    #[cfg_attr(feature = "serde", serde(rename = "completedStatus"))]
     pub completed_status: crate::rapid::AckCompletedStatus,
     /// IDL `message`
     pub message: crate::rapid::String128,
@@ -962,6 +1072,7 @@ impl crate::cdr::Cdr for Ack {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 149;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::Ack key hdr.srcName")?;
@@ -969,21 +1080,36 @@ impl crate::cdr::Cdr for Ack {
         w.put_string(&self.cmd_id, 64, "rapid::Ack key cmdId")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k18 = r.get_string(32, "rapid::Ack key hdr.srcName")?;
+        w.put_string(&k18, 32, "rapid::Ack key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k19 = r.get_string(32, "rapid::Ack key hdr.assetName")?;
+        w.put_string(&k19, 32, "rapid::Ack key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k20 = r.get_string(64, "rapid::Ack key cmdId")?;
+        w.put_string(&k20, 64, "rapid::Ack key cmdId").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for Ack {}
 
 /// IDL const `rapid::AGENT_CONFIG_TOPIC`
 pub const AGENT_CONFIG_TOPIC: &str = "rapid_agent_config";
 
 /// IDL valuetype `rapid::AgentConfig` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct AgentConfig {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `agentTags`
+    #[cfg_attr(feature = "serde", serde(rename = "agentTags"))]
     pub agent_tags: crate::rapid::String16Sequence16,
     /// IDL `topics`
     pub topics: crate::rapid::String128Sequence64,
     /// IDL `valueKeys`
+    #[cfg_attr(feature = "serde", serde(rename = "valueKeys"))]
     pub value_keys: crate::rapid::KeyTypeValueSequence64,
 }
 
@@ -992,9 +1118,9 @@ impl crate::cdr::Cdr for AgentConfig {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.agent_tags, 16, "rapid::AgentConfig.agentTags", |w, e12| w.put_string(e12, 16, "rapid::AgentConfig.agentTags"))?;
-        w.put_seq(&self.topics, 64, "rapid::AgentConfig.topics", |w, e13| w.put_string(e13, 128, "rapid::AgentConfig.topics"))?;
-        w.put_seq(&self.value_keys, 64, "rapid::AgentConfig.valueKeys", |w, e14| crate::cdr::Cdr::encode(e14, w))?;
+        w.put_seq(&self.agent_tags, 16, "rapid::AgentConfig.agentTags", |w, e21| w.put_string(e21, 16, "rapid::AgentConfig.agentTags"))?;
+        w.put_seq(&self.topics, 64, "rapid::AgentConfig.topics", |w, e22| w.put_string(e22, 128, "rapid::AgentConfig.topics"))?;
+        w.put_seq(&self.value_keys, 64, "rapid::AgentConfig.valueKeys", |w, e23| crate::cdr::Cdr::encode(e23, w))?;
         Ok(())
     }
 
@@ -1011,19 +1137,31 @@ impl crate::cdr::Cdr for AgentConfig {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::AgentConfig key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::AgentConfig key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k24 = r.get_string(32, "rapid::AgentConfig key hdr.srcName")?;
+        w.put_string(&k24, 32, "rapid::AgentConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k25 = r.get_string(32, "rapid::AgentConfig key hdr.assetName")?;
+        w.put_string(&k25, 32, "rapid::AgentConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for AgentConfig {}
 
 /// IDL const `rapid::AGENT_STATE_TOPIC`
 pub const AGENT_STATE_TOPIC: &str = "rapid_agent_state";
 
 /// IDL valuetype `rapid::AgentState` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct AgentState {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
@@ -1036,7 +1174,7 @@ impl crate::cdr::Cdr for AgentState {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.values, 64, "rapid::AgentState.values", |w, e15| crate::cdr::Cdr::encode(e15, w))?;
+        w.put_seq(&self.values, 64, "rapid::AgentState.values", |w, e26| crate::cdr::Cdr::encode(e26, w))?;
         Ok(())
     }
 
@@ -1051,32 +1189,49 @@ impl crate::cdr::Cdr for AgentState {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::AgentState key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::AgentState key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k27 = r.get_string(32, "rapid::AgentState key hdr.srcName")?;
+        w.put_string(&k27, 32, "rapid::AgentState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k28 = r.get_string(32, "rapid::AgentState key hdr.assetName")?;
+        w.put_string(&k28, 32, "rapid::AgentState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for AgentState {}
 
 /// IDL const `rapid::COMMAND_TOPIC`
 pub const COMMAND_TOPIC: &str = "rapid_command";
 
 /// IDL enum `rapid::QueueAction`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum QueueAction {
     /// QUEUE_BYPASS
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "QUEUE_BYPASS"))]
     QueueBypass = 0,
     /// QUEUE_APPEND
+    #[cfg_attr(feature = "serde", serde(rename = "QUEUE_APPEND"))]
     QueueAppend = 1,
     /// QUEUE_DELETE
+    #[cfg_attr(feature = "serde", serde(rename = "QUEUE_DELETE"))]
     QueueDelete = 2,
     /// QUEUE_INSERT
+    #[cfg_attr(feature = "serde", serde(rename = "QUEUE_INSERT"))]
     QueueInsert = 3,
     /// QUEUE_REPLACE
+    #[cfg_attr(feature = "serde", serde(rename = "QUEUE_REPLACE"))]
     QueueReplace = 4,
 }
 
@@ -1115,22 +1270,29 @@ impl crate::cdr::Cdr for QueueAction {
 
 /// IDL valuetype `rapid::Command` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct Command {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `cmdName`
+    #[cfg_attr(feature = "serde", serde(rename = "cmdName"))]
     pub cmd_name: crate::rapid::String64,
     /// IDL `cmdId`
+    #[cfg_attr(feature = "serde", serde(rename = "cmdId"))]
     pub cmd_id: crate::rapid::String64,
     /// IDL `cmdSrc`
+    #[cfg_attr(feature = "serde", serde(rename = "cmdSrc"))]
     pub cmd_src: crate::rapid::String32,
     /// IDL `subsysName`
+    #[cfg_attr(feature = "serde", serde(rename = "subsysName"))]
     pub subsys_name: crate::rapid::String32,
     /// IDL `arguments`
     pub arguments: crate::rapid::ParameterSequence16,
     /// IDL `cmdAction`
+    #[cfg_attr(feature = "serde", serde(rename = "cmdAction"))]
     pub cmd_action: crate::rapid::QueueAction,
     /// IDL `targetCmdId`
+    #[cfg_attr(feature = "serde", serde(rename = "targetCmdId"))]
     pub target_cmd_id: crate::rapid::String64,
 }
 
@@ -1143,7 +1305,7 @@ impl crate::cdr::Cdr for Command {
         w.put_string(&self.cmd_id, 64, "rapid::Command.cmdId")?;
         w.put_string(&self.cmd_src, 32, "rapid::Command.cmdSrc")?;
         w.put_string(&self.subsys_name, 32, "rapid::Command.subsysName")?;
-        w.put_seq(&self.arguments, 16, "rapid::Command.arguments", |w, e16| crate::cdr::Cdr::encode(e16, w))?;
+        w.put_seq(&self.arguments, 16, "rapid::Command.arguments", |w, e29| crate::cdr::Cdr::encode(e29, w))?;
         crate::cdr::Cdr::encode(&self.cmd_action, w)?;
         w.put_string(&self.target_cmd_id, 64, "rapid::Command.targetCmdId")?;
         Ok(())
@@ -1166,19 +1328,31 @@ impl crate::cdr::Cdr for Command {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::Command key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::Command key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k30 = r.get_string(32, "rapid::Command key hdr.srcName")?;
+        w.put_string(&k30, 32, "rapid::Command key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k31 = r.get_string(32, "rapid::Command key hdr.assetName")?;
+        w.put_string(&k31, 32, "rapid::Command key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for Command {}
 
 /// IDL const `rapid::COMMAND_CONFIG_TOPIC`
 pub const COMMAND_CONFIG_TOPIC: &str = "rapid_command_config";
 
 /// IDL struct `rapid::CommandDef`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct CommandDef {
     /// IDL `name`
     pub name: crate::rapid::String64,
@@ -1197,7 +1371,7 @@ impl crate::cdr::Cdr for CommandDef {
         w.put_string(&self.name, 64, "rapid::CommandDef.name")?;
         w.put_bool(self.abortable);
         w.put_bool(self.suspendable);
-        w.put_seq(&self.parameters, 16, "rapid::CommandDef.parameters", |w, e17| crate::cdr::Cdr::encode(e17, w))?;
+        w.put_seq(&self.parameters, 16, "rapid::CommandDef.parameters", |w, e32| crate::cdr::Cdr::encode(e32, w))?;
         Ok(())
     }
 
@@ -1214,8 +1388,11 @@ impl crate::cdr::Cdr for CommandDef {
     }
 }
 
+impl crate::TopicType for CommandDef {}
+
 /// IDL struct `rapid::SubsystemType`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct SubsystemType {
     /// IDL `name`
     pub name: crate::rapid::String32,
@@ -1228,7 +1405,7 @@ impl crate::cdr::Cdr for SubsystemType {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.name, 32, "rapid::SubsystemType.name")?;
-        w.put_seq(&self.commands, 100, "rapid::SubsystemType.commands", |w, e18| crate::cdr::Cdr::encode(e18, w))?;
+        w.put_seq(&self.commands, 100, "rapid::SubsystemType.commands", |w, e33| crate::cdr::Cdr::encode(e33, w))?;
         Ok(())
     }
 
@@ -1243,12 +1420,16 @@ impl crate::cdr::Cdr for SubsystemType {
     }
 }
 
+impl crate::TopicType for SubsystemType {}
+
 /// IDL struct `rapid::Subsystem`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct Subsystem {
     /// IDL `name`
     pub name: crate::rapid::String32,
     /// IDL `subsystemTypeName`
+    #[cfg_attr(feature = "serde", serde(rename = "subsystemTypeName"))]
     pub subsystem_type_name: crate::rapid::String32,
 }
 
@@ -1272,14 +1453,19 @@ impl crate::cdr::Cdr for Subsystem {
     }
 }
 
+impl crate::TopicType for Subsystem {}
+
 /// IDL valuetype `rapid::CommandConfig` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct CommandConfig {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `availableSubsystemTypes`
+    #[cfg_attr(feature = "serde", serde(rename = "availableSubsystemTypes"))]
     pub available_subsystem_types: ::std::vec::Vec<crate::rapid::SubsystemType>,
     /// IDL `availableSubsystems`
+    #[cfg_attr(feature = "serde", serde(rename = "availableSubsystems"))]
     pub available_subsystems: ::std::vec::Vec<crate::rapid::Subsystem>,
 }
 
@@ -1288,8 +1474,8 @@ impl crate::cdr::Cdr for CommandConfig {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.available_subsystem_types, 64, "rapid::CommandConfig.availableSubsystemTypes", |w, e19| crate::cdr::Cdr::encode(e19, w))?;
-        w.put_seq(&self.available_subsystems, 128, "rapid::CommandConfig.availableSubsystems", |w, e20| crate::cdr::Cdr::encode(e20, w))?;
+        w.put_seq(&self.available_subsystem_types, 64, "rapid::CommandConfig.availableSubsystemTypes", |w, e34| crate::cdr::Cdr::encode(e34, w))?;
+        w.put_seq(&self.available_subsystems, 128, "rapid::CommandConfig.availableSubsystems", |w, e35| crate::cdr::Cdr::encode(e35, w))?;
         Ok(())
     }
 
@@ -1305,13 +1491,24 @@ impl crate::cdr::Cdr for CommandConfig {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::CommandConfig key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::CommandConfig key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k36 = r.get_string(32, "rapid::CommandConfig key hdr.srcName")?;
+        w.put_string(&k36, 32, "rapid::CommandConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k37 = r.get_string(32, "rapid::CommandConfig key hdr.assetName")?;
+        w.put_string(&k37, 32, "rapid::CommandConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for CommandConfig {}
 
 /// IDL const `rapid::RAPID_SITE_FRAME`
 pub const RAPID_SITE_FRAME: &str = "site";
@@ -1447,16 +1644,21 @@ pub const FILEANNOUNCE_TOPIC: &str = "rapid_fileannounce";
 
 /// IDL valuetype `rapid::FileAnnounce` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName, fileUuid`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct FileAnnounce {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `fileUuid`
+    #[cfg_attr(feature = "serde", serde(rename = "fileUuid"))]
     pub file_uuid: crate::rapid::String64,
     /// IDL `fileLocator`
+    #[cfg_attr(feature = "serde", serde(rename = "fileLocator"))]
     pub file_locator: crate::rapid::String256,
     /// IDL `fileSize`
+    #[cfg_attr(feature = "serde", serde(rename = "fileSize"))]
     pub file_size: i64,
     /// IDL `metaData`
+    #[cfg_attr(feature = "serde", serde(rename = "metaData"))]
     pub meta_data: crate::rapid::KeyTypeValueSequence16,
 }
 
@@ -1468,7 +1670,7 @@ impl crate::cdr::Cdr for FileAnnounce {
         w.put_string(&self.file_uuid, 64, "rapid::FileAnnounce.fileUuid")?;
         w.put_string(&self.file_locator, 256, "rapid::FileAnnounce.fileLocator")?;
         w.put::<i64>(self.file_size);
-        w.put_seq(&self.meta_data, 16, "rapid::FileAnnounce.metaData", |w, e21| crate::cdr::Cdr::encode(e21, w))?;
+        w.put_seq(&self.meta_data, 16, "rapid::FileAnnounce.metaData", |w, e38| crate::cdr::Cdr::encode(e38, w))?;
         Ok(())
     }
 
@@ -1486,6 +1688,7 @@ impl crate::cdr::Cdr for FileAnnounce {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 149;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::FileAnnounce key hdr.srcName")?;
@@ -1493,7 +1696,19 @@ impl crate::cdr::Cdr for FileAnnounce {
         w.put_string(&self.file_uuid, 64, "rapid::FileAnnounce key fileUuid")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k39 = r.get_string(32, "rapid::FileAnnounce key hdr.srcName")?;
+        w.put_string(&k39, 32, "rapid::FileAnnounce key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k40 = r.get_string(32, "rapid::FileAnnounce key hdr.assetName")?;
+        w.put_string(&k40, 32, "rapid::FileAnnounce key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k41 = r.get_string(64, "rapid::FileAnnounce key fileUuid")?;
+        w.put_string(&k41, 64, "rapid::FileAnnounce key fileUuid").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for FileAnnounce {}
 
 /// IDL const `rapid::IMG_V_FOV`
 pub const IMG_V_FOV: &str = "IMG_V_FOV";
@@ -1503,10 +1718,13 @@ pub const IMG_H_FOV: &str = "IMG_H_FOV";
 
 /// IDL struct `rapid::ImageMetadata`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct ImageMetadata {
     /// IDL `sensorName`
+    #[cfg_attr(feature = "serde", serde(rename = "sensorName"))]
     pub sensor_name: crate::rapid::String32,
     /// IDL `sensorType`
+    #[cfg_attr(feature = "serde", serde(rename = "sensorType"))]
     pub sensor_type: crate::rapid::String32,
     /// IDL `offset`
     pub offset: crate::rapid::Transform3D,
@@ -1515,8 +1733,10 @@ pub struct ImageMetadata {
     /// IDL `height`
     pub height: i32,
     /// IDL `rangeSettings`
+    #[cfg_attr(feature = "serde", serde(rename = "rangeSettings"))]
     pub range_settings: ::std::vec::Vec<crate::rapid::NamedFloatRangeValue>,
     /// IDL `optionSettings`
+    #[cfg_attr(feature = "serde", serde(rename = "optionSettings"))]
     pub option_settings: ::std::vec::Vec<crate::rapid::NamedOptionSetValue>,
     /// IDL `extras`
     pub extras: crate::rapid::KeyTypeValueSequence16,
@@ -1531,9 +1751,9 @@ impl crate::cdr::Cdr for ImageMetadata {
         crate::cdr::Cdr::encode(&self.offset, w)?;
         w.put::<i32>(self.width);
         w.put::<i32>(self.height);
-        w.put_seq(&self.range_settings, 16, "rapid::ImageMetadata.rangeSettings", |w, e22| crate::cdr::Cdr::encode(e22, w))?;
-        w.put_seq(&self.option_settings, 16, "rapid::ImageMetadata.optionSettings", |w, e23| crate::cdr::Cdr::encode(e23, w))?;
-        w.put_seq(&self.extras, 16, "rapid::ImageMetadata.extras", |w, e24| crate::cdr::Cdr::encode(e24, w))?;
+        w.put_seq(&self.range_settings, 16, "rapid::ImageMetadata.rangeSettings", |w, e42| crate::cdr::Cdr::encode(e42, w))?;
+        w.put_seq(&self.option_settings, 16, "rapid::ImageMetadata.optionSettings", |w, e43| crate::cdr::Cdr::encode(e43, w))?;
+        w.put_seq(&self.extras, 16, "rapid::ImageMetadata.extras", |w, e44| crate::cdr::Cdr::encode(e44, w))?;
         Ok(())
     }
 
@@ -1554,6 +1774,8 @@ impl crate::cdr::Cdr for ImageMetadata {
     }
 }
 
+impl crate::TopicType for ImageMetadata {}
+
 /// IDL const `rapid::MIME_IMAGE_JPEG`
 pub const MIME_IMAGE_JPEG: &str = "image/jpeg";
 
@@ -1571,12 +1793,14 @@ pub const IMAGESENSOR_SAMPLE_TOPIC: &str = "rapid_imagesensor_sample";
 
 /// IDL valuetype `rapid::ImageSensorSample` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct ImageSensorSample {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `meta`
     pub meta: crate::rapid::ImageMetadata,
     /// IDL `mimeType`
+    #[cfg_attr(feature = "serde", serde(rename = "mimeType"))]
     pub mime_type: crate::rapid::String32,
     /// IDL `data`
     pub data: ::std::vec::Vec<u8>,
@@ -1589,7 +1813,7 @@ impl crate::cdr::Cdr for ImageSensorSample {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         crate::cdr::Cdr::encode(&self.meta, w)?;
         w.put_string(&self.mime_type, 32, "rapid::ImageSensorSample.mimeType")?;
-        w.put_seq(&self.data, 1048576, "rapid::ImageSensorSample.data", |w, e25| { w.put::<u8>(*e25); Ok(()) })?;
+        w.put_seq(&self.data, 1048576, "rapid::ImageSensorSample.data", |w, e45| { w.put::<u8>(*e45); Ok(()) })?;
         Ok(())
     }
 
@@ -1606,19 +1830,31 @@ impl crate::cdr::Cdr for ImageSensorSample {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::ImageSensorSample key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::ImageSensorSample key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k46 = r.get_string(32, "rapid::ImageSensorSample key hdr.srcName")?;
+        w.put_string(&k46, 32, "rapid::ImageSensorSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k47 = r.get_string(32, "rapid::ImageSensorSample key hdr.assetName")?;
+        w.put_string(&k47, 32, "rapid::ImageSensorSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for ImageSensorSample {}
 
 /// IDL const `rapid::IMAGESENSOR_STATE_TOPIC`
 pub const IMAGESENSOR_STATE_TOPIC: &str = "rapid_imagesensor_state";
 
 /// IDL valuetype `rapid::ImageSensorState` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct ImageSensorState {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
@@ -1646,21 +1882,34 @@ impl crate::cdr::Cdr for ImageSensorState {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::ImageSensorState key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::ImageSensorState key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k48 = r.get_string(32, "rapid::ImageSensorState key hdr.srcName")?;
+        w.put_string(&k48, 32, "rapid::ImageSensorState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k49 = r.get_string(32, "rapid::ImageSensorState key hdr.assetName")?;
+        w.put_string(&k49, 32, "rapid::ImageSensorState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for ImageSensorState {}
 
 /// IDL const `rapid::JOINT_CONFIG_TOPIC`
 pub const JOINT_CONFIG_TOPIC: &str = "rapid_joint_config";
 
 /// IDL struct `rapid::JointDef`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct JointDef {
     /// IDL `frameName`
+    #[cfg_attr(feature = "serde", serde(rename = "frameName"))]
     pub frame_name: crate::rapid::String128,
     /// IDL `dof`
     pub dof: crate::rapid::String64,
@@ -1686,14 +1935,19 @@ impl crate::cdr::Cdr for JointDef {
     }
 }
 
+impl crate::TopicType for JointDef {}
+
 /// IDL valuetype `rapid::JointConfig` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct JointConfig {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `jointGroupName`
+    #[cfg_attr(feature = "serde", serde(rename = "jointGroupName"))]
     pub joint_group_name: crate::rapid::String32,
     /// IDL `jointDefinitions`
+    #[cfg_attr(feature = "serde", serde(rename = "jointDefinitions"))]
     pub joint_definitions: ::std::vec::Vec<crate::rapid::JointDef>,
 }
 
@@ -1703,7 +1957,7 @@ impl crate::cdr::Cdr for JointConfig {
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         w.put_string(&self.joint_group_name, 32, "rapid::JointConfig.jointGroupName")?;
-        w.put_seq(&self.joint_definitions, 64, "rapid::JointConfig.jointDefinitions", |w, e26| crate::cdr::Cdr::encode(e26, w))?;
+        w.put_seq(&self.joint_definitions, 64, "rapid::JointConfig.jointDefinitions", |w, e50| crate::cdr::Cdr::encode(e50, w))?;
         Ok(())
     }
 
@@ -1719,13 +1973,24 @@ impl crate::cdr::Cdr for JointConfig {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::JointConfig key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::JointConfig key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k51 = r.get_string(32, "rapid::JointConfig key hdr.srcName")?;
+        w.put_string(&k51, 32, "rapid::JointConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k52 = r.get_string(32, "rapid::JointConfig key hdr.assetName")?;
+        w.put_string(&k52, 32, "rapid::JointConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for JointConfig {}
 
 /// IDL const `rapid::JOINT_ENABLED`
 pub const JOINT_ENABLED: i32 = 0;
@@ -1753,14 +2018,18 @@ pub const JOINT_SAMPLE_TOPIC: &str = "rapid_joint_sample";
 
 /// IDL valuetype `rapid::JointSample` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct JointSample {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `anglePos`
+    #[cfg_attr(feature = "serde", serde(rename = "anglePos"))]
     pub angle_pos: crate::rapid::FloatSequence64,
     /// IDL `angleVel`
+    #[cfg_attr(feature = "serde", serde(rename = "angleVel"))]
     pub angle_vel: crate::rapid::FloatSequence64,
     /// IDL `angleAcc`
+    #[cfg_attr(feature = "serde", serde(rename = "angleAcc"))]
     pub angle_acc: crate::rapid::FloatSequence64,
     /// IDL `current`
     pub current: crate::rapid::FloatSequence64,
@@ -1771,6 +2040,7 @@ pub struct JointSample {
     /// IDL `status`
     pub status: crate::rapid::LongSequence64,
     /// IDL `auxFloat`
+    #[cfg_attr(feature = "serde", serde(rename = "auxFloat"))]
     pub aux_float: ::std::vec::Vec<crate::rapid::NamedFloatSequence>,
 }
 
@@ -1779,14 +2049,14 @@ impl crate::cdr::Cdr for JointSample {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.angle_pos, 64, "rapid::JointSample.anglePos", |w, e27| { w.put::<f32>(*e27); Ok(()) })?;
-        w.put_seq(&self.angle_vel, 64, "rapid::JointSample.angleVel", |w, e28| { w.put::<f32>(*e28); Ok(()) })?;
-        w.put_seq(&self.angle_acc, 64, "rapid::JointSample.angleAcc", |w, e29| { w.put::<f32>(*e29); Ok(()) })?;
-        w.put_seq(&self.current, 64, "rapid::JointSample.current", |w, e30| { w.put::<f32>(*e30); Ok(()) })?;
-        w.put_seq(&self.torque, 64, "rapid::JointSample.torque", |w, e31| { w.put::<f32>(*e31); Ok(()) })?;
-        w.put_seq(&self.temperature, 64, "rapid::JointSample.temperature", |w, e32| { w.put::<f32>(*e32); Ok(()) })?;
-        w.put_seq(&self.status, 64, "rapid::JointSample.status", |w, e33| { w.put::<i32>(*e33); Ok(()) })?;
-        w.put_seq(&self.aux_float, 16, "rapid::JointSample.auxFloat", |w, e34| crate::cdr::Cdr::encode(e34, w))?;
+        w.put_seq(&self.angle_pos, 64, "rapid::JointSample.anglePos", |w, e53| { w.put::<f32>(*e53); Ok(()) })?;
+        w.put_seq(&self.angle_vel, 64, "rapid::JointSample.angleVel", |w, e54| { w.put::<f32>(*e54); Ok(()) })?;
+        w.put_seq(&self.angle_acc, 64, "rapid::JointSample.angleAcc", |w, e55| { w.put::<f32>(*e55); Ok(()) })?;
+        w.put_seq(&self.current, 64, "rapid::JointSample.current", |w, e56| { w.put::<f32>(*e56); Ok(()) })?;
+        w.put_seq(&self.torque, 64, "rapid::JointSample.torque", |w, e57| { w.put::<f32>(*e57); Ok(()) })?;
+        w.put_seq(&self.temperature, 64, "rapid::JointSample.temperature", |w, e58| { w.put::<f32>(*e58); Ok(()) })?;
+        w.put_seq(&self.status, 64, "rapid::JointSample.status", |w, e59| { w.put::<i32>(*e59); Ok(()) })?;
+        w.put_seq(&self.aux_float, 16, "rapid::JointSample.auxFloat", |w, e60| crate::cdr::Cdr::encode(e60, w))?;
         Ok(())
     }
 
@@ -1808,29 +2078,45 @@ impl crate::cdr::Cdr for JointSample {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::JointSample key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::JointSample key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k61 = r.get_string(32, "rapid::JointSample key hdr.srcName")?;
+        w.put_string(&k61, 32, "rapid::JointSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k62 = r.get_string(32, "rapid::JointSample key hdr.assetName")?;
+        w.put_string(&k62, 32, "rapid::JointSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for JointSample {}
 
 /// IDL const `rapid::POSITION_CONFIG_TOPIC`
 pub const POSITION_CONFIG_TOPIC: &str = "rapid_position_config";
 
 /// IDL valuetype `rapid::PositionConfig` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct PositionConfig {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `frameName`
+    #[cfg_attr(feature = "serde", serde(rename = "frameName"))]
     pub frame_name: crate::rapid::String128,
     /// IDL `poseEncoding`
+    #[cfg_attr(feature = "serde", serde(rename = "poseEncoding"))]
     pub pose_encoding: crate::rapid::RotationEncoding,
     /// IDL `velocityEncoding`
+    #[cfg_attr(feature = "serde", serde(rename = "velocityEncoding"))]
     pub velocity_encoding: crate::rapid::RotationEncoding,
     /// IDL `valueKeys`
+    #[cfg_attr(feature = "serde", serde(rename = "valueKeys"))]
     pub value_keys: crate::rapid::KeyTypeValueSequence64,
 }
 
@@ -1842,7 +2128,7 @@ impl crate::cdr::Cdr for PositionConfig {
         w.put_string(&self.frame_name, 128, "rapid::PositionConfig.frameName")?;
         crate::cdr::Cdr::encode(&self.pose_encoding, w)?;
         crate::cdr::Cdr::encode(&self.velocity_encoding, w)?;
-        w.put_seq(&self.value_keys, 64, "rapid::PositionConfig.valueKeys", |w, e35| crate::cdr::Cdr::encode(e35, w))?;
+        w.put_seq(&self.value_keys, 64, "rapid::PositionConfig.valueKeys", |w, e63| crate::cdr::Cdr::encode(e63, w))?;
         Ok(())
     }
 
@@ -1860,19 +2146,31 @@ impl crate::cdr::Cdr for PositionConfig {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::PositionConfig key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::PositionConfig key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k64 = r.get_string(32, "rapid::PositionConfig key hdr.srcName")?;
+        w.put_string(&k64, 32, "rapid::PositionConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k65 = r.get_string(32, "rapid::PositionConfig key hdr.assetName")?;
+        w.put_string(&k65, 32, "rapid::PositionConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for PositionConfig {}
 
 /// IDL const `rapid::POSITION_SAMPLE_TOPIC`
 pub const POSITION_SAMPLE_TOPIC: &str = "rapid_position_sample";
 
 /// IDL valuetype `rapid::PositionSample` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct PositionSample {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
@@ -1891,7 +2189,7 @@ impl crate::cdr::Cdr for PositionSample {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         crate::cdr::Cdr::encode(&self.pose, w)?;
         crate::cdr::Cdr::encode(&self.velocity, w)?;
-        w.put_seq(&self.values, 64, "rapid::PositionSample.values", |w, e36| crate::cdr::Cdr::encode(e36, w))?;
+        w.put_seq(&self.values, 64, "rapid::PositionSample.values", |w, e66| crate::cdr::Cdr::encode(e66, w))?;
         Ok(())
     }
 
@@ -1908,13 +2206,24 @@ impl crate::cdr::Cdr for PositionSample {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::PositionSample key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::PositionSample key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k67 = r.get_string(32, "rapid::PositionSample key hdr.srcName")?;
+        w.put_string(&k67, 32, "rapid::PositionSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k68 = r.get_string(32, "rapid::PositionSample key hdr.assetName")?;
+        w.put_string(&k68, 32, "rapid::PositionSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for PositionSample {}
 
 /// IDL const `rapid::QUEUE_STATE_TOPIC`
 pub const QUEUE_STATE_TOPIC: &str = "rapid_queue_state";
@@ -1924,15 +2233,19 @@ pub const QUEUE_STATE_MAX_RECORDS: i32 = 64;
 
 /// IDL enum `rapid::ResultType`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum ResultType {
     /// Q_RESULT_INIT
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "Q_RESULT_INIT"))]
     QResultInit = 0,
     /// Q_RESULT_SUCCEEDED
+    #[cfg_attr(feature = "serde", serde(rename = "Q_RESULT_SUCCEEDED"))]
     QResultSucceeded = 1,
     /// Q_RESULT_FAILED
+    #[cfg_attr(feature = "serde", serde(rename = "Q_RESULT_FAILED"))]
     QResultFailed = 2,
 }
 
@@ -1967,37 +2280,52 @@ impl crate::cdr::Cdr for ResultType {
 
 /// IDL enum `rapid::StatusType`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum StatusType {
     /// Q_STATUS_INIT
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_INIT"))]
     QStatusInit = 0,
     /// Q_STATUS_OUTBOUND
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_OUTBOUND"))]
     QStatusOutbound = 1,
     /// Q_STATUS_LOST
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_LOST"))]
     QStatusLost = 2,
     /// Q_STATUS_INLINE
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_INLINE"))]
     QStatusInline = 3,
     /// Q_STATUS_PREEMPTED
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_PREEMPTED"))]
     QStatusPreempted = 4,
     /// Q_STATUS_INPROCESS
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_INPROCESS"))]
     QStatusInprocess = 5,
     /// Q_STATUS_PAUSED
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_PAUSED"))]
     QStatusPaused = 6,
     /// Q_STATUS_CANCELED
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_CANCELED"))]
     QStatusCanceled = 7,
     /// Q_STATUS_SUCCEEDED
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_SUCCEEDED"))]
     QStatusSucceeded = 8,
     /// Q_STATUS_FAILED
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_FAILED"))]
     QStatusFailed = 9,
     /// Q_STATUS_ALIEN_PENDING
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_ALIEN_PENDING"))]
     QStatusAlienPending = 10,
     /// Q_STATUS_ALIEN_ACTIVE
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_ALIEN_ACTIVE"))]
     QStatusAlienActive = 11,
     /// Q_STATUS_ALIEN_COMPLETED
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_ALIEN_COMPLETED"))]
     QStatusAlienCompleted = 12,
     /// Q_STATUS_FORGOTTEN_BY_ROBOT
+    #[cfg_attr(feature = "serde", serde(rename = "Q_STATUS_FORGOTTEN_BY_ROBOT"))]
     QStatusForgottenByRobot = 13,
 }
 
@@ -2054,12 +2382,15 @@ impl crate::cdr::Cdr for StatusType {
 
 /// IDL valuetype `rapid::CommandRecord`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct CommandRecord {
     /// IDL `cmd`
     pub cmd: crate::rapid::Command,
     /// IDL `trResult`
+    #[cfg_attr(feature = "serde", serde(rename = "trResult"))]
     pub tr_result: crate::rapid::ResultType,
     /// IDL `trStatus`
+    #[cfg_attr(feature = "serde", serde(rename = "trStatus"))]
     pub tr_status: crate::rapid::StatusType,
 }
 
@@ -2085,8 +2416,11 @@ impl crate::cdr::Cdr for CommandRecord {
     }
 }
 
+impl crate::TopicType for CommandRecord {}
+
 /// IDL struct `rapid::SingleQueue`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct SingleQueue {
     /// IDL `records`
     pub records: ::std::vec::Vec<crate::rapid::CommandRecord>,
@@ -2096,7 +2430,7 @@ impl crate::cdr::Cdr for SingleQueue {
     const TYPE_NAME: &'static str = "rapid::SingleQueue";
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
-        w.put_seq(&self.records, 64, "rapid::SingleQueue.records", |w, e37| crate::cdr::Cdr::encode(e37, w))?;
+        w.put_seq(&self.records, 64, "rapid::SingleQueue.records", |w, e69| crate::cdr::Cdr::encode(e69, w))?;
         Ok(())
     }
 
@@ -2110,8 +2444,11 @@ impl crate::cdr::Cdr for SingleQueue {
     }
 }
 
+impl crate::TopicType for SingleQueue {}
+
 /// IDL valuetype `rapid::QueueState` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct QueueState {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
@@ -2151,34 +2488,52 @@ impl crate::cdr::Cdr for QueueState {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::QueueState key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::QueueState key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k70 = r.get_string(32, "rapid::QueueState key hdr.srcName")?;
+        w.put_string(&k70, 32, "rapid::QueueState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k71 = r.get_string(32, "rapid::QueueState key hdr.assetName")?;
+        w.put_string(&k71, 32, "rapid::QueueState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for QueueState {}
 
 /// IDL const `rapid::TEXTMESSAGE_TOPIC`
 pub const TEXTMESSAGE_TOPIC: &str = "rapid_textmessage";
 
 /// IDL enum `rapid::MessageLevel`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum MessageLevel {
     /// MSG_DEBUG
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "MSG_DEBUG"))]
     MsgDebug = 0,
     /// MSG_INFO
+    #[cfg_attr(feature = "serde", serde(rename = "MSG_INFO"))]
     MsgInfo = 1,
     /// MSG_ATTENTION
+    #[cfg_attr(feature = "serde", serde(rename = "MSG_ATTENTION"))]
     MsgAttention = 2,
     /// MSG_WARN
+    #[cfg_attr(feature = "serde", serde(rename = "MSG_WARN"))]
     MsgWarn = 3,
     /// MSG_ERROR
+    #[cfg_attr(feature = "serde", serde(rename = "MSG_ERROR"))]
     MsgError = 4,
     /// MSG_CRITICAL
+    #[cfg_attr(feature = "serde", serde(rename = "MSG_CRITICAL"))]
     MsgCritical = 5,
 }
 
@@ -2219,6 +2574,7 @@ impl crate::cdr::Cdr for MessageLevel {
 
 /// IDL valuetype `rapid::TextMessage` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct TextMessage {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
@@ -2254,11 +2610,22 @@ impl crate::cdr::Cdr for TextMessage {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::TextMessage key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::TextMessage key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k72 = r.get_string(32, "rapid::TextMessage key hdr.srcName")?;
+        w.put_string(&k72, 32, "rapid::TextMessage key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k73 = r.get_string(32, "rapid::TextMessage key hdr.assetName")?;
+        w.put_string(&k73, 32, "rapid::TextMessage key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for TextMessage {}
 

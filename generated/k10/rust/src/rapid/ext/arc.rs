@@ -9,19 +9,25 @@ pub const GPS_SAMPLE_TOPIC: &str = "rapid_ext_arc_gps_sample";
 
 /// IDL enum `rapid::ext::arc::GpsFixType`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 #[repr(i32)]
 #[allow(clippy::enum_variant_names)] // the IDL's enumerator names
 pub enum GpsFixType {
     /// GPS_FIX_NONE
     #[default]
+    #[cfg_attr(feature = "serde", serde(rename = "GPS_FIX_NONE"))]
     GpsFixNone = 0,
     /// GPS_FIX_2D
+    #[cfg_attr(feature = "serde", serde(rename = "GPS_FIX_2D"))]
     GpsFix2D = 1,
     /// GPS_FIX_3D
+    #[cfg_attr(feature = "serde", serde(rename = "GPS_FIX_3D"))]
     GpsFix3D = 2,
     /// GPS_FIX_DGPS
+    #[cfg_attr(feature = "serde", serde(rename = "GPS_FIX_DGPS"))]
     GpsFixDgps = 3,
     /// GPS_FIX_RTK
+    #[cfg_attr(feature = "serde", serde(rename = "GPS_FIX_RTK"))]
     GpsFixRtk = 4,
 }
 
@@ -60,14 +66,17 @@ impl crate::cdr::Cdr for GpsFixType {
 
 /// IDL valuetype `rapid::ext::arc::GpsConfig` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct GpsConfig {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
     /// IDL `receiverModel`
+    #[cfg_attr(feature = "serde", serde(rename = "receiverModel"))]
     pub receiver_model: crate::rapid::String32,
     /// IDL `datum`
     pub datum: crate::rapid::String32,
     /// IDL `antennaOffset`
+    #[cfg_attr(feature = "serde", serde(rename = "antennaOffset"))]
     pub antenna_offset: crate::rapid::Vec3d,
 }
 
@@ -78,7 +87,7 @@ impl crate::cdr::Cdr for GpsConfig {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         w.put_string(&self.receiver_model, 32, "rapid::ext::arc::GpsConfig.receiverModel")?;
         w.put_string(&self.datum, 32, "rapid::ext::arc::GpsConfig.datum")?;
-        w.put_array(&self.antenna_offset, |w, e38| { w.put::<f64>(*e38); Ok(()) })?;
+        w.put_array(&self.antenna_offset, |w, e74| { w.put::<f64>(*e74); Ok(()) })?;
         Ok(())
     }
 
@@ -88,23 +97,35 @@ impl crate::cdr::Cdr for GpsConfig {
             hdr: <crate::rapid::Header as crate::cdr::Cdr>::decode(r)?,
             receiver_model: r.get_string(32, "rapid::ext::arc::GpsConfig.receiverModel")?,
             datum: r.get_string(32, "rapid::ext::arc::GpsConfig.datum")?,
-            antenna_offset: { r.need(24, "rapid::ext::arc::GpsConfig.antennaOffset")?; let mut a39: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_array(&mut a39, |r| r.get::<f64>())?; a39 },
+            antenna_offset: { r.need(24, "rapid::ext::arc::GpsConfig.antennaOffset")?; let mut a75: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_array(&mut a75, |r| r.get::<f64>())?; a75 },
         };
         r.leave();
         Ok(v)
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::ext::arc::GpsConfig key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::ext::arc::GpsConfig key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k76 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.srcName")?;
+        w.put_string(&k76, 32, "rapid::ext::arc::GpsConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k77 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.assetName")?;
+        w.put_string(&k77, 32, "rapid::ext::arc::GpsConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for GpsConfig {}
 
 /// IDL valuetype `rapid::ext::arc::GpsSample` : `rapid::Message`, flattened (base members first). Key: `hdr.srcName, hdr.assetName`.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(::serde::Serialize, ::serde::Deserialize))]
 pub struct GpsSample {
     /// IDL `hdr`
     pub hdr: crate::rapid::Header,
@@ -117,8 +138,10 @@ pub struct GpsSample {
     /// IDL `hdop`
     pub hdop: f32,
     /// IDL `numSatellites`
+    #[cfg_attr(feature = "serde", serde(rename = "numSatellites"))]
     pub num_satellites: i32,
     /// IDL `fixType`
+    #[cfg_attr(feature = "serde", serde(rename = "fixType"))]
     pub fix_type: crate::rapid::ext::arc::GpsFixType,
 }
 
@@ -152,11 +175,22 @@ impl crate::cdr::Cdr for GpsSample {
     }
 
     const KEYED: bool = true;
+    const KEY_MAX_SIZE: usize = 77;
 
     fn encode_key(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.hdr.src_name, 32, "rapid::ext::arc::GpsSample key hdr.srcName")?;
         w.put_string(&self.hdr.asset_name, 32, "rapid::ext::arc::GpsSample key hdr.assetName")?;
         Ok(())
     }
+
+    fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        let k78 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.srcName")?;
+        w.put_string(&k78, 32, "rapid::ext::arc::GpsSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k79 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.assetName")?;
+        w.put_string(&k79, 32, "rapid::ext::arc::GpsSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        Ok(())
+    }
 }
+
+impl crate::TopicType for GpsSample {}
 
