@@ -1,7 +1,9 @@
 """Live interop on loopback: the generated Rust crate on RustDDS 0.15 and the generated
 Python bindings on cyclonedds exchange every RAPID message type (K10's 18 topics with their
-generated QoS, plus FileAnnounce, JointConfig and JointSample on test topics) in both
-directions, each field-equal to the golden vector's `max` value.
+generated QoS, plus FileAnnounce, JointConfig and JointSample on test topics, and
+KeyTypeValueTriple, a type without key, on a NO_KEY topic) in both directions, each
+field-equal to the golden vector's `max` value. The Rust side is the generated crate's
+`dds` module (feature `dds`) and nothing else.
 
 RustDDS 0.15 has no Partition QoS, so the Python side here uses the default partition
 (tests/rust/py_peer.py); RTPS stays on 127.0.0.1 (RustDDS `with_only_networks`, Cyclone
@@ -18,7 +20,7 @@ from tests.rust.conftest import HERE, K10, ROOT, VECTORS
 DOMAIN_RUST_TO_PY = 73
 DOMAIN_PY_TO_RUST = 74
 SECONDS = 25
-EXTRA = ["rapid::FileAnnounce", "rapid::JointConfig", "rapid::JointSample"]
+EXTRA = ["rapid::FileAnnounce", "rapid::JointConfig", "rapid::JointSample", "rapid::KeyTypeValueTriple"]
 
 
 def _lines() -> list[str]:
@@ -43,7 +45,7 @@ def _start(cmd: list[str], stdin: str, env: dict) -> subprocess.Popen:
 
 def test_rust_and_python_exchange_every_message_type_both_ways(rust_peer):
     lines = _lines()
-    assert len(lines) == 21
+    assert len(lines) == 22
     stdin = "\n".join(lines) + "\n"
     env = dict(os.environ, CYCLONEDDS_URI="file://" + str(K10.parent / "qos" / "cyclonedds" / "local.xml"),
                PYTHONPATH=os.pathsep.join([str(K10.parent / "python"), str(ROOT)]))

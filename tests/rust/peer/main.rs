@@ -94,7 +94,12 @@ impl gen::TypeVisitor for Make<'_> {
                 QosPolicyBuilder::new().best_effort().durability(policy::Durability::Volatile)
                     .history(policy::History::KeepLast { depth: 16 }).build()
             };
-            let t = dds::create_topic::<T>(self.dp, topic, &qos).expect("topic");
+            // an asset topic through the asset's table (refused for another type), the rest by name
+            let t = if gen::asset::TOPICS.iter().any(|a| a.topic == topic) {
+                dds::asset_topic::<T>(self.dp, topic, &qos).expect("asset topic")
+            } else {
+                dds::create_topic::<T>(self.dp, topic, &qos).expect("topic")
+            };
             let ep: Box<dyn Endpoint> = if self.pub_mode {
                 let w = dds::create_writer::<T>(self.publisher, &t, Some(qos)).expect("writer");
                 Box::new(Writer { topic: topic.clone(), w, value })
