@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
 import sys
 
+from tests import peers
 from tests.cpp.conftest import K10, ROOT, topics
 
 DOMAIN_CPP_TO_PY = 97
@@ -23,7 +23,7 @@ EXTRA = [("rapid_joint_config", "rapid::JointConfig", "RapidConfigQos"),
          ("rapid_file_announce", "rapid::FileAnnounce", "RapidReliableDurableQos")]
 
 
-def _lines() -> list[str]:
+def interop_lines() -> list[str]:
     vectors = {v["id"]: v for v in json.loads((ROOT / "tests/vectors/rapid.json").read_text(encoding="utf-8"))["vectors"]}
     rows = [(t["topic"], t["type"], t["profile"]) for t in topics()] + EXTRA
     # every RAPID message type (the vectors' types with a header) is exchanged
@@ -32,17 +32,8 @@ def _lines() -> list[str]:
     return [f"{topic} {ty} {profile} {vectors[ty + '/max']['xcdr1_le']}" for topic, ty, profile in rows]
 
 
-def _start(cmd: list[str], stdin: str, env: dict) -> subprocess.Popen:
-    p = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         env=env, start_new_session=True)
-    p.stdin.write(stdin)
-    p.stdin.close()
-    p.stdin = None  # written and closed: communicate() must not flush it
-    return p
-
-
 def test_cpp_and_python_exchange_every_topic_both_ways(cpp_build, tmp_path):
-    lines = _lines()
+    lines = interop_lines()
     assert len(lines) == 21
     stdin = "\n".join(lines) + "\n"
     xml = str(K10 / "qos" / "fastdds" / "rapid_qos_profiles.xml")
@@ -51,22 +42,9 @@ def test_cpp_and_python_exchange_every_topic_both_ways(cpp_build, tmp_path):
     env.pop("FASTDDS_DEFAULT_PROFILES_FILE", None)
     peer, py = str(cpp_build / "peer"), [sys.executable, str(ROOT / "tests" / "cpp" / "py_peer.py")]
     procs = {
-        "py_sub": _start(py + ["sub", str(DOMAIN_CPP_TO_PY), str(SECONDS)], stdin, env),
-        "cpp_pub": _start([peer, "pub", xml, str(DOMAIN_CPP_TO_PY), str(SECONDS)], stdin, env),
-        "cpp_sub": _start([peer, "sub", xml, str(DOMAIN_PY_TO_CPP), str(SECONDS)], stdin, env),
-        "py_pub": _start(py + ["pub", str(DOMAIN_PY_TO_CPP), str(SECONDS)], stdin, env),
+        "py_sub": peers.start(py + ["sub", str(DOMAIN_CPP_TO_PY), str(SECONDS)], stdin, env),
+        "cpp_pub": peers.start([peer, "pub", xml, str(DOMAIN_CPP_TO_PY), str(SECONDS)], stdin, env),
+        "cpp_sub": peers.start([peer, "sub", xml, str(DOMAIN_PY_TO_CPP), str(SECONDS)], stdin, env),
+        "py_pub": peers.start(py + ["pub", str(DOMAIN_PY_TO_CPP), str(SECONDS)], stdin, env),
     }
-    try:
-        out = {}
-        for name in ("py_sub", "cpp_sub"):
-            stdout, stderr = procs[name].communicate(timeout=SECONDS + 30)
-            out[name] = (procs[name].returncode, stdout, stderr)
-    finally:
-        for p in procs.values():
-            if p.poll() is None:
-                p.kill()
-            p.wait(timeout=30)
-    want = sorted(f"ok {line.split()[0]}" for line in lines)
-    for name, (code, stdout, stderr) in out.items():
-        assert sorted(stdout.split("\n")[:-1]) == want, f"{name}: {stdout}\n{stderr[-3000:]}"
-        assert code == 0, name
+    peers.exchange(procs, lines, SECONDS)
