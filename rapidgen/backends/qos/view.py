@@ -27,6 +27,15 @@ _FASTDDS = {
 
 
 @dataclass(frozen=True)
+class Limits:
+    """Fast DDS ResourceLimitsQosPolicy of one endpoint (0: unlimited)."""
+
+    max_samples: int
+    max_instances: int
+    max_samples_per_instance: int
+
+
+@dataclass(frozen=True)
 class Endpoint:
     """One side's QoS, spelt for one vendor; None: not written."""
 
@@ -35,6 +44,7 @@ class Endpoint:
     history_kind: str | None
     history_depth: int | None
     publish_mode: str | None
+    limits: Limits | None = None  # Fast DDS only
 
     @property
     def has_history(self) -> bool:
@@ -49,10 +59,40 @@ class Endpoint:
         return self == Endpoint(None, None, None, None, None)
 
 
-def endpoint(p: Policies, names: dict[str, str]) -> Endpoint:
+def endpoint(p: Policies, names: dict[str, str], limits: Limits | None = None) -> Endpoint:
     return Endpoint(names.get(p.reliability or ""), names.get(p.durability or ""),
                     names.get(p.history.kind) if p.history else None,
-                    p.history.depth if p.history else None, names.get(p.publish_mode or ""))
+                    p.history.depth if p.history else None, names.get(p.publish_mode or ""), limits)
+
+
+# Fast DDS 2.9 defaults that do not fit RAPID (docs/qos.md, "Fast DDS: resource limits and
+# publish mode"). Every RAPID message is keyed (Message.hdr; Ack also by cmdId, one instance
+# per command), and Fast DDS keeps at most 10 instances per endpoint by default: an ack
+# writer refuses the 11th command's acks, an ack reader drops them. So no instance limit;
+# the applications bound instances instead (an asset unregisters the acks of old commands,
+# a reader frees an unregistered instance once it has taken its samples).
+FASTDDS_UNLIMITED = 0  # 0, not LENGTH_UNLIMITED (-1): a 2.9 writer history refuses every instance with -1
+FASTDDS_KEEP_ALL_PER_INSTANCE = 400  # Fast DDS's own default; a keep-all writer blocks beyond it
+
+
+def fastdds_limits(p: Policies) -> Limits:
+    """No limit on instances or in total (Fast DDS refuses a finite max_samples with
+    unlimited instances); per instance the history depth, or 400 samples for keep_all."""
+    per = p.history.depth if p.history and p.history.kind == "keep_last" and p.history.depth else \
+        FASTDDS_KEEP_ALL_PER_INSTANCE
+    return Limits(FASTDDS_UNLIMITED, FASTDDS_UNLIMITED, per)
+
+
+def fastdds_writer(p: Policies) -> Policies:
+    """Reliable writers publish SYNCHRONOUS whatever the library says. Seen with Fast DDS
+    2.9.1 in ASYNCHRONOUS mode: keep-last samples replaced before the sending thread sent
+    them (each ack's EXECUTING overwritten at once by its COMPLETED) never reached a volatile
+    Cyclone reader, 29 of 30 commands' acks lost for good (durable and Fast DDS readers got
+    them; tests/cpp/test_fastdds_limits.py). Best-effort writers (telemetry, images) keep the
+    library's mode: nothing is resent to them anyway."""
+    if p.reliability != "reliable":
+        return p
+    return Policies(p.reliability, p.durability, p.history, "synchronous")
 
 
 @dataclass(frozen=True)
@@ -83,15 +123,20 @@ def partition_of(spec: QosSpec, asset) -> str | None:
 
 
 def effective_profiles(spec: QosSpec, asset, names: dict[str, str], publish_mode: bool) -> list[ProfileView]:
-    """Every profile with its whole chain resolved (Fast DDS; DDS-XML, which has no publish mode)."""
+    """Every profile with its whole chain resolved: Fast DDS (publish_mode True: the Fast DDS
+    publish mode and resource limits above), DDS-XML (no publish mode)."""
     part = partition_of(spec, asset)
     out = []
     for p in spec.profiles:
         writer, reader = spec.effective(p.name)
-        if not publish_mode:
-            writer = Policies(writer.reliability, writer.durability, writer.history, None)
+        if publish_mode:
+            w = endpoint(fastdds_writer(writer), names, fastdds_limits(writer))
+            r = endpoint(reader, names, fastdds_limits(reader))
+        else:
+            w = endpoint(Policies(writer.reliability, writer.durability, writer.history, None), names)
+            r = endpoint(reader, names)
         out.append(ProfileView(p.name, f"{spec.library}::{p.name}", f"{spec.library}::{p.base}" if p.base else None,
-                               p.description, endpoint(writer, names), endpoint(reader, names), part))
+                               p.description, w, r, part))
     return out
 
 

@@ -36,10 +36,11 @@ namespace r2 = rapid_robonaut2;
 
 static const std::string SOURCE = "R2CppBridge";
 static const std::string ASSET(r2::ASSET_NAME);
-// Acks are keyed by cmdId, and Fast DDS keeps at most 10 instances per writer by default
-// (ResourceLimitsQosPolicy): the 11th command's acks would fail to write. Keep this many
-// commands' final acks for late joiners, unregistering the oldest.
-static constexpr int ACK_INSTANCES = 1024;
+// Acks are keyed by cmdId: one instance per command. The generated profile sets no instance
+// limit (Fast DDS's default of 10 would refuse the 11th command's acks), so memory is
+// bounded here: the final acks of this many recent commands stay for late joiners, the
+// oldest is unregistered (its history freed once every reader acknowledged).
+static constexpr std::size_t ACK_INSTANCES = 1024;
 
 static std::int64_t micros_now() {
     return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
@@ -51,19 +52,9 @@ public:
     Node(DomainParticipant* p) : p_(p) {}
 
     template <class T>
-    DataWriter* writer(std::string_view topic, std::string_view profile, int max_instances = 0) {
-        Publisher* pub = p_->create_publisher_with_profile(std::string(profile));
-        DataWriterQos qos;
-        pub->get_datawriter_qos_from_profile(std::string(profile), qos);
-        if (max_instances > 0) {  // the ack writer: keyed by cmdId, one instance per command (ACK_INSTANCES)
-            qos.resource_limits().max_instances = max_instances;
-            qos.resource_limits().max_samples = max_instances * qos.history().depth;
-            qos.resource_limits().max_samples_per_instance = qos.history().depth;
-            // Seen with Fast DDS 2.9: in the profile's ASYNCHRONOUS mode, once a late-joining
-            // durable reader matched, acks stopped reaching another (volatile) reader.
-            qos.publish_mode().kind = SYNCHRONOUS_PUBLISH_MODE;
-        }
-        DataWriter* w = pub->create_datawriter(make_topic<T>(topic), qos);
+    DataWriter* writer(std::string_view topic, std::string_view profile) {
+        DataWriter* w = p_->create_publisher_with_profile(std::string(profile))
+                            ->create_datawriter_with_profile(make_topic<T>(topic), std::string(profile));
         if (w == nullptr) throw std::runtime_error("cannot create writer of " + std::string(topic));
         return w;
     }
@@ -164,7 +155,7 @@ private:
         a.message = msg;
         if (status == rapid::AckStatus::ACK_COMPLETED) {
             acked_.push_back(id);
-            if (acked_.size() >= static_cast<std::size_t>(ACK_INSTANCES)) forget_oldest_ack();
+            if (acked_.size() >= ACK_INSTANCES) forget_oldest_ack();
         }
         if (!acks_->write(&a)) std::cerr << "ack for " << id << " not written" << std::endl;
     }
@@ -207,7 +198,7 @@ int main(int argc, char** argv) {
     const auto left_cfg = with_hdr(r2::config_rapid_position_config_leftArm());
     const auto right_cfg = with_hdr(r2::config_rapid_position_config_rightArm());
 
-    DataWriter* acks = node.writer<rapid::Ack>("rapid_ack", "RapidReliableDurableQos", ACK_INSTANCES);
+    DataWriter* acks = node.writer<rapid::Ack>("rapid_ack", "RapidReliableDurableQos");
     DataReader* commands = node.reader<rapid::Command>("rapid_command", "RapidReliableQos");
     node.writer<rapid::CommandConfig>("rapid_command_config", "RapidConfigQos")->write(const_cast<rapid::CommandConfig*>(&command_cfg));
     node.writer<rapid::AgentConfig>("rapid_agent_config", "RapidConfigQos")->write(const_cast<rapid::AgentConfig*>(&agent_cfg));

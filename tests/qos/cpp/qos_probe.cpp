@@ -176,6 +176,12 @@ void print_participant(const std::string& profile) {
               << ",\"transports\":" << q.transport().user_transports.size() << "}" << std::endl;
 }
 
+std::string limits(const ResourceLimitsQosPolicy& l) {
+    return "\"max_samples\":" + std::to_string(l.max_samples) + ",\"max_instances\":" +
+           std::to_string(l.max_instances) + ",\"max_samples_per_instance\":" +
+           std::to_string(l.max_samples_per_instance);
+}
+
 int run_qos(Session& s, const std::vector<std::string>& profiles) {
     for (const auto& name : profiles) {
         Publisher* pub = s.participant->create_publisher_with_profile(name);
@@ -191,10 +197,12 @@ int run_qos(Session& s, const std::vector<std::string>& profiles) {
                   << "\",\"history\":\"" << name_of(wq.history().kind) << "\",\"depth\":" << wq.history().depth
                   << ",\"publish_mode\":\""
                   << (wq.publish_mode().kind == ASYNCHRONOUS_PUBLISH_MODE ? "asynchronous" : "synchronous")
-                  << "\",\"partition\":" << partitions(pub->get_qos().partition()) << "}" << std::endl;
+                  << "\"," << limits(wq.resource_limits())
+                  << ",\"partition\":" << partitions(pub->get_qos().partition()) << "}" << std::endl;
         std::cout << "{\"profile\":\"" << name << "\",\"side\":\"reader\",\"reliability\":\""
                   << name_of(rq.reliability().kind) << "\",\"durability\":\"" << name_of(rq.durability().kind)
                   << "\",\"history\":\"" << name_of(rq.history().kind) << "\",\"depth\":" << rq.history().depth
+                  << "," << limits(rq.resource_limits())
                   << ",\"partition\":" << partitions(sub->get_qos().partition()) << "}" << std::endl;
     }
     return 0;
