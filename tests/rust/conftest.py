@@ -2,8 +2,12 @@
 
 Built into a target folder in the pytest session's temp folder (the cache lives inside
 the run, shared by every test): K10's crate (the RAPID set plus K10's extension IDL, so
-every golden vector's type), in release mode, offline (the generated crate and the test
-programs need no crate from a registry).
+every golden vector's type), in release mode, offline (the generated crate with its
+default features and the test programs need no crate from a registry).
+
+What does need registry crates (the RustDDS peer; the `serde` and `dds` features under
+clippy and serde_json) builds with tests/rust/peer/Cargo.lock: the peer's own, copied
+beside the other manifests as their starting lock, so every build uses its versions.
 """
 from __future__ import annotations
 
@@ -22,6 +26,7 @@ VECTORS = ROOT / "tests" / "vectors" / "rapid.json"
 K10 = ROOT / "generated" / "k10" / "rust"
 CRATE = "rapid_k10red"
 RUSTDDS_MSRV = (1, 88)  # rustdds 0.15.0's rust-version
+PEER_LOCK = HERE / "peer" / "Cargo.lock"  # the versions of every registry crate the tests use
 
 
 def cargo() -> str:
@@ -89,13 +94,43 @@ def rust_build(tmp_path_factory, rust_target) -> Path:
     return out
 
 
-def build_rust_peer(target: Path) -> Path:
-    """The RustDDS peer (tests/rust/peer, Cargo.lock pinned) built in target (the session's
-    `rust_peer` fixture, tests/conftest.py); skips on a toolchain RustDDS cannot use."""
+def skip_unless_registry_toolchain() -> None:
+    """Skips on a toolchain older than the crates of PEER_LOCK need (RustDDS 0.15: 1.88)."""
     version = subprocess.run([cargo(), "--version"], capture_output=True, text=True,
                              stdin=subprocess.DEVNULL).stdout.split()
     if tuple(int(x) for x in version[1].split(".")[:2]) < RUSTDDS_MSRV:
         pytest.skip(f"RustDDS 0.15 needs Rust >= 1.88, this is {version[1]} (Debian 12's cargo is 1.63: use rustup)")
+
+
+SERDE_HARNESS = """\
+[package]
+name = "rapidgen_rust_serde_tests"
+version = "0.0.0"
+edition = "2021"
+publish = false
+
+[dependencies]
+gen = {{ package = "{crate}", path = "{path}", features = ["serde"] }}
+serde_json = "=1.0.154"
+"""
+
+
+def build_serde_programs(folder: Path, crate_dir: Path, crate: str, target: Path, programs: dict[str, Path]) -> Path:
+    """Programs built against the crate in crate_dir with its `serde` feature (as `gen`)
+    and serde_json, at PEER_LOCK's versions; returns the folder holding the executables."""
+    skip_unless_registry_toolchain()
+    text = SERDE_HARNESS.format(crate=crate, path=crate_dir.as_posix())
+    text += "".join(BIN.format(name=n, path=p.as_posix()) for n, p in programs.items())
+    (folder / "Cargo.toml").write_text(text, encoding="utf-8")
+    shutil.copyfile(PEER_LOCK, folder / "Cargo.lock")
+    run([cargo(), "build", "--release", "--bins"], folder, target)
+    return target / "release"
+
+
+def build_rust_peer(target: Path) -> Path:
+    """The RustDDS peer (tests/rust/peer, Cargo.lock pinned) built in target (the session's
+    `rust_peer` fixture, tests/conftest.py); skips on a toolchain RustDDS cannot use."""
+    skip_unless_registry_toolchain()
     start = time.monotonic()
     run([cargo(), "build", "--locked"], HERE / "peer", target, timeout=1200)
     print(f"\nrust: cargo build of the RustDDS peer took {time.monotonic() - start:.1f} s")
