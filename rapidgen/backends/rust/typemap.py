@@ -68,7 +68,8 @@ class TypeMap:
     def real(self, t: ir.Type) -> ir.Type:
         return self.model.resolve_alias(t)
 
-    def _var(self, stem: str) -> str:
+    def var(self, stem: str) -> str:
+        """A fresh local variable name (`e1`, `a2`, ...)."""
         self._n += 1
         return f"{stem}{self._n}"
 
@@ -213,10 +214,10 @@ class TypeMap:
         if isinstance(r, ir.String):
             return f"w.put_string({ref(place)}, {r.bound or 0}, {w})", True
         if isinstance(r, ir.Sequence):
-            e = self._var("e")
+            e = self.var("e")
             return f"w.put_seq({ref(place)}, {r.bound or 0}, {w}, |w, {e}| {self._closure(r.element, e, what)})", True
         if isinstance(r, ir.Array):
-            e = self._var("e")
+            e = self.var("e")
             inner = ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element
             return f"w.put_array({ref(place)}, |w, {e}| {self._closure(inner, e, what)})", True
         return f"{CDR}::Cdr::encode({ref(place)}, w)", True
@@ -254,7 +255,7 @@ class TypeMap:
                     f"{self.decoder(r.element, what)})"), True
         if isinstance(r, ir.Array):
             inner = ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element
-            a = self._var("a")
+            a = self.var("a")
             init = self.default(r) or "::core::default::Default::default()"
             return (f"{{ r.need({self.min_size(r)}, {w})?; let mut {a}: {self.rust(t, SourceLoc('', 0, 0))} = {init}; "
                     f"r.get_array(&mut {a}, {self.decoder(inner, what)})?; {a} }}"), False

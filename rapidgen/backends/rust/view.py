@@ -230,7 +230,7 @@ class Builder:
             expr, fallible = self.types.encode(t, place, what)
             key.append(expr + ("?;" if fallible else ";"))
             # the key member read, then written in the writer's byte order
-            k = self.types._var("k")
+            k = self.types.var("k")
             expr, fallible = self.types.encode(t, k, what)
             again = f"{expr}.map_err(|e| r.error(format_args!(\"{{e}}\")))?;" if fallible else expr + ";"
             transcode.append(f"let {k} = {self.types.decode(t, what)};")
