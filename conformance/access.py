@@ -1,7 +1,7 @@
 """Access control (rapid-protocol.md 5b), on assets with an AccessControl subsystem."""
 from __future__ import annotations
 
-from rapidgen.conform.model import REQUIRED, Unsupported, check, expect
+from rapidgen.conform.model import REQUIRED, Blocked, Unsupported, check, expect
 
 from .commands import _ready
 from .dds import qos_mismatch
@@ -31,7 +31,8 @@ def _other(s, cmd=None):
 def published(s):
     _access(s)
     eps = s.wait_endpoint("writer", TOPIC)
-    expect(bool(eps), "a rapid_accesscontrol_state writer", "none")
+    if not eps:
+        raise Blocked(f"no {TOPIC} writer (DDS-06)")
     bad = [w for ep in eps if (w := qos_mismatch(ep, "RapidStateQos"))]
     expect(not bad, "Reliable, TransientLocal, KeepLast", "; ".join(bad))
     expect(s.latest(TOPIC, timeout=3.0) is not None, "a state for a late-joining reader", "none")

@@ -212,6 +212,7 @@ def _judged(s) -> list[str]:
        needs=("CMD-02",), late=True)
 def survives(s):
     c = _harmless(s)
+    s.ensure_control()  # an access-control fault earlier in the run may have left control elsewhere
     p = _with_params(s) if s.facts.with_params() else c
     odd: list[dict[str, Any]] = [  # keyword arguments of send()
         dict(args=[("RAPID_DOUBLE", float("nan"))] * 16), dict(args=[("RAPID_STRING", "\x01\x7f\u00e9" * 30)]),

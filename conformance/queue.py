@@ -4,7 +4,7 @@ from __future__ import annotations
 import time
 
 from rapidgen.conform.asset import valid_args
-from rapidgen.conform.model import REQUIRED, Unsupported, check, expect
+from rapidgen.conform.model import REQUIRED, Blocked, Unsupported, check, expect
 from rapidgen.conform.session import describe
 
 from .commands import _harmless, _ready
@@ -27,7 +27,8 @@ def _queue(s):
 def published(s):
     _queue(s)
     eps = s.wait_endpoint("writer", TOPIC)
-    expect(bool(eps), "a rapid_queue_state writer", "none")
+    if not eps:
+        raise Blocked(f"no {TOPIC} writer (DDS-06)")
     bad = [w for ep in eps if (w := qos_mismatch(ep, "RapidStateQos"))]
     expect(not bad, "Reliable, TransientLocal, KeepLast", "; ".join(bad))
     st = s.latest(TOPIC, timeout=3.0)
@@ -81,6 +82,9 @@ def delete(s):
     cmd, args = long
     c = _harmless(s)
     first = s.client.send(cmd.subsystem, cmd.name, args, source=s.source, action="QUEUE_APPEND")
+    # the victim is appended once the long command runs: DELETE is judged on a pending
+    # command whatever order the queue takes waiting commands in (that is QUE-02's)
+    s.client.wait_status(first, ("ACK_EXECUTING", "ACK_COMPLETED"), s.timeout)
     second = s.client.send(c.subsystem, c.name, valid_args(c), source=s.source, action="QUEUE_APPEND")
     time.sleep(0.3)
     d = s.run(c, action="QUEUE_DELETE", target=second)

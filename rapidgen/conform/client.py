@@ -53,7 +53,7 @@ class Client:
         q = bindings.qos
         self.publisher = Publisher(participant, qos=q.publisher())
         self.subscriber = Subscriber(participant, qos=q.subscriber())
-        self.incompatible: dict[str, list[str]] = {}  # topic -> ["requested: policy 2", ...]
+        self.incompatible: dict[str, list[tuple[str, int | None]]] = {}  # topic -> [("requested", policy id)]
         self._topics: dict[str, object] = {}
         self.lock = threading.Condition()
         self.readers: dict[str, DataReader[Any]] = {}
@@ -84,8 +84,7 @@ class Client:
 
     def _incompatible(self, topic: str, side: str, status) -> None:
         with self.lock:
-            self.incompatible.setdefault(topic, []).append(
-                f"{side} incompatible QoS (policy id {getattr(status, 'last_policy_id', '?')})")
+            self.incompatible.setdefault(topic, []).append((side, getattr(status, "last_policy_id", None)))
 
     def profile_reader(self, topic: str, type_name: str, relaxed: bool = False):
         """A reader of topic with its profile's QoS and KEEP_ALL history (history is local:
@@ -174,9 +173,13 @@ class Client:
             return [a for a in self.acks if a.cmd_id == cmd_id]
 
     def wait_final(self, cmd_id: str, timeout: float = 10.0) -> list[AckSeen]:
+        return self.wait_status(cmd_id, ("ACK_COMPLETED",), timeout)
+
+    def wait_status(self, cmd_id: str, statuses: tuple[str, ...], timeout: float) -> list[AckSeen]:
+        """The cmdId's acks once one has a status in statuses (or at the timeout)."""
         end = time.monotonic() + timeout
         with self.lock:
-            while not any(a.cmd_id == cmd_id and a.status == "ACK_COMPLETED" for a in self.acks):
+            while not any(a.cmd_id == cmd_id and a.status in statuses for a in self.acks):
                 left = end - time.monotonic()
                 if left <= 0:
                     break

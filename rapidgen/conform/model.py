@@ -1,6 +1,7 @@
 """Checks and outcomes. A check function takes the Session and returns None (PASS) or a
 note; it raises Fail(expected, seen) or Unsupported(why). A check whose `needs` did not
-pass is BLOCKED (its own rule could not be judged), never run."""
+pass is BLOCKED (its own rule could not be judged), never run; a check that finds what it
+would judge missing for a reason another check reports raises Blocked(why)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -18,6 +19,10 @@ class Fail(Exception):
 
 class Unsupported(Exception):
     """The check does not apply to this asset (no queue, no access control, ...)."""
+
+
+class Blocked(Exception):
+    """The check cannot judge its rule because of another check's finding (say which)."""
 
 
 @dataclass(frozen=True)

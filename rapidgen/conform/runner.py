@@ -6,8 +6,8 @@ from __future__ import annotations
 import time
 import traceback
 
-from rapidgen.conform.model import (BLOCKED, ERROR, FAIL, PASS, REQUIRED, UNSUPPORTED, Check, Fail, Result,
-                                    Unsupported)
+from rapidgen.conform.model import (BLOCKED, ERROR, FAIL, PASS, REQUIRED, UNSUPPORTED, Blocked, Check, Fail,
+                                    Result, Unsupported)
 
 
 def select(checks: dict[str, Check], only: list[str], skip: list[str]) -> tuple[list[Check], list[str]]:
@@ -40,6 +40,8 @@ def run_checks(session, checks: list[Check], on_result=None) -> list[Result]:
                 res = Result(c, FAIL, str(f), f.expected, f.seen)
             except Unsupported as u:
                 res = Result(c, UNSUPPORTED, str(u))
+            except Blocked as b:
+                res = Result(c, BLOCKED, f"not judged: {b}")
             except Exception as exc:  # a check's own bug, or DDS refusing something: reported, run goes on
                 where = traceback.extract_tb(exc.__traceback__)[-1]
                 res = Result(c, ERROR, f"{type(exc).__name__}: {exc} ({where.filename.rsplit('/', 1)[-1]}:{where.lineno})")

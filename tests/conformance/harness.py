@@ -1,5 +1,5 @@
-"""Running `rapidgen conform` against a bridge on loopback, each run on its own DDS
-domain (200-231: no other test tier uses these)."""
+"""Running `rapidgen conform` against a bridge on loopback, each run on a DDS domain no
+other run uses at the same time (200-232: no other test tier uses these)."""
 from __future__ import annotations
 
 import json

@@ -1,0 +1,71 @@
+"""Broken assets: access control (conformance/access.py)."""
+from __future__ import annotations
+
+from rapid_runtime.acks import EXEC_FAILED, OK
+
+from . import kind
+
+REQUEST, GRAB = ("AccessControl", "requestControl"), ("AccessControl", "grabControl")
+
+
+@kind("access-state-unwritten", "ACC-01")
+def access_state_unwritten(a):
+    """Control is tracked but AccessControlState never written (its writer exists).
+    ACC-02..06 are then BLOCKED."""
+    writer = a.writer("rapid_accesscontrol_state")
+    a.bridge.access_state = lambda controller, requestors: writer
+
+
+@kind("request-unpublished", "ACC-02")
+def request_unpublished(a):
+    """requestControl grants control without writing AccessControlState (only grab and
+    release do): readers never see the grant, though control is held all the same."""
+    def request(m, run):
+        err, note = m.control.request(run.cmd.cmd_src)
+        return (EXEC_FAILED, err) if err else (OK, note)
+    a.manager_module.BUILTINS[REQUEST] = request
+
+
+@kind("no-control-gate", "ACC-03")
+def no_control_gate(a):
+    """The allow-list still holds; control is never asked for."""
+    m = a.manager
+    authorize = m._authorize
+
+    def no_gate(cmd, entry):
+        why = authorize(cmd, entry)
+        return None if why and "does not have control" in why else why
+    m._authorize = no_gate
+
+
+@kind("grab-refused", "ACC-04")
+def grab_refused(a):
+    """grabControl only takes control nobody holds (EXEC_FAILED otherwise)."""
+    grab = a.manager_module.BUILTINS[GRAB]
+
+    def polite(m, run):
+        held = m.control.controller
+        if held and held != run.cmd.cmd_src:
+            return EXEC_FAILED, f"control is held by {held}"
+        return grab(m, run)
+    a.manager_module.BUILTINS[GRAB] = polite
+
+
+@kind("release-by-anyone", "ACC-05")
+def release_by_anyone(a):
+    """releaseControl releases whoever holds control, whoever sends it."""
+    control = a.manager.control
+
+    def release(source):
+        if not control.controller:
+            return "nobody has control", ""
+        control.controller = control.requestors.pop(0) if control.requestors else ""
+        return None, "control released"
+    control.release = release
+
+
+@kind("stop-needs-control", "ACC-06")
+def stop_needs_control(a):
+    """stopAllMotion goes through the allow-list and the control gate like any command."""
+    import rapid_runtime.access as access_module  # the manager calls it through the module
+    access_module.always_allowed = lambda subsystem_type, command: False

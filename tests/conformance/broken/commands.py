@@ -1,0 +1,191 @@
+"""Broken assets: command intake and acks (conformance/commands.py)."""
+from __future__ import annotations
+
+import collections
+import dataclasses
+import math
+import os
+
+from rapid_runtime.acks import COMPLETED, EXEC_FAILED, EXECUTING, NOT, OK
+
+from . import kind
+
+
+def _wrap_ack(a, change):
+    """bridge.ack through change(ack, cmd, status, completed, message)."""
+    ack = a.bridge.ack
+    a.bridge.ack = lambda cmd, status, completed, message: change(ack, cmd, status, completed, message)
+
+
+def _wrap_check(a, change):
+    """The manager's command validation, with the command first passed through change(cmd)."""
+    check = a.manager_module.check_command
+    a.manager_module.check_command = lambda cmd, tables: check(change(cmd, tables), tables)
+
+
+@kind("ack-topic-suffixed", "CMD-01")
+def ack_topic_suffixed(a):
+    """Acks on rapid_ack-<asset> (a per-asset suffix; 5b: the Ack topic is plain rapid_ack).
+    Every command check is then BLOCKED."""
+    topic = f"rapid_ack-{a.tables.name}"
+    a.patch_qos(alias={topic: "rapid_ack"})
+    a.B.ACK_TOPIC = topic
+
+
+@kind("noop-unimplemented", "CMD-02")
+def noop_unimplemented(a):
+    """Admin/noOp is in the CommandConfig but answered EXEC_FAILED (checks that need a
+    valid command answered OK are BLOCKED)."""
+    a.manager_module.BUILTINS[("Admin", "noOp")] = lambda m, run: (EXEC_FAILED, "not implemented")
+
+
+@kind("wrong-ack-order", "CMD-03")
+def wrong_ack_order(a):
+    def change(ack, cmd, status, completed, message):
+        if status == EXECUTING:
+            ack(cmd, status, completed, message)
+            return ack(cmd, "ACK_QUEUED", NOT, "")
+        return ack(cmd, status, completed, message)
+    _wrap_ack(a, change)
+
+
+@kind("ack-after-final", "CMD-04")
+def ack_after_final(a):
+    def change(ack, cmd, status, completed, message):
+        ack(cmd, status, completed, message)
+        if status == COMPLETED:
+            ack(cmd, EXECUTING, NOT, "")
+    _wrap_ack(a, change)
+
+
+@kind("any-subsystem", "CMD-05")
+def any_subsystem(a):
+    """Commands dispatched by name alone: an unknown subsystem runs the first command of
+    that name in any subsystem."""
+    def change(cmd, tables):
+        if tables.type_of(cmd.subsystem) is None:
+            owner = next((s for s, e in tables.entries() if e.name == cmd.name), None)
+            if owner is not None:
+                return dataclasses.replace(cmd, subsystem=owner)
+        return cmd
+    _wrap_check(a, change)
+
+
+@kind("unknown-command-ok", "CMD-06")
+def unknown_command_ok(a):
+    """A subsystem's dispatcher whose default case answers OK: an unknown command name in a
+    known subsystem completes OK, doing nothing."""
+    m, tables = a.manager, a.tables
+    intake = m._intake
+
+    def catch_all(cmd):
+        if tables.type_of(cmd.subsystem) is not None and tables.command(cmd.subsystem, cmd.name) is None:
+            m._ack(cmd, EXECUTING, NOT, "")
+            m._ack(cmd, COMPLETED, OK, "")
+            return None
+        return intake(cmd)
+    m._intake = catch_all
+
+
+@kind("extra-args-ignored", "CMD-07")
+def extra_args_ignored(a):
+    """Arguments read by position up to the parameter count; extra ones are ignored."""
+    def change(cmd, tables):
+        entry = tables.command(cmd.subsystem, cmd.name)
+        if entry is not None and len(cmd.args) > len(entry.params):
+            return dataclasses.replace(cmd, args=cmd.args[:len(entry.params)])
+        return cmd
+    _wrap_check(a, change)
+
+
+def _as(dtype: str, value):
+    """value read as a dtype, whatever the union said (as a C++ bridge calling the union's
+    accessor for the declared type would); unchanged when it cannot be."""
+    if dtype == "RAPID_STRING":
+        return dtype, str(value)
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        if dtype in ("RAPID_FLOAT", "RAPID_DOUBLE"):
+            return dtype, float(value)
+        if dtype in ("RAPID_INT", "RAPID_LONGLONG") and float(value).is_integer():
+            return dtype, int(value)
+    return None
+
+
+@kind("args-converted", "CMD-08")
+def args_converted(a):
+    """The union's discriminator is not checked: each value is converted to the parameter's type."""
+    def change(cmd, tables):
+        entry = tables.command(cmd.subsystem, cmd.name)
+        if entry is None or len(cmd.args) != len(entry.params):
+            return cmd
+        args = tuple(arg if arg[0] == p.type else (_as(p.type, arg[1]) or arg)
+                     for p, arg in zip(entry.params, cmd.args))
+        return dataclasses.replace(cmd, args=args)
+    _wrap_check(a, change)
+
+
+@kind("other-asset-accepted", "CMD-09")
+def other_asset_accepted(a):
+    receive = a.manager.receive
+    a.manager.receive = lambda cmd: receive(dataclasses.replace(cmd, asset_name=a.tables.name))
+
+
+@kind("no-dedup", "CMD-10")
+def no_dedup(a):
+    class Forgetful(collections.OrderedDict):
+        def __contains__(self, key):
+            return False
+    a.manager.seen = Forgetful()
+
+
+@kind("long-ack-message", "CMD-11")
+def long_ack_message(a):
+    def change(ack, cmd, status, completed, message):
+        if message:
+            message = (message + " " + "x" * 128)[:128]  # Astrobee's bug: 128 bytes, no terminator
+        return ack(cmd, status, completed, message)
+    _wrap_ack(a, change)
+
+
+@kind("ack-names-commander", "CMD-12")
+def ack_names_commander(a):
+    """Ack headers with the commander's name as assetName (srcName and assetName swapped)."""
+    def change(ack, cmd, status, completed, message):
+        return ack(dataclasses.replace(cmd, asset_name=cmd.src_name), status, completed, message)
+    _wrap_ack(a, change)
+
+
+@kind("volatile-acks", "CMD-13")
+def volatile_acks(a):
+    from cyclonedds.qos import Policy, Qos
+    a.patch_qos({"rapid_ack": Qos(Policy.Durability.Volatile)})
+
+
+@kind("crash-on-bad-input", "CMD-14")
+def crash_on_bad_input(a):
+    on_command = a.bridge._on_command
+
+    def fragile(sample):
+        if any(isinstance(x.value, float) and math.isnan(x.value) for x in sample.arguments):
+            os._exit(70)  # what an unchecked float conversion in a robot's C++ bridge does
+        on_command(sample)
+    a.bridge._on_command = fragile
+
+
+@kind("ranges-unchecked", "CMD-15")
+def ranges_unchecked(a):
+    """Numeric parameter ranges are not enforced (allowed values still are)."""
+    import rapid_runtime.validate as V
+    limit = V.limit_error
+    V.limit_error = lambda p, value: limit(dataclasses.replace(p, min=None, max=None), value)
+
+
+@kind("astrobee-acks", None)
+def astrobee_acks(a):
+    """Never QUEUED; the asset's own header on acks (rapid-protocol.md 5b): must pass."""
+    def change(ack, cmd, status, completed, message):
+        if status == "ACK_QUEUED":
+            return None
+        return ack(dataclasses.replace(cmd, src_name=a.tables.name), status, completed, message)
+    _wrap_ack(a, change)
+

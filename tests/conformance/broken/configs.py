@@ -1,0 +1,49 @@
+"""Broken assets: configs (conformance/configs.py)."""
+from __future__ import annotations
+
+from . import kind
+
+
+@kind("position-config-unpublished", "CFG-01")
+def position_config_unpublished(a):
+    """The PositionConfig is never written (waiting for a localizer frame that never
+    comes); its samples still go out. CFG-02..05, TEL-02/03/07, DDS-03/07 are BLOCKED."""
+    topic = a.entry("position")["topics"]["config"]
+    publish = a.bridge.publish_config
+
+    def skip(t, value=None):
+        if t != topic:
+            return publish(t, value)
+        return a.bridge.serials.update(t, a.tables.configs[t][1] if value is None else value)[0]
+    a.bridge.publish_config = skip
+
+
+@kind("volatile-config", "CFG-02")
+def volatile_config(a):
+    from cyclonedds.qos import Policy, Qos
+    a.patch_qos({t: Qos(Policy.Durability.Volatile) for t in a.tables.configs})
+
+
+@kind("wrong-config", "CFG-03")
+def wrong_config(a):
+    """The CommandConfig lists one subsystem fewer than the descriptor implies."""
+    type_name, value = a.tables.configs["rapid_command_config"]
+    a.tables.configs["rapid_command_config"] = (type_name,
+                                                dict(value, availableSubsystems=value["availableSubsystems"][:-1]))
+
+
+@kind("config-without-source", "CFG-04")
+def config_without_source(a):
+    """Configs built before the bridge knew its name: srcName left empty (samples are fine)."""
+    config = a.M.config
+
+    def unnamed(rapid, type_name, value, hdr):
+        hdr.srcName = ""
+        return config(rapid, type_name, value, hdr)
+    a.M.config = unnamed
+
+
+@kind("zero-serial", "CFG-05")
+def zero_serial(a):
+    a.bridge.serials.start = 0
+    a.bridge.serials._last = 0

@@ -1,0 +1,75 @@
+"""Broken assets: the command queue (conformance/queue.py)."""
+from __future__ import annotations
+
+import dataclasses
+import threading
+
+from . import kind
+
+
+@kind("queue-status-code", "QUE-01")
+def queue_status_code(a):
+    """statusCode 2: none of suspended (-1), idle (0), active (1). QUE-05 is then BLOCKED."""
+    queue_state = a.bridge.queue_state
+    a.bridge.queue_state = lambda code, *lists: queue_state(2, *lists)
+
+
+def _serviced_at_10hz(a, newest_first: bool) -> None:
+    """The queue started by an executive tick at 10 Hz, as soraCore does (rapid-protocol.md 5b),
+    instead of at once: commands appended within a tick wait in the queue together."""
+    m = a.manager
+    service = m._service
+    m._service = m._publish_queue  # intake and completions only publish the state
+    if newest_first:
+        items = m.pending.items
+        m.pending.pop_ready = lambda busy: items.pop() if items and not busy(items[-1].cmd.subsystem) else None
+
+    def tick():
+        while not a.bridge.stopped.wait(0.1):
+            with m.lock:
+                service()
+    threading.Thread(target=tick, daemon=True, name="queue-tick").start()
+
+
+@kind("queue-10hz", None)
+def queue_10hz(a):
+    """soraCore's queue servicing (10 Hz tick), in order: must pass."""
+    _serviced_at_10hz(a, newest_first=False)
+
+
+@kind("queue-lifo", "QUE-02")
+def queue_lifo(a):
+    """A 10 Hz queue kept as a stack: of the commands waiting, the newest runs first."""
+    _serviced_at_10hz(a, newest_first=True)
+
+
+@kind("append-target-ignored", "QUE-03")
+def append_target_ignored(a):
+    """APPEND with a targetCmdId is appended anyway (the target is never looked at)."""
+    m = a.manager
+    intake = m._intake
+    m._intake = lambda cmd: intake(dataclasses.replace(cmd, target="") if cmd.action == "QUEUE_APPEND" else cmd)
+
+
+@kind("delete-wrong-command", "QUE-04")
+def delete_wrong_command(a):
+    """DELETE of a pending command cancels the running one instead (the queue's head);
+    the named command stays and runs."""
+    m = a.manager
+    delete = m._delete
+
+    def head_instead(cmd):
+        if m.active is not None and m._queued_run(cmd.target) is not None:
+            cmd = dataclasses.replace(cmd, target=m.active.cmd.cmd_id)
+        return delete(cmd)
+    m._delete = head_instead
+
+
+@kind("queue-record-status", "QUE-05")
+def queue_record_status(a):
+    """Pending commands reported as already succeeded."""
+    records = a.M.queue_state
+
+    def succeeded(rapid, hdr, pending, active, completed):
+        return records(rapid, hdr, [(c, r, "Q_STATUS_SUCCEEDED") for c, r, _ in pending], active, completed)
+    a.M.queue_state = succeeded
