@@ -34,7 +34,7 @@ def publishes(s):
     _published(s, _topics(s))
 
 
-@check("TEL-08", RECOMMENDED, "Other declared telemetry (images, text, extension types) publishes at its rate",
+@check("TEL-08", RECOMMENDED, "Other declared telemetry with a rate (images, extension types) publishes",
        "descriptor: telemetry entries and rates", late=True)
 def others(s):
     _published(s, _topics(s, paired=False))
