@@ -5,6 +5,8 @@ appear (precomputed booleans and lists), locators, port numbers, profile names.
 """
 from __future__ import annotations
 
+import ipaddress
+
 from dataclasses import dataclass
 
 from rapidgen.qos.spec import Participant, Policies, Ports, QosSpec, Transport
@@ -333,7 +335,19 @@ class FastParticipant:
         return self.discovery != "SIMPLE" or bool(self.meta_unicast or self.initial_peers)
 
 
+def _is_loopback(interface: str) -> bool:
+    try:
+        return ipaddress.ip_address(interface).is_loopback
+    except ValueError:  # an interface name
+        return False
+
+
 def _fast_udp(t: Transport, size: int | None) -> tuple[FastTransport, FastParticipant]:
+    # Fast DDS 2.9's maxMessageSize is also its receive buffer: a datagram over it is
+    # dropped. On a loopback-only transport nothing needs the cap (lo's MTU is 64 KiB) and
+    # other same-host stacks send more (RustDDS 0.15: up to 64 KiB), so keep Fast DDS's default.
+    if t.interfaces and all(_is_loopback(a) for a in t.interfaces):
+        size = None
     tr = FastTransport(f"rapid_udp_{t.name}", "UDPv4", size, t.interfaces,
                        t.max_participants_per_host, ())
     meta: tuple[Locator, ...] = ()
