@@ -10,14 +10,14 @@ from typing import Callable
 from rapidgen.backends.escape import cpp_str
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
+from rapidgen.model.wire import PRIMITIVE_SIZES as SIZES
+from rapidgen.model.wire import enum_size
 
 PRIMITIVES = {
     "int8": "std::int8_t", "uint8": "std::uint8_t", "int16": "std::int16_t", "uint16": "std::uint16_t",
     "int32": "std::int32_t", "uint32": "std::uint32_t", "int64": "std::int64_t", "uint64": "std::uint64_t",
     "float32": "float", "float64": "double", "char8": "char", "boolean": "bool", "octet": "std::uint8_t",
 }
-SIZES = {"int8": 1, "uint8": 1, "int16": 2, "uint16": 2, "int32": 4, "uint32": 4, "int64": 8, "uint64": 8,
-         "float32": 4, "float64": 8, "char8": 1, "boolean": 1, "octet": 1}
 ENUM_TYPES = {1: "std::int8_t", 2: "std::int16_t", 4: "std::int32_t"}
 UNBOUNDED = 1 << 62  # a size no bounded type reaches: "no bound"
 
@@ -26,10 +26,6 @@ class Unsupported(Exception):
     def __init__(self, msg: str, loc: SourceLoc | None = None) -> None:
         super().__init__(msg)
         self.loc = loc
-
-
-def enum_size(e: ir.Enum) -> int:
-    return 1 if e.bit_bound <= 8 else 2 if e.bit_bound <= 16 else 4
 
 
 class TypeMap:

@@ -14,7 +14,7 @@ from rapidgen.backends.cpp import namer
 from rapidgen.backends.cpp.typemap import ENUM_TYPES, UNBOUNDED, TypeMap, Unsupported, enum_size
 from rapidgen.backends.escape import cpp_str
 from rapidgen.diagnostics import SourceLoc
-from rapidgen.model import ir
+from rapidgen.model import ir, wire
 
 # The initial payload size Fast DDS preallocates per sample (it grows as needed): the
 # type's bound when small, else this.
@@ -260,11 +260,7 @@ class Builder:
         return self.types.encode(t, expr, f"{s.scoped_name} key {path}")
 
     def _key_max(self, s: ir.Struct) -> int:
-        total = 0
-        for path in s.keys:
-            _, t, _ = self._walk(s, path)
-            total += self.types.max_size(t)
-        return min(total, UNBOUNDED)
+        return wire.key_max_size(self.model, [self._walk(s, path)[1] for path in s.keys])
 
     def union(self, u: ir.Union, name: str, q: str) -> DeclView:
         self._check_ext(u)

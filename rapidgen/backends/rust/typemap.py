@@ -13,14 +13,14 @@ from typing import Callable
 from rapidgen.backends.escape import rust_str
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
+from rapidgen.model.wire import KEY_UNBOUNDED, enum_size
+from rapidgen.model.wire import PRIMITIVE_SIZES as SIZES
 
 PRIMITIVES = {
     "int8": "i8", "uint8": "u8", "int16": "i16", "uint16": "u16", "int32": "i32", "uint32": "u32",
     "int64": "i64", "uint64": "u64", "float32": "f32", "float64": "f64", "char8": "u8", "boolean": "bool",
     "octet": "u8",
 }
-SIZES = {"int8": 1, "uint8": 1, "int16": 2, "uint16": 2, "int32": 4, "uint32": 4, "int64": 8, "uint64": 8,
-         "float32": 4, "float64": 8, "char8": 1, "boolean": 1, "octet": 1}
 ENUM_REPR = {1: "i8", 2: "i16", 4: "i32"}
 # Arrays up to this length have Default (the standard library's limit); longer ones are
 # built with std::array::from_fn.
@@ -30,22 +30,12 @@ STD_ARRAY_DEFAULT = 32
 SERDE_ARRAY_MAX = 32
 SERDE_ARRAYS = "crate::serde_arrays"
 CDR = "crate::cdr"
-# KEY_MAX_SIZE of a key with no bound (or past any size a key hash cares about).
-KEY_UNBOUNDED = 1 << 20
 
 
 class Unsupported(Exception):
     def __init__(self, msg: str, loc: SourceLoc | None = None) -> None:
         super().__init__(msg)
         self.loc = loc
-
-
-def enum_size(e: ir.Enum) -> int:
-    return 1 if e.bit_bound <= 8 else 2 if e.bit_bound <= 16 else 4
-
-
-def _align(offset: int, n: int) -> int:
-    return -(-offset // n) * n
 
 
 def ref(place: str) -> str:
@@ -148,42 +138,6 @@ class TypeMap:
         if isinstance(d, ir.Union):
             return self.min_size(d.discriminator, depth + 1)
         return 0
-
-    def key_end(self, t: ir.Type, offset: int, depth: int = 0) -> int:
-        """Where the largest encoding of a t written at `offset` (big-endian, from 0) ends;
-        KEY_UNBOUNDED or more when it has no bound. Alignment is monotonic, so aligning the
-        largest offset bounds every smaller one: exact for fixed-size keys."""
-        r = self.real(t)
-        if offset >= KEY_UNBOUNDED or depth > 50:
-            return KEY_UNBOUNDED
-        if isinstance(r, ir.Primitive):
-            return _align(offset, SIZES.get(r.name, 1)) + SIZES.get(r.name, 1)
-        if isinstance(r, ir.String):
-            return _align(offset, 4) + 4 + r.bound + 1 if r.bound else KEY_UNBOUNDED
-        if isinstance(r, (ir.Sequence, ir.Array)):
-            if isinstance(r, ir.Sequence):
-                if not r.bound:
-                    return KEY_UNBOUNDED
-                count, offset = r.bound, _align(offset, 4) + 4
-            else:
-                count = math.prod(r.dims)
-            for _ in range(count):
-                end = self.key_end(r.element, offset, depth + 1)
-                if end == offset or end >= KEY_UNBOUNDED:  # zero-size elements, or no bound
-                    return end
-                offset = end
-            return offset
-        d = self.decl(r)
-        if isinstance(d, ir.Enum):
-            return _align(offset, enum_size(d)) + enum_size(d)
-        if isinstance(d, ir.Struct):
-            for m in self.model.all_members(d):
-                offset = self.key_end(m.type, offset, depth + 1)
-            return offset
-        if isinstance(d, ir.Union):
-            start = self.key_end(d.discriminator, offset, depth + 1)
-            return max([start] + [self.key_end(c.member.type, start, depth + 1) for c in d.cases])
-        return KEY_UNBOUNDED
 
     # -- serde --------------------------------------------------------------------------
     def serde_with(self, t: ir.Type) -> str | None:

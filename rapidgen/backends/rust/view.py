@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 from rapidgen.backends import base
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.rust import namer
-from rapidgen.backends.rust.typemap import ENUM_REPR, KEY_UNBOUNDED, Unsupported, TypeMap, enum_size
+from rapidgen.backends.rust.typemap import ENUM_REPR, Unsupported, TypeMap, enum_size
 from rapidgen.diagnostics import SourceLoc
-from rapidgen.model import ir
+from rapidgen.model import ir, wire
 
 DEFAULT = "::core::default::Default::default()"
 
@@ -223,7 +223,7 @@ class Builder:
         if s.base:
             doc += f" : `{s.base}`, flattened (base members first)"
         doc += "." + (f" Key: `{', '.join(s.keys)}`." if s.keys else "")
-        key, transcode, key_end = [], [], 0
+        key, transcode, key_types = [], [], []
         for path in s.keys:
             place, t = self._walk(s, path)
             what = f"{s.scoped_name} key {path}"
@@ -235,9 +235,9 @@ class Builder:
             again = f"{expr}.map_err(|e| r.error(format_args!(\"{{e}}\")))?;" if fallible else expr + ";"
             transcode.append(f"let {k} = {self.types.decode(t, what)};")
             transcode.append(again)
-            key_end = self.types.key_end(t, key_end)
+            key_types.append(t)
         return DeclView("struct", name, doc, type_name=rust_str(s.scoped_name), members=members,
-                        derive_default=derive, encode=enc, key=key, key_max=min(key_end, KEY_UNBOUNDED),
+                        derive_default=derive, encode=enc, key=key, key_max=wire.key_max_size(self.model, key_types),
                         transcode=transcode, serde=self._serde(name, s.name))
 
     def _walk(self, s: ir.Struct, path: str) -> tuple[str, ir.Type]:

@@ -86,7 +86,7 @@ template <>
 struct Traits<::rapid::Header> {
     static constexpr const char* name = "rapid::Header";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 113u;
     template <class W>
     static void key(W& w, const ::rapid::Header& v) { encode_key(w, v); }
@@ -96,7 +96,7 @@ template <>
 struct Traits<::rapid::Message> {
     static constexpr const char* name = "rapid::Message";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 113u;
     template <class W>
     static void key(W& w, const ::rapid::Message& v) { encode_key(w, v); }
@@ -106,7 +106,7 @@ template <>
 struct Traits<::rapid::AccessControlState> {
     static constexpr const char* name = "rapid::AccessControlState";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 800u;
     template <class W>
     static void key(W& w, const ::rapid::AccessControlState& v) { encode_key(w, v); }
@@ -116,7 +116,7 @@ template <>
 struct Traits<::rapid::Ack> {
     static constexpr const char* name = "rapid::Ack";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 152u;
+    static constexpr std::size_t key_max = 149u;
     static constexpr std::uint32_t initial_size = 335u;
     template <class W>
     static void key(W& w, const ::rapid::Ack& v) { encode_key(w, v); }
@@ -126,7 +126,7 @@ template <>
 struct Traits<::rapid::AgentConfig> {
     static constexpr const char* name = "rapid::AgentConfig";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 21382u;
     template <class W>
     static void key(W& w, const ::rapid::AgentConfig& v) { encode_key(w, v); }
@@ -136,7 +136,7 @@ template <>
 struct Traits<::rapid::AgentState> {
     static constexpr const char* name = "rapid::AgentState";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 9272u;
     template <class W>
     static void key(W& w, const ::rapid::AgentState& v) { encode_key(w, v); }
@@ -146,7 +146,7 @@ template <>
 struct Traits<::rapid::Command> {
     static constexpr const char* name = "rapid::Command";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 2711u;
     template <class W>
     static void key(W& w, const ::rapid::Command& v) { encode_key(w, v); }
@@ -180,7 +180,7 @@ template <>
 struct Traits<::rapid::CommandConfig> {
     static constexpr const char* name = "rapid::CommandConfig";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 65536u;
     template <class W>
     static void key(W& w, const ::rapid::CommandConfig& v) { encode_key(w, v); }
@@ -190,7 +190,7 @@ template <>
 struct Traits<::rapid::FileAnnounce> {
     static constexpr const char* name = "rapid::FileAnnounce";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 152u;
+    static constexpr std::size_t key_max = 149u;
     static constexpr std::uint32_t initial_size = 3511u;
     template <class W>
     static void key(W& w, const ::rapid::FileAnnounce& v) { encode_key(w, v); }
@@ -208,7 +208,7 @@ template <>
 struct Traits<::rapid::ImageSensorSample> {
     static constexpr const char* name = "rapid::ImageSensorSample";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 65536u;
     template <class W>
     static void key(W& w, const ::rapid::ImageSensorSample& v) { encode_key(w, v); }
@@ -218,7 +218,7 @@ template <>
 struct Traits<::rapid::ImageSensorState> {
     static constexpr const char* name = "rapid::ImageSensorState";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 14944u;
     template <class W>
     static void key(W& w, const ::rapid::ImageSensorState& v) { encode_key(w, v); }
@@ -236,7 +236,7 @@ template <>
 struct Traits<::rapid::JointConfig> {
     static constexpr const char* name = "rapid::JointConfig";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 13472u;
     template <class W>
     static void key(W& w, const ::rapid::JointConfig& v) { encode_key(w, v); }
@@ -246,7 +246,7 @@ template <>
 struct Traits<::rapid::JointSample> {
     static constexpr const char* name = "rapid::JointSample";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 10969u;
     template <class W>
     static void key(W& w, const ::rapid::JointSample& v) { encode_key(w, v); }
@@ -256,7 +256,7 @@ template <>
 struct Traits<::rapid::PositionConfig> {
     static constexpr const char* name = "rapid::PositionConfig";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 12430u;
     template <class W>
     static void key(W& w, const ::rapid::PositionConfig& v) { encode_key(w, v); }
@@ -266,7 +266,7 @@ template <>
 struct Traits<::rapid::PositionSample> {
     static constexpr const char* name = "rapid::PositionSample";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 9488u;
     template <class W>
     static void key(W& w, const ::rapid::PositionSample& v) { encode_key(w, v); }
@@ -292,7 +292,7 @@ template <>
 struct Traits<::rapid::QueueState> {
     static constexpr const char* name = "rapid::QueueState";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 65536u;
     template <class W>
     static void key(W& w, const ::rapid::QueueState& v) { encode_key(w, v); }
@@ -302,7 +302,7 @@ template <>
 struct Traits<::rapid::TextMessage> {
     static constexpr const char* name = "rapid::TextMessage";
     static constexpr bool keyed = true;
-    static constexpr std::size_t key_max = 80u;
+    static constexpr std::size_t key_max = 77u;
     static constexpr std::uint32_t initial_size = 2248u;
     template <class W>
     static void key(W& w, const ::rapid::TextMessage& v) { encode_key(w, v); }
