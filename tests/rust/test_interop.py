@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
 import sys
 
+from tests import peers
 from tests.rust.conftest import HERE, K10, ROOT, VECTORS
 
 DOMAIN_RUST_TO_PY = 73
@@ -33,16 +33,6 @@ def _lines() -> list[str]:
     return lines
 
 
-def _start(cmd: list[str], stdin: str, env: dict) -> subprocess.Popen:
-    p = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         env=env, start_new_session=True)
-    assert p.stdin is not None
-    p.stdin.write(stdin)
-    p.stdin.close()
-    p.stdin = None  # written and closed: communicate() must not flush it
-    return p
-
-
 def test_rust_and_python_exchange_every_message_type_both_ways(rust_peer):
     lines = _lines()
     assert len(lines) == 22
@@ -51,22 +41,9 @@ def test_rust_and_python_exchange_every_message_type_both_ways(rust_peer):
                PYTHONPATH=os.pathsep.join([str(K10.parent / "python"), str(ROOT)]))
     peer, py = str(rust_peer), [sys.executable, str(HERE / "py_peer.py")]
     procs = {
-        "py_sub": _start(py + ["sub", str(DOMAIN_RUST_TO_PY), str(SECONDS)], stdin, env),
-        "rust_pub": _start([peer, "pub", str(DOMAIN_RUST_TO_PY), str(SECONDS)], stdin, env),
-        "rust_sub": _start([peer, "sub", str(DOMAIN_PY_TO_RUST), str(SECONDS)], stdin, env),
-        "py_pub": _start(py + ["pub", str(DOMAIN_PY_TO_RUST), str(SECONDS)], stdin, env),
+        "py_sub": peers.start(py + ["sub", str(DOMAIN_RUST_TO_PY), str(SECONDS)], stdin, env),
+        "rust_pub": peers.start([peer, "pub", str(DOMAIN_RUST_TO_PY), str(SECONDS)], stdin, env),
+        "rust_sub": peers.start([peer, "sub", str(DOMAIN_PY_TO_RUST), str(SECONDS)], stdin, env),
+        "py_pub": peers.start(py + ["pub", str(DOMAIN_PY_TO_RUST), str(SECONDS)], stdin, env),
     }
-    try:
-        out = {}
-        for name in ("py_sub", "rust_sub"):
-            stdout, stderr = procs[name].communicate(timeout=SECONDS + 30)
-            out[name] = (procs[name].returncode, stdout, stderr)
-    finally:
-        for p in procs.values():
-            if p.poll() is None:
-                p.kill()
-            p.wait(timeout=30)
-    want = sorted(f"ok {line.split()[0]}" for line in lines)
-    for name, (code, stdout, stderr) in out.items():
-        assert sorted(stdout.split("\n")[:-1]) == want, f"{name}: {stdout}\n{stderr[-3000:]}"
-        assert code == 0, name
+    peers.exchange(procs, lines, SECONDS)
