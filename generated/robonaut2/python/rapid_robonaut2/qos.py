@@ -24,6 +24,7 @@ loopback-only one; cyclonedds_config() gives its path).
 import difflib
 import json
 import os
+import threading
 
 from cyclonedds.core import DDSException
 from cyclonedds.qos_provider import QosProvider
@@ -86,6 +87,9 @@ class RapidQos:
         self.library = data.get("library")
         self.topics = tuple(self._keys)
         self.dds_xml = self._path(dds_xml)
+        # cyclonedds' QosProvider is not thread-safe: two threads asking at once can get
+        # each other's profile (seen: a sample writer made TransientLocal)
+        self._lock = threading.Lock()
         try:
             self._provider = QosProvider(self.dds_xml)
         except DDSException as exc:
@@ -115,21 +119,25 @@ class RapidQos:
             raise RapidQosError(f"{self.topics_file} lists no topics: name a profile's topic")
         return self._keys[self.topics[0]]
 
+    def _get(self, getter, key):
+        with self._lock:
+            return getter(key)
+
     def writer(self, topic):
         """DataWriter QoS of the topic's profile."""
-        return self._provider.get_datawriter_qos(self.key(topic))
+        return self._get(self._provider.get_datawriter_qos, self.key(topic))
 
     def reader(self, topic):
         """DataReader QoS of the topic's profile."""
-        return self._provider.get_datareader_qos(self.key(topic))
+        return self._get(self._provider.get_datareader_qos, self.key(topic))
 
     def publisher(self, topic=None):
         """Publisher QoS (the partition) of the topic's profile, by default of the first topic's."""
-        return self._provider.get_publisher_qos(self._group_key(topic))
+        return self._get(self._provider.get_publisher_qos, self._group_key(topic))
 
     def subscriber(self, topic=None):
         """Subscriber QoS (the partition) of the topic's profile, by default of the first topic's."""
-        return self._provider.get_subscriber_qos(self._group_key(topic))
+        return self._get(self._provider.get_subscriber_qos, self._group_key(topic))
 
     def cyclonedds_config(self, transport=None):
         """Absolute path of the Cyclone DDS configuration of a transport (default: topics.json's)."""
