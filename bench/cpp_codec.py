@@ -121,16 +121,22 @@ def missing_tools() -> list[str]:
     return [f"{tool} (apt: {pkg})" for tool, pkg in TOOLS.items() if shutil.which(tool) is None]
 
 
+def rapid_model() -> ir.Model:
+    """The RAPID IDL set (specs/rapid), the types both programs are built from."""
+    sink = DiagnosticSink()
+    model, _ = load_idl(sorted(glob.glob(str(ROOT / "specs/rapid/*.idl"))), [str(ROOT / "specs/rapid")], sink)
+    if model is None:
+        raise BuildFailed("specs/rapid/*.idl did not load: " + "; ".join(str(d) for d in sink.errors))
+    return model
+
+
 def build(work: Path) -> Path:
     """Writes fastddsgen's code and a CMake project into `work`, builds it (Release, -O2)
     and returns the program's path; raises BuildFailed."""
     missing = missing_tools()
     if missing:
         raise BuildFailed("not installed: " + ", ".join(missing))
-    sink = DiagnosticSink()
-    model, _ = load_idl(sorted(glob.glob(str(ROOT / "specs/rapid/*.idl"))), [str(ROOT / "specs/rapid")], sink)
-    if model is None:
-        raise BuildFailed("specs/rapid/*.idl did not load: " + "; ".join(str(d) for d in sink.errors))
+    model = rapid_model()
     work.mkdir(parents=True, exist_ok=True)
     fdg = work / "fastddsgen"
     fdg.mkdir(exist_ok=True)
