@@ -16,9 +16,10 @@ import time
 from cyclonedds.util import duration
 
 from rapid_runtime import messages as M
+from rapid_runtime.acks import COMPLETED, NOT
 from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
-from rapid_runtime.manager import CommandManager
+from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapid_runtime.tables import Tables
 from rapid_runtime.telemetry import ordered_values
 
@@ -34,14 +35,14 @@ ACK_HISTORY = 8
 
 class Bridge:
     def __init__(self, tables: Tables, rapid, handlers, qos, domain: int | None = None,
-                 log=None, serial: int | None = None) -> None:
+                 log=None, serial: int | None = None, command_window: int = COMMAND_WINDOW) -> None:
         self.tables, self.rapid, self.handlers = tables, rapid, handlers
         self.name = tables.name
         self.serials = Serials(serial)
         self.node = Node(rapid, qos, tables.domain if domain is None else domain)
         self._log = log or (lambda text: print(f"[{self.name}] {text}", file=sys.stderr, flush=True))
         self.stopped = threading.Event()
-        self.manager = CommandManager(tables, handlers, self, on_shutdown=self.stop)
+        self.manager = CommandManager(tables, handlers, self, on_shutdown=self.stop, window=command_window)
         self.telemetry = TelemetryPublisher(self)
         self._reader: ReaderThread | None = None
 
@@ -58,6 +59,16 @@ class Bridge:
         hdr = M.header(self.rapid, self.name, self.name, self.serials.start)
         self.node.writer(ACCESS_STATE_TOPIC, self.rapid.AccessControlState).write(
             M.access_state(self.rapid, hdr, controller, requestors))
+
+    def retire(self, cmd) -> None:
+        """Unregister the command's ack instance (its key: the command's header and cmdId):
+        the writer drops its history once readers have acknowledged, so a late joiner no
+        longer gets these acks and memory stays bounded (manager.py, COMMAND_WINDOW)."""
+        try:
+            self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY).unregister_instance(
+                M.ack(self.rapid, cmd, COMPLETED, NOT, ""))
+        except Exception as exc:  # cyclonedds raises DDSException; a kept instance must not stop intake
+            self.log(f"acks of {cmd.cmd_id!r} not unregistered: {type(exc).__name__}: {exc}")
 
     def log(self, text: str) -> None:
         self._log(text)
@@ -176,6 +187,13 @@ class TelemetryPublisher:
             hdr=self._hdr(e), level=r.MessageLevel[level], category=category, message=message))
 
 
+def _positive(text: str) -> int:
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text}: at least 1")
+    return value
+
+
 def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
     tables = Tables(asset_tables)
     p = argparse.ArgumentParser(prog=f"python -m {package}.bridge",
@@ -187,6 +205,9 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
                         "CYCLONEDDS_URI is unset), lan, wan")
     p.add_argument("--seconds", type=float, default=None, help="stop after this long (default: run until stopped)")
     p.add_argument("--sim-speed", type=float, default=1.0, help="simulated time runs this many times faster")
+    p.add_argument("--command-window", type=_positive, default=COMMAND_WINDOW, metavar="N",
+                   help=f"commands remembered: repeated cmdIds detected among the last N, acks of the last N "
+                        f"completed kept for late joiners (default {COMMAND_WINDOW})")
     args = p.parse_args(argv)
     qos_mod = __import__(f"{package}.qos", fromlist=["RapidQos"])
     try:
@@ -200,7 +221,7 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
         handlers = Simulator(tables, speed=args.sim_speed)
     else:
         handlers = make_handlers()
-    bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain).start()
+    bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain, command_window=args.command_window).start()
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: bridge.stop())
     print(f"bridge ready: asset {tables.name}, domain {tables.domain if args.domain is None else args.domain}, "

@@ -7,6 +7,11 @@ Dropped without an ack (logged): a command for another asset, a repeated cmdId.
 Everything else gets exactly one final COMPLETED ack. Acks go out through the outbox
 (dds.py writes them; tests collect them), always under the manager's lock so the acks
 of one command keep their order. docs/runtime.md lists every answer.
+
+Memory stays bounded on a robot that runs for months: only the last `window` commands are
+remembered (duplicates detected among them and among those still pending or running), and
+once more than `window` commands have completed, the oldest one's acks are retired
+(outbox.retire: the ack writer unregisters the instance, so DDS frees its history).
 """
 from __future__ import annotations
 
@@ -26,7 +31,11 @@ from rapid_runtime.handlers import Cancelled, CommandContext, CommandFailed
 from rapid_runtime.tables import CommandEntry, Tables
 from rapid_runtime.validate import _short, check_command, kwargs_of
 
-SEEN_IDS = 100_000  # cmdIds remembered for duplicate detection (oldest forgotten first)
+# Commands whose state is kept: the last 4096 cmdIds received (duplicate detection) and the
+# acks of the last 4096 completed commands (for late-joining ack readers). A cmdId sent
+# again after 4096 newer commands is a new command. Bridge(command_window=N) or the
+# bridge's --command-window N changes it.
+COMMAND_WINDOW = 4096
 COMPLETED_KEEP_S = 20.0  # finished commands stay in QueueState this long (soraCore)
 RECORDS = 64  # QueueState's SingleQueue holds at most 64 records
 VIOLATION = "RAPID access violation: "
@@ -36,6 +45,7 @@ class Outbox(Protocol):
     def ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None: ...
     def queue_state(self, code: int, pending: list, active: list, completed: list) -> None: ...
     def access_state(self, controller: str, requestors: list[str]) -> None: ...
+    def retire(self, cmd: Cmd) -> None: ...  # the command's acks need not be kept any longer
     def log(self, text: str) -> None: ...
 
 
@@ -53,12 +63,17 @@ class Run:
 
 class CommandManager:
     def __init__(self, tables: Tables, handlers: object, outbox: Outbox,
-                 on_shutdown: Callable[[], None] | None = None, clock: Callable[[], float] = time.monotonic) -> None:
+                 on_shutdown: Callable[[], None] | None = None, clock: Callable[[], float] = time.monotonic,
+                 window: int = COMMAND_WINDOW) -> None:
+        if window < 1:
+            raise ValueError(f"command window {window}: at least 1")
         self.tables, self.handlers, self.out = tables, handlers, outbox
         self.on_shutdown = on_shutdown
         self.clock = clock
+        self.window = window
         self.lock = threading.RLock()
-        self.seen: collections.OrderedDict[str, None] = collections.OrderedDict()
+        self.seen: collections.OrderedDict[str, None] = collections.OrderedDict()  # the last `window` cmdIds
+        self.acked: collections.deque[Cmd] = collections.deque()  # completed, acks still kept; oldest first
         self.pending = Pending()
         self.active: Run | None = None  # the queue's running command
         self.bypass: list[Run] = []  # BYPASS commands running
@@ -76,11 +91,11 @@ class CommandManager:
             if cmd.asset_name != self.tables.name:
                 self.out.log(f"ignored {cmd.cmd_id!r}: addressed to asset {cmd.asset_name!r}")
                 return
-            if cmd.cmd_id in self.seen:
+            if cmd.cmd_id in self.seen or self._live(cmd.cmd_id):
                 self.out.log(f"ignored {cmd.cmd_id!r}: repeated cmdId")
                 return
             self.seen[cmd.cmd_id] = None
-            if len(self.seen) > SEEN_IDS:
+            while len(self.seen) > self.window:
                 self.seen.popitem(last=False)
             reason = self._intake(cmd)
             if reason is not None:
@@ -137,6 +152,10 @@ class CommandManager:
         self._ack(cmd, QUEUED, NOT, "")
         self._service()
         return None
+
+    def _live(self, cmd_id: str) -> bool:
+        """A command of that id is pending or running (however many came after it)."""
+        return self._queued_run(cmd_id) is not None or any(r.cmd.cmd_id == cmd_id for r in self.bypass)
 
     def _queued_run(self, cmd_id: str) -> Run | None:
         if self.active is not None and self.active.cmd.cmd_id == cmd_id:
@@ -288,6 +307,12 @@ class CommandManager:
     # ---- state topics ------------------------------------------------------------------------
     def _ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None:
         self.out.ack(cmd, status, completed, clip(message))
+        if status == COMPLETED:  # each command's last ack: keep the last `window` commands' acks
+            self.acked.append(_key_of(cmd))
+            while len(self.acked) > self.window:
+                old = self.acked.popleft()
+                if not self._live(old.cmd_id):  # its id sent again (after the window) and still running
+                    self.out.retire(old)
 
     def _publish_queue(self) -> None:
         if not self.has_queue:
@@ -318,6 +343,13 @@ class CommandManager:
                     return not (self.active or self.bypass)
                 self.idle.wait(min(left, 0.05))
             return True
+
+
+def _key_of(cmd: Cmd) -> Cmd:
+    """What retiring the command's acks needs (the ack key: header names and cmdId), without
+    the received sample and arguments, which the window would otherwise keep alive."""
+    return Cmd(cmd.cmd_id, cmd.cmd_src, cmd.subsystem, cmd.name, src_name=cmd.src_name, asset_name=cmd.asset_name,
+               serial=cmd.serial)
 
 
 def _as_sender(delete: Cmd, target: Cmd) -> Cmd:
