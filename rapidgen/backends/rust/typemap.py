@@ -1,6 +1,7 @@
 """IR types -> Rust type spellings, default expressions, minimum sizes, and the XCDR1
-expressions encoding and decoding a value (straight-line calls on cdr::Writer/Reader;
-closures only for the elements of sequences and arrays).
+expressions encoding, decoding and sizing a value (straight-line calls on
+cdr::Writer/Reader/Size; sequences and arrays of primitives and booleans at once, closures
+or loops only for the elements of other sequences and arrays).
 
 Value places: `self.x` (a struct field) or `*e` (a closure's or match's reference).
 """
@@ -168,17 +169,54 @@ class TypeMap:
         if isinstance(r, ir.String):
             return f"w.put_string({ref(place)}, {r.bound or 0}, {w})", True
         if isinstance(r, ir.Sequence):
+            run = self.run(r.element)
+            if run:
+                return f"w.put_seq_{run}({ref(place)}, {r.bound or 0}, {w})", True
             e = self.var("e")
             return f"w.put_seq({ref(place)}, {r.bound or 0}, {w}, |w, {e}| {self._closure(r.element, e, what)})", True
         if isinstance(r, ir.Array):
-            e = self.var("e")
             inner = ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element
+            run = self.run(inner)
+            if run:
+                return f"w.put_{run}({ref(place)})", False
+            e = self.var("e")
             return f"w.put_array({ref(place)}, |w, {e}| {self._closure(inner, e, what)})", True
         return f"{CDR}::Cdr::encode({ref(place)}, w)", True
+
+    def run(self, t: ir.Type) -> str:
+        """`prims::<T>` / `bools` when elements of type t go at once (primitives, booleans);
+        "" otherwise (enums too: each value is checked on decode)."""
+        r = self.real(t)
+        if not isinstance(r, ir.Primitive):
+            return ""
+        return "bools" if r.name == "boolean" else f"prims::<{PRIMITIVES[r.name]}>"
 
     def _closure(self, t: ir.Type, e: str, what: str) -> str:
         expr, fallible = self.encode(t, "*" + e, what)
         return expr if fallible else f"{{ {expr}; Ok(()) }}"
+
+    # -- size -------------------------------------------------------------------------
+    def size(self, t: ir.Type, place: str) -> str:
+        """A statement adding the bytes `encode` writes for the value at `place` to Size `s`
+        (a primitive's or an enum's does not read the place)."""
+        r = self.real(t)
+        if isinstance(r, ir.Primitive):
+            return "s.bytes(1);" if r.name == "boolean" else f"s.put::<{PRIMITIVES[r.name]}>();"
+        if isinstance(r, ir.String):
+            return f"s.string({ref(place)});"
+        if isinstance(r, (ir.Sequence, ir.Array)):
+            inner = r.element if isinstance(r, ir.Sequence) or len(r.dims) == 1 else ir.Array(r.element, r.dims[1:])
+            count = "s.count(); " if isinstance(r, ir.Sequence) else ""
+            run = self.run(inner)
+            if run:
+                n = f"{place.lstrip('*')}.len()"
+                return f"{count}s.{'bytes' if run == 'bools' else run}({n});"
+            e = self.var("e")
+            return f"{count}for {e} in {ref(place)} {{ {self.size(inner, '*' + e)} }}"
+        d = self.decl(r)
+        if isinstance(d, ir.Enum):  # the same size for every value (the place may be "")
+            return f"s.put::<{ENUM_REPR[enum_size(d)]}>();"
+        return f"{CDR}::Cdr::size({ref(place)}, s);"
 
     # -- decode -----------------------------------------------------------------------
     def decode(self, t: ir.Type, what: str) -> str:
@@ -205,14 +243,20 @@ class TypeMap:
         if isinstance(r, ir.String):
             return f"r.get_string({r.bound or 0}, {w})", True
         if isinstance(r, ir.Sequence):
+            run = self.run(r.element)
+            if run:
+                return f"r.get_seq_{run}({r.bound or 0}, {w})", True
             return (f"r.get_seq({r.bound or 0}, {self.min_size(r.element)}, {w}, "
                     f"{self.decoder(r.element, what)})"), True
         if isinstance(r, ir.Array):
             inner = ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element
             a = self.var("a")
             init = self.default(r) or "::core::default::Default::default()"
+            run = self.run(inner)
+            fill = (f"r.get_{run}(&mut {a}, {w})?;" if run
+                    else f"r.get_array(&mut {a}, {self.decoder(inner, what)})?;")
             return (f"{{ r.need({self.min_size(r)}, {w})?; let mut {a}: {self.rust(t, SourceLoc('', 0, 0))} = {init}; "
-                    f"r.get_array(&mut {a}, {self.decoder(inner, what)})?; {a} }}"), False
+                    f"{fill} {a} }}"), False
         d = self.decl(r)
         assert d is not None
         return f"<{self.path(d.scoped_name)} as {CDR}::Cdr>::decode(r)", True

@@ -8,6 +8,7 @@ default case, no member). Templates only print.
 """
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 from rapidgen.backends import base
@@ -45,6 +46,8 @@ class ArmView:
     check: str  # encode: a condition refusing a carried discriminator ("" none)
     variant: str  # the variant's name (in the refusal's message)
     encode: list[str]  # encode statements
+    size_head: str  # size match pattern
+    size: str  # size statement (the branch's value; the discriminator's is the same for all)
 
 
 @dataclass
@@ -58,6 +61,7 @@ class DeclView:
     members: list[MemberView] = field(default_factory=list)
     derive_default: bool = True
     encode: list[str] = field(default_factory=list)
+    size: list[str] = field(default_factory=list)  # struct: statements sizing the members
     variants: list[tuple[str, int, str]] = field(default_factory=list)  # enum: name, value, IDL name
     default_variant: str = ""
     variant_types: list[tuple[str, str]] = field(default_factory=list)  # union: name, tuple fields
@@ -194,7 +198,7 @@ class Builder:
     def struct(self, s: ir.Struct, name: str) -> DeclView:
         self._check_ext(s)
         scope = namer.Scope(f"struct {s.scoped_name}")
-        members, enc = [], []
+        members, enc, size = [], [], []
         derive = True
         for m in self.model.all_members(s):
             if m.optional:
@@ -215,6 +219,7 @@ class Builder:
             derive = derive and default is None
             expr, fallible = self.types.encode(m.type, f"self.{rname}", what)
             enc.append(expr + ("?;" if fallible else ";"))
+            size.append(self.types.size(m.type, f"self.{rname}"))
             members.append(MemberView(rname, rtype, m.name, default or DEFAULT, self.types.decode(m.type, what),
                                       self._serde(rname, m.name, m.type)))
         scope.check()
@@ -237,7 +242,7 @@ class Builder:
             transcode.append(again)
             key_types.append(t)
         return DeclView("struct", name, doc, type_name=rust_str(s.scoped_name), members=members,
-                        derive_default=derive, encode=enc, key=key, key_max=wire.key_max_size(self.model, key_types),
+                        derive_default=derive, encode=enc, size=size, key=key, key_max=wire.key_max_size(self.model, key_types),
                         transcode=transcode, serde=self._serde(name, s.name))
 
     def _walk(self, s: ir.Struct, path: str) -> tuple[str, ir.Type]:
@@ -284,6 +289,8 @@ class Builder:
             what = f"{u.scoped_name}.{m.name}"
             body, fallible = t.encode(m.type, "*x", what)
             body += "?;" if fallible else ";"
+            size = t.size(m.type, "*x")
+            x = "x" if re.search(r"\bx\b", size) else "_"
             carries = c.is_default or len(c.labels) != 1
             self.variants.setdefault(u.scoped_name, {})[u.cases.index(c)] = (vname, carries)
             if carries:
@@ -292,17 +299,18 @@ class Builder:
                 check = (f"matches!(*d, {others})" if c.is_default and others
                          else "" if c.is_default else f"!matches!(*d, {pats[id(c)]})")
                 arms.append(ArmView("_" if c.is_default else pats[id(c)], f"Self::{vname}(d, {t.decode(m.type, what)})",
-                                    f"Self::{vname}(d, x)", check, vname, [self._disc_enc(u, "*d"), body]))
+                                    f"Self::{vname}(d, x)", check, vname, [self._disc_enc(u, "*d"), body],
+                                    f"Self::{vname}(_, {x})", size))
             else:
                 types.append((vname, mtype))
                 arms.append(ArmView(pats[id(c)], f"Self::{vname}({t.decode(m.type, what)})", f"Self::{vname}(x)", "",
-                                    vname, [self._disc_enc(u, pats[id(c)]), body]))
+                                    vname, [self._disc_enc(u, pats[id(c)]), body], f"Self::{vname}({x})", size))
         scope.check()
         if need_none:
             types.append((namer.NO_MEMBER, disc_type))
             arms.append(ArmView("_", f"Self::{namer.NO_MEMBER}(d)", f"Self::{namer.NO_MEMBER}(d)",
                                 f"matches!(*d, {self._pattern(u, everything)})" if everything else "",
-                                namer.NO_MEMBER, [self._disc_enc(u, "*d")]))
+                                namer.NO_MEMBER, [self._disc_enc(u, "*d")], f"Self::{namer.NO_MEMBER}(_)", ""))
         arms.sort(key=lambda a: a.pattern == "_")  # the rest last
         if u.default_case is not None:
             c = u.cases[u.default_case]
@@ -315,7 +323,7 @@ class Builder:
             default = f"Self::{namer.NO_MEMBER}({t.literal(u.default_discriminator, u.discriminator)})"
         return DeclView("union", name, f"IDL union `{u.scoped_name}` switch (`{u.discriminator}`).",
                         type_name=rust_str(u.scoped_name), type=disc_type, value=default, variant_types=types,
-                        arms=arms, disc_decode=t.decode(u.discriminator, f"{u.scoped_name} discriminator"),
+                        arms=arms, size=[t.size(u.discriminator, "")], disc_decode=t.decode(u.discriminator, f"{u.scoped_name} discriminator"),
                         serde=self._serde(name, u.name), variant_serde=variant_serde,
                         allow_unreachable=covered and u.default_case is not None
                         and u.cases[u.default_case].is_default)

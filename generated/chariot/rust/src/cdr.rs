@@ -51,6 +51,9 @@ pub trait Cdr: Sized {
     const TYPE_NAME: &'static str;
     fn encode(&self, w: &mut Writer) -> ::core::result::Result<(), EncodeError>;
     fn decode(r: &mut Reader<'_>) -> ::core::result::Result<Self, DecodeError>;
+    /// Adds the bytes `encode` writes (alignment included) to `s`: `serialize` allocates
+    /// its output once, at the exact size.
+    fn size(&self, s: &mut Size);
     /// Whether the type has key members (`@key`, `//@key`, `#pragma keylist`).
     const KEYED: bool = false;
     /// Writes the key members, in key order (nothing for a type without keys).
@@ -75,7 +78,9 @@ const HEADER: usize = 4;
 
 /// `value` with its 4-byte encapsulation header (CDR_LE or CDR_BE).
 pub fn serialize<T: Cdr>(value: &T, order: Endianness) -> ::core::result::Result<::std::vec::Vec<u8>, EncodeError> {
-    let mut w = Writer::new(order);
+    let mut s = Size { pos: 0 };
+    value.size(&mut s);
+    let mut w = Writer::with_capacity(order, s.pos);
     value.encode(&mut w)?;
     Ok(w.into_bytes())
 }
@@ -122,29 +127,135 @@ pub fn deserialize<T: Cdr>(data: &[u8]) -> ::core::result::Result<T, DecodeError
     Ok(value)
 }
 
-/// A fixed-size number: its size (= alignment) and its bytes in either order.
+/// A fixed-size number: its size (= alignment) and its bytes in either order, one at a
+/// time or a run at once (sequences and arrays: one alignment, one bounds check, then a
+/// loop over fixed-size chunks the optimizer turns into a copy or a byte swap).
 pub trait Primitive: Copy {
     const SIZE: usize;
     fn put(self, out: &mut ::std::vec::Vec<u8>, little: bool);
     fn get(r: &mut Reader<'_>) -> ::core::result::Result<Self, DecodeError>;
+    /// Appends the elements' bytes.
+    fn put_all(v: &[Self], out: &mut ::std::vec::Vec<u8>, little: bool);
+    /// `bytes` (a whole number of elements) as elements, into `v` (as many).
+    fn get_all(bytes: &[u8], v: &mut [Self], little: bool);
+    /// `bytes` (a whole number of elements) as a new vector.
+    fn get_vec(bytes: &[u8], little: bool) -> ::std::vec::Vec<Self>;
 }
 
 macro_rules! primitive {
-    ($($t:ty),*) => {$(
+    ($kind:ident: $($t:ty),*) => {$(
         impl Primitive for $t {
             const SIZE: usize = ::core::mem::size_of::<$t>();
+            #[inline]
             fn put(self, out: &mut ::std::vec::Vec<u8>, little: bool) {
                 out.extend_from_slice(&if little { self.to_le_bytes() } else { self.to_be_bytes() });
             }
+            #[inline]
             fn get(r: &mut Reader<'_>) -> ::core::result::Result<Self, DecodeError> {
                 r.align(Self::SIZE)?;
                 let b = r.take::<{ ::core::mem::size_of::<$t>() }>()?;
                 Ok(if r.little { <$t>::from_le_bytes(b) } else { <$t>::from_be_bytes(b) })
             }
+            primitive!(@$kind $t);
         }
     )*};
+    // one byte: no order, a plain copy
+    (@byte $t:ty) => {
+        fn put_all(v: &[Self], out: &mut ::std::vec::Vec<u8>, _little: bool) {
+            out.extend(v.iter().map(|x| { let [b] = x.to_le_bytes(); b }));
+        }
+        fn get_all(bytes: &[u8], v: &mut [Self], _little: bool) {
+            v.iter_mut().zip(bytes).for_each(|(x, &b)| *x = <$t>::from_le_bytes([b]));
+        }
+        fn get_vec(bytes: &[u8], _little: bool) -> ::std::vec::Vec<Self> {
+            bytes.iter().map(|&b| <$t>::from_le_bytes([b])).collect()
+        }
+    };
+    // several bytes: the output zeroed once, then each element's bytes in place
+    (@number $t:ty) => {
+        fn put_all(v: &[Self], out: &mut ::std::vec::Vec<u8>, little: bool) {
+            let start = out.len();
+            out.resize(start + v.len() * Self::SIZE, 0);
+            if let Some(dst) = out.get_mut(start..) {
+                let pairs = dst.chunks_exact_mut(Self::SIZE).zip(v);
+                if little {
+                    pairs.for_each(|(d, x)| d.copy_from_slice(&x.to_le_bytes()));
+                } else {
+                    pairs.for_each(|(d, x)| d.copy_from_slice(&x.to_be_bytes()));
+                }
+            }
+        }
+        fn get_all(bytes: &[u8], v: &mut [Self], little: bool) {
+            const N: usize = ::core::mem::size_of::<$t>();
+            let pairs = bytes.chunks_exact(N).zip(v.iter_mut());
+            if little {
+                pairs.for_each(|(c, x)| *x = <$t>::from_le_bytes(c.try_into().unwrap_or([0; N])));
+            } else {
+                pairs.for_each(|(c, x)| *x = <$t>::from_be_bytes(c.try_into().unwrap_or([0; N])));
+            }
+        }
+        fn get_vec(bytes: &[u8], little: bool) -> ::std::vec::Vec<Self> {
+            const N: usize = ::core::mem::size_of::<$t>();
+            let chunks = bytes.chunks_exact(N);
+            if little {
+                chunks.map(|c| <$t>::from_le_bytes(c.try_into().unwrap_or([0; N]))).collect()
+            } else {
+                chunks.map(|c| <$t>::from_be_bytes(c.try_into().unwrap_or([0; N]))).collect()
+            }
+        }
+    };
 }
-primitive!(i8, u8, i16, u16, i32, u32, i64, u64, f32, f64);
+primitive!(byte: i8, u8);
+primitive!(number: i16, u16, i32, u32, i64, u64, f32, f64);
+
+/// The encoded size of a value, counted as `Writer` writes it (alignment from the end of
+/// the encapsulation header); the generated `Cdr::size` calls these. Only a capacity
+/// for `serialize`: the sums wrap rather than check (a wrapped size reserves too little
+/// and the buffer grows, as without it).
+pub struct Size {
+    pos: usize,
+}
+
+impl Size {
+    /// Sizes and alignments are 1, 2, 4 or 8.
+    #[inline]
+    fn align(&mut self, n: usize) {
+        self.pos = self.pos.wrapping_add(n - 1) & !(n - 1);
+    }
+
+    #[inline]
+    pub fn put<T: Primitive>(&mut self) {
+        self.align(T::SIZE);
+        self.pos = self.pos.wrapping_add(T::SIZE);
+    }
+
+    /// Booleans, octets: no alignment.
+    #[inline]
+    pub fn bytes(&mut self, n: usize) {
+        self.pos = self.pos.wrapping_add(n);
+    }
+
+    #[inline]
+    pub fn string(&mut self, s: &str) {
+        self.put::<u32>();
+        self.bytes(s.len().wrapping_add(1));
+    }
+
+    /// A sequence's count.
+    #[inline]
+    pub fn count(&mut self) {
+        self.put::<u32>();
+    }
+
+    /// `n` primitives in a row (aligned once, none for 0).
+    #[inline]
+    pub fn prims<T: Primitive>(&mut self, n: usize) {
+        if n != 0 {
+            self.align(T::SIZE);
+            self.pos = self.pos.wrapping_add(n.wrapping_mul(T::SIZE));
+        }
+    }
+}
 
 /// Writes XCDR1 after a 4-byte encapsulation header; alignment counts from its end.
 pub struct Writer {
@@ -155,50 +266,93 @@ pub struct Writer {
 
 impl Writer {
     pub fn new(order: Endianness) -> Self {
+        Self::with_capacity(order, 0)
+    }
+
+    /// A writer whose buffer holds `body` bytes after the header without growing (when
+    /// the allocator grants them; else it grows as it goes).
+    pub fn with_capacity(order: Endianness, body: usize) -> Self {
         let little = order == Endianness::Little;
-        Writer { out: ::std::vec![0, u8::from(little), 0, 0], little, origin: HEADER }
+        let mut out = ::std::vec::Vec::new();
+        let _ = out.try_reserve_exact(body.saturating_add(HEADER));
+        out.extend_from_slice(&[0, u8::from(little), 0, 0]);
+        Writer { out, little, origin: HEADER }
     }
 
     pub fn into_bytes(self) -> ::std::vec::Vec<u8> {
         self.out
     }
 
+    /// Alignments are 1, 2, 4 or 8.
+    #[inline]
     fn align(&mut self, n: usize) {
-        while (self.out.len() - self.origin) % n != 0 {
-            self.out.push(0);
+        let pad = self.origin.wrapping_sub(self.out.len()) & (n - 1);
+        if pad != 0 {
+            self.out.resize(self.out.len() + pad, 0);
         }
     }
 
+    #[inline]
     pub fn put<T: Primitive>(&mut self, v: T) {
         self.align(T::SIZE);
         v.put(&mut self.out, self.little);
     }
 
+    #[inline]
     pub fn put_bool(&mut self, v: bool) {
         self.out.push(u8::from(v));
     }
 
     /// A collection's length, refused over `bound` (0: unbounded).
+    #[inline]
     pub fn put_count(&mut self, n: usize, bound: usize, what: &str) -> ::core::result::Result<(), EncodeError> {
-        if bound != 0 && n > bound {
-            return Err(EncodeError { message: format!("{what}: {n} elements, over the bound {bound}") });
+        match u32::try_from(n) {
+            Ok(c) if bound == 0 || n <= bound => {
+                self.put(c);
+                Ok(())
+            }
+            _ => Err(count_error(n, bound, what)),
         }
-        let n = u32::try_from(n).map_err(|_| EncodeError { message: format!("{what}: {n} elements do not fit CDR") })?;
-        self.put(n);
-        Ok(())
     }
 
     /// A string: length with the NUL, UTF-8 bytes, NUL. `bound` counts bytes (0: unbounded).
+    #[inline]
     pub fn put_string(&mut self, s: &str, bound: usize, what: &str) -> ::core::result::Result<(), EncodeError> {
-        if bound != 0 && s.len() > bound {
-            return Err(EncodeError { message: format!("{what}: {} bytes, over the bound {bound}", s.len()) });
+        let b = s.as_bytes();
+        if (bound != 0 && b.len() > bound) || b.contains(&0) {
+            return Err(string_error(s, bound, what));
         }
-        if s.as_bytes().contains(&0) {
-            return Err(EncodeError { message: format!("{what}: a CDR string cannot hold NUL") });
-        }
-        self.put_count(s.len() + 1, 0, what)?;
-        self.out.extend_from_slice(s.as_bytes());
+        self.put_count(b.len() + 1, 0, what)?;
+        self.out.extend_from_slice(b);
         self.out.push(0);
+        Ok(())
+    }
+
+    /// Primitives in a row (an array's, a sequence's after its count): one alignment, one
+    /// copy (none of either for no element, as element by element).
+    pub fn put_prims<T: Primitive>(&mut self, v: &[T]) {
+        if !v.is_empty() {
+            self.align(T::SIZE);
+            T::put_all(v, &mut self.out, self.little);
+        }
+    }
+
+    /// A sequence of primitives: count, then the elements at once.
+    pub fn put_seq_prims<T: Primitive>(&mut self, v: &[T], bound: usize, what: &str) -> ::core::result::Result<(), EncodeError> {
+        self.put_count(v.len(), bound, what)?;
+        self.put_prims(v);
+        Ok(())
+    }
+
+    /// Booleans in a row (one byte each, no alignment).
+    pub fn put_bools(&mut self, v: &[bool]) {
+        self.out.extend(v.iter().map(|&b| u8::from(b)));
+    }
+
+    /// A sequence of booleans: count, then the elements at once.
+    pub fn put_seq_bools(&mut self, v: &[bool], bound: usize, what: &str) -> ::core::result::Result<(), EncodeError> {
+        self.put_count(v.len(), bound, what)?;
+        self.put_bools(v);
         Ok(())
     }
 
@@ -218,6 +372,48 @@ impl Writer {
     }
 }
 
+// The encoder's refusals, out of the hot paths.
+#[cold]
+fn count_error(n: usize, bound: usize, what: &str) -> EncodeError {
+    let message = if bound != 0 && n > bound {
+        format!("{what}: {n} elements, over the bound {bound}")
+    } else {
+        format!("{what}: {n} elements do not fit CDR")
+    };
+    EncodeError { message }
+}
+
+#[cold]
+fn string_error(s: &str, bound: usize, what: &str) -> EncodeError {
+    let message = if bound != 0 && s.len() > bound {
+        format!("{what}: {} bytes, over the bound {bound}", s.len())
+    } else {
+        format!("{what}: a CDR string cannot hold NUL")
+    };
+    EncodeError { message }
+}
+
+// The decoder's refusals of counts and string lengths, out of the hot paths.
+#[cold]
+fn count_refused(at: usize, n: usize, bound: usize, what: &str) -> DecodeError {
+    let message = if bound != 0 && n > bound {
+        format!("{what}: {n} elements, over the bound {bound}")
+    } else {
+        format!("{what}: {n} elements, more than the bytes left hold")
+    };
+    DecodeError { offset: at, message }
+}
+
+#[cold]
+fn string_refused(at: usize, n: usize, bound: usize, what: &str) -> DecodeError {
+    let message = if n == 0 {
+        format!("{what}: string length 0 (no NUL)")
+    } else {
+        format!("{what}: {} bytes, over the bound {bound}", n - 1)
+    };
+    DecodeError { offset: at, message }
+}
+
 /// Reads XCDR1 from untrusted bytes.
 pub struct Reader<'a> {
     data: &'a [u8],
@@ -228,16 +424,20 @@ pub struct Reader<'a> {
 
 impl<'a> Reader<'a> {
     /// An error at the current offset.
+    #[cold]
     pub fn error(&self, message: fmt::Arguments<'_>) -> DecodeError {
         DecodeError { offset: self.pos, message: message.to_string() }
     }
 
+    #[inline]
     fn left(&self) -> usize {
         self.data.len() - self.pos
     }
 
+    /// Alignments are 1, 2, 4 or 8.
+    #[inline]
     fn align(&mut self, n: usize) -> ::core::result::Result<(), DecodeError> {
-        let pad = (n - (self.pos - HEADER) % n) % n;
+        let pad = HEADER.wrapping_sub(self.pos) & (n - 1);
         if pad > self.left() {
             return Err(self.error(format_args!("truncated")));
         }
@@ -245,6 +445,7 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
+    #[inline]
     fn take<const N: usize>(&mut self) -> ::core::result::Result<[u8; N], DecodeError> {
         match self.data.get(self.pos..self.pos + N) {
             Some(s) => {
@@ -257,11 +458,13 @@ impl<'a> Reader<'a> {
         }
     }
 
+    #[inline]
     pub fn get<T: Primitive>(&mut self) -> ::core::result::Result<T, DecodeError> {
         T::get(self)
     }
 
     /// Refuses an encoding shorter than `bytes` from here (before building a fixed-size array).
+    #[inline]
     pub fn need(&self, bytes: usize, what: &str) -> ::core::result::Result<(), DecodeError> {
         if bytes > self.left() {
             return Err(self.error(format_args!("{what}: truncated")));
@@ -269,6 +472,7 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
+    #[inline]
     pub fn get_bool(&mut self) -> ::core::result::Result<bool, DecodeError> {
         match self.take::<1>()? {
             [0] => Ok(false),
@@ -278,6 +482,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Enters a struct or union; refuses nesting deeper than MAX_DEPTH.
+    #[inline]
     pub fn enter(&mut self) -> ::core::result::Result<(), DecodeError> {
         self.depth += 1;
         if self.depth > MAX_DEPTH {
@@ -286,43 +491,102 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
+    #[inline]
     pub fn leave(&mut self) {
         self.depth -= 1;
     }
 
     /// A collection's count: at most `bound` (0: unbounded), and no more than the bytes
     /// left can hold at `min_size` bytes per element (MAX_EMPTY_ELEMENTS when 0).
+    #[inline]
     pub fn get_count(&mut self, bound: usize, min_size: usize, what: &str) -> ::core::result::Result<usize, DecodeError> {
         let at = self.pos;
         let n = usize::try_from(self.get::<u32>()?).unwrap_or(usize::MAX);
         let fits = n <= self.left().checked_div(min_size).unwrap_or(MAX_EMPTY_ELEMENTS);
-        if bound != 0 && n > bound {
-            Err(DecodeError { offset: at, message: format!("{what}: {n} elements, over the bound {bound}") })
-        } else if !fits {
-            Err(DecodeError { offset: at, message: format!("{what}: {n} elements, more than the bytes left hold") })
-        } else {
+        if (bound == 0 || n <= bound) && fits {
             Ok(n)
+        } else {
+            Err(count_refused(at, n, bound, what))
         }
     }
 
     /// A NUL-terminated UTF-8 string of at most `bound` bytes (0: unbounded).
+    #[inline]
     pub fn get_string(&mut self, bound: usize, what: &str) -> ::core::result::Result<::std::string::String, DecodeError> {
         let at = self.pos;
         let n = self.get_count(0, 1, what)?;
-        if n == 0 {
-            return Err(DecodeError { offset: at, message: format!("{what}: string length 0 (no NUL)") });
+        if n == 0 || (bound != 0 && n - 1 > bound) {
+            return Err(string_refused(at, n, bound, what));
         }
-        if bound != 0 && n - 1 > bound {
-            return Err(DecodeError { offset: at, message: format!("{what}: {} bytes, over the bound {bound}", n - 1) });
-        }
-        let bytes = &self.data[self.pos..self.pos + n];
-        let (text, nul) = bytes.split_at(n - 1);
-        if nul != [0] || text.contains(&0) {
+        // get_count checked that the n bytes are there, n > 0
+        let (text, nul) = match self.data.get(self.pos..).and_then(|d| d.get(..n)).and_then(|b| b.split_last()) {
+            Some((nul, text)) => (text, *nul),
+            None => return Err(self.error(format_args!("{what}: truncated"))),
+        };
+        if nul != 0 || text.contains(&0) {
             return Err(self.error(format_args!("{what}: string not NUL-terminated or holding NUL")));
         }
         let s = ::core::str::from_utf8(text).map_err(|_| self.error(format_args!("{what}: string is not UTF-8")))?;
         self.pos += n;
         Ok(s.to_owned())
+    }
+
+    /// The next `n` elements of `size` bytes (aligned to `size` unless `n` is 0), checked
+    /// against the bytes left.
+    fn run(&mut self, n: usize, size: usize, what: &str) -> ::core::result::Result<&'a [u8], DecodeError> {
+        if n == 0 {
+            return Ok(&[]);
+        }
+        self.align(size)?;
+        let data: &'a [u8] = self.data;
+        match n.checked_mul(size).and_then(|len| data.get(self.pos..).and_then(|rest| rest.get(..len))) {
+            Some(bytes) => {
+                self.pos += bytes.len();
+                Ok(bytes)
+            }
+            None => Err(self.error(format_args!("{what}: truncated"))),
+        }
+    }
+
+    /// An array of primitives into `v`: one alignment and bounds check, then a copy.
+    pub fn get_prims<T: Primitive>(&mut self, v: &mut [T], what: &str) -> ::core::result::Result<(), DecodeError> {
+        let bytes = self.run(v.len(), T::SIZE, what)?;
+        T::get_all(bytes, v, self.little);
+        Ok(())
+    }
+
+    /// A sequence of primitives: the count (checked as in `get_seq`), then the elements
+    /// at once, allocated only once all their bytes are known to be there.
+    pub fn get_seq_prims<T: Primitive>(&mut self, bound: usize, what: &str) -> ::core::result::Result<::std::vec::Vec<T>, DecodeError> {
+        let n = self.get_count(bound, T::SIZE, what)?;
+        let bytes = self.run(n, T::SIZE, what)?;
+        Ok(T::get_vec(bytes, self.little))
+    }
+
+    /// Validated booleans (bytes 0 or 1), the first other byte refused at its offset.
+    fn bools(&mut self, n: usize, what: &str) -> ::core::result::Result<&'a [u8], DecodeError> {
+        let at = self.pos;
+        let bytes = self.run(n, 1, what)?;
+        match bytes.iter().position(|&b| b > 1) {
+            None => Ok(bytes),
+            Some(i) => {
+                let b = bytes.get(i).copied().unwrap_or_default();
+                Err(DecodeError { offset: at + i, message: format!("{b} is not a boolean") })
+            }
+        }
+    }
+
+    /// An array of booleans into `v`.
+    pub fn get_bools(&mut self, v: &mut [bool], what: &str) -> ::core::result::Result<(), DecodeError> {
+        let bytes = self.bools(v.len(), what)?;
+        v.iter_mut().zip(bytes).for_each(|(x, &b)| *x = b != 0);
+        Ok(())
+    }
+
+    /// A sequence of booleans (count checked as in `get_seq`).
+    pub fn get_seq_bools(&mut self, bound: usize, what: &str) -> ::core::result::Result<::std::vec::Vec<bool>, DecodeError> {
+        let n = self.get_count(bound, 1, what)?;
+        Ok(self.bools(n, what)?.iter().map(|&b| b != 0).collect())
     }
 
     /// A sequence: count (checked before allocating), then each element.

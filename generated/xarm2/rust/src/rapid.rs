@@ -220,6 +220,10 @@ impl crate::cdr::Cdr for DataType {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         match r.get::<i32>()? {
             0 => Ok(Self::RapidBool),
@@ -296,14 +300,28 @@ impl crate::cdr::Cdr for ParameterUnion {
             }
             Self::Vec3d(x) => {
                 crate::cdr::Cdr::encode(&crate::rapid::DataType::RapidVec3d, w)?;
-                w.put_array(x, |w, e1| { w.put::<f64>(*e1); Ok(()) })?;
+                w.put_prims::<f64>(x);
             }
             Self::Mat33f(x) => {
                 crate::cdr::Cdr::encode(&crate::rapid::DataType::RapidMat33f, w)?;
-                w.put_array(x, |w, e3| { w.put::<f32>(*e3); Ok(()) })?;
+                w.put_prims::<f32>(x);
             }
         }
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+        match self {
+            Self::B(_) => { s.bytes(1); }
+            Self::D(_) => { s.put::<f64>(); }
+            Self::F(_) => { s.put::<f32>(); }
+            Self::I(_) => { s.put::<i32>(); }
+            Self::Ll(_) => { s.put::<i64>(); }
+            Self::S(x) => { s.string(x); }
+            Self::Vec3d(x) => { s.prims::<f64>(x.len()); }
+            Self::Mat33f(x) => { s.prims::<f32>(x.len()); }
+        }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -316,8 +334,8 @@ impl crate::cdr::Cdr for ParameterUnion {
             crate::rapid::DataType::RapidInt => Self::I(r.get::<i32>()?),
             crate::rapid::DataType::RapidLonglong => Self::Ll(r.get::<i64>()?),
             crate::rapid::DataType::RapidString => Self::S(r.get_string(128, "rapid::ParameterUnion.s")?),
-            crate::rapid::DataType::RapidVec3d => Self::Vec3d({ r.need(24, "rapid::ParameterUnion.vec3d")?; let mut a2: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_array(&mut a2, |r| r.get::<f64>())?; a2 }),
-            crate::rapid::DataType::RapidMat33f => Self::Mat33f({ r.need(36, "rapid::ParameterUnion.mat33f")?; let mut a4: crate::rapid::Mat33f = ::core::default::Default::default(); r.get_array(&mut a4, |r| r.get::<f32>())?; a4 }),
+            crate::rapid::DataType::RapidVec3d => Self::Vec3d({ r.need(24, "rapid::ParameterUnion.vec3d")?; let mut a1: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_prims::<f64>(&mut a1, "rapid::ParameterUnion.vec3d")?; a1 }),
+            crate::rapid::DataType::RapidMat33f => Self::Mat33f({ r.need(36, "rapid::ParameterUnion.mat33f")?; let mut a2: crate::rapid::Mat33f = ::core::default::Default::default(); r.get_prims::<f32>(&mut a2, "rapid::ParameterUnion.mat33f")?; a2 }),
         };
         r.leave();
         Ok(v)
@@ -376,6 +394,11 @@ impl crate::cdr::Cdr for KeyTypePair {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.key);
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -426,6 +449,12 @@ impl crate::cdr::Cdr for KeyTypeValueTriple {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.key);
+        s.put::<i32>();
+        crate::cdr::Cdr::size(&self.value, s);
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -469,16 +498,21 @@ impl crate::cdr::Cdr for Transform3D {
     const TYPE_NAME: &'static str = "rapid::Transform3D";
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
-        w.put_array(&self.xyz, |w, e5| { w.put::<f64>(*e5); Ok(()) })?;
-        w.put_array(&self.rot, |w, e7| { w.put::<f32>(*e7); Ok(()) })?;
+        w.put_prims::<f64>(&self.xyz);
+        w.put_prims::<f32>(&self.rot);
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.prims::<f64>(self.xyz.len());
+        s.prims::<f32>(self.rot.len());
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
-            xyz: { r.need(24, "rapid::Transform3D.xyz")?; let mut a6: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_array(&mut a6, |r| r.get::<f64>())?; a6 },
-            rot: { r.need(36, "rapid::Transform3D.rot")?; let mut a8: crate::rapid::Mat33f = ::core::default::Default::default(); r.get_array(&mut a8, |r| r.get::<f32>())?; a8 },
+            xyz: { r.need(24, "rapid::Transform3D.xyz")?; let mut a3: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_prims::<f64>(&mut a3, "rapid::Transform3D.xyz")?; a3 },
+            rot: { r.need(36, "rapid::Transform3D.rot")?; let mut a4: crate::rapid::Mat33f = ::core::default::Default::default(); r.get_prims::<f32>(&mut a4, "rapid::Transform3D.rot")?; a4 },
         };
         r.leave();
         Ok(v)
@@ -502,15 +536,20 @@ impl crate::cdr::Cdr for NamedFloatSequence {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.name, 16, "rapid::NamedFloatSequence.name")?;
-        w.put_seq(&self.values, 64, "rapid::NamedFloatSequence.values", |w, e9| { w.put::<f32>(*e9); Ok(()) })?;
+        w.put_seq_prims::<f32>(&self.values, 64, "rapid::NamedFloatSequence.values")?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.name);
+        s.count(); s.prims::<f32>(self.values.len());
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
             name: r.get_string(16, "rapid::NamedFloatSequence.name")?,
-            values: r.get_seq(64, 4, "rapid::NamedFloatSequence.values", |r| r.get::<f32>())?,
+            values: r.get_seq_prims::<f32>(64, "rapid::NamedFloatSequence.values")?,
         };
         r.leave();
         Ok(v)
@@ -536,6 +575,11 @@ impl crate::cdr::Cdr for FloatRange {
         w.put::<f32>(self.min);
         w.put::<f32>(self.max);
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<f32>();
+        s.put::<f32>();
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -573,6 +617,12 @@ impl crate::cdr::Cdr for FloatRangeValue {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<f32>();
+        s.put::<f32>();
+        s.put::<f32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -602,8 +652,13 @@ impl crate::cdr::Cdr for OptionSetValue {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put::<i32>(self.index);
-        w.put_seq(&self.options, 16, "rapid::OptionSetValue.options", |w, e10| w.put_string(e10, 32, "rapid::OptionSetValue.options"))?;
+        w.put_seq(&self.options, 16, "rapid::OptionSetValue.options", |w, e5| w.put_string(e5, 32, "rapid::OptionSetValue.options"))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+        s.count(); for e6 in &self.options { s.string(e6); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -638,6 +693,11 @@ impl crate::cdr::Cdr for NamedFloatRangeValue {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.name);
+        crate::cdr::Cdr::size(&self.range, s);
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -668,6 +728,11 @@ impl crate::cdr::Cdr for NamedOptionSetValue {
         w.put_string(&self.name, 16, "rapid::NamedOptionSetValue.name")?;
         crate::cdr::Cdr::encode(&self.option, w)?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.name);
+        crate::cdr::Cdr::size(&self.option, s);
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -736,6 +801,10 @@ impl crate::cdr::Cdr for RotationEncoding {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         match r.get::<i32>()? {
             0 => Ok(Self::RapidRotNone),
@@ -782,6 +851,14 @@ impl crate::cdr::Cdr for Header {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.src_name);
+        s.string(&self.asset_name);
+        s.put::<i64>();
+        s.put::<i32>();
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -805,10 +882,10 @@ impl crate::cdr::Cdr for Header {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k11 = r.get_string(32, "rapid::Header key srcName")?;
-        w.put_string(&k11, 32, "rapid::Header key srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k12 = r.get_string(32, "rapid::Header key assetName")?;
-        w.put_string(&k12, 32, "rapid::Header key assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k7 = r.get_string(32, "rapid::Header key srcName")?;
+        w.put_string(&k7, 32, "rapid::Header key srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k8 = r.get_string(32, "rapid::Header key assetName")?;
+        w.put_string(&k8, 32, "rapid::Header key assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -831,6 +908,10 @@ impl crate::cdr::Cdr for Message {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -850,10 +931,10 @@ impl crate::cdr::Cdr for Message {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k13 = r.get_string(32, "rapid::Message key hdr.srcName")?;
-        w.put_string(&k13, 32, "rapid::Message key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k14 = r.get_string(32, "rapid::Message key hdr.assetName")?;
-        w.put_string(&k14, 32, "rapid::Message key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k9 = r.get_string(32, "rapid::Message key hdr.srcName")?;
+        w.put_string(&k9, 32, "rapid::Message key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k10 = r.get_string(32, "rapid::Message key hdr.assetName")?;
+        w.put_string(&k10, 32, "rapid::Message key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -881,8 +962,14 @@ impl crate::cdr::Cdr for AccessControlState {
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         w.put_string(&self.controller, 32, "rapid::AccessControlState.controller")?;
-        w.put_seq(&self.requestors, 16, "rapid::AccessControlState.requestors", |w, e15| w.put_string(e15, 32, "rapid::AccessControlState.requestors"))?;
+        w.put_seq(&self.requestors, 16, "rapid::AccessControlState.requestors", |w, e11| w.put_string(e11, 32, "rapid::AccessControlState.requestors"))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.string(&self.controller);
+        s.count(); for e12 in &self.requestors { s.string(e12); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -906,10 +993,10 @@ impl crate::cdr::Cdr for AccessControlState {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k16 = r.get_string(32, "rapid::AccessControlState key hdr.srcName")?;
-        w.put_string(&k16, 32, "rapid::AccessControlState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k17 = r.get_string(32, "rapid::AccessControlState key hdr.assetName")?;
-        w.put_string(&k17, 32, "rapid::AccessControlState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k13 = r.get_string(32, "rapid::AccessControlState key hdr.srcName")?;
+        w.put_string(&k13, 32, "rapid::AccessControlState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k14 = r.get_string(32, "rapid::AccessControlState key hdr.assetName")?;
+        w.put_string(&k14, 32, "rapid::AccessControlState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -958,6 +1045,10 @@ impl crate::cdr::Cdr for AckStatus {
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put::<i32>(*self as i32);
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1016,6 +1107,10 @@ impl crate::cdr::Cdr for AckCompletedStatus {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         match r.get::<i32>()? {
             0 => Ok(Self::AckCompletedNot),
@@ -1058,6 +1153,14 @@ impl crate::cdr::Cdr for Ack {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.string(&self.cmd_id);
+        s.put::<i32>();
+        s.put::<i32>();
+        s.string(&self.message);
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -1082,12 +1185,12 @@ impl crate::cdr::Cdr for Ack {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k18 = r.get_string(32, "rapid::Ack key hdr.srcName")?;
-        w.put_string(&k18, 32, "rapid::Ack key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k19 = r.get_string(32, "rapid::Ack key hdr.assetName")?;
-        w.put_string(&k19, 32, "rapid::Ack key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k20 = r.get_string(64, "rapid::Ack key cmdId")?;
-        w.put_string(&k20, 64, "rapid::Ack key cmdId").map_err(|e| r.error(format_args!("{e}")))?;
+        let k15 = r.get_string(32, "rapid::Ack key hdr.srcName")?;
+        w.put_string(&k15, 32, "rapid::Ack key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k16 = r.get_string(32, "rapid::Ack key hdr.assetName")?;
+        w.put_string(&k16, 32, "rapid::Ack key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k17 = r.get_string(64, "rapid::Ack key cmdId")?;
+        w.put_string(&k17, 64, "rapid::Ack key cmdId").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1118,10 +1221,17 @@ impl crate::cdr::Cdr for AgentConfig {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.agent_tags, 16, "rapid::AgentConfig.agentTags", |w, e21| w.put_string(e21, 16, "rapid::AgentConfig.agentTags"))?;
-        w.put_seq(&self.topics, 64, "rapid::AgentConfig.topics", |w, e22| w.put_string(e22, 128, "rapid::AgentConfig.topics"))?;
-        w.put_seq(&self.value_keys, 64, "rapid::AgentConfig.valueKeys", |w, e23| crate::cdr::Cdr::encode(e23, w))?;
+        w.put_seq(&self.agent_tags, 16, "rapid::AgentConfig.agentTags", |w, e18| w.put_string(e18, 16, "rapid::AgentConfig.agentTags"))?;
+        w.put_seq(&self.topics, 64, "rapid::AgentConfig.topics", |w, e20| w.put_string(e20, 128, "rapid::AgentConfig.topics"))?;
+        w.put_seq(&self.value_keys, 64, "rapid::AgentConfig.valueKeys", |w, e22| crate::cdr::Cdr::encode(e22, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.count(); for e19 in &self.agent_tags { s.string(e19); }
+        s.count(); for e21 in &self.topics { s.string(e21); }
+        s.count(); for e23 in &self.value_keys { crate::cdr::Cdr::size(e23, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1178,6 +1288,11 @@ impl crate::cdr::Cdr for AgentState {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.count(); for e27 in &self.values { crate::cdr::Cdr::size(e27, s); }
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -1198,10 +1313,10 @@ impl crate::cdr::Cdr for AgentState {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k27 = r.get_string(32, "rapid::AgentState key hdr.srcName")?;
-        w.put_string(&k27, 32, "rapid::AgentState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k28 = r.get_string(32, "rapid::AgentState key hdr.assetName")?;
-        w.put_string(&k28, 32, "rapid::AgentState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k28 = r.get_string(32, "rapid::AgentState key hdr.srcName")?;
+        w.put_string(&k28, 32, "rapid::AgentState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k29 = r.get_string(32, "rapid::AgentState key hdr.assetName")?;
+        w.put_string(&k29, 32, "rapid::AgentState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1256,6 +1371,10 @@ impl crate::cdr::Cdr for QueueAction {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         match r.get::<i32>()? {
             0 => Ok(Self::QueueBypass),
@@ -1305,10 +1424,21 @@ impl crate::cdr::Cdr for Command {
         w.put_string(&self.cmd_id, 64, "rapid::Command.cmdId")?;
         w.put_string(&self.cmd_src, 32, "rapid::Command.cmdSrc")?;
         w.put_string(&self.subsys_name, 32, "rapid::Command.subsysName")?;
-        w.put_seq(&self.arguments, 16, "rapid::Command.arguments", |w, e29| crate::cdr::Cdr::encode(e29, w))?;
+        w.put_seq(&self.arguments, 16, "rapid::Command.arguments", |w, e30| crate::cdr::Cdr::encode(e30, w))?;
         crate::cdr::Cdr::encode(&self.cmd_action, w)?;
         w.put_string(&self.target_cmd_id, 64, "rapid::Command.targetCmdId")?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.string(&self.cmd_name);
+        s.string(&self.cmd_id);
+        s.string(&self.cmd_src);
+        s.string(&self.subsys_name);
+        s.count(); for e31 in &self.arguments { crate::cdr::Cdr::size(e31, s); }
+        s.put::<i32>();
+        s.string(&self.target_cmd_id);
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1337,10 +1467,10 @@ impl crate::cdr::Cdr for Command {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k30 = r.get_string(32, "rapid::Command key hdr.srcName")?;
-        w.put_string(&k30, 32, "rapid::Command key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k31 = r.get_string(32, "rapid::Command key hdr.assetName")?;
-        w.put_string(&k31, 32, "rapid::Command key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k32 = r.get_string(32, "rapid::Command key hdr.srcName")?;
+        w.put_string(&k32, 32, "rapid::Command key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k33 = r.get_string(32, "rapid::Command key hdr.assetName")?;
+        w.put_string(&k33, 32, "rapid::Command key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1371,8 +1501,15 @@ impl crate::cdr::Cdr for CommandDef {
         w.put_string(&self.name, 64, "rapid::CommandDef.name")?;
         w.put_bool(self.abortable);
         w.put_bool(self.suspendable);
-        w.put_seq(&self.parameters, 16, "rapid::CommandDef.parameters", |w, e32| crate::cdr::Cdr::encode(e32, w))?;
+        w.put_seq(&self.parameters, 16, "rapid::CommandDef.parameters", |w, e34| crate::cdr::Cdr::encode(e34, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.name);
+        s.bytes(1);
+        s.bytes(1);
+        s.count(); for e35 in &self.parameters { crate::cdr::Cdr::size(e35, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1405,8 +1542,13 @@ impl crate::cdr::Cdr for SubsystemType {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.name, 32, "rapid::SubsystemType.name")?;
-        w.put_seq(&self.commands, 100, "rapid::SubsystemType.commands", |w, e33| crate::cdr::Cdr::encode(e33, w))?;
+        w.put_seq(&self.commands, 100, "rapid::SubsystemType.commands", |w, e36| crate::cdr::Cdr::encode(e36, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.name);
+        s.count(); for e37 in &self.commands { crate::cdr::Cdr::size(e37, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1442,6 +1584,11 @@ impl crate::cdr::Cdr for Subsystem {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.name);
+        s.string(&self.subsystem_type_name);
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -1474,9 +1621,15 @@ impl crate::cdr::Cdr for CommandConfig {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.available_subsystem_types, 64, "rapid::CommandConfig.availableSubsystemTypes", |w, e34| crate::cdr::Cdr::encode(e34, w))?;
-        w.put_seq(&self.available_subsystems, 128, "rapid::CommandConfig.availableSubsystems", |w, e35| crate::cdr::Cdr::encode(e35, w))?;
+        w.put_seq(&self.available_subsystem_types, 64, "rapid::CommandConfig.availableSubsystemTypes", |w, e38| crate::cdr::Cdr::encode(e38, w))?;
+        w.put_seq(&self.available_subsystems, 128, "rapid::CommandConfig.availableSubsystems", |w, e40| crate::cdr::Cdr::encode(e40, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.count(); for e39 in &self.available_subsystem_types { crate::cdr::Cdr::size(e39, s); }
+        s.count(); for e41 in &self.available_subsystems { crate::cdr::Cdr::size(e41, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1500,10 +1653,10 @@ impl crate::cdr::Cdr for CommandConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k36 = r.get_string(32, "rapid::CommandConfig key hdr.srcName")?;
-        w.put_string(&k36, 32, "rapid::CommandConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k37 = r.get_string(32, "rapid::CommandConfig key hdr.assetName")?;
-        w.put_string(&k37, 32, "rapid::CommandConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k42 = r.get_string(32, "rapid::CommandConfig key hdr.srcName")?;
+        w.put_string(&k42, 32, "rapid::CommandConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k43 = r.get_string(32, "rapid::CommandConfig key hdr.assetName")?;
+        w.put_string(&k43, 32, "rapid::CommandConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1670,8 +1823,16 @@ impl crate::cdr::Cdr for FileAnnounce {
         w.put_string(&self.file_uuid, 64, "rapid::FileAnnounce.fileUuid")?;
         w.put_string(&self.file_locator, 256, "rapid::FileAnnounce.fileLocator")?;
         w.put::<i64>(self.file_size);
-        w.put_seq(&self.meta_data, 16, "rapid::FileAnnounce.metaData", |w, e38| crate::cdr::Cdr::encode(e38, w))?;
+        w.put_seq(&self.meta_data, 16, "rapid::FileAnnounce.metaData", |w, e44| crate::cdr::Cdr::encode(e44, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.string(&self.file_uuid);
+        s.string(&self.file_locator);
+        s.put::<i64>();
+        s.count(); for e45 in &self.meta_data { crate::cdr::Cdr::size(e45, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1698,12 +1859,12 @@ impl crate::cdr::Cdr for FileAnnounce {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k39 = r.get_string(32, "rapid::FileAnnounce key hdr.srcName")?;
-        w.put_string(&k39, 32, "rapid::FileAnnounce key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k40 = r.get_string(32, "rapid::FileAnnounce key hdr.assetName")?;
-        w.put_string(&k40, 32, "rapid::FileAnnounce key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k41 = r.get_string(64, "rapid::FileAnnounce key fileUuid")?;
-        w.put_string(&k41, 64, "rapid::FileAnnounce key fileUuid").map_err(|e| r.error(format_args!("{e}")))?;
+        let k46 = r.get_string(32, "rapid::FileAnnounce key hdr.srcName")?;
+        w.put_string(&k46, 32, "rapid::FileAnnounce key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k47 = r.get_string(32, "rapid::FileAnnounce key hdr.assetName")?;
+        w.put_string(&k47, 32, "rapid::FileAnnounce key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k48 = r.get_string(64, "rapid::FileAnnounce key fileUuid")?;
+        w.put_string(&k48, 64, "rapid::FileAnnounce key fileUuid").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1751,10 +1912,21 @@ impl crate::cdr::Cdr for ImageMetadata {
         crate::cdr::Cdr::encode(&self.offset, w)?;
         w.put::<i32>(self.width);
         w.put::<i32>(self.height);
-        w.put_seq(&self.range_settings, 16, "rapid::ImageMetadata.rangeSettings", |w, e42| crate::cdr::Cdr::encode(e42, w))?;
-        w.put_seq(&self.option_settings, 16, "rapid::ImageMetadata.optionSettings", |w, e43| crate::cdr::Cdr::encode(e43, w))?;
-        w.put_seq(&self.extras, 16, "rapid::ImageMetadata.extras", |w, e44| crate::cdr::Cdr::encode(e44, w))?;
+        w.put_seq(&self.range_settings, 16, "rapid::ImageMetadata.rangeSettings", |w, e49| crate::cdr::Cdr::encode(e49, w))?;
+        w.put_seq(&self.option_settings, 16, "rapid::ImageMetadata.optionSettings", |w, e51| crate::cdr::Cdr::encode(e51, w))?;
+        w.put_seq(&self.extras, 16, "rapid::ImageMetadata.extras", |w, e53| crate::cdr::Cdr::encode(e53, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.sensor_name);
+        s.string(&self.sensor_type);
+        crate::cdr::Cdr::size(&self.offset, s);
+        s.put::<i32>();
+        s.put::<i32>();
+        s.count(); for e50 in &self.range_settings { crate::cdr::Cdr::size(e50, s); }
+        s.count(); for e52 in &self.option_settings { crate::cdr::Cdr::size(e52, s); }
+        s.count(); for e54 in &self.extras { crate::cdr::Cdr::size(e54, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1813,8 +1985,15 @@ impl crate::cdr::Cdr for ImageSensorSample {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         crate::cdr::Cdr::encode(&self.meta, w)?;
         w.put_string(&self.mime_type, 32, "rapid::ImageSensorSample.mimeType")?;
-        w.put_seq(&self.data, 1048576, "rapid::ImageSensorSample.data", |w, e45| { w.put::<u8>(*e45); Ok(()) })?;
+        w.put_seq_prims::<u8>(&self.data, 1048576, "rapid::ImageSensorSample.data")?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        crate::cdr::Cdr::size(&self.meta, s);
+        s.string(&self.mime_type);
+        s.count(); s.prims::<u8>(self.data.len());
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1823,7 +2002,7 @@ impl crate::cdr::Cdr for ImageSensorSample {
             hdr: <crate::rapid::Header as crate::cdr::Cdr>::decode(r)?,
             meta: <crate::rapid::ImageMetadata as crate::cdr::Cdr>::decode(r)?,
             mime_type: r.get_string(32, "rapid::ImageSensorSample.mimeType")?,
-            data: r.get_seq(1048576, 1, "rapid::ImageSensorSample.data", |r| r.get::<u8>())?,
+            data: r.get_seq_prims::<u8>(1048576, "rapid::ImageSensorSample.data")?,
         };
         r.leave();
         Ok(v)
@@ -1839,10 +2018,10 @@ impl crate::cdr::Cdr for ImageSensorSample {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k46 = r.get_string(32, "rapid::ImageSensorSample key hdr.srcName")?;
-        w.put_string(&k46, 32, "rapid::ImageSensorSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k47 = r.get_string(32, "rapid::ImageSensorSample key hdr.assetName")?;
-        w.put_string(&k47, 32, "rapid::ImageSensorSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k55 = r.get_string(32, "rapid::ImageSensorSample key hdr.srcName")?;
+        w.put_string(&k55, 32, "rapid::ImageSensorSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k56 = r.get_string(32, "rapid::ImageSensorSample key hdr.assetName")?;
+        w.put_string(&k56, 32, "rapid::ImageSensorSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1871,6 +2050,11 @@ impl crate::cdr::Cdr for ImageSensorState {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        crate::cdr::Cdr::size(&self.meta, s);
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -1891,10 +2075,10 @@ impl crate::cdr::Cdr for ImageSensorState {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k48 = r.get_string(32, "rapid::ImageSensorState key hdr.srcName")?;
-        w.put_string(&k48, 32, "rapid::ImageSensorState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k49 = r.get_string(32, "rapid::ImageSensorState key hdr.assetName")?;
-        w.put_string(&k49, 32, "rapid::ImageSensorState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k57 = r.get_string(32, "rapid::ImageSensorState key hdr.srcName")?;
+        w.put_string(&k57, 32, "rapid::ImageSensorState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k58 = r.get_string(32, "rapid::ImageSensorState key hdr.assetName")?;
+        w.put_string(&k58, 32, "rapid::ImageSensorState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1922,6 +2106,11 @@ impl crate::cdr::Cdr for JointDef {
         w.put_string(&self.frame_name, 128, "rapid::JointDef.frameName")?;
         w.put_string(&self.dof, 64, "rapid::JointDef.dof")?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.string(&self.frame_name);
+        s.string(&self.dof);
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1957,8 +2146,14 @@ impl crate::cdr::Cdr for JointConfig {
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         w.put_string(&self.joint_group_name, 32, "rapid::JointConfig.jointGroupName")?;
-        w.put_seq(&self.joint_definitions, 64, "rapid::JointConfig.jointDefinitions", |w, e50| crate::cdr::Cdr::encode(e50, w))?;
+        w.put_seq(&self.joint_definitions, 64, "rapid::JointConfig.jointDefinitions", |w, e59| crate::cdr::Cdr::encode(e59, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.string(&self.joint_group_name);
+        s.count(); for e60 in &self.joint_definitions { crate::cdr::Cdr::size(e60, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1982,10 +2177,10 @@ impl crate::cdr::Cdr for JointConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k51 = r.get_string(32, "rapid::JointConfig key hdr.srcName")?;
-        w.put_string(&k51, 32, "rapid::JointConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k52 = r.get_string(32, "rapid::JointConfig key hdr.assetName")?;
-        w.put_string(&k52, 32, "rapid::JointConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k61 = r.get_string(32, "rapid::JointConfig key hdr.srcName")?;
+        w.put_string(&k61, 32, "rapid::JointConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k62 = r.get_string(32, "rapid::JointConfig key hdr.assetName")?;
+        w.put_string(&k62, 32, "rapid::JointConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2049,28 +2244,40 @@ impl crate::cdr::Cdr for JointSample {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.angle_pos, 64, "rapid::JointSample.anglePos", |w, e53| { w.put::<f32>(*e53); Ok(()) })?;
-        w.put_seq(&self.angle_vel, 64, "rapid::JointSample.angleVel", |w, e54| { w.put::<f32>(*e54); Ok(()) })?;
-        w.put_seq(&self.angle_acc, 64, "rapid::JointSample.angleAcc", |w, e55| { w.put::<f32>(*e55); Ok(()) })?;
-        w.put_seq(&self.current, 64, "rapid::JointSample.current", |w, e56| { w.put::<f32>(*e56); Ok(()) })?;
-        w.put_seq(&self.torque, 64, "rapid::JointSample.torque", |w, e57| { w.put::<f32>(*e57); Ok(()) })?;
-        w.put_seq(&self.temperature, 64, "rapid::JointSample.temperature", |w, e58| { w.put::<f32>(*e58); Ok(()) })?;
-        w.put_seq(&self.status, 64, "rapid::JointSample.status", |w, e59| { w.put::<i32>(*e59); Ok(()) })?;
-        w.put_seq(&self.aux_float, 16, "rapid::JointSample.auxFloat", |w, e60| crate::cdr::Cdr::encode(e60, w))?;
+        w.put_seq_prims::<f32>(&self.angle_pos, 64, "rapid::JointSample.anglePos")?;
+        w.put_seq_prims::<f32>(&self.angle_vel, 64, "rapid::JointSample.angleVel")?;
+        w.put_seq_prims::<f32>(&self.angle_acc, 64, "rapid::JointSample.angleAcc")?;
+        w.put_seq_prims::<f32>(&self.current, 64, "rapid::JointSample.current")?;
+        w.put_seq_prims::<f32>(&self.torque, 64, "rapid::JointSample.torque")?;
+        w.put_seq_prims::<f32>(&self.temperature, 64, "rapid::JointSample.temperature")?;
+        w.put_seq_prims::<i32>(&self.status, 64, "rapid::JointSample.status")?;
+        w.put_seq(&self.aux_float, 16, "rapid::JointSample.auxFloat", |w, e63| crate::cdr::Cdr::encode(e63, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.count(); s.prims::<f32>(self.angle_pos.len());
+        s.count(); s.prims::<f32>(self.angle_vel.len());
+        s.count(); s.prims::<f32>(self.angle_acc.len());
+        s.count(); s.prims::<f32>(self.current.len());
+        s.count(); s.prims::<f32>(self.torque.len());
+        s.count(); s.prims::<f32>(self.temperature.len());
+        s.count(); s.prims::<i32>(self.status.len());
+        s.count(); for e64 in &self.aux_float { crate::cdr::Cdr::size(e64, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
             hdr: <crate::rapid::Header as crate::cdr::Cdr>::decode(r)?,
-            angle_pos: r.get_seq(64, 4, "rapid::JointSample.anglePos", |r| r.get::<f32>())?,
-            angle_vel: r.get_seq(64, 4, "rapid::JointSample.angleVel", |r| r.get::<f32>())?,
-            angle_acc: r.get_seq(64, 4, "rapid::JointSample.angleAcc", |r| r.get::<f32>())?,
-            current: r.get_seq(64, 4, "rapid::JointSample.current", |r| r.get::<f32>())?,
-            torque: r.get_seq(64, 4, "rapid::JointSample.torque", |r| r.get::<f32>())?,
-            temperature: r.get_seq(64, 4, "rapid::JointSample.temperature", |r| r.get::<f32>())?,
-            status: r.get_seq(64, 4, "rapid::JointSample.status", |r| r.get::<i32>())?,
+            angle_pos: r.get_seq_prims::<f32>(64, "rapid::JointSample.anglePos")?,
+            angle_vel: r.get_seq_prims::<f32>(64, "rapid::JointSample.angleVel")?,
+            angle_acc: r.get_seq_prims::<f32>(64, "rapid::JointSample.angleAcc")?,
+            current: r.get_seq_prims::<f32>(64, "rapid::JointSample.current")?,
+            torque: r.get_seq_prims::<f32>(64, "rapid::JointSample.torque")?,
+            temperature: r.get_seq_prims::<f32>(64, "rapid::JointSample.temperature")?,
+            status: r.get_seq_prims::<i32>(64, "rapid::JointSample.status")?,
             aux_float: r.get_seq(16, 9, "rapid::JointSample.auxFloat", <crate::rapid::NamedFloatSequence as crate::cdr::Cdr>::decode)?,
         };
         r.leave();
@@ -2087,10 +2294,10 @@ impl crate::cdr::Cdr for JointSample {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k61 = r.get_string(32, "rapid::JointSample key hdr.srcName")?;
-        w.put_string(&k61, 32, "rapid::JointSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k62 = r.get_string(32, "rapid::JointSample key hdr.assetName")?;
-        w.put_string(&k62, 32, "rapid::JointSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k65 = r.get_string(32, "rapid::JointSample key hdr.srcName")?;
+        w.put_string(&k65, 32, "rapid::JointSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k66 = r.get_string(32, "rapid::JointSample key hdr.assetName")?;
+        w.put_string(&k66, 32, "rapid::JointSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2128,8 +2335,16 @@ impl crate::cdr::Cdr for PositionConfig {
         w.put_string(&self.frame_name, 128, "rapid::PositionConfig.frameName")?;
         crate::cdr::Cdr::encode(&self.pose_encoding, w)?;
         crate::cdr::Cdr::encode(&self.velocity_encoding, w)?;
-        w.put_seq(&self.value_keys, 64, "rapid::PositionConfig.valueKeys", |w, e63| crate::cdr::Cdr::encode(e63, w))?;
+        w.put_seq(&self.value_keys, 64, "rapid::PositionConfig.valueKeys", |w, e67| crate::cdr::Cdr::encode(e67, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.string(&self.frame_name);
+        s.put::<i32>();
+        s.put::<i32>();
+        s.count(); for e68 in &self.value_keys { crate::cdr::Cdr::size(e68, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2155,10 +2370,10 @@ impl crate::cdr::Cdr for PositionConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k64 = r.get_string(32, "rapid::PositionConfig key hdr.srcName")?;
-        w.put_string(&k64, 32, "rapid::PositionConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k65 = r.get_string(32, "rapid::PositionConfig key hdr.assetName")?;
-        w.put_string(&k65, 32, "rapid::PositionConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k69 = r.get_string(32, "rapid::PositionConfig key hdr.srcName")?;
+        w.put_string(&k69, 32, "rapid::PositionConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k70 = r.get_string(32, "rapid::PositionConfig key hdr.assetName")?;
+        w.put_string(&k70, 32, "rapid::PositionConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2189,8 +2404,15 @@ impl crate::cdr::Cdr for PositionSample {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         crate::cdr::Cdr::encode(&self.pose, w)?;
         crate::cdr::Cdr::encode(&self.velocity, w)?;
-        w.put_seq(&self.values, 64, "rapid::PositionSample.values", |w, e66| crate::cdr::Cdr::encode(e66, w))?;
+        w.put_seq(&self.values, 64, "rapid::PositionSample.values", |w, e71| crate::cdr::Cdr::encode(e71, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        crate::cdr::Cdr::size(&self.pose, s);
+        crate::cdr::Cdr::size(&self.velocity, s);
+        s.count(); for e72 in &self.values { crate::cdr::Cdr::size(e72, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2215,10 +2437,10 @@ impl crate::cdr::Cdr for PositionSample {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k67 = r.get_string(32, "rapid::PositionSample key hdr.srcName")?;
-        w.put_string(&k67, 32, "rapid::PositionSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k68 = r.get_string(32, "rapid::PositionSample key hdr.assetName")?;
-        w.put_string(&k68, 32, "rapid::PositionSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k73 = r.get_string(32, "rapid::PositionSample key hdr.srcName")?;
+        w.put_string(&k73, 32, "rapid::PositionSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k74 = r.get_string(32, "rapid::PositionSample key hdr.assetName")?;
+        w.put_string(&k74, 32, "rapid::PositionSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2266,6 +2488,10 @@ impl crate::cdr::Cdr for ResultType {
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put::<i32>(*self as i32);
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2359,6 +2585,10 @@ impl crate::cdr::Cdr for StatusType {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         match r.get::<i32>()? {
             0 => Ok(Self::QStatusInit),
@@ -2404,6 +2634,12 @@ impl crate::cdr::Cdr for CommandRecord {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.cmd, s);
+        s.put::<i32>();
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -2430,8 +2666,12 @@ impl crate::cdr::Cdr for SingleQueue {
     const TYPE_NAME: &'static str = "rapid::SingleQueue";
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
-        w.put_seq(&self.records, 64, "rapid::SingleQueue.records", |w, e69| crate::cdr::Cdr::encode(e69, w))?;
+        w.put_seq(&self.records, 64, "rapid::SingleQueue.records", |w, e75| crate::cdr::Cdr::encode(e75, w))?;
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.count(); for e76 in &self.records { crate::cdr::Cdr::size(e76, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2474,6 +2714,14 @@ impl crate::cdr::Cdr for QueueState {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        crate::cdr::Cdr::size(&self.pending, s);
+        crate::cdr::Cdr::size(&self.active, s);
+        crate::cdr::Cdr::size(&self.completed, s);
+        crate::cdr::Cdr::size(&self.sent, s);
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -2497,10 +2745,10 @@ impl crate::cdr::Cdr for QueueState {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k70 = r.get_string(32, "rapid::QueueState key hdr.srcName")?;
-        w.put_string(&k70, 32, "rapid::QueueState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k71 = r.get_string(32, "rapid::QueueState key hdr.assetName")?;
-        w.put_string(&k71, 32, "rapid::QueueState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k77 = r.get_string(32, "rapid::QueueState key hdr.srcName")?;
+        w.put_string(&k77, 32, "rapid::QueueState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k78 = r.get_string(32, "rapid::QueueState key hdr.assetName")?;
+        w.put_string(&k78, 32, "rapid::QueueState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2559,6 +2807,10 @@ impl crate::cdr::Cdr for MessageLevel {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         match r.get::<i32>()? {
             0 => Ok(Self::MsgDebug),
@@ -2597,6 +2849,13 @@ impl crate::cdr::Cdr for TextMessage {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.put::<i32>();
+        s.string(&self.category);
+        s.string(&self.message);
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -2619,10 +2878,10 @@ impl crate::cdr::Cdr for TextMessage {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k72 = r.get_string(32, "rapid::TextMessage key hdr.srcName")?;
-        w.put_string(&k72, 32, "rapid::TextMessage key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k73 = r.get_string(32, "rapid::TextMessage key hdr.assetName")?;
-        w.put_string(&k73, 32, "rapid::TextMessage key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k79 = r.get_string(32, "rapid::TextMessage key hdr.srcName")?;
+        w.put_string(&k79, 32, "rapid::TextMessage key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k80 = r.get_string(32, "rapid::TextMessage key hdr.assetName")?;
+        w.put_string(&k80, 32, "rapid::TextMessage key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }

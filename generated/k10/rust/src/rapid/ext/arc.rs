@@ -52,6 +52,10 @@ impl crate::cdr::Cdr for GpsFixType {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         match r.get::<i32>()? {
             0 => Ok(Self::GpsFixNone),
@@ -87,8 +91,15 @@ impl crate::cdr::Cdr for GpsConfig {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         w.put_string(&self.receiver_model, 32, "rapid::ext::arc::GpsConfig.receiverModel")?;
         w.put_string(&self.datum, 32, "rapid::ext::arc::GpsConfig.datum")?;
-        w.put_array(&self.antenna_offset, |w, e74| { w.put::<f64>(*e74); Ok(()) })?;
+        w.put_prims::<f64>(&self.antenna_offset);
         Ok(())
+    }
+
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.string(&self.receiver_model);
+        s.string(&self.datum);
+        s.prims::<f64>(self.antenna_offset.len());
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -97,7 +108,7 @@ impl crate::cdr::Cdr for GpsConfig {
             hdr: <crate::rapid::Header as crate::cdr::Cdr>::decode(r)?,
             receiver_model: r.get_string(32, "rapid::ext::arc::GpsConfig.receiverModel")?,
             datum: r.get_string(32, "rapid::ext::arc::GpsConfig.datum")?,
-            antenna_offset: { r.need(24, "rapid::ext::arc::GpsConfig.antennaOffset")?; let mut a75: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_array(&mut a75, |r| r.get::<f64>())?; a75 },
+            antenna_offset: { r.need(24, "rapid::ext::arc::GpsConfig.antennaOffset")?; let mut a81: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_prims::<f64>(&mut a81, "rapid::ext::arc::GpsConfig.antennaOffset")?; a81 },
         };
         r.leave();
         Ok(v)
@@ -113,10 +124,10 @@ impl crate::cdr::Cdr for GpsConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k76 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.srcName")?;
-        w.put_string(&k76, 32, "rapid::ext::arc::GpsConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k77 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.assetName")?;
-        w.put_string(&k77, 32, "rapid::ext::arc::GpsConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k82 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.srcName")?;
+        w.put_string(&k82, 32, "rapid::ext::arc::GpsConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k83 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.assetName")?;
+        w.put_string(&k83, 32, "rapid::ext::arc::GpsConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -159,6 +170,16 @@ impl crate::cdr::Cdr for GpsSample {
         Ok(())
     }
 
+    fn size(&self, s: &mut crate::cdr::Size) {
+        crate::cdr::Cdr::size(&self.hdr, s);
+        s.put::<f64>();
+        s.put::<f64>();
+        s.put::<f64>();
+        s.put::<f32>();
+        s.put::<i32>();
+        s.put::<i32>();
+    }
+
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
         r.enter()?;
         let v = Self {
@@ -184,10 +205,10 @@ impl crate::cdr::Cdr for GpsSample {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k78 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.srcName")?;
-        w.put_string(&k78, 32, "rapid::ext::arc::GpsSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k79 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.assetName")?;
-        w.put_string(&k79, 32, "rapid::ext::arc::GpsSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k84 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.srcName")?;
+        w.put_string(&k84, 32, "rapid::ext::arc::GpsSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k85 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.assetName")?;
+        w.put_string(&k85, 32, "rapid::ext::arc::GpsSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
