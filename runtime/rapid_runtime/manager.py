@@ -36,6 +36,11 @@ from rapid_runtime.validate import _short, check_command, kwargs_of
 # again after 4096 newer commands is a new command. Bridge(command_window=N) or the
 # bridge's --command-window N changes it.
 COMMAND_WINDOW = 4096
+# A flood of commands must not grow the asset without bound either: queued commands wait
+# (each held with its sample) and BYPASS ones each run on a thread of their own. Past these,
+# a command is answered EXEC_FAILED at once (docs/runtime.md, "Bounded memory").
+QUEUE_LIMIT = 1024
+BYPASS_LIMIT = 64
 COMPLETED_KEEP_S = 20.0  # finished commands stay in QueueState this long (soraCore)
 RECORDS = 64  # QueueState's SingleQueue holds at most 64 records
 VIOLATION = "RAPID access violation: "
@@ -64,9 +69,13 @@ class Run:
 class CommandManager:
     def __init__(self, tables: Tables, handlers: object, outbox: Outbox,
                  on_shutdown: Callable[[], None] | None = None, clock: Callable[[], float] = time.monotonic,
-                 window: int = COMMAND_WINDOW) -> None:
+                 window: int = COMMAND_WINDOW, queue_limit: int = QUEUE_LIMIT,
+                 bypass_limit: int = BYPASS_LIMIT) -> None:
         if window < 1:
             raise ValueError(f"command window {window}: at least 1")
+        if queue_limit < 1 or bypass_limit < 1:
+            raise ValueError(f"queue limit {queue_limit}, bypass limit {bypass_limit}: at least 1 each")
+        self.queue_limit, self.bypass_limit = queue_limit, bypass_limit
         self.tables, self.handlers, self.out = tables, handlers, outbox
         self.on_shutdown = on_shutdown
         self.clock = clock
@@ -129,6 +138,10 @@ class CommandManager:
         denied = self._authorize(cmd, entry)
         if denied:
             return BAD_SYNTAX, denied
+        if action in (APPEND, INSERT) and len(self.pending) >= self.queue_limit:
+            return EXEC_FAILED, f"queue full ({self.queue_limit} pending); retry later"
+        if action == BYPASS and len(self.bypass) >= self.bypass_limit:
+            return EXEC_FAILED, f"{self.bypass_limit} commands already running beside the queue; retry later"
         run = Run(cmd, entry, kwargs_of(entry, cmd), queued=action != BYPASS)
         if action == BYPASS:
             self._start(run)
