@@ -1,6 +1,7 @@
 //! Every golden vector decodes from both byte orders to equal values, and re-encodes to
 //! exactly its bytes in both orders; its key bytes go to little-endian and back unchanged
-//! (`transcode_key`). Prints `ok N` (N vectors checked).
+//! (`transcode_key`); `serialize` allocates its output once, exactly. Prints `ok N` (N
+//! vectors checked).
 
 mod common;
 
@@ -29,6 +30,10 @@ impl gen::TypeVisitor for Check<'_> {
                 let be = serialize(&a, Endianness::Big).map_err(|e| format!("encode BE: {e}"))?;
                 if le != v.le || be != v.be {
                     return Err(format!("re-encoding differs (LE {}, BE {})", le == v.le, be == v.be));
+                }
+                // `Cdr::size` is exact: serialize allocates once, at the final length
+                if le.capacity() != le.len() || be.capacity() != be.len() {
+                    return Err(format!("output capacity {} for {} bytes", le.capacity(), le.len()));
                 }
                 // bit-exact floats: a value cloned and re-encoded gives the same bytes again
                 if serialize(&a.clone(), Endianness::Little).ok() != Some(le) {
