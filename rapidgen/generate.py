@@ -82,8 +82,9 @@ def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
         return None
     qos_library = None
     # Read here, in the driver: back ends never read files. An asset's python package
-    # carries its QoS files too (rapidgen/backends/python/asset_tables.py).
-    if "qos" in langs or ("python" in langs and inputs.asset is not None):
+    # carries its QoS files too (rapidgen/backends/python/asset_tables.py), an asset's Rust
+    # crate its profiles' values (rapidgen/backends/rust/asset.py).
+    if "qos" in langs or (("python" in langs or "rust" in langs) and inputs.asset is not None):
         from rapidgen.qos.spec import default_library
         qos_library = default_library()
     options = Options(source=inputs.source, package=package, qos_library=qos_library)

@@ -17,6 +17,7 @@ from rapidgen.model import ir
 
 if TYPE_CHECKING:
     from rapidgen.asset import LoadedAsset
+    from rapidgen.qos.spec import Policies, QosSpec
     from rapidgen.backends.rust.view import Builder
 
 
@@ -48,6 +49,13 @@ class ConfigView:
 
 
 @dataclass
+class QosView:
+    name: str
+    writer: str  # a crate::asset::QosSide literal
+    reader: str
+
+
+@dataclass
 class AssetView:
     name: str
     domain: int
@@ -56,6 +64,7 @@ class AssetView:
     topics: list[tuple[str, str, str, str, str]]  # role, type, topic, qos profile, rate
     commands: list[CommandView]
     configs: list[ConfigView]
+    profiles: list[QosView]  # the QoS library's profiles the topics name (none without a library)
 
 
 def _opt_str(text: str | None) -> str:
@@ -66,21 +75,46 @@ def _opt_f64(x: float | int | None) -> str:
     return "None" if x is None else f"Some({float_literal(float(x), 'f64')})"
 
 
-def build(loaded: "LoadedAsset", b: "Builder") -> AssetView:
+def _side(policies: "Policies") -> str:
+    h = policies.history
+    history = "QosHistory::KeepAll" if h is not None and h.kind == "keep_all" else \
+        f"QosHistory::KeepLast({h.depth if h is not None and h.depth else 1})"
+    return (f"QosSide {{ reliable: {'true' if policies.reliability == 'reliable' else 'false'}, "
+            f"transient_local: {'true' if policies.durability == 'transient_local' else 'false'}, "
+            f"history: {history} }}")
+
+
+def _profiles(names: list[str], library: "QosSpec | None") -> list[QosView]:
+    """Each named profile resolved for writers and readers (QosSpec.effective, as the qos
+    target writes them); a name the library lacks is left out (the qos target reports it)."""
+    if library is None:
+        return []
+    out = []
+    for name in dict.fromkeys(names):
+        if library.has_profile(name):
+            writer, reader = library.effective(name)
+            out.append(QosView(rust_str(name), _side(writer), _side(reader)))
+    return out
+
+
+def build(loaded: "LoadedAsset", b: "Builder", library: "QosSpec | None" = None) -> AssetView:
     spec = loaded.spec
     facts = Facts(loaded.model)
     commands = [CommandView(rust_str(t.name), rust_str(c.name), c.abortable, c.suspendable,
                             [ParameterView(rust_str(p.name), rust_str(p.type), _opt_str(p.unit), _opt_f64(p.min),
                                            _opt_f64(p.max)) for p in c.parameters])
                 for t in used_types(spec) for c in t.commands]
+    pubs = publications(spec, facts)
     topics = [(rust_str(p.role), rust_str(p.type), rust_str(p.topic), rust_str(p.qos), _opt_f64(p.rate))
-              for p in publications(spec, facts)]
+              for p in pubs]
     scope = namer.Scope("asset", {"NAME", "DOMAIN", "PARTITION", "SUBSYSTEMS", "TOPICS", "COMMANDS", "Topic",
-                                  "Command", "Parameter"})
+                                  "Command", "Parameter", "QosSide", "QosHistory", "QosProfile",
+                                  "QOS_PROFILES", "qos_profile", "topic_qos"})
     views = []
     for topic, (type_name, value) in configs(loaded).items():
         t = ir.TypeRef(type_name, "struct")
         views.append(ConfigView(scope.claim("config_" + namer.snake(topic), topic), b.path(type_name),
                                 rust_str(topic), rust_str(type_name), b.value(t, value)))
     return AssetView(rust_str(spec.name), spec.domain, rust_str(spec.partition),
-                     [(rust_str(s.name), rust_str(s.type)) for s in all_subsystems(spec)], topics, commands, views)
+                     [(rust_str(s.name), rust_str(s.type)) for s in all_subsystems(spec)], topics, commands, views,
+                     _profiles([p.qos for p in pubs], library))

@@ -36,6 +36,30 @@ pub struct Command {
     pub parameters: &'static [Parameter],
 }
 
+/// History of one side of a QoS profile.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QosHistory {
+    KeepLast(i32),
+    KeepAll,
+}
+
+/// One side (writer or reader) of a QoS profile, resolved from the RAPID QoS library as the
+/// generated QoS files have it; the partition is `PARTITION`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct QosSide {
+    pub reliable: bool,
+    pub transient_local: bool,
+    pub history: QosHistory,
+}
+
+/// A QoS profile a topic of the asset names (`Topic::qos`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct QosProfile {
+    pub name: &'static str,
+    pub writer: QosSide,
+    pub reader: QosSide,
+}
+
 pub const NAME: &str = "EvaSuitA";
 pub const DOMAIN: u32 = 0;
 pub const PARTITION: &str = "EvaSuitA";
@@ -51,6 +75,24 @@ pub const TOPICS: &[Topic] = &[
     Topic { role: "state", type_name: "rapid::AgentState", topic: "rapid_agent_state", qos: "RapidStateQos", rate: Some(1.0) },
     Topic { role: "sample", type_name: "rapid::TextMessage", topic: "rapid_textmessage", qos: "RapidReliableDurableQos", rate: None },
 ];
+
+/// The QoS profiles the topics name, as the generated QoS library resolves them.
+pub const QOS_PROFILES: &[QosProfile] = &[
+    QosProfile { name: "RapidConfigQos", writer: QosSide { reliable: true, transient_local: true, history: QosHistory::KeepLast(1) }, reader: QosSide { reliable: true, transient_local: true, history: QosHistory::KeepLast(1) } },
+    QosProfile { name: "RapidSampleQos", writer: QosSide { reliable: false, transient_local: false, history: QosHistory::KeepLast(5) }, reader: QosSide { reliable: false, transient_local: false, history: QosHistory::KeepLast(5) } },
+    QosProfile { name: "RapidStateQos", writer: QosSide { reliable: true, transient_local: true, history: QosHistory::KeepLast(1) }, reader: QosSide { reliable: true, transient_local: true, history: QosHistory::KeepLast(1) } },
+    QosProfile { name: "RapidReliableDurableQos", writer: QosSide { reliable: true, transient_local: true, history: QosHistory::KeepLast(1) }, reader: QosSide { reliable: true, transient_local: true, history: QosHistory::KeepLast(1) } },
+];
+
+/// A profile by name.
+pub fn qos_profile(name: &str) -> Option<&'static QosProfile> {
+    QOS_PROFILES.iter().find(|q| q.name == name)
+}
+
+/// The profile of one of the asset's topics.
+pub fn topic_qos(topic: &str) -> Option<&'static QosProfile> {
+    TOPICS.iter().find(|t| t.topic == topic).and_then(|t| qos_profile(t.qos))
+}
 
 pub const COMMANDS: &[Command] = &[
 ];

@@ -361,3 +361,21 @@ pub fn asset_topic<T: TopicType>(dp: &DomainParticipant, name: &str, qos: &QosPo
     }
     create_topic::<T>(dp, name, qos)
 }
+
+/// RustDDS QoS of one side of an asset profile (`asset::topic_qos(topic)?.writer`, ...):
+/// reliability (100 ms max blocking), durability and history. RustDDS 0.15 has no
+/// Partition QoS: such endpoints are in the default partition.
+pub fn qos_of(side: &crate::asset::QosSide) -> QosPolicies {
+    let b = ::rustdds::QosPolicyBuilder::new();
+    let b = if side.reliable { b.reliable(::rustdds::Duration::from_millis(100)) } else { b.best_effort() };
+    let b = b.durability(if side.transient_local {
+        ::rustdds::policy::Durability::TransientLocal
+    } else {
+        ::rustdds::policy::Durability::Volatile
+    });
+    b.history(match side.history {
+        crate::asset::QosHistory::KeepLast(depth) => ::rustdds::policy::History::KeepLast { depth },
+        crate::asset::QosHistory::KeepAll => ::rustdds::policy::History::KeepAll,
+    })
+    .build()
+}
