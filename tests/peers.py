@@ -4,6 +4,10 @@ prints "ok TOPIC" per topic received field-equal and exits 0 when all arrived.""
 from __future__ import annotations
 
 import subprocess
+from pathlib import Path
+
+# the Python/Cyclone peer (K10's generated bindings), for either interop test
+PY_PEER = Path(__file__).resolve().parent / "py_peer.py"
 
 
 def start(cmd: list[str], stdin: str, env: dict) -> subprocess.Popen:

@@ -40,7 +40,7 @@ def test_cpp_and_python_exchange_every_topic_both_ways(cpp_build, tmp_path):
     env = dict(os.environ, CYCLONEDDS_URI="file://" + str(K10 / "qos" / "cyclonedds" / "local.xml"),
                PYTHONPATH=os.pathsep.join([str(K10 / "python"), str(ROOT)]))
     env.pop("FASTDDS_DEFAULT_PROFILES_FILE", None)
-    peer, py = str(cpp_build / "peer"), [sys.executable, str(ROOT / "tests" / "cpp" / "py_peer.py")]
+    peer, py = str(cpp_build / "peer"), [sys.executable, str(peers.PY_PEER)]
     procs = {
         "py_sub": peers.start(py + ["sub", str(DOMAIN_CPP_TO_PY), str(SECONDS)], stdin, env),
         "cpp_pub": peers.start([peer, "pub", xml, str(DOMAIN_CPP_TO_PY), str(SECONDS)], stdin, env),

@@ -6,7 +6,7 @@ field-equal to the golden vector's `max` value. The Rust side is the generated c
 `dds` module (feature `dds`) and nothing else.
 
 RustDDS 0.15 has no Partition QoS, so the Python side here uses the default partition
-(tests/rust/py_peer.py); RTPS stays on 127.0.0.1 (RustDDS `with_only_networks`, Cyclone
+(tests/py_peer.py --default-partition); RTPS stays on 127.0.0.1 (RustDDS `with_only_networks`, Cyclone
 through K10's generated loopback configuration)."""
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ import os
 import sys
 
 from tests import peers
-from tests.rust.conftest import HERE, K10, ROOT, VECTORS
+from tests.rust.conftest import K10, ROOT, VECTORS
 
 DOMAIN_RUST_TO_PY = 73
 DOMAIN_PY_TO_RUST = 74
@@ -39,11 +39,11 @@ def test_rust_and_python_exchange_every_message_type_both_ways(rust_peer):
     stdin = "\n".join(lines) + "\n"
     env = dict(os.environ, CYCLONEDDS_URI="file://" + str(K10.parent / "qos" / "cyclonedds" / "local.xml"),
                PYTHONPATH=os.pathsep.join([str(K10.parent / "python"), str(ROOT)]))
-    peer, py = str(rust_peer), [sys.executable, str(HERE / "py_peer.py")]
+    peer, py = str(rust_peer), [sys.executable, str(peers.PY_PEER)]
     procs = {
-        "py_sub": peers.start(py + ["sub", str(DOMAIN_RUST_TO_PY), str(SECONDS)], stdin, env),
+        "py_sub": peers.start(py + ["sub", str(DOMAIN_RUST_TO_PY), str(SECONDS), "--default-partition"], stdin, env),
         "rust_pub": peers.start([peer, "pub", str(DOMAIN_RUST_TO_PY), str(SECONDS)], stdin, env),
         "rust_sub": peers.start([peer, "sub", str(DOMAIN_PY_TO_RUST), str(SECONDS)], stdin, env),
-        "py_pub": peers.start(py + ["pub", str(DOMAIN_PY_TO_RUST), str(SECONDS)], stdin, env),
+        "py_pub": peers.start(py + ["pub", str(DOMAIN_PY_TO_RUST), str(SECONDS), "--default-partition"], stdin, env),
     }
     peers.exchange(procs, lines, SECONDS)

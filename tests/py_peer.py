@@ -1,11 +1,16 @@
-"""The Python side of the C++ interop test: K10's generated cyclonedds bindings and QoS.
+"""The Python side of the live interop tests (tests/cpp, tests/rust): K10's generated
+cyclonedds bindings and QoS.
 
-    py_peer.py pub|sub DOMAIN SECONDS     stdin: "topic type profile le_hex" lines
+    py_peer.py pub|sub DOMAIN SECONDS [--default-partition]
+    stdin: "topic type profile le_hex" lines (profile "-": none, the DDS default QoS)
 
+Each topic gets its generated QoS: an asset topic its own (RapidQos), another one the
+line's profile from the same QoS files. --default-partition leaves out the asset's
+partition (RustDDS 0.15 has none, so a RAPID partition would keep the two sides apart).
 pub writes each topic's sample every 200 ms for SECONDS; sub reads until every topic
 delivered a sample, printing "ok TOPIC" (field-equal to the decoded vector) or
 "MISMATCH TOPIC", and exits 0 when all are equal. CYCLONEDDS_URI must name the generated
-loopback configuration (the test sets it).
+loopback configuration (the tests set it).
 """
 from __future__ import annotations
 
@@ -16,10 +21,9 @@ import time
 
 from cyclonedds.domain import DomainParticipant
 from cyclonedds.pub import DataWriter, Publisher
+from cyclonedds.qos_provider import QosProvider
 from cyclonedds.sub import DataReader, Subscriber
 from cyclonedds.topic import Topic
-
-from cyclonedds.qos_provider import QosProvider
 
 from rapid_k10red.qos import RapidQos, UnknownTopic, default_qos_dir
 
@@ -31,10 +35,25 @@ def type_of(scoped: str) -> type:
     return getattr(importlib.import_module(".".join(["rapid_k10red", *mods])), name)
 
 
+def qos_of(qos: RapidQos, provider: QosProvider, mode: str, topic: str, profile: str, partition: bool):
+    """(group QoS, endpoint QoS) of a line; None is the DDS default."""
+    pub = mode == "pub"
+    try:
+        qos.key(topic)
+        group = (qos.publisher(topic) if pub else qos.subscriber(topic)) if partition else None
+        return group, qos.writer(topic) if pub else qos.reader(topic)
+    except UnknownTopic:  # a message type the asset does not publish: the line's profile
+        if profile == "-":
+            return None, None
+        key = LIBRARY + profile
+        group = (provider.get_publisher_qos(key) if pub else provider.get_subscriber_qos(key)) if partition else None
+        return group, provider.get_datawriter_qos(key) if pub else provider.get_datareader_qos(key)
+
+
 def main() -> int:
     mode, domain, seconds = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+    partition = "--default-partition" not in sys.argv[4:]
     qos = RapidQos()
-    # message types K10 does not publish (JointSample, ...): the line's profile, from the same files
     provider = QosProvider(os.path.join(default_qos_dir(), "dds-xml", "rapid_qos.xml"))
     dp = DomainParticipant(domain)
     ends = []
@@ -43,14 +62,7 @@ def main() -> int:
         cls = type_of(scoped)
         expected = cls.deserialize(bytes.fromhex(hexbytes))
         t = Topic(dp, topic, cls)
-        try:
-            qos.key(topic)
-            group, endpoint = ((qos.publisher(topic), qos.writer(topic)) if mode == "pub"
-                               else (qos.subscriber(topic), qos.reader(topic)))
-        except UnknownTopic:
-            key = LIBRARY + profile
-            group, endpoint = ((provider.get_publisher_qos(key), provider.get_datawriter_qos(key)) if mode == "pub"
-                               else (provider.get_subscriber_qos(key), provider.get_datareader_qos(key)))
+        group, endpoint = qos_of(qos, provider, mode, topic, profile, partition)
         if mode == "pub":
             ends.append((topic, DataWriter(Publisher(dp, qos=group), t, qos=endpoint), expected))
         else:
