@@ -7,7 +7,7 @@ import ast
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-SHARED_BACKEND = {"rapidgen.backends", "rapidgen.backends.base", "rapidgen.backends.escape",
+SHARED_BACKEND = {"rapidgen.backends", "rapidgen.backends.base", "rapidgen.backends.escape", "rapidgen.backends.naming",
                   "rapidgen.backends.templating"}
 
 

@@ -8,7 +8,7 @@ list is fixed here, so output does not depend on the machine.
 """
 from __future__ import annotations
 
-import re
+from rapidgen.backends import naming
 
 # C++17 keywords, alternative tokens, and C++20 keywords (so the code survives -std=c++20).
 KEYWORDS = frozenset("""
@@ -34,39 +34,11 @@ NAMESPACE_RESERVED = RESERVED | {"encode", "decode", "encode_key", "std", "rapid
 # Union classes: the discriminator accessor and the private state.
 UNION_RESERVED = RESERVED | {"_d", "m_d", "m_v", "case_of"}
 
-_IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
+class Scope(naming.Scope):
+    """One C++ scope (namespace, class, enum)."""
 
-class NameCollision(Exception):
-    """Two IDL names were given one C++ name (a bug in the view layer)."""
-
-
-def escape(name: str, reserved: frozenset[str] | set[str]) -> str:
-    for _ in range(100):
-        if name not in reserved:
-            break
-        name += "_"
-    return name
-
-
-class Scope:
-    """One C++ scope (namespace, class, enum): unique names, and what each stands for."""
+    LANGUAGE = "C++"
 
     def __init__(self, label: str, reserved: frozenset[str] | set[str] = RESERVED) -> None:
-        self.label = label
-        self.reserved = frozenset(reserved)
-        self.owner: dict[str, str] = {}
-
-    def claim(self, preferred: str, owner: str) -> str:
-        name = escape(preferred, self.reserved)
-        while name in self.owner:
-            if self.owner[name] == owner:
-                return name
-            name = escape(name + "_", self.reserved)
-        self.owner[name] = owner
-        return name
-
-    def check(self) -> None:
-        for name, owner in self.owner.items():
-            if not _IDENT.match(name) or name in self.reserved:
-                raise NameCollision(f"{self.label}: '{name}' (for {owner}) is not a usable C++ name")
+        super().__init__(label, reserved)

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import re
 
+from rapidgen.backends import naming
+
 # Rust 2021 strict and reserved keywords, and 2024's `gen`.
 KEYWORDS = frozenset("""
     as async await break const continue crate dyn else enum extern false fn for if impl in let loop
@@ -26,7 +28,6 @@ ROOT_RESERVED = KEYWORDS | {"cdr", "asset", "dds", "serde_arrays", "serde", "rus
 # A union's variant for a discriminator value that selects no member.
 NO_MEMBER = "NoMember"
 
-_IDENT = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 # Words of an identifier; digits stay with the word before them (`Vec3d`, `mat33f`).
 _WORDS = re.compile(r"[A-Z]+(?=[A-Z][a-z])|[A-Z]?[a-z0-9]+|[A-Z]+[0-9a-z]*")
 
@@ -54,36 +55,11 @@ def upper(name: str) -> str:
     return snake(name).upper()
 
 
-def escape(name: str, reserved: frozenset[str] | set[str]) -> str:
-    for _ in range(100):
-        if name not in reserved:
-            break
-        name += "_"
-    return name
+class Scope(naming.Scope):
+    """One Rust scope (module, struct, enum); Rust's keywords are always reserved."""
 
-
-class NameCollision(Exception):
-    """Two IDL names were given one Rust name (a bug in the view layer)."""
-
-
-class Scope:
-    """One Rust scope (module, struct, enum): unique names, and what each stands for."""
+    LANGUAGE = "Rust"
+    IDENT = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 
     def __init__(self, label: str, reserved: frozenset[str] | set[str] = KEYWORDS) -> None:
-        self.label = label
-        self.reserved = frozenset(reserved) | KEYWORDS
-        self.owner: dict[str, str] = {}
-
-    def claim(self, preferred: str, owner: str) -> str:
-        name = escape(preferred, self.reserved)
-        while name in self.owner:
-            if self.owner[name] == owner:
-                return name
-            name = escape(name + "_", self.reserved)
-        self.owner[name] = owner
-        return name
-
-    def check(self) -> None:
-        for name, owner in self.owner.items():
-            if not _IDENT.match(name) or name in self.reserved:
-                raise NameCollision(f"{self.label}: '{name}' (for {owner}) is not a usable Rust name")
+        super().__init__(label, frozenset(reserved) | KEYWORDS)
