@@ -337,6 +337,21 @@ class Model:
             got = self._flat[struct.scoped_name] = flatten(struct, self.by_name.get)
         return got
 
+    def key_path(self, struct: Struct, path: str) -> tuple[tuple[Struct, Member], ...] | None:
+        """A key path ('hdr.srcName') as the (struct, member) steps it takes from `struct`;
+        None when a step names no member."""
+        steps: list[tuple[Struct, Member]] = []
+        current: Struct | None = struct
+        for part in path.split("."):
+            member = next((m for m in self.all_members(current) if m.name == part), None) if current else None
+            if current is None or member is None:
+                return None
+            steps.append((current, member))
+            t = self.resolve_alias(member.type)
+            d = self.get(t.name) if isinstance(t, TypeRef) else None
+            current = d if isinstance(d, Struct) else None
+        return tuple(steps)
+
     def lineage(self, d: Struct | Bitset) -> tuple[Struct | Bitset, ...]:
         """A struct's (or bitset's) base chain, the root first and `d` last."""
         return lineage(d, self.by_name.get)

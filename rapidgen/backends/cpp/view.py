@@ -232,20 +232,11 @@ class Builder:
 
     def _walk(self, s: ir.Struct, path: str) -> tuple[str, ir.Type, ir.Member]:
         """A key path ('hdr.srcName') as a C++ member expression and the leaf's type."""
-        expr, t, member = "v", None, None
-        current: ir.Struct | None = s
-        for part in path.split("."):
-            if current is None:
-                raise Unsupported(f"key path '{path}' does not name a member", s.loc)
-            scope_names = self._member_names(current)
-            member = next((m for m in self.model.all_members(current) if m.name == part), None)
-            if member is None:
-                raise Unsupported(f"key path '{path}' does not name a member", s.loc)
-            expr += "." + scope_names[part]
-            t = member.type
-            d = self.types.decl(self.types.real(t))
-            current = d if isinstance(d, ir.Struct) else None
-        return expr, t, member  # type: ignore[return-value]
+        steps = self.model.key_path(s, path)
+        if steps is None:
+            raise Unsupported(f"key path '{path}' does not name a member", s.loc)
+        member = steps[-1][1]
+        return "v" + "".join("." + self._member_names(st)[m.name] for st, m in steps), member.type, member
 
     def _member_names(self, s: ir.Struct) -> dict[str, str]:
         scope = namer.Scope(f"struct {s.scoped_name}", namer.RESERVED | {self.names[s.scoped_name]})

@@ -247,18 +247,10 @@ class Builder:
 
     def _walk(self, s: ir.Struct, path: str) -> tuple[str, ir.Type]:
         """A key path ('hdr.srcName') as a Rust place (`self.hdr.src_name`) and the leaf's type."""
-        place, t = "self", None
-        current: ir.Struct | None = s
-        for part in path.split("."):
-            member = next((m for m in self.model.all_members(current) if m.name == part), None) if current else None
-            if member is None or current is None:
-                raise Unsupported(f"key path '{path}' does not name a member", s.loc)
-            place += "." + self.fields[current.scoped_name][part]
-            t = member.type
-            d = self.types.decl(self.types.real(t))
-            current = d if isinstance(d, ir.Struct) else None
-        assert t is not None
-        return place, t
+        steps = self.model.key_path(s, path)
+        if steps is None:
+            raise Unsupported(f"key path '{path}' does not name a member", s.loc)
+        return "self" + "".join("." + self.fields[st.scoped_name][m.name] for st, m in steps), steps[-1][1].type
 
     def union(self, u: ir.Union, name: str) -> DeclView:
         self._check_ext(u)
