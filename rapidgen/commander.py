@@ -21,6 +21,7 @@ import time
 from dataclasses import dataclass
 from types import ModuleType
 
+from rapidgen.backends.escape import visible
 from rapidgen.diagnostics import DiagnosticSink, FileLineCache, SourceLoc, render
 
 CMDLINE = "<command line>"
@@ -112,14 +113,20 @@ def live_config(commander, rapid, asset: str, seconds: float) -> dict | None:
     from rapid_runtime import messages as M
     from rapid_runtime.commander import COMMAND_CONFIG_TOPIC
 
-    reader = commander.node.reader(COMMAND_CONFIG_TOPIC, rapid.CommandConfig)
+    from rapidgen.live.take import GuardedReader
+
+    guard = GuardedReader(commander.node.reader(COMMAND_CONFIG_TOPIC, rapid.CommandConfig), dedupe=True, batch=4)
     end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        for s in reader.take(N=8):
-            if isinstance(s, rapid.CommandConfig) and s.hdr.assetName == asset:
-                return M.config_plain(s)
-        time.sleep(0.02)
-    return None
+    try:
+        while time.monotonic() < end:
+            for s in guard.take():  # a config that does not decode is someone else's: dropped, said below
+                if s.hdr.assetName == asset:
+                    return M.config_plain(s)
+            time.sleep(0.02)
+        return None
+    finally:
+        for note in guard.summary():
+            print(f"cmd: {note}", file=sys.stderr)
 
 
 def merged_tables(data: dict, config: dict) -> dict:
@@ -221,7 +228,7 @@ def _status(ack: tuple[str, str, str]) -> str:
     text = status.removeprefix("ACK_")
     if status == "ACK_COMPLETED" or completed != "ACK_COMPLETED_NOT":
         text += " " + completed.removeprefix("ACK_COMPLETED_")
-    return text + (f"  {message}" if message else "")
+    return text + (f"  {visible(message)}" if message else "")  # the wire's text: never raw on a terminal
 
 
 # -- the run ----------------------------------------------------------------------------------
@@ -298,18 +305,21 @@ def _run(args, line: CmdLine, sink: DiagnosticSink, tmp: str) -> int:
             _report(sink, line)
             return 1
         shown = " ".join(f"{p.name}={_shown(v)}" for p, (_t, v) in zip(payload[0].params, payload[1]))
+        if args.target:
+            commander.follow(args.target)
         cmd_id = commander.send(args.subsystem, args.command_name, payload[1], action="QUEUE_" + action,
                                 target=args.target or "", cmd_id=args.id)
         print(f"{tables.name} <- {args.subsystem}/{args.command_name}" + (f" {shown}" if shown else "")
               + f"  [cmdId {cmd_id}, QUEUE_{action}" + (f" {args.target}" if args.target else "")
               + f", from {args.source}]", flush=True)
         acks = _follow(commander, cmd_id, args.timeout, stop_at_first=args.no_wait)
+        _warn_strangers(commander, cmd_id)
         if not acks:
             print(f"  no ack within {args.timeout:g} s", flush=True)
             return 1
         final = acks[-1]
         if action == "DELETE" and final[0] == COMPLETED:
-            print(f"target {args.target}:", flush=True)
+            print(f"target {visible(args.target)}:", flush=True)
             _follow(commander, args.target, 3.0)
         if final[0] == COMPLETED and final[1] != OK and "does not have control" in final[2]:
             print(f"  hint: send `rapidgen cmd {args.asset} AccessControl requestControl --source {args.source}` "
@@ -339,6 +349,18 @@ def _checked(tables, action: str, args, line: CmdLine, sink: DiagnosticSink, ori
         return None
     values = complete(entry, list(args.arguments), 3, line, sink, limits=not args.no_check)
     return None if values is None else (entry, values)
+
+
+def _warn_strangers(commander, cmd_id: str) -> None:
+    """Say when more than one writer answered, or acks were dropped (docs/security.md). Acks
+    for other commanders' commands are normal on a shared partition: counted, not shown."""
+    with commander.cond:
+        writers, dropped = len(commander.writers.get(cmd_id, ())), list(commander.dropped)
+    if writers > 1:
+        print(f"cmd: warning: acks of {visible(cmd_id)} came from {writers} writers; only the asset should "
+              "answer (a stranger on the domain? DDS Security keeps them out)", file=sys.stderr)
+    for line in dropped:
+        print(f"cmd: {line}", file=sys.stderr)
 
 
 def _follow(commander, cmd_id: str, timeout: float, stop_at_first: bool = False) -> list:

@@ -19,9 +19,11 @@ from rapid_runtime import messages as M
 from rapid_runtime.acks import COMPLETED, NOT
 from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
+from rapid_runtime.intake import Intake
 from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapid_runtime.tables import Tables
 from rapid_runtime.telemetry import ordered_values
+from rapid_runtime.untrusted import visible
 
 COMMAND_TOPIC = "rapid_command"
 ACK_TOPIC = "rapid_ack"
@@ -31,6 +33,35 @@ ACCESS_STATE_TOPIC = "rapid_accesscontrol_state"
 # discovered yet when EXECUTING goes out still gets the whole sequence (QUEUED, EXECUTING,
 # REQUEUED, EXECUTING, COMPLETED and a few progress acks), not only the last one.
 ACK_HISTORY = 8
+# Commands the DDS reader holds before the intake thread takes them: past this, DDS holds a
+# reliable writer back (the flood waits in the flooder's own history, not in the bridge).
+COMMAND_CACHE = 4096
+# Log lines per second; past that they are counted and the count logged (a flood of bad
+# commands would otherwise become a flood of log lines).
+LOG_RATE = 50
+
+
+class Log:
+    """The bridge's log: one visible line per call (wire text escaped), at most LOG_RATE lines
+    a second, then how many were left out."""
+
+    def __init__(self, write, rate: int = LOG_RATE, clock=time.monotonic) -> None:
+        self.write, self.rate, self.clock = write, rate, clock
+        self.window, self.lines, self.left_out = clock(), 0, 0
+        self.lock = threading.Lock()
+
+    def __call__(self, text: str) -> None:
+        with self.lock:
+            now = self.clock()
+            if now - self.window >= 1.0:
+                if self.left_out:
+                    self.write(f"({self.left_out} log lines left out in the last second)")
+                self.window, self.lines, self.left_out = now, 0, 0
+            self.lines += 1
+            if self.lines > self.rate:
+                self.left_out += 1
+                return
+        self.write(visible(text, 1000))
 
 
 class Bridge:
@@ -40,11 +71,12 @@ class Bridge:
         self.name = tables.name
         self.serials = Serials(serial)
         self.node = Node(rapid, qos, tables.domain if domain is None else domain)
-        self._log = log or (lambda text: print(f"[{self.name}] {text}", file=sys.stderr, flush=True))
+        self._log = Log(log or (lambda text: print(f"[{visible(self.name)}] {text}", file=sys.stderr, flush=True)))
         self.stopped = threading.Event()
         self.manager = CommandManager(tables, handlers, self, on_shutdown=self.stop, window=command_window)
         self.telemetry = TelemetryPublisher(self)
         self._reader: ReaderThread | None = None
+        self.intake = Intake(self.manager, self.log)
 
     # ---- Outbox (manager.py) ---------------------------------------------------------------
     def ack(self, cmd, status, completed, message) -> None:
@@ -93,17 +125,22 @@ class Bridge:
         self.manager.publish_states()
         if self.tables.subsystems:
             self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY)  # now: commanders wait to match it
-            reader = self.node.reader(COMMAND_TOPIC, self.rapid.Command)
-            self._reader = ReaderThread(self.node, reader, self.rapid.Command, self._on_command, "rapid-commands")
+            reader = self.node.reader(COMMAND_TOPIC, self.rapid.Command, max_samples=COMMAND_CACHE)
+            self.intake.start()
+            self._reader = ReaderThread(self.node, reader, self.rapid.Command, self._on_command, "rapid-commands",
+                                        log=self.log)
             self._reader.start()
         self.handlers.on_start(self)
         return self
 
     def _on_command(self, sample) -> None:
+        """The reader thread: hand the command to the intake (intake.py decides the order)."""
         try:
-            self.manager.receive(M.command_in(sample))
+            cmd = M.command_in(sample)
         except Exception as exc:  # a bad sample must not stop command intake
-            self.log(f"command {getattr(sample, 'cmdId', '?')!r} not handled: {type(exc).__name__}: {exc}")
+            self.log(f"command {getattr(sample, 'cmdId', '?')!r} not read: {type(exc).__name__}: {exc}")
+            return
+        self.intake.offer(cmd, sample.sample_info.publication_handle)
 
     def stop(self) -> None:
         if self.stopped.is_set():
@@ -119,6 +156,7 @@ class Bridge:
         finally:
             if self._reader is not None and threading.current_thread() is not self._reader.thread:
                 self._reader.stop()
+            self.intake.stop()
 
     def wait(self, seconds: float | None = None) -> None:
         self.stopped.wait(seconds)

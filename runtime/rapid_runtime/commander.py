@@ -1,6 +1,12 @@
 """The ground side: send commands into an asset's partition and follow their acks
 (`rapidgen cmd` and the tests use it). Acks are correlated by cmdId alone and read with
-KEEP_ALL history so no intermediate ack is lost; repeated acks are kept as received."""
+KEEP_ALL history so no intermediate ack is lost; repeated acks are kept as received.
+
+Anyone in the partition can write acks: only the acks of commands this commander sent (or
+was asked to follow) are kept, at most ACKS_PER_COMMAND each; the others are counted in
+`strangers` and dropped, so an ack flood for cmdIds nobody sent does not grow the commander.
+`writers[cmdId]` holds the writers that acked a command: more than one means someone else
+answers for the asset (without DDS Security, nothing stops them: docs/security.md)."""
 from __future__ import annotations
 
 import itertools
@@ -14,6 +20,7 @@ from rapid_runtime.command import Cmd
 from rapid_runtime.dds import Node, ReaderThread
 
 COMMAND_TOPIC, ACK_TOPIC, COMMAND_CONFIG_TOPIC = "rapid_command", "rapid_ack", "rapid_command_config"
+ACKS_PER_COMMAND = 64  # a command's acks kept (QUEUED, EXECUTING, progress, REQUEUED, COMPLETED ...)
 
 
 class Commander:
@@ -21,16 +28,32 @@ class Commander:
         self.rapid, self.asset, self.source = rapid, asset, source
         self.node = Node(rapid, qos, domain)
         self.writer = self.node.writer(COMMAND_TOPIC, rapid.Command)
-        self.acks: dict[str, list[tuple[str, str, str]]] = {}
+        self.acks: dict[str, list[tuple[str, str, str]]] = {}  # followed cmdId -> its acks
+        self.writers: dict[str, set[int]] = {}  # followed cmdId -> the writers that acked it
+        self.strangers = 0  # acks for cmdIds not followed, dropped
         self.cond = threading.Condition()
         self._ids = itertools.count(1)
         self.ack_reader = self.node.reader(ACK_TOPIC, rapid.Ack, keep_all=True)
-        self._reader = ReaderThread(self.node, self.ack_reader, rapid.Ack, self._on_ack, "rapid-acks").start()
+        self.dropped: list[str] = []  # what the ack reader dropped (undecodable), one line per writer
+        self._reader = ReaderThread(self.node, self.ack_reader, rapid.Ack, self._on_ack, "rapid-acks",
+                                    log=self.dropped.append).start()
+
+    def follow(self, cmd_id: str) -> None:
+        """Keep the acks of cmd_id (send() follows what it sends; DELETE's target too)."""
+        with self.cond:
+            self.acks.setdefault(cmd_id, [])
+            self.writers.setdefault(cmd_id, set())
 
     def _on_ack(self, sample) -> None:
         cmd_id, status, completed, message = M.ack_fields(sample)
         with self.cond:
-            self.acks.setdefault(cmd_id, []).append((status, completed, message))
+            kept = self.acks.get(cmd_id)
+            if kept is None:
+                self.strangers += 1
+                return
+            if len(kept) < ACKS_PER_COMMAND:
+                kept.append((status, completed, message))
+            self.writers[cmd_id].add(sample.sample_info.publication_handle)
             self.cond.notify_all()
 
     def wait_for_asset(self, timeout: float) -> bool:
@@ -52,6 +75,7 @@ class Commander:
         cmd = Cmd(cmd_id=self.new_id() if cmd_id is None else cmd_id, cmd_src=self.source if source is None else source,
                   subsystem=subsystem, name=name, args=tuple(args), action=action, target=target,
                   src_name=self.source, asset_name=self.asset if asset is None else asset)
+        self.follow(cmd.cmd_id)
         self.writer.write(M.command_out(self.rapid, cmd))
         return cmd.cmd_id
 

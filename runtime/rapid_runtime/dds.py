@@ -15,6 +15,8 @@ from cyclonedds.sub import DataReader, Subscriber
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
+from rapid_runtime.untrusted import GuardedReader
+
 
 def use_transport(qos, transport: str | None) -> str | None:
     """Point CYCLONEDDS_URI at the package's transport file (default: the loopback-only
@@ -67,23 +69,32 @@ class Node:
                 self._writers[topic] = w
         return w
 
-    def reader(self, topic: str, cls, keep_all: bool = False) -> DataReader:
-        """keep_all: every sample, not the last per instance (a commander must see each ack)."""
+    def reader(self, topic: str, cls, keep_all: bool = False, max_samples: int | None = None) -> DataReader:
+        """keep_all: every sample, not the last per instance (a commander must see each ack).
+        max_samples: what the reader's cache holds at most (not request/offered either); a
+        reliable writer past it is held back by DDS until the reader takes."""
         q = self.qos.reader(topic)
         if keep_all:
             q = q + Qos(Policy.History.KeepAll)
+        if max_samples is not None:
+            q = q + Qos(Policy.ResourceLimits(max_samples=max_samples, max_instances=-1,
+                                              max_samples_per_instance=max_samples))
         return DataReader(self.subscriber, self.topic(topic, cls), qos=q)
 
 
 class ReaderThread:
-    """Calls on_sample(sample) for every valid sample the reader takes, in a thread."""
+    """Calls on_sample(sample) for every valid sample the reader takes, in a thread (with
+    .sample_info). Samples that do not decode are dropped alone and logged once per writer
+    (untrusted.py); an exception in on_sample is logged and the thread goes on."""
 
-    def __init__(self, node: Node, reader: DataReader, cls, on_sample, name: str) -> None:
+    def __init__(self, node: Node, reader: DataReader, cls, on_sample, name: str, log=None) -> None:
         self.reader, self.cls, self.on_sample = reader, cls, on_sample
+        self.log = log or (lambda text: None)
+        self.guard = GuardedReader(reader, self.log)
         self.waitset = WaitSet(node.participant)
         self.waitset.attach(ReadCondition(reader, SampleState.Any | ViewState.Any | InstanceState.Any))
-        self.guard = GuardCondition(node.participant)
-        self.waitset.attach(self.guard)
+        self.wake = GuardCondition(node.participant)
+        self.waitset.attach(self.wake)
         self.stopping = threading.Event()
         self.thread = threading.Thread(target=self._run, daemon=True, name=name)
 
@@ -94,11 +105,17 @@ class ReaderThread:
     def _run(self) -> None:
         while not self.stopping.is_set():
             self.waitset.wait(duration(seconds=1))
-            for sample in self.reader.take(N=256):
-                if isinstance(sample, self.cls):
-                    self.on_sample(sample)
+            while not self.stopping.is_set():
+                samples = self.guard.take()
+                for sample in samples:
+                    try:
+                        self.on_sample(sample)
+                    except Exception as exc:  # one sample's trouble must not end the thread
+                        self.log(f"sample on {self.reader.topic.name} not handled: {type(exc).__name__}: {exc}")
+                if self.guard.last_taken < self.guard.batch:  # the reader is empty
+                    break
 
     def stop(self) -> None:
         self.stopping.set()
-        self.guard.set(True)
+        self.wake.set(True)
         self.thread.join(timeout=5)

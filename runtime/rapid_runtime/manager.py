@@ -112,6 +112,17 @@ class CommandManager:
                 self._ack(cmd, COMPLETED, kind, text)
                 self.out.log(f"{cmd.cmd_id}: {kind.removeprefix('ACK_COMPLETED_')}: {text}")
 
+    def refuse(self, cmd: Cmd, why: str) -> None:
+        """Answer a command shed at the door (intake.py) COMPLETED/EXEC_FAILED without running
+        it or remembering its id (it may be sent again). Not answered: another asset's, an
+        empty id, or the id of a command seen or live (its acks are that command's)."""
+        with self.lock:
+            if cmd.asset_name != self.tables.name or not cmd.cmd_id:
+                return
+            if cmd.cmd_id in self.seen or self._live(cmd.cmd_id):
+                return
+            self._ack(cmd, COMPLETED, EXEC_FAILED, why)
+
     def _intake(self, cmd: Cmd) -> tuple[str, str] | None:
         """Checks then dispatch; (completion, message) when the command ends here."""
         if not cmd.cmd_id:

@@ -34,11 +34,17 @@ def visible(text: str, limit: int = 200) -> str:
     return out + ("..." if len(str(text)) > limit else "")
 
 
+_SHORT = {"\\": "\\\\", "\n": "\\n", "\r": "\\r", "\t": "\\t"}
+
+
 def _escape(ch: str) -> str:
+    """The same escapes as rapidgen.backends.escape.visible (a test holds them equal)."""
     code = ord(ch)
-    if code < 0x100:
+    if ch in _SHORT:
+        return _SHORT[ch]
+    if code < 0x80:
         return f"\\x{code:02x}"
-    return f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
+    return f"\\u{code:04x}" if code <= 0xFFFF else f"\\U{code:08x}"
 
 
 @dataclass
@@ -56,12 +62,15 @@ class GuardedReader:
         self.reader, self.log, self.batch = reader, log, batch
         self.drops: collections.OrderedDict[int, Drop] = collections.OrderedDict()
         self.dropped = 0
+        self.last_taken = 0  # samples the last take() got from DDS, decoded or not
 
     def take(self, n: int | None = None) -> list:
         data_type = self.reader.topic.data_type
         raw = ddspy_take(self.reader._ref, SampleState.Any | ViewState.Any | InstanceState.Any, n or self.batch)
         if isinstance(raw, int):  # a DDS error code: nothing taken
+            self.last_taken = 0
             return []
+        self.last_taken = len(raw)
         out = []
         for data, info in raw:
             if not info.valid_data:  # dispose/unregister notices carry no value

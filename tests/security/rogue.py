@@ -132,7 +132,24 @@ def evil_acks(r: Rogue, seconds: float, arg: str) -> int:
     return n
 
 
-MODES = {"bad-command": bad_command, "fuzz": fuzz, "evil-acks": evil_acks}
+def storm(r: Rogue, seconds: float, arg: str) -> int:
+    """APPEND/DELETE/REPLACE as fast as the writer goes, for `seconds` (a flood of commands
+    that each need an answer; the rogue holds no control)."""
+    w = r.writer("rapid_command", r.rapid.Command)
+    end, n = time.monotonic() + seconds, 0
+    actions = ("QUEUE_APPEND", "QUEUE_DELETE", "QUEUE_REPLACE")
+    from cyclonedds.core import DDSException
+    while time.monotonic() < end:
+        a = actions[n % 3]
+        try:
+            w.write(r.command(f"st-{n}", name="noOp", action=a, target="" if a == "QUEUE_APPEND" else f"st-{n - 1}"))
+        except DDSException:  # held back: the reader's cache is full (what the bridge wants)
+            continue
+        n += 1
+    return n
+
+
+MODES = {"storm": storm, "bad-command": bad_command, "fuzz": fuzz, "evil-acks": evil_acks}
 
 
 def main(argv: list[str]) -> int:

@@ -1,0 +1,125 @@
+"""The door between the command reader and the manager: a flood from one participant must
+neither grow the bridge without bound nor lock an operator out.
+
+    intake = Intake(manager, log)      # a worker thread runs the manager
+    intake.offer(cmd, writer)          # the reader thread: every decoded Command, never blocks
+
+- One FIFO per writer (the DDS writer the sample came from), served round-robin: a writer
+  sending 15 000 commands a second gets its turn like an operator sending one, so the
+  operator's command waits for at most one command of each other writer.
+- Control commands go first: among the writers, one whose next command is a control command
+  (stopAllMotion, AccessControl, Queue cancelAll) is served before the others. A writer's own
+  commands keep their order (requestControl then a command is never swapped).
+- Each writer holds at most PER_WRITER commands waiting; past that its commands are shed at
+  the door: answered COMPLETED/EXEC_FAILED "bridge busy" without being run. The answers
+  themselves wait in a bounded list (SHED_ANSWERS) served between commands; when that is
+  full too, further commands are dropped unanswered, counted and logged per writer.
+"""
+from __future__ import annotations
+
+import collections
+import threading
+
+from rapid_runtime.command import Cmd
+
+PER_WRITER = 256  # commands of one writer waiting for the manager
+MAX_WRITERS = 256  # writers with a FIFO of their own; past that they share one
+SHED_ANSWERS = 4096  # "busy" answers waiting to be written
+CONTROL = {("Mobility", "stopAllMotion"), ("Queue", "cancelAll")}
+BUSY = "bridge busy: {n} commands from this writer already waiting; retry later"
+
+
+class Intake:
+    def __init__(self, manager, log, per_writer: int = PER_WRITER, shed_answers: int = SHED_ANSWERS) -> None:
+        self.manager, self.log = manager, log
+        self.per_writer, self.shed_limit = per_writer, shed_answers
+        self.cond = threading.Condition()
+        self.fifos: collections.OrderedDict[int, collections.deque[Cmd]] = collections.OrderedDict()
+        self.shed: collections.deque[Cmd] = collections.deque()
+        self.unanswered: collections.Counter[int] = collections.Counter()
+        self.shed_count: collections.Counter[int] = collections.Counter()
+        self.stopping = False
+        self._shed_turn = False
+        self.thread = threading.Thread(target=self._run, daemon=True, name="rapid-intake")
+
+    def start(self) -> "Intake":
+        self.thread.start()
+        return self
+
+    def stop(self) -> None:
+        with self.cond:
+            self.stopping = True
+            self.cond.notify_all()
+        if threading.current_thread() is not self.thread:
+            self.thread.join(timeout=5)
+
+    # ---- the reader thread -----------------------------------------------------------------
+    def offer(self, cmd: Cmd, writer: int) -> None:
+        with self.cond:
+            if writer not in self.fifos and len(self.fifos) >= MAX_WRITERS:
+                writer = 0  # the shared FIFO of writers past MAX_WRITERS
+            fifo = self.fifos.setdefault(writer, collections.deque())
+            if len(fifo) < self.per_writer:
+                fifo.append(cmd)
+            elif len(self.shed) < self.shed_limit:
+                self.shed.append(cmd)
+                self.shed_count[writer] += 1
+                if self.shed_count[writer] == 1:
+                    self.log(f"writer {writer:#x} floods: {self.per_writer} commands waiting; "
+                             f"answering its next ones 'bridge busy' (counted, not logged)")
+            else:
+                self.unanswered[writer] += 1
+                if self.unanswered[writer] == 1:
+                    self.log(f"writer {writer:#x} floods past {self.shed_limit} busy answers: "
+                             f"dropping its commands unanswered (counted, not logged)")
+            self.cond.notify()
+
+    def waiting(self) -> int:
+        with self.cond:
+            return sum(len(f) for f in self.fifos.values()) + len(self.shed)
+
+    # ---- the worker ------------------------------------------------------------------------
+    def _next(self) -> tuple[Cmd, bool] | None:
+        """(command, shed?) to handle next, or None when stopping. Under the lock."""
+        while not self.stopping:
+            writer = self._control_writer()
+            if writer is None:
+                if self.shed and (self._shed_turn or not self.fifos):
+                    self._shed_turn = False  # busy answers take turns with real commands
+                    return self.shed.popleft(), True
+                writer = next(iter(self.fifos), None)
+            if writer is not None:
+                self._shed_turn = True
+                fifo = self.fifos.pop(writer)
+                cmd = fifo.popleft()
+                if fifo:
+                    self.fifos[writer] = fifo  # to the back of the round
+                return cmd, False
+            self.cond.wait()
+        return None
+
+    def _control_writer(self) -> int | None:
+        for writer, fifo in self.fifos.items():
+            if is_control(self.manager.tables, fifo[0]):
+                return writer
+        return None
+
+    def _run(self) -> None:
+        while True:
+            with self.cond:
+                got = self._next()
+            if got is None:
+                return
+            cmd, shed = got
+            try:
+                if shed:
+                    self.manager.refuse(cmd, BUSY.format(n=self.per_writer))
+                else:
+                    self.manager.receive(cmd)
+            except Exception as exc:  # a bad command must not stop intake
+                self.log(f"command {cmd.cmd_id!r} not handled: {type(exc).__name__}: {exc}")
+
+
+def is_control(tables, cmd: Cmd) -> bool:
+    kind = tables.type_of(cmd.subsystem)
+    return kind == "AccessControl" or (kind, cmd.name) in CONTROL
