@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 from rapidgen.diagnostics import SourceLoc, escaped
 from rapidgen.diff.rules import CATEGORIES, Finding
@@ -32,8 +33,23 @@ def text(findings: list[Finding], waived: int) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _jfile(name: str) -> str:
+    """A file name whose bytes are not UTF-8 (os.fsdecode's lone surrogates) as `\\xNN`
+    text: stdout cannot encode a lone surrogate."""
+    try:
+        return name.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
+    except UnicodeEncodeError:
+        return escaped(name)
+
+
 def _jloc(loc: SourceLoc | None) -> dict | None:
-    return None if loc is None else {"file": loc.file, "line": loc.line, "col": loc.col}
+    return None if loc is None else {"file": _jfile(loc.file), "line": loc.line, "col": loc.col}
+
+
+# json.dumps escapes C0 controls; these it leaves raw with ensure_ascii=False (DEL, the C1
+# controls a terminal may obey, the line separators JavaScript rejects, any lone surrogate
+# left): escaped too
+_RAW = re.compile("[\x7f-\x9f\u2028\u2029\ud800-\udfff]")
 
 
 def as_json(findings: list[Finding], waived: int) -> str:
@@ -44,4 +60,5 @@ def as_json(findings: list[Finding], waived: int) -> str:
         "counts": counts(findings),
         "waived": waived,
     }
-    return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+    out = json.dumps(doc, indent=2, ensure_ascii=False)
+    return _RAW.sub(lambda m: f"\\u{ord(m.group()):04x}", out) + "\n"
