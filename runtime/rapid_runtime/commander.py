@@ -35,12 +35,19 @@ class Commander:
         self._ids = itertools.count(1)
         self.ack_reader = self.node.reader(ACK_TOPIC, rapid.Ack, keep_all=True)
         self.dropped: list[str] = []  # what the ack reader dropped (undecodable), one line per writer
+        self._followed: list[bytes] = []  # their encodings, to skip others' acks undecoded
         self._reader = ReaderThread(self.node, self.ack_reader, rapid.Ack, self._on_ack, "rapid-acks",
-                                    log=self.dropped.append).start()
+                                    log=self.dropped.append, wanted=self._wanted, batch=256).start()
+
+    def _wanted(self, data: bytes) -> bool:
+        """Might this ack be for a followed command? (its cmdId's bytes are in the encoding)"""
+        return any(cid in data for cid in self._followed)
 
     def follow(self, cmd_id: str) -> None:
         """Keep the acks of cmd_id (send() follows what it sends; DELETE's target too)."""
         with self.cond:
+            if cmd_id not in self.acks:
+                self._followed = [*self._followed, cmd_id.encode()]  # replaced whole: read unlocked
             self.acks.setdefault(cmd_id, [])
             self.writers.setdefault(cmd_id, set())
 

@@ -87,10 +87,11 @@ class ReaderThread:
     .sample_info). Samples that do not decode are dropped alone and logged once per writer
     (untrusted.py); an exception in on_sample is logged and the thread goes on."""
 
-    def __init__(self, node: Node, reader: DataReader, cls, on_sample, name: str, log=None) -> None:
+    def __init__(self, node: Node, reader: DataReader, cls, on_sample, name: str, log=None, wanted=None,
+                 batch: int = 32) -> None:
         self.reader, self.cls, self.on_sample = reader, cls, on_sample
         self.log = log or (lambda text: None)
-        self.guard = GuardedReader(reader, self.log)
+        self.guard = GuardedReader(reader, self.log, batch=batch, wanted=wanted)
         self.waitset = WaitSet(node.participant)
         self.waitset.attach(ReadCondition(reader, SampleState.Any | ViewState.Any | InstanceState.Any))
         self.wake = GuardCondition(node.participant)

@@ -58,8 +58,12 @@ class GuardedReader:
     """take() returns the samples of a reader that decode (each with .sample_info, like
     cyclonedds'); the others are counted in `drops` and reported through `log` once per writer."""
 
-    def __init__(self, reader, log=None, batch: int = BATCH) -> None:
-        self.reader, self.log, self.batch = reader, log, batch
+    def __init__(self, reader, log=None, batch: int = BATCH, wanted=None) -> None:
+        """wanted(raw bytes) -> bool: a cheap look at the encoding before decoding; samples
+        it refuses are counted in `skipped` and never decoded (a commander following a few
+        cmdIds keeps up with an ack flood for others that way)."""
+        self.reader, self.log, self.batch, self.wanted = reader, log, batch, wanted
+        self.skipped = 0
         self.drops: collections.OrderedDict[int, Drop] = collections.OrderedDict()
         self.dropped = 0
         self.last_taken = 0  # samples the last take() got from DDS, decoded or not
@@ -74,6 +78,9 @@ class GuardedReader:
         out = []
         for data, info in raw:
             if not info.valid_data:  # dispose/unregister notices carry no value
+                continue
+            if self.wanted is not None and not self.wanted(data):
+                self.skipped += 1
                 continue
             try:
                 sample = data_type.deserialize(data)

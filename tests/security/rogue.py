@@ -19,6 +19,7 @@ import time
 # Escape sequences a rogue puts in every text field it controls: OSC 0 (terminal title),
 # OSC 52 (clipboard), CSI 2J (clear screen), BEL, a C1 CSI, a bidi override.
 EVIL = "\x1b]0;pwned\x07\x1b]52;c;cHduZWQ=\x07\x1b[2J\x9b31m\u202e"
+EVIL_SHORT = "\x1b]0;x\x07\x9b2J\x1b[2J"  # for String32 fields
 
 
 class Rogue:
@@ -45,13 +46,16 @@ class Rogue:
             self._writers[topic] = DataWriter(self.pub, Topic(self.dp, topic, cls), qos=self.qos.writer(topic))
         return self._writers[topic]
 
-    def raw(self, topic: str, cls, data: bytes) -> None:
-        """Write `data` as a sample of `topic`, whatever it holds (CDR header included)."""
+    def raw(self, topic: str, cls, data: bytes, strict: bool = True) -> bool:
+        """Write `data` as a sample of `topic`, whatever it holds (CDR header included).
+        Cyclone's own writer refuses bytes it cannot take a key from (BAD_PARAMETER; its
+        readers drop those in the C layer alike): False then, or an error when strict."""
         from cyclonedds._clayer import ddspy_write
         data = data.ljust((len(data) + 3) & ~3, b"\0")
         ret = ddspy_write(self.writer(topic, cls)._ref, data)
-        if ret < 0:
+        if ret < 0 and strict:
             raise RuntimeError(f"write on {topic}: {ret}")
+        return ret >= 0
 
     def header(self, src: str = "Rogue", serial: int = 0):
         return self.rapid.Header(srcName=src, assetName=self.asset, timeStamp=time.time_ns() // 1000,
@@ -111,12 +115,14 @@ def fuzz(r: Rogue, seconds: float, arg: str) -> int:
     (rapid_command), seeded (RAPIDGEN_FUZZ_SEED) so a failure can be replayed."""
     n = int(arg or 2000)
     rng = random.Random(int(os.environ.get("RAPIDGEN_FUZZ_SEED", "19")))
-    good = [r.command(f"fz-{i}", src=rng.choice(["Rogue", EVIL]), action=rng.choice(
+    good = [r.command(f"fz-{i}", src=rng.choice(["Rogue", EVIL_SHORT]), action=rng.choice(
         ["QUEUE_BYPASS", "QUEUE_APPEND", "QUEUE_DELETE"])).serialize() for i in range(16)]
+    written = 0
     for i in range(n):
-        r.raw("rapid_command", r.rapid.Command, mutate(rng.choice(good), rng))
+        written += r.raw("rapid_command", r.rapid.Command, mutate(rng.choice(good), rng), strict=False)
         if i % 200 == 199:
             time.sleep(0.05)  # let a reliable reader keep up: this is a fuzz, not a flood
+    print(f"rogue wrote {written} (Cyclone's writer refused {n - written} it could not key)", flush=True)
     return n
 
 
@@ -149,7 +155,29 @@ def storm(r: Rogue, seconds: float, arg: str) -> int:
     return n
 
 
-MODES = {"storm": storm, "bad-command": bad_command, "fuzz": fuzz, "evil-acks": evil_acks}
+def bad_config(r: Rogue, seconds: float, arg: str) -> int:
+    """A durable CommandConfig for the asset whose srcName is invalid UTF-8, kept on the
+    network for `seconds` (a late reader gets it at once)."""
+    from rapid_runtime import messages as M
+    c = r.tables.CONFIGS["rapid_command_config"]
+    type_name, value = c["type"], c["value"]
+    data = M.config(r.rapid, type_name, value, r.header("Rogue")).serialize()
+    r.raw("rapid_command_config", r.rapid.CommandConfig, data.replace(b"Rogue", b"\xff\xfegue", 1))
+    time.sleep(seconds)
+    return 1
+
+
+def ack_flood(r: Rogue, seconds: float, arg: str) -> int:
+    """Acks for cmdIds nobody sent, as fast as the writer goes, for `seconds`."""
+    w = r.writer("rapid_ack", r.rapid.Ack)
+    end, n = time.monotonic() + seconds, 0
+    while time.monotonic() < end:
+        w.write(r.ack(f"nobody-{n}-".ljust(63, "x"), message="y" * 100))
+        n += 1
+    return n
+
+
+MODES = {"bad-config": bad_config, "ack-flood": ack_flood, "storm": storm, "bad-command": bad_command, "fuzz": fuzz, "evil-acks": evil_acks}
 
 
 def main(argv: list[str]) -> int:
