@@ -6,19 +6,23 @@ saying what to write instead.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from rapidgen.asset.check_telemetry import check_telemetry
 from rapidgen.asset.check_values import ValueChecker
-from rapidgen.asset.dictionary import all_subsystems, effective_types, used_types
-from rapidgen.asset.facts import Facts, fits, utf8_len
+from rapidgen.asset.facts import fits, utf8_len
 from rapidgen.asset.spec import AssetSpec, CommandSpec, Located, SubsystemSpec, SubsystemTypeSpec
 from rapidgen.asset.standard import STANDARD_TYPES
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
-from rapidgen.model.ir import Model
+
+if TYPE_CHECKING:
+    from rapidgen.asset.resolved import LoadedAsset
 
 
 class Checker:
-    def __init__(self, spec: AssetSpec, model: Model | None, sink: DiagnosticSink) -> None:
-        self.spec, self.facts, self.sink = spec, Facts(model), sink
+    def __init__(self, loaded: "LoadedAsset", sink: DiagnosticSink) -> None:
+        self.loaded = loaded
+        self.spec, self.facts, self.sink = loaded.spec, loaded.facts, sink
         self.values = ValueChecker(self.facts, sink)
 
     # -- shared helpers ---------------------------------------------------------------
@@ -86,7 +90,7 @@ class Checker:
                 self.sink.error("RG1102", f"'extends: {t.extends}': {what}", t.at("extends"),
                                 did_you_mean(t.extends, STANDARD_TYPES) or
                                 f"only standard types can be extended: {', '.join(STANDARD_TYPES)}")
-        for t in effective_types(spec).values():
+        for t in self.loaded.types.values():
             if not t.standard and t.loc.line > 0:
                 self.commands(t)
 
@@ -134,9 +138,9 @@ class Checker:
     # -- subsystems -------------------------------------------------------------------------
     def subsystems(self) -> None:
         spec = self.spec
-        subs = all_subsystems(spec)
+        subs = self.loaded.subsystems
         self.duplicates(spec.subsystems, lambda s: s.name, "subsystem")  # the native one: native()
-        types = effective_types(spec)
+        types = self.loaded.types
         for s in spec.subsystems:
             self.bound(s.name, s.at("name"), "subsystem name", "rapid::Subsystem", "name")
             if s.type not in types:
@@ -149,7 +153,7 @@ class Checker:
         if n is not None and len(subs) > n:
             self.sink.error("RG1107", f"{len(subs)} subsystems; CommandConfig.availableSubsystems holds at most {n}",
                             subs[n].loc, "merge subsystems of the same type")
-        used = used_types(spec)
+        used = self.loaded.used_types
         n = self.facts.seq_bound("rapid::CommandConfig", "availableSubsystemTypes")
         if n is not None and len(used) > n:
             self.sink.error("RG1107", f"{len(used)} subsystem types in use; CommandConfig.availableSubsystemTypes "
@@ -189,9 +193,9 @@ class Checker:
         rules = ac.rules
         self.duplicates(rules, lambda r: r.source, "command source", "source")
         subs: dict[str, SubsystemSpec] = {}
-        for s in all_subsystems(self.spec):  # descriptor order (hints list them); first wins on duplicates
+        for s in self.loaded.subsystems:  # descriptor order (hints list them); first wins on duplicates
             subs.setdefault(s.name, s)
-        types = effective_types(self.spec)
+        types = self.loaded.types
         all_cmds = sorted({c.name for s in subs.values() if s.type in types for c in types[s.type].commands})
         for r in rules:
             self.bound(r.source, r.at("source"), "command source", "rapid::Command", "cmdSrc")
@@ -221,5 +225,5 @@ class Checker:
                             did_you_mean(cmd, names) or f"its commands: {', '.join(names) or 'none'}")
 
 
-def check_asset(spec: AssetSpec, model: Model | None, sink: DiagnosticSink) -> None:
-    Checker(spec, model, sink).run()
+def check_asset(loaded: "LoadedAsset", sink: DiagnosticSink) -> None:
+    Checker(loaded, sink).run()

@@ -3,10 +3,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from rapidgen.asset.dictionary import all_subsystems
 from rapidgen.asset.spec import (AgentTelemetry, CustomTelemetry, ImageTelemetry, JointTelemetry,
                                  PositionTelemetry, Telemetry, TextTelemetry, ValueKey)
-from rapidgen.asset.topics import QOS_PROFILES, STANDARD_MESSAGES, messages_of, profile_name, publications
+from rapidgen.asset.topics import QOS_PROFILES, STANDARD_MESSAGES, profile_name
 from rapidgen.diagnostics import did_you_mean
 
 if TYPE_CHECKING:
@@ -18,13 +17,13 @@ _ROLES = {kind: tuple(r for r, _, _ in msgs) for kind, msgs in STANDARD_MESSAGES
 
 def check_telemetry(c: "Checker") -> None:
     spec = c.spec
-    subs = [s.name for s in all_subsystems(spec)]
-    for t in spec.telemetry:
+    subs = [s.name for s in c.loaded.subsystems]
+    for t, msgs in zip(spec.telemetry, c.loaded.telemetry_messages):
         if t.subsystem is not None and t.subsystem not in subs:
             c.sink.error("RG1103", f"unknown subsystem '{t.subsystem}'", t.at("subsystem"),
                          did_you_mean(t.subsystem, subs) or f"subsystems: {', '.join(subs) or 'none'}")
         _qos(c, t)
-        _types(c, t)
+        _types(c, t, msgs)
         if isinstance(t, PositionTelemetry):
             _position(c, t)
         elif isinstance(t, JointTelemetry):
@@ -55,11 +54,11 @@ def _qos(c: "Checker", t: Telemetry) -> None:
                          or f"RapidQosLibrary has {', '.join(QOS_PROFILES)}")
 
 
-def _types(c: "Checker", t: Telemetry) -> None:
+def _types(c: "Checker", t: Telemetry, msgs) -> None:
     """Every published type must exist and derive from rapid::Message."""
     if c.facts.model is None:
         return
-    for role, type_, topic, loc in messages_of(t, c.facts):
+    for role, type_, topic, loc in msgs:
         if isinstance(t, CustomTelemetry):
             msg = next(m for m in t.messages if m.role == role)
             loc = msg.at("type")
@@ -85,7 +84,7 @@ def _types(c: "Checker", t: Telemetry) -> None:
 
 
 def _topics(c: "Checker") -> None:
-    pubs = publications(c.spec, c.facts)
+    pubs = c.loaded.publications
     first: dict[str, Publication] = {}
     reported: set[int] = set()
     for p in pubs:

@@ -9,12 +9,9 @@ from __future__ import annotations
 import sys
 from typing import Callable
 
-from rapidgen.asset.dictionary import all_subsystems, used_types
-from rapidgen.asset.facts import Facts
 from rapidgen.asset.load import LoadedAsset, load_asset
 from rapidgen.asset.spec import (AgentTelemetry, ImageTelemetry, JointTelemetry, PositionTelemetry,
                                  Threshold, TypedValue)
-from rapidgen.asset.topics import publications
 from rapidgen.backends.escape import visible
 from rapidgen.diagnostics import DiagnosticSink
 
@@ -50,9 +47,9 @@ def run_describe(path: str, rapid_dir: str | None, sink: DiagnosticSink, report:
 
 def _summary(loaded: LoadedAsset) -> str:
     spec = loaded.spec
-    cmds = sum(len(t.commands) for t in used_types(spec))
-    topics = len(publications(spec, Facts(loaded.model)))
-    n_subs = len(all_subsystems(spec))
+    cmds = sum(len(t.commands) for t in loaded.used_types)
+    topics = len(loaded.publications)
+    n_subs = len(loaded.subsystems)
     return (f"asset {spec.name}: {n_subs} subsystem{'s' * (n_subs != 1)}, {cmds} command{'s' * (cmds != 1)}, "
             f"{topics} topic{'s' * (topics != 1)}")
 
@@ -101,14 +98,13 @@ def _threshold(t: Threshold | None) -> str:
 
 def describe(loaded: LoadedAsset) -> str:
     spec = loaded.spec
-    facts = Facts(loaded.model)
     out = [f"{spec.name} ({spec.kind})"]
     if spec.description:
         out.append(f"  {spec.description.strip()}")
     out.append(f"  DDS domain {spec.domain}, partition '{spec.partition}'"
                + (f"; tags: {', '.join(spec.tags)}" if spec.tags else ""))
-    subs = all_subsystems(spec)
-    types = used_types(spec)
+    subs = loaded.subsystems
+    types = loaded.used_types
     out += ["", "Subsystems"]
     if subs:
         by_type = {t.name: t for t in types}
@@ -133,7 +129,7 @@ def describe(loaded: LoadedAsset) -> str:
                                  [[str(i), p.name, p.type, p.unit or "-", _range(p),
                                    ", ".join(p.allowed) or "-", _default(p), p.description]
                                   for i, p in enumerate(c.parameters, 1)], indent=6)
-    pubs = publications(spec, facts)
+    pubs = loaded.publications
     out += ["", "Telemetry"]
     out += table(["topic", "type", "role", "rate", "QoS"],
                  [[p.topic, p.type, p.role, _rate(p), p.qos] for p in pubs])
@@ -196,8 +192,8 @@ def _limits(t: Threshold | None) -> dict | None:
 
 def describe_data(loaded: LoadedAsset) -> dict:
     spec = loaded.spec
-    subs = all_subsystems(spec)
-    pubs = publications(spec, Facts(loaded.model))
+    subs = loaded.subsystems
+    pubs = loaded.publications
     telemetry = []
     for t in spec.telemetry:
         entry: dict[str, object] = {"kind": type(t).__name__.removesuffix("Telemetry").lower(),
@@ -223,7 +219,7 @@ def describe_data(loaded: LoadedAsset) -> dict:
              "commands": [{"name": c.name, "description": c.description, "abortable": c.abortable,
                            "suspendable": c.suspendable, "parameters": [_typed(p) for p in c.parameters]}
                           for c in t.commands]}
-            for t in used_types(spec)],
+            for t in loaded.used_types],
         "publications": [{"topic": p.topic, "type": p.type, "role": p.role, "rate": p.rate, "qos": p.qos}
                          for p in pubs],
         "telemetry": telemetry,

@@ -8,22 +8,16 @@ from __future__ import annotations
 
 import glob
 import os
-from dataclasses import dataclass
 
 from rapidgen.asset.build import build_spec
 from rapidgen.asset.check import check_asset
+from rapidgen.asset.resolved import LoadedAsset
 from rapidgen.asset.schema import check_schema
 from rapidgen.asset.spec import AssetSpec
 from rapidgen.asset.yamlread import load_yaml
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink
 from rapidgen.idl.preprocess import display_path
 from rapidgen.model.ir import Model
-
-
-@dataclass(frozen=True)
-class LoadedAsset:
-    spec: AssetSpec
-    model: Model | None  # None when the IDL could not be loaded (errors are in the sink)
 
 
 # (files with mtimes, include dirs) -> (model, diagnostics): validating many descriptors
@@ -100,6 +94,6 @@ def load_asset(path: str, sink: DiagnosticSink, rapid_dir: str | None = None) ->
     if doc is None or not check_schema(doc, sink):
         return None
     spec = build_spec(doc, os.path.dirname(path))
-    model = _idl_model(spec, rapid_dir, sink)
-    check_asset(spec, model, sink)
-    return LoadedAsset(spec, model)
+    loaded = LoadedAsset(spec, _idl_model(spec, rapid_dir, sink))
+    check_asset(loaded, sink)
+    return loaded

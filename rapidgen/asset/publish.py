@@ -7,17 +7,16 @@ a ParameterUnion is {"discriminator": "RAPID_FLOAT", "f": 0.0} (member named as 
 """
 from __future__ import annotations
 
-from rapidgen.asset.dictionary import all_subsystems, used_types
+from collections.abc import Sequence
+
 from rapidgen.asset.facts import STATIC_SHAPES, Facts
-from rapidgen.asset.load import LoadedAsset
-from rapidgen.asset.spec import (AgentTelemetry, AssetSpec, JointTelemetry, PositionTelemetry,
-                                 ValueKey)
-from rapidgen.asset.topics import publications
+from rapidgen.asset.spec import (AgentTelemetry, AssetSpec, JointTelemetry, PositionTelemetry, SubsystemSpec,
+                                 SubsystemTypeSpec, ValueKey)
+from rapidgen.asset.topics import Publication
 
 
-def command_config(spec: AssetSpec) -> dict | None:
+def command_config(types: Sequence[SubsystemTypeSpec], subsystems: Sequence[SubsystemSpec]) -> dict | None:
     """CommandConfig, or None for an asset without subsystems (telemetry only)."""
-    types = used_types(spec)
     if not types:
         return None
     return {
@@ -27,7 +26,7 @@ def command_config(spec: AssetSpec) -> dict | None:
                  "parameters": [{"key": p.name, "type": p.type} for p in c.parameters]}
                 for c in t.commands]}
             for t in types],
-        "availableSubsystems": [{"name": s.name, "subsystemTypeName": s.type} for s in all_subsystems(spec)],
+        "availableSubsystems": [{"name": s.name, "subsystemTypeName": s.type} for s in subsystems],
     }
 
 
@@ -62,9 +61,9 @@ def value_keys(facts: Facts, values: tuple[ValueKey, ...]) -> list[dict]:
             for v in values]
 
 
-def agent_config(spec: AssetSpec, t: AgentTelemetry, facts: Facts) -> dict:
+def agent_config(spec: AssetSpec, t: AgentTelemetry, facts: Facts, pubs: Sequence[Publication]) -> dict:
     return {"agentTags": list(spec.tags),
-            "topics": [p.topic for p in publications(spec, facts)],
+            "topics": [p.topic for p in pubs],
             "valueKeys": value_keys(facts, t.values)}
 
 
@@ -78,21 +77,22 @@ def joint_config(t: JointTelemetry) -> dict:
             "jointDefinitions": [{"frameName": j.frame, "dof": j.dof} for j in t.joints]}
 
 
-def configs(loaded: LoadedAsset) -> dict[str, tuple[str, dict]]:
-    """Every config the asset publishes: topic -> (message type, value), in publication order."""
-    spec, facts = loaded.spec, Facts(loaded.model)
+def configs(spec: AssetSpec, facts: Facts, pubs: Sequence[Publication], types: Sequence[SubsystemTypeSpec],
+            subsystems: Sequence[SubsystemSpec]) -> dict[str, tuple[str, dict]]:
+    """Every config the asset publishes: topic -> (message type, value), in publication
+    order (resolved.LoadedAsset.configs is the one caller)."""
     out: dict[str, tuple[str, dict]] = {}
-    for p in publications(spec, facts):
+    for p in pubs:
         if p.role != "config":
             continue
         t = p.source
         if p.type == "rapid::CommandConfig":
-            command = command_config(spec)
+            command = command_config(types, subsystems)
             if command is None:
                 continue  # no subsystems: nothing to command
             value = command
         elif isinstance(t, AgentTelemetry):
-            value = agent_config(spec, t, facts)
+            value = agent_config(spec, t, facts, pubs)
         elif isinstance(t, PositionTelemetry):
             value = position_config(t, facts)
         elif isinstance(t, JointTelemetry):

@@ -8,9 +8,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rapidgen.asset.dictionary import used_types
+from collections.abc import Sequence
+
 from rapidgen.asset.facts import Facts
-from rapidgen.asset.spec import AssetSpec, CustomTelemetry, Telemetry
+from rapidgen.asset.spec import AssetSpec, CustomTelemetry, SubsystemTypeSpec, Telemetry
 from rapidgen.asset.standard import IMPLICIT_STATE_TOPICS
 from rapidgen.diagnostics import SourceLoc
 
@@ -86,14 +87,15 @@ def messages_of(t: Telemetry, facts: Facts) -> list[tuple[str, str, str, SourceL
             for role, type_, const in STANDARD_MESSAGES.get(t.kind, ())]
 
 
-def publications(spec: AssetSpec, facts: Facts) -> list[Publication]:
+def publications(spec: AssetSpec, facts: Facts, used: "Sequence[SubsystemTypeSpec]") -> list[Publication]:
+    """Every topic the asset publishes (resolved.LoadedAsset.publications is the one caller)."""
     out: list[Publication] = []
-    if used_types(spec):
+    if used:
         out.append(Publication("config", "rapid::CommandConfig", topic_constant(facts, "COMMAND_CONFIG_TOPIC"),
                                "RapidConfigQos", None, spec.loc))
         out.append(Publication("ack", "rapid::Ack", topic_constant(facts, "ACK_TOPIC"),
                                "RapidReliableDurableQos", None, spec.loc))
-    for st in used_types(spec):
+    for st in used:
         if st.standard and st.name in IMPLICIT_STATE_TOPICS:
             type_, const = IMPLICIT_STATE_TOPICS[st.name]
             out.append(Publication("state", type_, topic_constant(facts, const), "RapidStateQos", None, spec.loc))

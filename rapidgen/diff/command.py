@@ -32,7 +32,7 @@ def compare(old: Side, new: Side) -> list[Finding]:
 
     found = wire_diff(old.model, new.model)
     if old.asset is not None and new.asset is not None:
-        found += protocol_diff(old.asset, new.asset, old.model, new.model)
+        found += protocol_diff(old.asset, new.asset)
     return found
 
 

@@ -7,21 +7,18 @@ OLD writer with a NEW reader, a NEW writer with an OLD reader).
 """
 from __future__ import annotations
 
-from rapidgen.asset.dictionary import all_subsystems, effective_types
-from rapidgen.asset.facts import Facts
-from rapidgen.asset.spec import AssetSpec, JointTelemetry, Telemetry, TypedValue
-from rapidgen.asset.topics import publications
+from rapidgen.asset.resolved import LoadedAsset
+from rapidgen.asset.spec import JointTelemetry, Telemetry, TypedValue
 from rapidgen.diff.rules import Finding, rule
-from rapidgen.model.ir import Model
 from rapidgen.qos.spec import default_library
 
 DURABILITY = ("volatile", "transient_local", "transient", "persistent")
 
 
 class ProtocolDiff:
-    def __init__(self, old: AssetSpec, new: AssetSpec, old_model: Model, new_model: Model) -> None:
-        self.o, self.n = old, new
-        self.om, self.nm = old_model, new_model
+    def __init__(self, old: LoadedAsset, new: LoadedAsset) -> None:
+        self.old, self.new = old, new
+        self.o, self.n = old.spec, new.spec
         self.out: list[Finding] = []
 
     def add(self, rule_id: str, subject: str, message: str, old, new) -> None:
@@ -42,10 +39,10 @@ class ProtocolDiff:
 
     # -- commands -----------------------------------------------------------------------
     def subsystems(self) -> None:
-        new_subs = {s.name: s for s in all_subsystems(self.n)}
-        otypes, ntypes = effective_types(self.o), effective_types(self.n)
+        new_subs = {s.name: s for s in self.new.subsystems}
+        otypes, ntypes = self.old.types, self.new.types
         seen: set[tuple[str, str]] = set()
-        for s in all_subsystems(self.o):
+        for s in self.old.subsystems:
             ns = new_subs.get(s.name)
             if ns is None:
                 self.add("PROTO-SUBSYS-01", s.name, f"subsystem '{s.name}' removed", s.loc, self.n.loc)
@@ -140,8 +137,8 @@ class ProtocolDiff:
                                  nt.joints[new_frames.index(j.frame)].loc)
 
     def topics(self) -> None:
-        old = {p.topic: p for p in publications(self.o, Facts(self.om))}
-        new = {p.topic: p for p in publications(self.n, Facts(self.nm))}
+        old = {p.topic: p for p in self.old.publications}
+        new = {p.topic: p for p in self.new.publications}
         lib = default_library()
         for topic, p in old.items():
             q = new.get(topic)
@@ -191,5 +188,5 @@ def _num(x) -> str:
     return "-" if x is None else f"{x:g}"
 
 
-def protocol_diff(old: AssetSpec, new: AssetSpec, old_model: Model, new_model: Model) -> list[Finding]:
-    return ProtocolDiff(old, new, old_model, new_model).run()
+def protocol_diff(old: LoadedAsset, new: LoadedAsset) -> list[Finding]:
+    return ProtocolDiff(old, new).run()

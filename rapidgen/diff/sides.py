@@ -5,7 +5,7 @@ import glob
 import os
 from dataclasses import dataclass
 
-from rapidgen.asset.spec import AssetSpec
+from rapidgen.asset.resolved import LoadedAsset
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.idl.preprocess import display_path
 from rapidgen.model.ir import Model
@@ -16,7 +16,7 @@ ASSET_SUFFIXES = (".yaml", ".yml")
 @dataclass(frozen=True)
 class Side:
     model: Model
-    asset: AssetSpec | None  # None: an IDL set
+    asset: LoadedAsset | None  # the resolved descriptor; None: an IDL set
 
 
 def kind_of(path: str) -> str:
@@ -35,7 +35,7 @@ def load_side(path: str, include: list[str], defines: dict[str, str], sink: Diag
         loaded = load_asset(path, sink)
         if loaded is None or loaded.model is None or sink.has_errors:
             return None
-        return Side(loaded.model, loaded.spec)
+        return Side(loaded.model, loaded)
     if os.path.isdir(path):
         files = sorted(glob.glob(os.path.join(glob.escape(path), "*.idl")))
         include = [path, *include]

@@ -15,7 +15,6 @@ from hypothesis import strategies as st
 
 from rapidgen.asset import load_asset
 from rapidgen.asset.describe import describe
-from rapidgen.asset.publish import configs
 from rapidgen.diagnostics import DiagnosticSink
 from tests.asset.conftest import ASSETS, ROOT, SEEDS
 
@@ -42,7 +41,7 @@ def run(data: bytes | str) -> None:
         assert d.loc.line >= 1 and d.message, d
     if loaded is not None and not sink.has_errors:
         describe(loaded)  # a valid descriptor must also describe and publish cleanly
-        configs(loaded)
+        loaded.configs
 
 
 @FUZZ

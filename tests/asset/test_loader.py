@@ -2,7 +2,7 @@
 import pytest
 
 from rapidgen.asset import load_asset
-from rapidgen.asset.facts import Facts, fits
+from rapidgen.asset.facts import fits
 from rapidgen.asset.publish import union_value, value_keys
 from rapidgen.asset.yamlread import parse_yaml
 from rapidgen.diagnostics import DiagnosticSink
@@ -83,7 +83,7 @@ def test_paths_are_relative_to_the_descriptor(tmp_path, monkeypatch):
 
 
 def test_union_values_use_the_codec_value_form(seed):
-    facts = Facts(seed("k10").model)
+    facts = seed("k10").facts
     assert union_value(facts, "RAPID_BOOL") == {"discriminator": "RAPID_BOOL", "value": False}
     assert union_value(facts, "RAPID_INT", 3) == {"discriminator": "RAPID_INT", "value": 3}
     assert union_value(facts, "RAPID_LONGLONG") == {"discriminator": "RAPID_LONGLONG", "value": 0}
@@ -93,13 +93,12 @@ def test_union_values_use_the_codec_value_form(seed):
 
 
 def test_computed_configs_encode_with_the_reference_codec(seed):
-    from rapidgen.asset.publish import configs
     from rapidgen.cdr import Codec
 
     loaded = seed("robonaut2")
     codec = Codec(loaded.model)
     hdr = {"srcName": "R2", "assetName": "R2", "timeStamp": 0, "statusCode": 0, "serial": 1}
-    for _topic, (type_name, value) in configs(loaded).items():
+    for _topic, (type_name, value) in loaded.configs.items():
         full = dict(hdr=hdr, **value)
         decoded = codec.decode(type_name, codec.encode(type_name, full))
         assert decoded["hdr"] == hdr
@@ -110,7 +109,7 @@ def test_value_keys_carry_defaults(seed):
     from rapidgen.asset.spec import AgentTelemetry
     loaded = seed("eva-suit")
     agent = next(t for t in loaded.spec.telemetry if isinstance(t, AgentTelemetry))
-    keys = value_keys(Facts(loaded.model), agent.values)
+    keys = value_keys(loaded.facts, agent.values)
     assert keys[0] == {"key": "suitPressure", "padding": 0, "value": {"discriminator": "RAPID_FLOAT", "value": 4.3}}
     assert keys[3]["value"] == {"discriminator": "RAPID_INT", "value": 0}
 
@@ -123,10 +122,11 @@ def test_string_bounds_leave_room_for_the_nul():
 
 def test_checks_without_a_model_still_run(tmp_path):
     from rapidgen.asset.check import check_asset
+    from rapidgen.asset.resolved import LoadedAsset
     sink = DiagnosticSink()
     (tmp_path / "a.yaml").write_text(
         "version: 1\nasset: {name: A, kind: rover}\nsubsystems: [{name: Admin}, {name: Admin}]\n"
         "telemetry:\n  - kind: agent\n    values: [{key: v, type: RAPID_FLOAT, min: 2, max: 1}]\n")
     loaded = load_asset(str(tmp_path / "a.yaml"), DiagnosticSink(), RAPID)
-    check_asset(loaded.spec, None, sink)
+    check_asset(LoadedAsset(loaded.spec, None), sink)
     assert sorted(codes(sink)) == ["RG1101", "RG1203"]

@@ -13,8 +13,6 @@ Table 5 (Setpoint for single joint, Left Arm): 1-7 Float [rad]: abduction, exten
     upper arm outer rotation, elbow flexion, forearm outer rotation, wrist flexion,
     wrist ulnar flexio(n).
 """
-from rapidgen.asset.facts import Facts
-from rapidgen.asset.publish import command_config, configs
 
 TABLE_3 = {
     "Setpoint for Tool": {"LeftArm", "RightArm"},
@@ -58,11 +56,11 @@ EXPECTED = {
 
 
 def test_command_config_is_the_papers(seed):
-    assert command_config(seed("robonaut2").spec) == EXPECTED
+    assert seed("robonaut2").configs["rapid_command_config"][1] == EXPECTED
 
 
 def test_table_3_commands_and_addressable_subsystems(seed):
-    cc = command_config(seed("robonaut2").spec)
+    cc = seed("robonaut2").configs["rapid_command_config"][1]
     types = {t["name"]: {c["name"] for c in t["commands"]} for t in cc["availableSubsystemTypes"]}
     addressable = {cmd: {s["name"] for s in cc["availableSubsystems"] if cmd in types[s["subsystemTypeName"]]}
                    for cmd in TABLE_3}
@@ -80,7 +78,7 @@ def test_table_4_and_5_parameters_with_units(seed):
 
 def test_telemetry_of_table_1(seed):
     loaded = seed("robonaut2")
-    got = configs(loaded)
+    got = loaded.configs
     assert list(got) == ["rapid_command_config", "rapid_agent_config", "rapid_joint_config",
                          "rapid_position_config-leftArm", "rapid_position_config-rightArm"]
     kind, left = got["rapid_position_config-leftArm"]
@@ -94,4 +92,4 @@ def test_telemetry_of_table_1(seed):
     assert agent["valueKeys"][0] == {"key": "leftWristForce", "padding": 0,
                                      "value": {"discriminator": "RAPID_VEC3d", "value": [0.0, 0.0, 0.0]}}
     assert "rapid_position_sample-leftArm" in agent["topics"]
-    assert Facts(loaded.model).shapes["RAPID_VEC3d"].count == 3
+    assert loaded.facts.shapes["RAPID_VEC3d"].count == 3

@@ -47,9 +47,10 @@ def test_seed_kinds(seed):
 
 
 def test_eva_suit_is_telemetry_only(seed):
-    from rapidgen.asset.publish import command_config
-    spec = seed("eva-suit").spec
-    assert spec.subsystems == () and spec.native is None and command_config(spec) is None
+    loaded = seed("eva-suit")
+    spec = loaded.spec
+    assert spec.subsystems == () and spec.native is None and "rapid_command_config" not in loaded.configs
+    assert loaded.command_topic is None
 
 
 def test_athlete_has_many_joints(seed):

@@ -29,14 +29,13 @@ def test_random_and_truncated_bytes_never_crash_under_asan_ubsan(cpp_build):
 
 def test_asset_configs_as_cpp_values_encode_like_the_reference_encoder(cpp_build):
     from rapidgen.asset.load import load_asset
-    from rapidgen.asset.publish import configs
     from rapidgen.cdr.codec import encode
     from rapidgen.diagnostics import DiagnosticSink
 
     loaded = load_asset(str(ROOT / "specs" / "assets" / "k10.yaml"), DiagnosticSink())
     # the header is the publisher's to fill in: all zero in both
     hdr = {"srcName": "", "assetName": "", "timeStamp": 0, "statusCode": 0, "serial": 0}
-    want = {topic: encode(loaded.model, ty, {"hdr": hdr, **value}).hex() for topic, (ty, value) in configs(loaded).items()}
+    want = {topic: encode(loaded.model, ty, {"hdr": hdr, **value}).hex() for topic, (ty, value) in loaded.configs.items()}
     assert len(want) == 3  # command dictionary, position, agent (GPS config is custom)
     res = subprocess.run([str(cpp_build / "configs")], capture_output=True, text=True, timeout=60)
     assert res.returncode == 0, res.stderr

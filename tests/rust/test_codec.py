@@ -38,7 +38,6 @@ def _filled(default: object, given: object) -> object:
 
 def test_asset_configs_encode_as_the_reference_encoder_does(rust_build):
     from rapidgen.asset.load import load_asset
-    from rapidgen.asset.publish import configs
     from rapidgen.cdr import Codec
     from rapidgen.diagnostics import DiagnosticSink
 
@@ -48,7 +47,7 @@ def test_asset_configs_encode_as_the_reference_encoder_does(rust_build):
                 if v["variant"] == "min"}
     codec = Codec(loaded.model)
     expected = {topic: codec.encode(ty, _filled(defaults[ty], value)).hex()
-                for topic, (ty, value) in configs(loaded).items()}
+                for topic, (ty, value) in loaded.configs.items()}
     res = subprocess.run([str(rust_build / "configs")], capture_output=True, text=True, timeout=60)
     assert res.returncode == 0, res.stderr
     *lines, sizes = res.stdout.splitlines()

@@ -87,3 +87,46 @@ def test_the_checker_sees_lazy_imports(tmp_path):
     f = tmp_path / "m.py"
     f.write_text("def f():\n    from rapidgen.idl import parse\n")
     assert "rapidgen.idl.parse" in imports_of(f)
+
+
+# The rules that compute an asset's facts (dictionary.py, topics.py, publish.py) are called by
+# the resolved asset alone (rapidgen/asset/resolved.py): everyone else reads its properties.
+ASSET_RULES = {"rapidgen.asset.dictionary": None,  # every name
+               "rapidgen.asset.topics": {"publications", "messages_of"},
+               "rapidgen.asset.publish": {"configs", "command_config", "agent_config", "position_config",
+                                          "joint_config"}}
+ASSET_RULE_MODULES = {"rapidgen.asset.resolved", *ASSET_RULES}
+
+
+def asset_rule_uses(path: Path) -> set[str]:
+    """Names of the asset rules a module imports or reaches through its module."""
+    found: set[str] = set()
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.module in ASSET_RULES and node.level == 0:
+            names = ASSET_RULES[node.module]
+            found.update(f"{node.module}.{a.name}" for a in node.names if names is None or a.name in names)
+        elif isinstance(node, ast.ImportFrom) and node.module == "rapidgen.asset" and node.level == 0:
+            found.update(f"rapidgen.asset.{a.name}" for a in node.names if f"rapidgen.asset.{a.name}" in ASSET_RULES)
+        elif isinstance(node, ast.Import):
+            found.update(a.name for a in node.names if a.name in ASSET_RULES)
+        elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "Facts":
+            found.add("Facts(...)")  # the IDL facts of an asset: loaded.facts
+    return found
+
+
+def test_asset_facts_are_computed_in_the_resolved_asset_only():
+    bad = []
+    for package in ("rapidgen", "conformance", "tests"):
+        for name, path in modules(package):
+            if name in ASSET_RULE_MODULES or name == "tests.unit.test_layering":
+                continue
+            uses = asset_rule_uses(path)
+            bad += [f"{name} uses {u}" for u in sorted(uses)]
+    assert bad == []
+
+
+def test_the_asset_rule_check_sees_imports_and_calls(tmp_path):
+    f = tmp_path / "m.py"
+    f.write_text("def f(l):\n    from rapidgen.asset.publish import configs\n    return Facts(l.model)\n")
+    assert asset_rule_uses(f) == {"rapidgen.asset.publish.configs", "Facts(...)"}

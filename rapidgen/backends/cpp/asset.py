@@ -13,9 +13,6 @@ import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from rapidgen.asset.facts import Facts
-from rapidgen.asset.publish import configs
-from rapidgen.asset.topics import publications
 from rapidgen.backends.cpp import namer
 from rapidgen.backends.cpp.typemap import Unsupported
 from rapidgen.backends.escape import cpp_str
@@ -53,12 +50,12 @@ class AssetView:
 
 
 def build(loaded: "LoadedAsset", b: "Builder") -> AssetView:
-    spec, facts = loaded.spec, Facts(loaded.model)
+    spec = loaded.spec
     pubs = [PublicationView(cpp_str(p.role), cpp_str(p.type), cpp_str(p.topic), cpp_str(p.qos))
-            for p in publications(spec, facts)]
+            for p in loaded.publications]
     scope = namer.Scope("asset functions")
     out = []
-    for topic, (type_name, value) in configs(loaded).items():
+    for topic, (type_name, value) in loaded.configs.items():
         fn = scope.claim("config_" + (re.sub(r"[^A-Za-z0-9_]", "_", topic) or "topic"), topic)
         out.append(ConfigView(fn, cpp_str(topic), b.qualified(type_name),
                               value_expr(b, ir.TypeRef(type_name, "struct"), value, 1)))

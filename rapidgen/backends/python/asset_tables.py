@@ -20,12 +20,8 @@ import keyword
 import math
 import re
 
-from rapidgen.asset.dictionary import all_subsystems, used_types
-from rapidgen.asset.facts import Facts
-from rapidgen.asset.publish import configs
 from rapidgen.asset.spec import (AgentTelemetry, ImageTelemetry, JointTelemetry, PositionTelemetry,
                                  TextTelemetry, TypedValue)
-from rapidgen.asset.topics import messages_of, publications
 from rapidgen.backends.base import GeneratedFile
 from rapidgen.backends.escape import py_str
 from rapidgen.backends.templating import render
@@ -94,10 +90,10 @@ def _plain(v: object) -> object:
 
 def tables(loaded) -> dict:
     """Everything the runtime needs to know about the asset, as plain data."""
-    spec, facts = loaded.spec, Facts(loaded.model)
+    spec = loaded.spec
     methods: set[str] = set()
     commands = {}
-    for t in used_types(spec):
+    for t in loaded.used_types:
         cmds = {}
         for c in t.commands:
             args: set[str] = set()
@@ -111,10 +107,9 @@ def tables(loaded) -> dict:
     if spec.access_control is not None:
         access = {"default": spec.access_control.default,
                   "rules": [{"source": r.source, "allow": list(r.allow)} for r in spec.access_control.rules]}
-    pubs = publications(spec, facts)
+    pubs = loaded.publications
     telemetry = []
-    for t in spec.telemetry:
-        topics = {role: (f"{topic}-{t.suffix}" if t.suffix else topic) for role, _ty, topic, _l in messages_of(t, facts)}
+    for t, topics in zip(spec.telemetry, loaded.telemetry_topics):
         entry = {"kind": t.kind, "topics": topics, "rate": t.rate, "subsystem": t.subsystem,
                  "values": [_typed(v) for v in getattr(t, "values", ())]}
         if isinstance(t, PositionTelemetry):
@@ -134,10 +129,10 @@ def tables(loaded) -> dict:
         "FORMAT": FORMAT,
         "ASSET": {"name": spec.name, "kind": spec.kind, "description": spec.description, "tags": list(spec.tags),
                   "domain": spec.domain, "partition": spec.partition},
-        "SUBSYSTEMS": {s.name: s.type for s in all_subsystems(spec)},
+        "SUBSYSTEMS": {s.name: s.type for s in loaded.subsystems},
         "COMMANDS": commands,
         "ACCESS": access,
-        "CONFIGS": {topic: {"type": ty, "value": value} for topic, (ty, value) in configs(loaded).items()},
+        "CONFIGS": {topic: {"type": ty, "value": value} for topic, (ty, value) in loaded.configs.items()},
         "PUBLICATIONS": [{"role": p.role, "type": p.type, "topic": p.topic, "qos": p.qos, "rate": p.rate}
                          for p in pubs],
         "TELEMETRY": telemetry,

@@ -61,16 +61,12 @@ def from_model(model: Model, spec: QosSpec) -> list[TopicEntry]:
 
 
 def from_asset(asset, spec: QosSpec) -> list[TopicEntry]:
-    from rapidgen.asset.dictionary import used_types
-    from rapidgen.asset.facts import Facts
-    from rapidgen.asset.topics import profile_name, publications
+    from rapidgen.asset.topics import profile_name
 
-    facts = Facts(asset.model)
     out = [TopicEntry(p.topic, p.type, profile_name(p.qos), p.role, "publish", p.loc)
-           for p in publications(asset.spec, facts)]
-    if used_types(asset.spec):  # an asset with subsystems reads commands
+           for p in asset.publications]
+    if asset.command_topic is not None:  # an asset with subsystems reads commands
         command = "rapid::Command"
-        topic = facts.string_const("rapid::COMMAND_TOPIC") or "rapid_command"
-        out.append(TopicEntry(topic, command, spec.profile_for_type(command) or "RapidReliableQos",
+        out.append(TopicEntry(asset.command_topic, command, spec.profile_for_type(command) or "RapidReliableQos",
                               "command", "subscribe", asset.spec.loc))
     return sorted(set(out), key=lambda e: (e.topic, e.type, e.direction))

@@ -6,10 +6,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from rapidgen.asset.dictionary import all_subsystems, used_types
-from rapidgen.asset.facts import Facts
-from rapidgen.asset.publish import configs
-from rapidgen.asset.topics import publications
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.rust import namer
 from rapidgen.backends.rust.typemap import float_literal
@@ -99,22 +95,21 @@ def _profiles(names: list[str], library: "QosSpec | None") -> list[QosView]:
 
 def build(loaded: "LoadedAsset", b: "Builder", library: "QosSpec | None" = None) -> AssetView:
     spec = loaded.spec
-    facts = Facts(loaded.model)
     commands = [CommandView(rust_str(t.name), rust_str(c.name), c.abortable, c.suspendable,
                             [ParameterView(rust_str(p.name), rust_str(p.type), _opt_str(p.unit), _opt_f64(p.min),
                                            _opt_f64(p.max)) for p in c.parameters])
-                for t in used_types(spec) for c in t.commands]
-    pubs = publications(spec, facts)
+                for t in loaded.used_types for c in t.commands]
+    pubs = loaded.publications
     topics = [(rust_str(p.role), rust_str(p.type), rust_str(p.topic), rust_str(p.qos), _opt_f64(p.rate))
               for p in pubs]
     scope = namer.Scope("asset", {"NAME", "DOMAIN", "PARTITION", "SUBSYSTEMS", "TOPICS", "COMMANDS", "Topic",
                                   "Command", "Parameter", "QosSide", "QosHistory", "QosProfile",
                                   "QOS_PROFILES", "qos_profile", "topic_qos"})
     views = []
-    for topic, (type_name, value) in configs(loaded).items():
+    for topic, (type_name, value) in loaded.configs.items():
         t = ir.TypeRef(type_name, "struct")
         views.append(ConfigView(scope.claim("config_" + namer.snake(topic), topic), b.path(type_name),
                                 rust_str(topic), rust_str(type_name), b.value(t, value)))
     return AssetView(rust_str(spec.name), spec.domain, rust_str(spec.partition),
-                     [(rust_str(s.name), rust_str(s.type)) for s in all_subsystems(spec)], topics, commands, views,
+                     [(rust_str(s.name), rust_str(s.type)) for s in loaded.subsystems], topics, commands, views,
                      _profiles([p.qos for p in pubs], library))
