@@ -242,18 +242,12 @@ def _cmd_cmd(args: argparse.Namespace) -> int:
     return run_cmd(args, DiagnosticSink())
 
 
-def _langs(text: str) -> list[str]:
-    return [x.strip() for x in text.split(",") if x.strip()]
-
-
 def _cmd_generate(args: argparse.Namespace) -> int:
     from rapidgen.generate import generate_command
 
-    langs = _langs(args.lang)
-    unknown = [lang for lang in langs if lang not in backends.available()]
-    if not langs or unknown:
-        what = f"unknown target '{unknown[0]}'" if unknown else "--lang needs at least one target"
-        print(f"rapidgen generate: {what}; available: {', '.join(backends.available())}", file=sys.stderr)
+    langs, problem = backends.parse_langs(args.lang)
+    if problem:
+        print(f"rapidgen generate: --lang: {problem}", file=sys.stderr)
         return 2
     sink = _sink(args)
     ok = generate_command(args.inputs, args.include, _defines(args.define), langs, args.output, args.package, sink)

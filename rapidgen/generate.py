@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rapidgen import backends
-from rapidgen.backends.base import GeneratedFile, GenerationError, Options, printable
+from rapidgen.backends.base import QOS_LIBRARY, GeneratedFile, GenerationError, Options, printable
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.model.ir import Model
 
@@ -74,36 +74,32 @@ def load_inputs(paths: list[str], include: list[str], sink: DiagnosticSink,
 
 def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
            package: str | None = None) -> dict[str, list[GeneratedFile]] | None:
-    """Every requested target's files, by target, paths relative to `<out>/<lang>/`."""
-    unknown = [lang for lang in langs if lang not in backends.available()]
-    if unknown or not langs:
-        sink.error("RG0802", f"unknown or unavailable target '{unknown[0]}'" if unknown else "no target given",
-                   SourceLoc("<command line>", 0, 0), f"available: {', '.join(backends.available())}")
+    """Every requested target's files, by target, paths relative to `<out>/<lang>/`.
+
+    Each back end declares what it needs (backends.base.Backend): the inputs read here, in
+    the driver (back ends never read files), and the targets whose files it embeds."""
+    langs, problem = backends.parse_langs(langs)
+    if problem:
+        sink.error("RG0802", problem, SourceLoc("<command line>", 0, 0), "name targets with --lang a,b")
         return None
+    asset = inputs.asset
+    chosen = {lang: backends.get(lang) for lang in langs}
+    extra = [c for b in chosen.values() for c in b.companions(asset) if c not in chosen]
+    everyone = {**chosen, **{c: backends.get(c) for c in extra}}
+    needs = frozenset().union(*(b.needs(asset) for b in everyone.values()))
     qos_library = None
-    # Read here, in the driver: back ends never read files. An asset's python package
-    # carries its QoS files too (rapidgen/backends/python/asset_tables.py), an asset's Rust
-    # crate its profiles' values (rapidgen/backends/rust/asset.py).
-    if "qos" in langs or (("python" in langs or "rust" in langs) and inputs.asset is not None):
+    if QOS_LIBRARY in needs:
         from rapidgen.qos.spec import default_library
         qos_library = default_library()
     options = Options(source=inputs.source, package=package, qos_library=qos_library)
     out: dict[str, list[GeneratedFile]] = {}
-    for lang in dict.fromkeys(langs):
-        try:
-            out[lang] = backends.get(lang).generate(inputs.model, inputs.asset, options)
-        except GenerationError as exc:
-            exc.report(sink)
-            return None
-    if "python" in out and inputs.asset is not None and qos_library is not None:
-        from rapidgen.backends.python.asset_tables import with_qos_files
-        try:
-            qos_files = out.get("qos") or backends.get("qos").generate(inputs.model, inputs.asset, options)
-        except GenerationError as exc:
-            exc.report(sink)
-            return None
-        out["python"] = with_qos_files(out["python"], qos_files)
-    return out
+    try:
+        for lang, backend in everyone.items():
+            out[lang] = backend.generate(inputs.model, asset, options)
+    except GenerationError as exc:
+        exc.report(sink)
+        return None
+    return {lang: b.embed(out[lang], {c: out[c] for c in b.companions(asset)}) for lang, b in chosen.items()}
 
 
 def write_outputs(out_dir: str, per_lang: dict[str, list[GeneratedFile]], sink: DiagnosticSink) -> bool:

@@ -28,4 +28,17 @@ def known() -> list[str]:
     return list(_MODULES)
 
 
-__all__ = ["Backend", "GeneratedFile", "Options", "available", "get", "known"]
+def parse_langs(text: str | list[str] | tuple[str, ...]) -> tuple[list[str], str | None]:
+    """The targets of `--lang a,b` or a project's `lang: [a, b]` (order kept, repeats
+    dropped), and what is wrong with them (None: nothing). The one place targets are checked."""
+    items = text.split(",") if isinstance(text, str) else list(text)
+    langs = list(dict.fromkeys(x.strip() for x in items if x.strip()))
+    unknown = [lang for lang in langs if lang not in available()]
+    if unknown:
+        return langs, f"unknown or unavailable target '{unknown[0]}'; available: {', '.join(available())}"
+    if not langs:
+        return langs, f"no target given; available: {', '.join(available())}"
+    return langs, None
+
+
+__all__ = ["Backend", "GeneratedFile", "Options", "available", "get", "known", "parse_langs"]

@@ -8,7 +8,7 @@ from tests.helpers import rapidgen
 def test_unknown_target_is_a_usage_error(tmp_path):
     res = rapidgen("generate", "specs/assets/k10.yaml", "--lang", "python,foo", "-o", str(tmp_path / "out"))
     assert res.code == 2
-    assert "unknown target 'foo'" in res.err and "python, qos" in res.err
+    assert "unknown or unavailable target 'foo'" in res.err and "python, qos" in res.err
     assert not (tmp_path / "out").exists()  # nothing generated for the known target either
 
 

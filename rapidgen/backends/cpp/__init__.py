@@ -12,7 +12,8 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
-from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
+from rapidgen.backends.base import (NO_NEEDS, GeneratedFile, Options, check_output, embed_nothing, no_companions,
+                                   notice)
 from rapidgen.backends.cpp import asset as asset_tables
 from rapidgen.backends.cpp.typemap import Unsupported
 from rapidgen.backends.cpp.view import Builder, PackageView, UnsupportedInput
@@ -26,7 +27,14 @@ if TYPE_CHECKING:
 NAME = "cpp"
 DEFAULT_PACKAGE = "rapid_types"
 
-__all__ = ["NAME", "DEFAULT_PACKAGE", "UnsupportedInput", "generate", "package_for", "view"]
+__all__ = ["NAME", "DEFAULT_PACKAGE", "UnsupportedInput", "companions", "embed", "generate", "needs",
+           "package_for", "view"]
+
+companions, embed = no_companions, embed_nothing
+
+
+def needs(asset: "LoadedAsset | None") -> frozenset[str]:
+    return NO_NEEDS
 
 
 def package_for(asset: "LoadedAsset | None", options: Options) -> str:

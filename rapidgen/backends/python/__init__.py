@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
+from rapidgen.backends.base import QOS_LIBRARY, GeneratedFile, Options, check_output, notice
 from rapidgen.backends.python import asset_tables, namer
 from rapidgen.backends.python.view import PackageView, UnsupportedInput, build
 from rapidgen.backends.templating import render
@@ -23,7 +23,23 @@ if TYPE_CHECKING:
 NAME = "python"
 DEFAULT_PACKAGE = "rapid_types"
 
-__all__ = ["NAME", "DEFAULT_PACKAGE", "UnsupportedInput", "generate", "package_for", "view"]
+__all__ = ["NAME", "DEFAULT_PACKAGE", "UnsupportedInput", "companions", "embed", "generate", "needs", "package_for",
+           "view"]
+
+
+def needs(asset: "LoadedAsset | None") -> frozenset[str]:
+    """An asset package carries its QoS files (the qos target's, which reads the library)."""
+    return frozenset({QOS_LIBRARY}) if asset is not None else frozenset()
+
+
+def companions(asset: "LoadedAsset | None") -> tuple[str, ...]:
+    return ("qos",) if asset is not None else ()
+
+
+def embed(files: list[GeneratedFile], other: dict[str, list[GeneratedFile]]) -> list[GeneratedFile]:
+    """The qos target's files under <package>/qos_files/ (package data: RapidQos() works
+    after `pip install`)."""
+    return asset_tables.with_qos_files(files, other.get("qos", []))
 
 
 def package_for(asset: "LoadedAsset | None", options: Options) -> str:
@@ -39,8 +55,8 @@ def view(model: Model, asset: "LoadedAsset | None", options: Options) -> Package
 
 
 def asset_files(model: Model, asset: "LoadedAsset", options: Options, pkg: PackageView) -> list[GeneratedFile]:
-    """The asset's tables, handlers and bridge (asset_tables.py). The driver adds the QoS
-    files under <package>/qos_files/ (rapidgen.generate.render: back ends import no other)."""
+    """The asset's tables, handlers and bridge (asset_tables.py). The QoS files come in
+    through embed() (a back end imports no other)."""
     return asset_tables.generate(asset, pkg.package, pkg.header)
 
 

@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import json
 
-from rapidgen.backends.base import GeneratedFile, GenerationError, Options, check_output, notice
+from rapidgen.backends.base import (QOS_LIBRARY, GeneratedFile, GenerationError, Options, check_output,
+                                   embed_nothing, no_companions, notice)
 from rapidgen.backends.escape import xml_comment as comment_text  # noqa: F401 (kept for callers)
 from rapidgen.backends.qos import topicmap, view
 from rapidgen.backends.templating import render as render_template
@@ -44,6 +45,13 @@ class UnknownProfile(GenerationError):
         for e in self.entries:
             sink.error("RG1608", f"topic '{e.topic}' uses QoS profile '{e.profile}', which library "
                        f"{self.spec.library} ({self.spec.file}) lacks", e.loc, did_you_mean(e.profile, names))
+
+
+companions, embed = no_companions, embed_nothing
+
+
+def needs(asset) -> frozenset[str]:
+    return frozenset({QOS_LIBRARY})
 
 
 def cyclone_file(transport: str) -> str:

@@ -13,7 +13,8 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
-from rapidgen.backends.base import GeneratedFile, Options, check_output, notice
+from rapidgen.backends.base import (QOS_LIBRARY, GeneratedFile, Options, check_output, embed_nothing,
+                                   no_companions, notice)
 from rapidgen.backends.escape import crate_name
 from rapidgen.backends.rust.asset import AssetView
 from rapidgen.backends.rust.asset import build as asset_view
@@ -28,7 +29,15 @@ if TYPE_CHECKING:
 NAME = "rust"
 DEFAULT_CRATE = "rapid_types"
 
-__all__ = ["NAME", "DEFAULT_CRATE", "UnsupportedInput", "crate_for", "generate", "view"]
+__all__ = ["NAME", "DEFAULT_CRATE", "UnsupportedInput", "companions", "crate_for", "embed", "generate", "needs",
+           "view"]
+
+companions, embed = no_companions, embed_nothing
+
+
+def needs(asset: "LoadedAsset | None") -> frozenset[str]:
+    """An asset's crate carries its QoS profiles' values (asset::QOS_PROFILES)."""
+    return frozenset({QOS_LIBRARY}) if asset is not None else frozenset()
 
 
 def crate_for(asset: "LoadedAsset | None", options: Options) -> str:
