@@ -1,0 +1,183 @@
+// Command intake and the ack lifecycle: the asset's side of rapid_command / rapid_ack,
+// without DDS (runtime/rapid_runtime/manager.py is the reference; docs/runtime.md lists
+// every answer).
+//
+//     CommandManager manager(tables, handlers, outbox);
+//     manager.receive(cmd);        // every Command read from the asset's partition
+//
+// Dropped without an ack (logged): a command for another asset, a repeated cmdId.
+// Everything else gets exactly one final COMPLETED ack. Acks go out through the Outbox,
+// always under the manager's lock, so the acks of one command keep their order.
+//
+// Memory stays bounded: the last `window` cmdIds are remembered (duplicates detected
+// among them and among those still pending or running); once more than `window` commands
+// have completed, the oldest one's acks are retired (Outbox::retire: the ack writer
+// unregisters the instance).
+#ifndef RAPID_RUNTIME_MANAGER_HPP
+#define RAPID_RUNTIME_MANAGER_HPP
+
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include "access.hpp"
+#include "command.hpp"
+#include "handlers.hpp"
+#include "pending.hpp"
+#include "run.hpp"
+#include "tables.hpp"
+#include "workers.hpp"
+
+namespace rapid_runtime {
+
+// Commands whose state is kept: the last 4096 cmdIds received and the acks of the last
+// 4096 completed commands (late-joining ack readers).
+inline constexpr std::size_t COMMAND_WINDOW = 4096;
+// Past these, a command is answered EXEC_FAILED at once (docs/runtime.md, "Bounded memory").
+inline constexpr std::size_t QUEUE_LIMIT = 1024;
+inline constexpr std::size_t BYPASS_LIMIT = 64;
+inline constexpr double COMPLETED_KEEP_S = 20.0;  // finished commands stay in QueueState this long (soraCore)
+inline constexpr std::size_t RECORDS = 64;  // QueueState's SingleQueue holds at most 64 records
+
+// One QueueState record: the command and its result and status.
+struct Record {
+    std::shared_ptr<const Cmd> cmd;
+    RecordResult result = RecordResult::Init;
+    RecordStatus status = RecordStatus::Init;
+};
+
+// Where the manager's answers go: the DDS layer writes them, tests collect them.
+class Outbox {
+public:
+    virtual ~Outbox() = default;
+    virtual void ack(const Cmd& cmd, AckStatus status, Completion completed, const std::string& message) = 0;
+    // code: 1 active, 0 idle, -1 suspended
+    virtual void queue_state(int code, const std::vector<Record>& pending, const std::vector<Record>& active,
+                             const std::vector<Record>& completed) = 0;
+    virtual void access_state(const std::string& controller, const std::vector<std::string>& requestors) = 0;
+    // The command's acks need not be kept any longer (cmd holds the ack key only: header
+    // names, serial and cmdId).
+    virtual void retire(const Cmd& cmd) = 0;
+    virtual void log(const std::string& text) = 0;
+};
+
+// What the intake door hands commands to (intake.hpp): the manager, or a test's recorder.
+class CommandSink {
+public:
+    virtual ~CommandSink() = default;
+    virtual void receive(const Cmd& cmd) = 0;
+    // Answer a command shed at the door COMPLETED/EXEC_FAILED without running it.
+    virtual void refuse(const Cmd& cmd, const std::string& why) = 0;
+    // A control command (stopAllMotion, Queue cancelAll, any AccessControl command) goes first.
+    virtual bool is_control(const Cmd& cmd) const = 0;
+};
+
+struct ManagerOptions {
+    std::size_t window = COMMAND_WINDOW;
+    std::size_t queue_limit = QUEUE_LIMIT;
+    std::size_t bypass_limit = BYPASS_LIMIT;
+    std::function<void()> on_shutdown;  // after Admin/shutdown's COMPLETED ack, on a thread of its own
+    std::function<double()> clock;  // seconds, monotonic (default: steady_clock)
+};
+
+class CommandManager : public CommandSink {
+public:
+    // tables, handlers and outbox must outlive the manager. Throws std::invalid_argument for a
+    // window or limit of 0.
+    CommandManager(const Tables& tables, Handlers& handlers, Outbox& outbox, ManagerOptions options = {});
+    ~CommandManager() override;  // cancels what runs and joins the handlers' threads
+    CommandManager(const CommandManager&) = delete;
+    CommandManager& operator=(const CommandManager&) = delete;
+
+    void receive(const Cmd& cmd) override;
+    void refuse(const Cmd& cmd, const std::string& why) override;
+    bool is_control(const Cmd& cmd) const override;
+
+    // Publish QueueState and AccessControlState as they are (at start-up).
+    void publish_states();
+    // True once no queued or bypass command runs, or the queue is suspended with nothing running.
+    bool wait_idle(double timeout_s);
+
+    // What tests look at (each takes the lock).
+    std::vector<std::string> pending_ids() const;
+    std::size_t pending_count() const;
+    bool suspended() const;
+    std::string controller() const;
+    std::vector<std::string> requestors() const;
+    std::size_t remembered() const;  // cmdIds in the duplicate window
+    std::vector<std::string> acks_kept() const;  // completed commands whose acks are kept, oldest first
+    const Tables& tables() const { return tables_; }
+
+private:
+    using Lock = std::unique_lock<std::recursive_mutex>;
+    struct Refusal {
+        Completion completion;
+        std::string text;
+    };
+
+    std::optional<Refusal> intake(const std::shared_ptr<const Cmd>& cmd);
+    std::optional<Refusal> remove_target(const std::shared_ptr<const Cmd>& cmd);
+    std::optional<std::string> authorize(const std::string& source, const std::string& subsystem,
+                                         const CommandRef& ref) const;
+    bool live(const std::string& cmd_id) const;
+    RunPtr queued_run(const std::string& cmd_id) const;
+    bool busy(const std::string& subsystem) const;
+    void remember(const std::string& cmd_id);
+
+    void service();
+    void start(const RunPtr& run);
+    void preempt(const RunPtr& run);
+    void execute(const RunPtr& run);
+    void progress(const RunPtr& run, const std::string& text);
+    void complete(const RunPtr& run, Completion completion, const std::string& message);
+    void finish_unstarted(const RunPtr& run, const std::string& why);
+    void record_done(const RunPtr& run, Completion completion);
+    void cancel(const RunPtr& run);
+    void send_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message);
+    void publish_queue();
+    void publish_access();
+
+    // Built-in commands (Admin, Queue, AccessControl, stopAllMotion). Each returns the
+    // outcome, or nothing to go on to the handler.
+    std::optional<Result> builtin(const RunPtr& run);
+    Result cancel_all(const RunPtr& run);
+    void stop_all_motion(const RunPtr& run);
+
+    const Tables& tables_;
+    Handlers& handlers_;
+    Outbox& out_;
+    ManagerOptions options_;
+    bool has_queue_;
+    bool has_control_;
+
+    mutable std::recursive_mutex mutex_;
+    std::condition_variable_any idle_;
+    std::unordered_set<std::string> seen_;  // the ids of seen_order_
+    std::deque<std::string> seen_order_;  // the last `window` cmdIds, oldest first
+    std::deque<Cmd> acked_;  // completed, acks still kept; the ack key only; oldest first
+    Pending pending_;
+    RunPtr active_;  // the queue's running command
+    std::vector<RunPtr> bypass_;  // BYPASS commands running
+    struct Done {
+        double at;
+        RunPtr run;
+        Completion completion;
+    };
+    std::deque<Done> completed_;
+    bool suspended_ = false;
+    Control control_;
+    RunPtr shutdown_after_;
+    Workers workers_;  // last: joined first when the manager goes
+};
+
+}  // namespace rapid_runtime
+
+#endif

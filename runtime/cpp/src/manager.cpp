@@ -1,0 +1,546 @@
+#include "rapid_runtime/manager.hpp"
+
+#include <cxxabi.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
+#include <typeinfo>
+
+#include "rapid_runtime/text.hpp"
+#include "rapid_runtime/validate.hpp"
+
+namespace rapid_runtime {
+namespace {
+
+const std::string VIOLATION = "RAPID access violation: ";
+
+double steady_seconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string quoted(const std::string& s) { return "'" + shorten(s) + "'"; }
+
+// What retiring a command's acks needs (the ack key: header names and cmdId), without
+// its arguments, which the window would otherwise keep alive.
+Cmd key_of(const Cmd& c) {
+    Cmd k;
+    k.cmd_id = c.cmd_id;
+    k.cmd_src = c.cmd_src;
+    k.subsystem = c.subsystem;
+    k.name = c.name;
+    k.src_name = c.src_name;
+    k.asset_name = c.asset_name;
+    k.serial = c.serial;
+    return k;
+}
+
+std::string type_name(const std::exception& e) {
+    int status = 0;
+    char* name = abi::__cxa_demangle(typeid(e).name(), nullptr, nullptr, &status);
+    std::string out = status == 0 && name != nullptr ? name : typeid(e).name();
+    std::free(name);
+    return out;
+}
+
+bool is(const RunPtr& run, std::string_view type, std::string_view command) {
+    return run->ref.type->name == type && run->ref.spec->name == command;
+}
+
+// The commands the runtime answers itself (the standard subsystem types' own).
+constexpr std::pair<std::string_view, std::string_view> BUILTINS[] = {
+    {"Admin", "echo"},
+    {"Admin", "noOp"},
+    {"Admin", "shutdown"},
+    {"Queue", "cancelAll"},
+    {"Mobility", "stopAllMotion"},
+    {"AccessControl", "requestControl"},
+    {"AccessControl", "grabControl"},
+    {"AccessControl", "releaseControl"},
+    {"AccessControl", "transferControl"},
+};
+
+bool builtin_command(const CommandRef& ref) {
+    if (!ref.spec->standard) return false;
+    for (const auto& [type, name] : BUILTINS)
+        if (ref.type->name == type && ref.spec->name == name) return true;
+    return false;
+}
+
+}  // namespace
+
+CommandManager::CommandManager(const Tables& tables, Handlers& handlers, Outbox& outbox, ManagerOptions options)
+    : tables_(tables), handlers_(handlers), out_(outbox), options_(std::move(options)) {
+    if (options_.window < 1) throw std::invalid_argument("command window 0: at least 1");
+    if (options_.queue_limit < 1 || options_.bypass_limit < 1)
+        throw std::invalid_argument("queue limit and bypass limit: at least 1 each");
+    if (!options_.clock) options_.clock = steady_seconds;
+    has_queue_ = tables_.has_type("Queue");
+    has_control_ = tables_.has_type("AccessControl");
+}
+
+CommandManager::~CommandManager() {
+    {
+        Lock lock(mutex_);
+        suspended_ = true;  // nothing new starts from the queue
+        for (const auto& r : bypass_)
+            if (r->ctx) r->ctx->cancel();
+        if (active_ && active_->ctx) active_->ctx->cancel();
+    }
+    workers_.join_all();
+}
+
+// ---- intake -------------------------------------------------------------------------------
+
+void CommandManager::receive(const Cmd& in) {
+    Lock lock(mutex_);
+    if (in.asset_name != tables_.name) {
+        out_.log("ignored '" + in.cmd_id + "': addressed to asset '" + in.asset_name + "'");
+        return;
+    }
+    if (seen_.count(in.cmd_id) != 0 || live(in.cmd_id)) {
+        out_.log("ignored '" + in.cmd_id + "': repeated cmdId");
+        return;
+    }
+    remember(in.cmd_id);
+    auto cmd = std::make_shared<const Cmd>(in);
+    if (auto refusal = intake(cmd)) {
+        send_ack(*cmd, AckStatus::Completed, refusal->completion, refusal->text);
+        std::string kind(name_of(refusal->completion));
+        out_.log(cmd->cmd_id + ": " + kind.substr(std::string("ACK_COMPLETED_").size()) + ": " + refusal->text);
+    }
+}
+
+void CommandManager::refuse(const Cmd& cmd, const std::string& why) {
+    Lock lock(mutex_);
+    if (cmd.asset_name != tables_.name || cmd.cmd_id.empty()) return;
+    if (seen_.count(cmd.cmd_id) != 0 || live(cmd.cmd_id)) return;  // its acks belong to that command
+    send_ack(cmd, AckStatus::Completed, Completion::ExecFailed, why);
+}
+
+bool CommandManager::is_control(const Cmd& cmd) const {
+    const std::string* kind = tables_.type_of(cmd.subsystem);
+    if (kind == nullptr) return false;
+    return *kind == "AccessControl" || (*kind == "Mobility" && cmd.name == "stopAllMotion") ||
+           (*kind == "Queue" && cmd.name == "cancelAll");
+}
+
+void CommandManager::remember(const std::string& cmd_id) {
+    seen_.insert(cmd_id);
+    seen_order_.push_back(cmd_id);
+    while (seen_order_.size() > options_.window) {
+        seen_.erase(seen_order_.front());
+        seen_order_.pop_front();
+    }
+}
+
+std::optional<CommandManager::Refusal> CommandManager::intake(const std::shared_ptr<const Cmd>& cmd) {
+    const auto action = cmd->action;
+    const std::string& target = cmd->target;
+    const std::string act(name_of(action));
+    if (cmd->cmd_id.empty()) return Refusal{Completion::BadSyntax, "empty cmdId"};
+    if (act.empty())
+        return Refusal{Completion::BadSyntax, "unknown queue action " + std::to_string(static_cast<int>(action))};
+    if (action != QueueAction::Bypass && !has_queue_)
+        return Refusal{Completion::BadSyntax, act + " refused: this asset has no command queue (send QUEUE_BYPASS)"};
+    if ((action == QueueAction::Bypass || action == QueueAction::Append) && !target.empty())
+        return Refusal{Completion::BadSyntax, act + " takes no targetCmdId (got " + quoted(target) + ")"};
+    if (action != QueueAction::Bypass && action != QueueAction::Append && target.empty())
+        return Refusal{Completion::BadSyntax, act + " needs a targetCmdId"};
+    if (action == QueueAction::Delete) return remove_target(cmd);
+
+    Checked checked = check_command(*cmd, tables_);
+    if (checked.why) return Refusal{Completion::BadSyntax, *checked.why};
+    if (action == QueueAction::Insert && target != HEAD && !queued_run(target))
+        return Refusal{Completion::BadSyntax,
+                       "unknown targetCmdId " + quoted(target) + " (pending ids, the running one or 'head')"};
+    if (action == QueueAction::Replace && !queued_run(target))
+        return Refusal{Completion::BadSyntax, "unknown targetCmdId " + quoted(target) + " (not pending or running)"};
+    if (auto denied = authorize(cmd->cmd_src, cmd->subsystem, checked.ref))
+        return Refusal{Completion::BadSyntax, *denied};
+    if ((action == QueueAction::Append || action == QueueAction::Insert) && pending_.size() >= options_.queue_limit)
+        return Refusal{Completion::ExecFailed,
+                       "queue full (" + std::to_string(options_.queue_limit) + " pending); retry later"};
+    if (action == QueueAction::Bypass && bypass_.size() >= options_.bypass_limit)
+        return Refusal{Completion::ExecFailed, std::to_string(options_.bypass_limit) +
+                                                   " commands already running beside the queue; retry later"};
+
+    auto run = std::make_shared<Run>();
+    run->cmd = cmd;
+    run->ref = checked.ref;
+    run->queued = action != QueueAction::Bypass;
+    if (action == QueueAction::Bypass) {
+        start(run);
+        return std::nullopt;
+    }
+    if (action == QueueAction::Replace) {
+        RunPtr old = queued_run(target);
+        if (old == active_) {
+            if (!old->abortable())
+                return Refusal{Completion::ExecFailed, "target " + quoted(target) + " is running and not abortable"};
+            cancel(old);
+            pending_.push_front(run);
+        } else {
+            pending_.replace(target, run);
+            finish_unstarted(old, "replaced by " + shorten(cmd->cmd_id));
+        }
+    } else if (action == QueueAction::Insert) {
+        if (!pending_.insert_after(target, run)) pending_.push_front(run);  // the running command: go next
+    } else {
+        pending_.append(run);
+    }
+    send_ack(*cmd, AckStatus::Queued, Completion::Not, "");
+    service();
+    return std::nullopt;
+}
+
+bool CommandManager::live(const std::string& cmd_id) const {
+    if (queued_run(cmd_id)) return true;
+    return std::any_of(bypass_.begin(), bypass_.end(), [&](const RunPtr& r) { return r->id() == cmd_id; });
+}
+
+RunPtr CommandManager::queued_run(const std::string& cmd_id) const {
+    if (active_ && active_->id() == cmd_id) return active_;
+    return pending_.find(cmd_id);
+}
+
+std::optional<std::string> CommandManager::authorize(const std::string& source, const std::string& subsystem,
+                                                     const CommandRef& ref) const {
+    const std::string& type = ref.type->name;
+    const std::string& name = ref.spec->name;
+    if (always_allowed(type, name)) return std::nullopt;
+    if (!allowed(tables_.access, source, subsystem, name))
+        return VIOLATION + shorten(source) + " may not send " + shorten(subsystem) + "/" + shorten(name);
+    if (has_control_ && type != "AccessControl" && source != tables_.name && !control_.holds(source))
+        return VIOLATION + shorten(source) + " does not have control (send requestControl)";
+    return std::nullopt;
+}
+
+std::optional<CommandManager::Refusal> CommandManager::remove_target(const std::shared_ptr<const Cmd>& cmd) {
+    RunPtr target = queued_run(cmd->target);
+    if (!target)
+        for (const auto& r : bypass_)
+            if (r->id() == cmd->target) target = r;
+    if (!target)
+        return Refusal{Completion::BadSyntax, "unknown targetCmdId " + quoted(cmd->target) + " (not pending or running)"};
+    // The DELETE's sender must be allowed to send the target's command.
+    if (auto denied = authorize(cmd->cmd_src, target->cmd->subsystem, target->ref))
+        return Refusal{Completion::BadSyntax, *denied};
+    if (pending_.contains(target)) {
+        pending_.remove(target);
+        finish_unstarted(target, "deleted by " + shorten(cmd->cmd_id));
+    } else if (!target->abortable()) {
+        return Refusal{Completion::ExecFailed, "target " + quoted(cmd->target) + " is running and not abortable"};
+    } else {
+        cancel(target);
+    }
+    send_ack(*cmd, AckStatus::Executing, Completion::Not, "");
+    send_ack(*cmd, AckStatus::Completed, Completion::Ok, shorten(cmd->target) + " canceled");
+    service();
+    return std::nullopt;
+}
+
+// ---- running ------------------------------------------------------------------------------
+
+bool CommandManager::busy(const std::string& subsystem) const {
+    return std::any_of(bypass_.begin(), bypass_.end(),
+                       [&](const RunPtr& r) { return r->cmd->subsystem == subsystem && !r->done; });
+}
+
+void CommandManager::service() {
+    while (!active_ && !suspended_) {
+        RunPtr run = pending_.pop_ready([this](const std::string& s) { return busy(s); });
+        if (!run) break;
+        active_ = run;
+        start(run);
+    }
+    publish_queue();
+    idle_.notify_all();
+}
+
+void CommandManager::start(const RunPtr& run) {
+    if (!run->queued) preempt(run);
+    send_ack(*run->cmd, AckStatus::Executing, Completion::Not, "");
+    run->record_status = RecordStatus::InProcess;
+    if (auto outcome = builtin(run)) {
+        complete(run, outcome->completion, outcome->message);
+        return;
+    }
+    if (!run->queued) bypass_.push_back(run);
+    std::weak_ptr<Run> weak = run;
+    run->ctx = std::make_shared<CommandContext>(run->cmd, run->ref, [this, weak](const std::string& text) {
+        if (auto r = weak.lock()) progress(r, text);
+    });
+    workers_.spawn([this, run, ctx = run->ctx] { execute(run); });
+}
+
+void CommandManager::preempt(const RunPtr& run) {
+    if (builtin_command(run->ref)) return;  // the protocol's own commands take nothing over
+    std::vector<RunPtr> others(bypass_);
+    if (active_) others.insert(others.begin(), active_);
+    for (const auto& other : others) {
+        if (other->done || other->cmd->subsystem != run->cmd->subsystem || !other->ctx) continue;
+        if (other->queued && other->ref.spec->suspendable) {
+            other->requeue = true;
+            other->ctx->cancel();
+        } else if (other->abortable()) {
+            other->ctx->cancel();
+        }
+    }
+}
+
+void CommandManager::execute(const RunPtr& run) {
+    std::shared_ptr<CommandContext> ctx;
+    {
+        Lock lock(mutex_);
+        ctx = run->ctx;
+    }
+    Completion completion = Completion::Ok;
+    std::string message;
+    try {
+        Result result = handlers_.execute(*ctx);
+        switch (result.completion) {
+            case Completion::Ok:
+                if (ctx->cancelled()) {
+                    completion = Completion::Canceled;
+                    message = "canceled";
+                } else {
+                    message = result.message;
+                }
+                break;
+            case Completion::Canceled:
+                completion = Completion::Canceled;
+                message = result.message.empty() ? "canceled" : result.message;
+                break;
+            case Completion::BadSyntax:  // a handler may judge the arguments itself (Astrobee does)
+            case Completion::ExecFailed:
+                completion = result.completion;
+                message = result.message.empty() ? "failed" : result.message;
+                break;
+            case Completion::Not:
+                completion = Completion::ExecFailed;
+                message = "handler gave no completion";
+                break;
+        }
+    } catch (const Cancelled&) {
+        completion = Completion::Canceled;
+        message = "canceled";
+    } catch (const CommandFailed& e) {
+        completion = Completion::ExecFailed;
+        message = *e.what() ? e.what() : "failed";
+    } catch (const std::exception& e) {  // a handler's bug must not stop the bridge; the commander hears of it
+        completion = Completion::ExecFailed;
+        message = "handler error: " + type_name(e) + ": " + e.what();
+    } catch (...) {
+        completion = Completion::ExecFailed;
+        message = "handler error: unknown exception";
+    }
+    Lock lock(mutex_);
+    bypass_.erase(std::remove(bypass_.begin(), bypass_.end(), run), bypass_.end());
+    if (run->requeue && completion == Completion::Canceled) {
+        run->requeue = false;
+        run->done = false;
+        run->ctx.reset();
+        send_ack(*run->cmd, AckStatus::Requeued, Completion::Not, "preempted; back in the queue");
+        run->record_status = RecordStatus::Paused;
+        if (active_ == run) active_.reset();
+        pending_.push_front(run);
+    } else {
+        complete(run, completion, message);
+    }
+    service();
+}
+
+void CommandManager::progress(const RunPtr& run, const std::string& text) {
+    Lock lock(mutex_);
+    if (!run->done) send_ack(*run->cmd, AckStatus::Executing, Completion::Not, text);
+}
+
+void CommandManager::complete(const RunPtr& run, Completion completion, const std::string& message) {
+    run->done = true;
+    send_ack(*run->cmd, AckStatus::Completed, completion, message);
+    if (shutdown_after_ == run && options_.on_shutdown) workers_.spawn(options_.on_shutdown);
+    if (run->queued) {
+        if (active_ == run) active_.reset();
+        record_done(run, completion);
+        if (completion == Completion::ExecFailed) suspended_ = true;  // a failed step stops the plan; cancelAll resumes
+    }
+    idle_.notify_all();
+}
+
+void CommandManager::finish_unstarted(const RunPtr& run, const std::string& why) {
+    run->done = true;
+    send_ack(*run->cmd, AckStatus::Completed, Completion::Canceled, why);
+    record_done(run, Completion::Canceled);
+}
+
+void CommandManager::record_done(const RunPtr& run, Completion completion) {
+    completed_.push_back({options_.clock(), run, completion});
+    while (completed_.size() > RECORDS) completed_.pop_front();
+}
+
+void CommandManager::cancel(const RunPtr& run) {
+    if (run->ctx) {
+        run->requeue = false;
+        run->ctx->cancel();
+    }
+}
+
+// ---- state topics -------------------------------------------------------------------------
+
+void CommandManager::send_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message) {
+    out_.ack(cmd, status, completion, clip(message));
+    if (status != AckStatus::Completed) return;
+    // each command's last ack: keep the last `window` commands' acks
+    acked_.push_back(key_of(cmd));
+    while (acked_.size() > options_.window) {
+        Cmd old = std::move(acked_.front());
+        acked_.pop_front();
+        if (!live(old.cmd_id)) out_.retire(old);  // (its id sent again after the window, and still running)
+    }
+}
+
+void CommandManager::publish_queue() {
+    if (!has_queue_) return;
+    double now = options_.clock();
+    while (!completed_.empty() && now - completed_.front().at > COMPLETED_KEEP_S) completed_.pop_front();
+    std::vector<Record> pending, active, done;
+    for (const auto& r : pending_.items()) {
+        if (pending.size() >= RECORDS) break;
+        pending.push_back({r->cmd, RecordResult::Init, r->record_status});
+    }
+    if (active_) active.push_back({active_->cmd, RecordResult::Init, RecordStatus::InProcess});
+    for (const auto& d : completed_) done.push_back({d.run->cmd, result_of(d.completion), status_of(d.completion)});
+    out_.queue_state(suspended_ ? -1 : active_ ? 1 : 0, pending, active, done);
+}
+
+void CommandManager::publish_access() { out_.access_state(control_.controller(), control_.requestors()); }
+
+void CommandManager::publish_states() {
+    Lock lock(mutex_);
+    publish_queue();
+    if (has_control_) publish_access();
+}
+
+bool CommandManager::wait_idle(double timeout_s) {
+    using Clock = std::chrono::steady_clock;
+    auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s));
+    Lock lock(mutex_);
+    while (active_ || !bypass_.empty() || !pending_.empty()) {
+        Clock::duration left = end - Clock::now();
+        if (left <= Clock::duration::zero() || (suspended_ && !active_ && bypass_.empty()))
+            return !active_ && bypass_.empty();
+        idle_.wait_for(lock, std::min<Clock::duration>(left, std::chrono::milliseconds(50)));
+    }
+    return true;
+}
+
+// ---- built-in commands: the protocol's own ------------------------------------------------
+
+std::optional<Result> CommandManager::builtin(const RunPtr& run) {
+    if (!builtin_command(run->ref)) return std::nullopt;
+    const auto& args = run->cmd->args;
+    if (is(run, "Admin", "echo")) return Result::ok(args.empty() ? "" : str(args[0]));
+    if (is(run, "Admin", "noOp")) return Result::ok();
+    if (is(run, "Admin", "shutdown")) {
+        shutdown_after_ = run;  // once its COMPLETED ack is out
+        return Result::ok("shutting down");
+    }
+    if (is(run, "Queue", "cancelAll")) return cancel_all(run);
+    if (is(run, "Mobility", "stopAllMotion")) {
+        stop_all_motion(run);
+        return std::nullopt;  // the handler then stops the hardware
+    }
+    if (run->ref.type->name == "AccessControl") {
+        const std::string& src = run->cmd->cmd_src;
+        const std::string& name = run->ref.spec->name;
+        Control::Outcome done;
+        if (name == "requestControl") done = control_.request(src);
+        else if (name == "grabControl") done = control_.grab(src);
+        else if (name == "releaseControl") done = control_.release(src);
+        else done = control_.transfer(src, args.empty() ? "" : str(args[0]));
+        if (done.ok) publish_access();
+        return done.ok ? Result::ok(done.text) : Result::failed(done.text);
+    }
+    return std::nullopt;
+}
+
+Result CommandManager::cancel_all(const RunPtr& run) {
+    std::vector<RunPtr> waiting(pending_.items().begin(), pending_.items().end());
+    for (const auto& r : waiting) {
+        pending_.remove(r);
+        finish_unstarted(r, "cancelAll");
+    }
+    std::vector<RunPtr> running(bypass_);
+    if (active_) running.insert(running.begin(), active_);
+    int kept = 0;
+    for (const auto& r : running) {
+        if (r == run) continue;
+        if (r->abortable()) cancel(r);
+        else ++kept;
+    }
+    suspended_ = false;
+    return Result::ok(kept ? std::to_string(kept) + " non-abortable command(s) still running" : "");
+}
+
+void CommandManager::stop_all_motion(const RunPtr& run) {
+    // Motion stops first (every Mobility command canceled, abortable or not), then the
+    // handler stops the hardware.
+    auto mobility = tables_.subsystems_of_type("Mobility");
+    auto moving = [&](const RunPtr& r) {
+        return std::find(mobility.begin(), mobility.end(), r->cmd->subsystem) != mobility.end();
+    };
+    std::vector<RunPtr> waiting(pending_.items().begin(), pending_.items().end());
+    for (const auto& r : waiting) {
+        if (!moving(r)) continue;
+        pending_.remove(r);
+        finish_unstarted(r, "stopAllMotion");
+    }
+    std::vector<RunPtr> running(bypass_);
+    if (active_) running.insert(running.begin(), active_);
+    for (const auto& r : running)
+        if (r != run && moving(r)) cancel(r);
+}
+
+// ---- what tests look at ---------------------------------------------------------------------
+
+std::vector<std::string> CommandManager::pending_ids() const {
+    Lock lock(mutex_);
+    std::vector<std::string> ids;
+    for (const auto& r : pending_.items()) ids.push_back(r->id());
+    return ids;
+}
+
+std::size_t CommandManager::pending_count() const {
+    Lock lock(mutex_);
+    return pending_.size();
+}
+
+bool CommandManager::suspended() const {
+    Lock lock(mutex_);
+    return suspended_;
+}
+
+std::string CommandManager::controller() const {
+    Lock lock(mutex_);
+    return control_.controller();
+}
+
+std::vector<std::string> CommandManager::requestors() const {
+    Lock lock(mutex_);
+    return control_.requestors();
+}
+
+std::size_t CommandManager::remembered() const {
+    Lock lock(mutex_);
+    return seen_.size();
+}
+
+std::vector<std::string> CommandManager::acks_kept() const {
+    Lock lock(mutex_);
+    std::vector<std::string> ids;
+    for (const auto& c : acked_) ids.push_back(c.cmd_id);
+    return ids;
+}
+
+}  // namespace rapid_runtime

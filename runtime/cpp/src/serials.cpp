@@ -1,0 +1,33 @@
+#include "rapid_runtime/serials.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace rapid_runtime {
+
+Serials::Serials(std::int64_t start, std::function<std::int64_t()> now) : now_(std::move(now)) {
+    if (!now_)
+        now_ = [] {
+            return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
+                .count();
+        };
+    start_ = static_cast<std::int32_t>(start < 0 ? now_() : start);  // Header.serial is a long (32 bits)
+    last_ = start_;
+}
+
+std::int32_t Serials::of(const std::string& topic) const {
+    auto it = topics_.find(topic);
+    return it == topics_.end() ? start_ : it->second.second;
+}
+
+std::pair<std::int32_t, bool> Serials::update(const std::string& topic, const std::string& content) {
+    auto it = topics_.find(topic);
+    if (it != topics_.end()) {
+        if (it->second.first == content) return {it->second.second, false};
+        last_ = std::max<std::int32_t>(last_ + 1, static_cast<std::int32_t>(now_()));
+    }
+    topics_[topic] = {content, last_};
+    return {last_, true};
+}
+
+}  // namespace rapid_runtime
