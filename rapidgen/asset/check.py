@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 from rapidgen.asset.check_telemetry import check_telemetry
 from rapidgen.asset.check_values import ValueChecker
 from rapidgen.asset.facts import fits, utf8_len
-from rapidgen.asset.spec import AssetSpec, CommandSpec, Located, SubsystemSpec, SubsystemTypeSpec
+from rapidgen.asset.spec import CommandSpec, Located, SubsystemSpec, SubsystemTypeSpec
 from rapidgen.asset.standard import STANDARD_TYPES
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from rapidgen.backends.base import (NO_NEEDS, GeneratedFile, Options, check_output, embed_nothing, no_companions,
                                    notice)
 from rapidgen.backends.cpp import asset as asset_tables
-from rapidgen.backends.cpp.typemap import Unsupported
+from rapidgen.backends.typewalk import Unsupported
 from rapidgen.backends.cpp.view import Builder, PackageView, UnsupportedInput
 from rapidgen.backends.escape import cmake_name
 from rapidgen.backends.templating import render

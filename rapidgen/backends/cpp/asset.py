@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rapidgen.backends.cpp import namer
-from rapidgen.backends.cpp.typemap import Unsupported
+from rapidgen.backends.typewalk import Unsupported
 from rapidgen.backends.escape import cpp_str
 from rapidgen.model import ir
 

@@ -8,6 +8,7 @@ from decimal import Decimal
 from typing import Callable
 
 from rapidgen.backends.escape import cpp_str
+from rapidgen.backends.typewalk import TypeSpeller
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
 from rapidgen.model.wire import PRIMITIVE_SIZES as SIZES
@@ -22,49 +23,32 @@ ENUM_TYPES = {1: "std::int8_t", 2: "std::int16_t", 4: "std::int32_t"}
 UNBOUNDED = 1 << 62  # a size no bounded type reaches: "no bound"
 
 
-class Unsupported(Exception):
-    def __init__(self, msg: str, loc: SourceLoc | None = None) -> None:
-        super().__init__(msg)
-        self.loc = loc
-
-
-class TypeMap:
+class TypeMap(TypeSpeller):
     """Needs the model and a function giving a declaration's qualified C++ name."""
 
+    TARGET = "cpp"
+    PRIMITIVES = PRIMITIVES
+
     def __init__(self, model: ir.Model, qualified: Callable[[str], str]) -> None:
-        self.model = model
+        super().__init__(model)
         self.q = qualified
         self._loop = 0
 
-    def decl(self, t: ir.Type) -> ir.Declaration | None:
-        return self.model.get(t.name) if isinstance(t, ir.TypeRef) else None
-
-    def real(self, t: ir.Type) -> ir.Type:
-        return self.model.resolve_alias(t)
-
-    # -- spelling ---------------------------------------------------------------------
+    # -- spelling (typewalk.TypeSpeller.spell walks; these spell) ---------------------
     def cpp(self, t: ir.Type, loc: SourceLoc) -> str:
-        if isinstance(t, ir.Primitive):
-            if t.name not in PRIMITIVES:
-                raise Unsupported(f"'{t}' is not supported by the cpp target", loc)
-            return PRIMITIVES[t.name]
-        if isinstance(t, ir.String):
-            if t.wide:
-                raise Unsupported("'wstring' is not supported by the cpp target", loc)
-            return "std::string"
-        if isinstance(t, ir.Sequence):
-            return f"std::vector<{self.cpp(t.element, loc)}>"
-        if isinstance(t, ir.Array):
-            out = self.cpp(t.element, loc)
-            for d in reversed(t.dims):
-                out = f"std::array<{out}, {d}>"
-            return out
-        if isinstance(t, ir.TypeRef):
-            decl = self.decl(t)
-            if decl is None or decl.kind not in ("struct", "union", "enum", "typedef"):
-                raise Unsupported(f"{t.kind} '{t.name}' is not supported by the cpp target", loc)
-            return self.q(t.name)
-        raise Unsupported(f"'{t}' is not supported by the cpp target (map, fixed)", loc)
+        return self.spell(t, loc)
+
+    def string_type(self) -> str:
+        return "std::string"
+
+    def sequence_of(self, element: str) -> str:
+        return f"std::vector<{element}>"
+
+    def array_of(self, element: str, n: int) -> str:
+        return f"std::array<{element}, {n}>"
+
+    def named(self, t: ir.TypeRef, decl: ir.Declaration, loc: SourceLoc) -> str:
+        return self.q(t.name)
 
     def default(self, t: ir.Type, loc: SourceLoc) -> str:
         """Brace initializer of a member: `{}` (zero, empty) or the enum's default enumerator."""

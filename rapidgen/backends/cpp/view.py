@@ -11,8 +11,9 @@ from dataclasses import dataclass, field
 
 from rapidgen.backends import base
 from rapidgen.backends.cpp import namer
-from rapidgen.backends.cpp.typemap import ENUM_TYPES, UNBOUNDED, TypeMap, Unsupported, enum_size
+from rapidgen.backends.cpp.typemap import ENUM_TYPES, TypeMap, enum_size
 from rapidgen.backends.escape import cpp_str
+from rapidgen.backends.typewalk import Unsupported, spelled_members
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir, wire
 
@@ -203,15 +204,7 @@ class Builder:
         self._check_ext(s)
         scope = namer.Scope(f"struct {s.scoped_name}", namer.RESERVED | {name})
         members, enc, dec = [], [], []
-        for m in self.model.all_members(s):
-            if m.optional:
-                self.problems.append((f"@optional member '{m.name}' is not supported by the cpp target", m.loc))
-                continue
-            try:
-                ctype = self.types.cpp(m.type, m.loc)
-            except Unsupported as exc:
-                self.problems.append((str(exc), exc.loc or m.loc))
-                continue
+        for m, ctype in spelled_members(self.types, self.model, s, self.problems):
             cname = scope.claim(m.name, m.name)
             init = ("{" + self.types.literal(m.default, m.type, m.loc) + "}" if m.default is not None
                     else self.types.default(m.type, m.loc))

@@ -12,9 +12,10 @@ import struct as _struct
 from typing import Callable
 
 from rapidgen.backends.escape import rust_str
+from rapidgen.backends.typewalk import TypeSpeller
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
-from rapidgen.model.wire import KEY_UNBOUNDED, enum_size
+from rapidgen.model.wire import enum_size
 from rapidgen.model.wire import PRIMITIVE_SIZES as SIZES
 
 PRIMITIVES = {
@@ -33,62 +34,45 @@ SERDE_ARRAYS = "crate::serde_arrays"
 CDR = "crate::cdr"
 
 
-class Unsupported(Exception):
-    def __init__(self, msg: str, loc: SourceLoc | None = None) -> None:
-        super().__init__(msg)
-        self.loc = loc
-
-
 def ref(place: str) -> str:
     """A reference to the value at `place`."""
     return place[1:] if place.startswith("*") else "&" + place
 
 
-class TypeMap:
+class TypeMap(TypeSpeller):
     """Needs the model and a function giving a declaration's path from the crate root."""
 
+    TARGET = "rust"
+    PRIMITIVES = PRIMITIVES
+
     def __init__(self, model: ir.Model, path: Callable[[str], str]) -> None:
-        self.model = model
+        super().__init__(model)
         self.path = path
         self.variant: Callable[[ir.Enum, str], str] = lambda e, n: n  # set by the view
         self._n = 0
-
-    def decl(self, t: ir.Type) -> ir.Declaration | None:
-        return self.model.get(t.name) if isinstance(t, ir.TypeRef) else None
-
-    def real(self, t: ir.Type) -> ir.Type:
-        return self.model.resolve_alias(t)
 
     def var(self, stem: str) -> str:
         """A fresh local variable name (`e1`, `a2`, ...)."""
         self._n += 1
         return f"{stem}{self._n}"
 
-    # -- spelling ---------------------------------------------------------------------
+    # -- spelling (typewalk.TypeSpeller.spell walks; these spell) ---------------------
     def rust(self, t: ir.Type, loc: SourceLoc) -> str:
-        if isinstance(t, ir.Primitive):
-            if t.name not in PRIMITIVES:
-                raise Unsupported(f"'{t}' is not supported by the rust target", loc)
-            return PRIMITIVES[t.name]
-        if isinstance(t, ir.String):
-            if t.wide:
-                raise Unsupported("'wstring' is not supported by the rust target", loc)
-            return "::std::string::String"
-        if isinstance(t, ir.Sequence):
-            return f"::std::vec::Vec<{self.rust(t.element, loc)}>"
-        if isinstance(t, ir.Array):
-            out = self.rust(t.element, loc)
-            for n in reversed(t.dims):
-                out = f"[{out}; {n}]"
-            return out
-        if isinstance(t, ir.TypeRef):
-            d = self.decl(t)
-            if d is None or d.kind not in ("struct", "union", "enum", "typedef"):
-                raise Unsupported(f"{t.kind} '{t.name}' is not supported by the rust target", loc)
-            if isinstance(d, ir.Typedef):
-                self.rust(d.type, loc)  # refuse what the alias names, at this use too
-            return self.path(t.name)
-        raise Unsupported(f"'{t}' is not supported by the rust target (map, fixed)", loc)
+        return self.spell(t, loc)
+
+    def string_type(self) -> str:
+        return "::std::string::String"
+
+    def sequence_of(self, element: str) -> str:
+        return f"::std::vec::Vec<{element}>"
+
+    def array_of(self, element: str, n: int) -> str:
+        return f"[{element}; {n}]"
+
+    def named(self, t: ir.TypeRef, decl: ir.Declaration, loc: SourceLoc) -> str:
+        if isinstance(decl, ir.Typedef):
+            self.spell(decl.type, loc)  # refuse what the alias names, at this use too
+        return self.path(t.name)
 
     def default(self, t: ir.Type) -> str | None:
         """A default expression, or None where `Default::default()` gives the IDL default

@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 from rapidgen.backends import base
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.rust import namer
-from rapidgen.backends.rust.typemap import ENUM_REPR, Unsupported, TypeMap, enum_size
+from rapidgen.backends.rust.typemap import ENUM_REPR, TypeMap, enum_size
+from rapidgen.backends.typewalk import Unsupported, spelled_members
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir, wire
 
@@ -200,15 +201,7 @@ class Builder:
         scope = namer.Scope(f"struct {s.scoped_name}")
         members, enc, size = [], [], []
         derive = True
-        for m in self.model.all_members(s):
-            if m.optional:
-                self.problems.append((f"@optional member '{m.name}' is not supported by the rust target", m.loc))
-                continue
-            try:
-                rtype = self.types.rust(m.type, m.loc)
-            except Unsupported as exc:
-                self.problems.append((str(exc), exc.loc or m.loc))
-                continue
+        for m, rtype in spelled_members(self.types, self.model, s, self.problems):
             rname = scope.claim(namer.snake(m.name), m.name)
             what = f"{s.scoped_name}.{m.name}"
             default = self.types.default(m.type)
