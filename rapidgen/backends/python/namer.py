@@ -17,6 +17,10 @@ from __future__ import annotations
 
 import re
 
+from rapidgen.backends import naming
+
+NameCollision = naming.NameCollision  # namer.NameCollision, as for the other namers
+
 # Python 3 keywords (hard keywords only; soft keywords such as `match`, `case`, `type`
 # are valid identifiers).
 KEYWORDS = frozenset("""
@@ -49,17 +53,9 @@ ENUM_RESERVED = frozenset({"mro", "name", "value"})
 _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
 
-class NameCollision(Exception):
-    """Two IDL names were given one Python name (a bug in the view layer)."""
-
-
 def escape(name: str, reserved: frozenset[str] | set[str]) -> str:
-    """The name with underscores appended while it is a reserved word."""
-    for _ in range(100):
-        if name not in reserved and not _is_magic(name):
-            break
-        name += "_"
-    return name
+    """The name with underscores appended while it is a reserved word or a magic name."""
+    return naming.escape(name, reserved, _is_magic)
 
 
 def _is_magic(name: str) -> bool:
@@ -78,44 +74,18 @@ def identifier(text: str) -> str:
     return out
 
 
-class Scope:
-    """One Python namespace: gives out unique names, remembers what each stands for."""
+class Scope(naming.Scope):
+    """One Python namespace (backends/naming.py): dunder and sunder names are reserved too;
+    check() refuses keywords (a scope's extra reserved names are only stepped around)."""
 
-    def __init__(self, label: str, reserved: frozenset[str] | set[str] = frozenset(), *,
-                 fold_case: bool = False) -> None:
-        self.label = label
-        self.reserved = frozenset(reserved)
-        self.fold_case = fold_case  # file and folder names: unique on case-insensitive file systems too
-        self.owner: dict[str, str] = {}  # python name -> what it names (IDL scoped name, file, ...)
-        self._folded: dict[str, str] = {}
+    LANGUAGE = "Python"
+    IDENT = _IDENT
 
-    def claim(self, preferred: str, owner: str) -> str:
-        """A free name as close to `preferred` as possible, recorded as naming `owner`."""
-        name = escape(preferred, self.reserved)
-        while self._holder(name) is not None:
-            if self._holder(name) == owner:
-                return name
-            name = escape(name + "_", self.reserved)
-        self.owner[name] = owner
-        self._folded[name.lower()] = owner
-        return name
+    def also_reserved(self, name: str) -> bool:
+        return _is_magic(name)
 
-    def _holder(self, name: str) -> str | None:
-        return self._folded.get(name.lower()) if self.fold_case else self.owner.get(name)
-
-    def take(self, name: str, owner: str) -> None:
-        """Record a name that must be used exactly as given (imports, fixed names)."""
-        holder = self._holder(name)
-        if holder is not None and holder != owner:
-            raise NameCollision(f"{self.label}: '{name}' names both {holder} and {owner}")
-        self.owner[name] = owner
-        self._folded[name.lower()] = owner
-
-    def check(self) -> None:
-        """Every name valid, not a keyword, not reserved in this scope."""
-        for name, owner in self.owner.items():
-            if not _IDENT.match(name) or name in KEYWORDS:
-                raise NameCollision(f"{self.label}: '{name}' (for {owner}) is not a usable Python name")
+    def usable(self, name: str) -> bool:
+        return bool(_IDENT.match(name)) and name not in KEYWORDS
 
 
 def member_reserved(kind: str, used_in_body: set[str]) -> frozenset[str]:
