@@ -21,7 +21,7 @@ import time
 from dataclasses import dataclass
 from types import ModuleType
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.diagnostics import DiagnosticSink, FileLineCache, SourceLoc, render
 
 CMDLINE = "<command line>"

@@ -12,7 +12,7 @@ from typing import Callable
 from rapidgen.asset.load import LoadedAsset, load_asset
 from rapidgen.asset.spec import (AgentTelemetry, ImageTelemetry, JointTelemetry, PositionTelemetry,
                                  Threshold, TypedValue)
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.diagnostics import DiagnosticSink
 
 Report = Callable[[DiagnosticSink], None]

@@ -14,19 +14,11 @@ import re
 
 import markupsafe
 
-_PY_SHORT = {"\\": "\\\\", "\n": "\\n", "\t": "\\t", "\r": "\\r"}
+from rapidgen.textsafe import code_escape as _code_escape
+from rapidgen.textsafe import visible
+
 # PEP 263: a comment on line 1 or 2 matching this names the source encoding.
 _CODING = re.compile(r"coding([:=])")
-
-
-def _code_escape(ch: str) -> str:
-    """`ch` as a Python (and C/JSON-like) backslash escape."""
-    code = ord(ch)
-    if ch in _PY_SHORT:
-        return _PY_SHORT[ch]
-    if code < 0x80:
-        return f"\\x{code:02x}"
-    return f"\\u{code:04x}" if code <= 0xFFFF else f"\\U{code:08x}"
 
 
 def py_str(text: str) -> str:
@@ -41,12 +33,6 @@ def py_docstring(text: str) -> str:
     surprises), anything else as a backslash escape."""
     return "".join(ch if ch == "\n" or (ch.isprintable() and ch not in '"\\') else
                    "\\" + ch if ch in '"\\' else _code_escape(ch) for ch in text)
-
-
-def visible(text: str) -> str:
-    """One line of printable text: what is not printable (newlines, controls, escape
-    sequences, lone surrogates) shown as a backslash escape such as \\x1b."""
-    return "".join(ch if ch.isprintable() else _code_escape(ch) for ch in text)
 
 
 def line_comment(text: str) -> str:

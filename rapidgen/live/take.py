@@ -24,7 +24,7 @@ import collections
 import copy
 from dataclasses import dataclass
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 
 BATCH = 32
 MAX_WRITERS = 256

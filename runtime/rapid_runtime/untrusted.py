@@ -8,7 +8,7 @@ RAPID topic, with any bytes. Two rules hold for everything the runtime reads:
 - wire text reaches a log only through visible(): no ESC, BEL or C1 byte gets to a terminal.
 
 rapidgen's live tools keep the same two rules in rapidgen/live/take.py and
-rapidgen/backends/escape.py (the runtime cannot import the compiler: a robot installs the
+rapidgen/textsafe.py (the runtime cannot import the compiler: a robot installs the
 runtime alone); tests/security/test_live_helpers.py holds both to the same answers.
 """
 from __future__ import annotations
@@ -38,7 +38,7 @@ _SHORT = {"\\": "\\\\", "\n": "\\n", "\r": "\\r", "\t": "\\t"}
 
 
 def _escape(ch: str) -> str:
-    """The same escapes as rapidgen.backends.escape.visible (a test holds them equal)."""
+    """The same escapes as rapidgen.textsafe.visible (a test holds them equal)."""
     code = ord(ch)
     if ch in _SHORT:
         return _SHORT[ch]

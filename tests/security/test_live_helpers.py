@@ -1,5 +1,5 @@
 """The two copies of the wire rules (rapid_runtime/untrusted.py for the robot,
-rapidgen/live/take.py and rapidgen.backends.escape.visible for the tools; the runtime
+rapidgen/live/take.py and rapidgen.textsafe.visible for the tools; the runtime
 cannot import the compiler) give the same answers: the same escapes for any text, the same
 samples kept and dropped from a real reader (Cyclone on loopback, domain 34)."""
 from __future__ import annotations
@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rapid_runtime.untrusted import visible as runtime_visible
-from rapidgen.backends.escape import visible as tool_visible
+from rapidgen.textsafe import visible as tool_visible
 from tests.runtime.live import ROOT, SEEDS, env_for, python_dir
 from tests.security.measure import FORBIDDEN
 
