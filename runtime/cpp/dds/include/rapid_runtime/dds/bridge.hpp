@@ -1,0 +1,124 @@
+// A running RAPID asset on Fast DDS: the manager behind the intake door, acks and state
+// topics written, configs published with their serials, telemetry headers filled.
+//
+//     Bridge bridge(tables, handlers, options);
+//     bridge.publish_config("rapid_command_config", rapid_k10red::config_rapid_command_config());
+//     bridge.start();                 // states published, commands read
+//     while (!bridge.wait(0.5)) ...   // until Admin/shutdown or stop()
+//
+// The generated glue (phase 2) only fills in the tables, the configs and the handlers.
+#ifndef RAPID_RUNTIME_DDS_BRIDGE_HPP
+#define RAPID_RUNTIME_DDS_BRIDGE_HPP
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <rapid_runtime/intake.hpp>
+#include <rapid_runtime/log.hpp>
+#include <rapid_runtime/manager.hpp>
+#include <rapid_runtime/serials.hpp>
+
+#include "messages.hpp"
+#include "node.hpp"
+
+namespace rapid_runtime {
+namespace dds {
+
+inline constexpr const char* COMMAND_TOPIC = "rapid_command";
+inline constexpr const char* ACK_TOPIC = "rapid_ack";
+inline constexpr const char* QUEUE_STATE_TOPIC = "rapid_queue_state";
+inline constexpr const char* ACCESS_STATE_TOPIC = "rapid_accesscontrol_state";
+// Acks are transient-local, keyed by cmdId: a commander discovered late still gets the
+// whole sequence (QUEUED, EXECUTING, REQUEUED, EXECUTING, COMPLETED, a few progress acks).
+inline constexpr int ACK_HISTORY = 8;
+
+struct BridgeOptions {
+    int domain = -1;  // -1: the tables' domain
+    std::string profiles_file;  // the asset's generated qos/fastdds/rapid_qos_profiles.xml
+    std::string transport = "local";
+    std::size_t command_window = COMMAND_WINDOW;
+    std::int64_t serial = -1;  // the configs' first serial (-1: start time in seconds)
+    std::function<void(const std::string&)> log;  // default: stderr, "[asset] text"
+};
+
+class Bridge : public Outbox {
+public:
+    Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options = {});
+    ~Bridge() override;
+    Bridge(const Bridge&) = delete;
+    Bridge& operator=(const Bridge&) = delete;
+
+    // Publish a config on its transient-local topic; a changed content gets a new, larger
+    // serial (receivers ignore a config whose serial did not change). Returns the serial.
+    template <class T>
+    std::int32_t publish_config(const std::string& topic, T value, const std::string& profile = "RapidConfigQos") {
+        std::lock_guard<std::mutex> lock(config_mutex_);
+        value.hdr = ::rapid::Header{};
+        auto bytes = rapidgen::cdr::serialize(value);
+        auto [serial, changed] = serials_.update(topic, std::string(bytes.begin(), bytes.end()));
+        if (changed) {
+            value.hdr = header(tables_.name, tables_.name, serial);
+            node_->writer<T>(topic, profile)->write(&value);
+        }
+        return serial;
+    }
+
+    // A sample or state paired with a config: its header copies the config's (srcName and
+    // assetName the asset, serial the config's), timeStamp now in microseconds.
+    template <class T>
+    void publish(const std::string& topic, T& sample, const std::string& config_topic,
+                 const std::string& profile = "RapidSampleQos") {
+        sample.hdr = header(tables_.name, tables_.name, serial_of(config_topic));
+        node_->writer<T>(topic, profile)->write(&sample);
+    }
+
+    std::int32_t serial_of(const std::string& config_topic) const;
+    void start();  // publishes the states, opens the command path; prints nothing
+    void stop();  // idempotent: the last acks flushed, threads joined
+    void request_stop();  // from any thread (Admin/shutdown, a signal handler's flag)
+    bool wait(double seconds);  // true once stopping was requested
+    bool stopping() const { return stop_requested_.load(); }
+
+    Node& node() { return *node_; }
+    CommandManager& manager() { return *manager_; }
+    void log(const std::string& text) override { (*log_)(text); }
+
+    // ---- Outbox (manager.hpp) ------------------------------------------------------------
+    void ack(const Cmd& cmd, AckStatus status, Completion completed, const std::string& message) override;
+    void queue_state(int code, const std::vector<Record>& pending, const std::vector<Record>& active,
+                     const std::vector<Record>& completed) override;
+    void access_state(const std::string& controller, const std::vector<std::string>& requestors) override;
+    void retire(const Cmd& cmd) override;
+
+private:
+    void read_commands();
+
+    const Tables& tables_;
+    std::unique_ptr<Log> log_;
+    Serials serials_;
+    mutable std::mutex config_mutex_;
+    std::unique_ptr<Node> node_;  // before the manager: written to until the manager is gone
+    eprosima::fastdds::dds::DataWriter* acks_ = nullptr;
+    std::mutex ack_mutex_;
+    ::rapid::Ack ack_;  // one sample, reused for every ack
+    std::unique_ptr<CommandManager> manager_;
+    std::unique_ptr<Intake> intake_;
+    std::thread reader_thread_;
+    eprosima::fastdds::dds::DataReader* commands_ = nullptr;
+    std::atomic<bool> stop_requested_{false};
+    std::atomic<bool> reading_{false};
+    bool stopped_ = false;
+    std::mutex wait_mutex_;
+    std::condition_variable wake_;
+};
+
+}  // namespace dds
+}  // namespace rapid_runtime
+
+#endif

@@ -1,0 +1,101 @@
+// One Fast DDS participant of the asset, from the generated QoS profiles: writers and
+// readers per topic with their RAPID profile, in the asset's partition.
+//
+// DDS traffic stays where the profiles say: the participant is created from a profile of
+// the generated Fast DDS XML ("rapid_local": loopback only), loaded from `profiles_file`
+// and from FASTDDS_DEFAULT_PROFILES_FILE (load_profiles()). Without either it refuses to
+// start rather than fall back to Fast DDS's defaults (multicast on every interface).
+#ifndef RAPID_RUNTIME_DDS_NODE_HPP
+#define RAPID_RUNTIME_DDS_NODE_HPP
+
+#include <functional>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include "rapid_runtime_dds_types.hpp"
+
+namespace rapid_runtime {
+namespace dds {
+
+class DdsError : public std::runtime_error {
+public:
+    explicit DdsError(const std::string& what) : std::runtime_error(what) {}
+};
+
+struct NodeOptions {
+    int domain = 0;
+    std::string profiles_file;  // the generated qos/fastdds/rapid_qos_profiles.xml
+    std::string transport = "local";  // participant profile "rapid_<transport>"
+    std::string partition;  // the asset's; overrides the profiles' partition
+};
+
+class Node {
+public:
+    using WriterTweak = std::function<void(eprosima::fastdds::dds::DataWriterQos&)>;
+    using ReaderTweak = std::function<void(eprosima::fastdds::dds::DataReaderQos&)>;
+
+    explicit Node(const NodeOptions& options);
+    ~Node();
+    Node(const Node&) = delete;
+    Node& operator=(const Node&) = delete;
+
+    // The topic's writer (created once, with `profile`, then tweak(qos) applied).
+    template <class T>
+    eprosima::fastdds::dds::DataWriter* writer(const std::string& topic, const std::string& profile,
+                                               const WriterTweak& tweak = {}) {
+        std::lock_guard<std::recursive_mutex> lock(mutex_);
+        auto found = writers_.find(topic);
+        if (found != writers_.end()) return found->second;
+        auto* w = make_writer(make_topic<T>(topic), profile, tweak);
+        writers_[topic] = w;
+        return w;
+    }
+
+    template <class T>
+    eprosima::fastdds::dds::DataReader* reader(const std::string& topic, const std::string& profile,
+                                               const ReaderTweak& tweak = {}) {
+        std::lock_guard<std::recursive_mutex> lock(mutex_);
+        return make_reader(make_topic<T>(topic), profile, tweak);
+    }
+
+    eprosima::fastdds::dds::DomainParticipant* participant() { return participant_; }
+    const std::string& partition() const { return partition_; }
+
+private:
+    template <class T>
+    eprosima::fastdds::dds::Topic* make_topic(const std::string& name) {
+        const char* type = rapidgen::dds::Traits<T>::name;
+        if (participant_->find_type(type).empty())
+            eprosima::fastdds::dds::TypeSupport(new rapidgen::dds::TopicType<T>()).register_type(participant_);
+        return topic_of(name, type);
+    }
+    eprosima::fastdds::dds::Topic* topic_of(const std::string& name, const std::string& type);
+    eprosima::fastdds::dds::DataWriter* make_writer(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
+                                                    const WriterTweak& tweak);
+    eprosima::fastdds::dds::DataReader* make_reader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
+                                                    const ReaderTweak& tweak);
+
+    std::recursive_mutex mutex_;
+    std::string partition_;
+    eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+    eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+    eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+    std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+    std::map<std::string, eprosima::fastdds::dds::DataWriter*> writers_;
+};
+
+}  // namespace dds
+}  // namespace rapid_runtime
+
+#endif

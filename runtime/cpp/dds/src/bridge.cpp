@@ -1,0 +1,158 @@
+#include "rapid_runtime/dds/bridge.hpp"
+
+#include <cstdio>
+#include <iostream>
+
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+
+#include <rapid_runtime/text.hpp>
+
+namespace rapid_runtime {
+namespace dds {
+
+using namespace eprosima::fastdds::dds;
+
+namespace {
+
+// The DDS writer a command came from, for the intake's per-writer FIFOs and logs.
+std::string writer_id(const InstanceHandle_t& handle) {
+    std::string out;
+    char buf[4];
+    for (std::size_t i = 0; i < 16; ++i) {
+        std::snprintf(buf, sizeof buf, "%02x", static_cast<unsigned>(handle.value[i]));
+        out += buf;
+    }
+    return out;
+}
+
+}  // namespace
+
+Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
+    : tables_(tables), serials_(options.serial) {
+    auto write = options.log;
+    if (!write) {
+        std::string prefix = "[" + visible(tables.name) + "] ";
+        write = [prefix](const std::string& text) { std::cerr << prefix << text << std::endl; };
+    }
+    log_ = std::make_unique<Log>(write);
+    NodeOptions node;
+    node.domain = options.domain < 0 ? tables.domain : options.domain;
+    node.profiles_file = options.profiles_file;
+    node.transport = options.transport;
+    node.partition = tables.partition.empty() ? tables.name : tables.partition;
+    node_ = std::make_unique<Node>(node);
+    ManagerOptions m;
+    m.window = options.command_window;
+    m.on_shutdown = [this] { request_stop(); };
+    manager_ = std::make_unique<CommandManager>(tables, handlers, *this, m);
+    intake_ = std::make_unique<Intake>(*manager_, [this](const std::string& text) { log(text); });
+}
+
+Bridge::~Bridge() { stop(); }
+
+std::int32_t Bridge::serial_of(const std::string& config_topic) const {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    return serials_.of(config_topic);
+}
+
+void Bridge::start() {
+    if (!tables_.subsystems.empty()) {
+        // The ack writer exists before the command reader: commanders wait to match both.
+        acks_ = node_->writer<::rapid::Ack>(ACK_TOPIC, "RapidReliableDurableQos", [](DataWriterQos& q) {
+            q.history().kind = KEEP_LAST_HISTORY_QOS;
+            q.history().depth = ACK_HISTORY;
+            q.resource_limits().max_samples_per_instance = ACK_HISTORY;
+        });
+    }
+    manager_->publish_states();
+    if (tables_.subsystems.empty()) return;
+    // The profile's resource limits stay: Fast DDS refuses a bounded max_samples while
+    // instances are unbounded (one instance per commander, never bounded safely), so the
+    // bound is the intake door's (PER_WRITER waiting, then "bridge busy"), which takes
+    // every sample as it comes.
+    commands_ = node_->reader<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos");
+    intake_->start();
+    reading_ = true;
+    reader_thread_ = std::thread([this] { read_commands(); });
+}
+
+void Bridge::read_commands() {
+    ::rapid::Command sample;  // reused: taking a command allocates only what it holds
+    SampleInfo info;
+    const eprosima::fastrtps::Duration_t slice(0, 200'000'000);
+    while (reading_) {
+        if (!commands_->wait_for_unread_message(slice)) continue;
+        while (reading_ && commands_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+            if (!info.valid_data) continue;  // (samples that do not decode are dropped by the topic type)
+            try {
+                intake_->offer(command_in(sample), writer_id(info.publication_handle));
+            } catch (const std::exception& e) {  // a bad sample must not stop command intake
+                log("command '" + sample.cmdId + "' not read: " + e.what());
+            }
+        }
+    }
+}
+
+void Bridge::request_stop() {
+    {
+        std::lock_guard<std::mutex> lock(wait_mutex_);
+        stop_requested_ = true;
+    }
+    wake_.notify_all();
+}
+
+bool Bridge::wait(double seconds) {
+    std::unique_lock<std::mutex> lock(wait_mutex_);
+    return wake_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return stop_requested_.load(); });
+}
+
+void Bridge::stop() {
+    if (stopped_) return;
+    stopped_ = true;
+    request_stop();
+    reading_ = false;
+    if (reader_thread_.joinable()) reader_thread_.join();
+    if (intake_) intake_->stop();
+    manager_.reset();  // cancels what runs, joins the handlers
+    // the last acks (shutdown's own) reach their readers
+    if (acks_ != nullptr) acks_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(2, 0));
+    intake_.reset();
+    node_.reset();
+}
+
+// ---- Outbox -------------------------------------------------------------------------------------
+
+void Bridge::ack(const Cmd& cmd, AckStatus status, Completion completed, const std::string& message) {
+    std::lock_guard<std::mutex> lock(ack_mutex_);
+    if (acks_ == nullptr) return;
+    fill_ack(ack_, cmd, status, completed, message);
+    if (!acks_->write(&ack_)) log("ack of '" + cmd.cmd_id + "' not written");
+}
+
+void Bridge::retire(const Cmd& cmd) {
+    // Unregister the command's ack instance (its key: the command's header names and
+    // cmdId): the writer drops its history once readers have acknowledged.
+    std::lock_guard<std::mutex> lock(ack_mutex_);
+    if (acks_ == nullptr) return;
+    ::rapid::Ack key;
+    fill_ack(key, cmd, AckStatus::Completed, Completion::Not, "");
+    if (acks_->unregister_instance(&key, HANDLE_NIL) != ReturnCode_t::RETCODE_OK)
+        log("acks of '" + cmd.cmd_id + "' not unregistered");
+}
+
+void Bridge::queue_state(int code, const std::vector<Record>& pending, const std::vector<Record>& active,
+                         const std::vector<Record>& completed) {
+    auto q = dds::queue_state(header(tables_.name, tables_.name, serials_.start(), code), pending, active, completed);
+    node_->writer<::rapid::QueueState>(QUEUE_STATE_TOPIC, "RapidStateQos")->write(&q);
+}
+
+void Bridge::access_state(const std::string& controller, const std::vector<std::string>& requestors) {
+    ::rapid::AccessControlState s;
+    s.hdr = header(tables_.name, tables_.name, serials_.start());
+    s.controller = controller;
+    s.requestors = requestors;
+    node_->writer<::rapid::AccessControlState>(ACCESS_STATE_TOPIC, "RapidStateQos")->write(&s);
+}
+
+}  // namespace dds
+}  // namespace rapid_runtime

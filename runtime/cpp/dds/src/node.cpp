@@ -1,0 +1,77 @@
+#include "rapid_runtime/dds/node.hpp"
+
+#include <cstdlib>
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+
+namespace rapid_runtime {
+namespace dds {
+
+using namespace eprosima::fastdds::dds;
+
+Node::Node(const NodeOptions& options) : partition_(options.partition) {
+    auto* factory = DomainParticipantFactory::get_instance();
+    const char* env = std::getenv("FASTDDS_DEFAULT_PROFILES_FILE");
+    if (env == nullptr) env = std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE");
+    if (options.profiles_file.empty() && (env == nullptr || *env == '\0'))
+        throw DdsError("no QoS profiles: give the generated qos/fastdds/rapid_qos_profiles.xml or set "
+                       "FASTDDS_DEFAULT_PROFILES_FILE (Fast DDS's defaults would leave loopback)");
+    factory->load_profiles();  // FASTDDS_DEFAULT_PROFILES_FILE, when set
+    if (!options.profiles_file.empty() &&
+        factory->load_XML_profiles_file(options.profiles_file) != ReturnCode_t::RETCODE_OK)
+        throw DdsError("cannot load QoS profiles " + options.profiles_file);
+    participant_ = factory->create_participant_with_profile(options.domain, "rapid_" + options.transport);
+    if (participant_ == nullptr)
+        throw DdsError("no participant from profile rapid_" + options.transport + " on domain " +
+                       std::to_string(options.domain));
+    // One publisher and one subscriber in the asset's partition: the partition is theirs in
+    // DDS, and every RAPID endpoint of the asset shares it.
+    PublisherQos pq = participant_->get_default_publisher_qos();
+    pq.partition().clear();
+    pq.partition().push_back(partition_.c_str());
+    publisher_ = participant_->create_publisher(pq);
+    SubscriberQos sq = participant_->get_default_subscriber_qos();
+    sq.partition().clear();
+    sq.partition().push_back(partition_.c_str());
+    subscriber_ = participant_->create_subscriber(sq);
+    if (publisher_ == nullptr || subscriber_ == nullptr) throw DdsError("cannot create publisher or subscriber");
+}
+
+Node::~Node() {
+    if (participant_ == nullptr) return;
+    participant_->delete_contained_entities();
+    DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+Topic* Node::topic_of(const std::string& name, const std::string& type) {
+    auto found = topics_.find(name);
+    if (found != topics_.end()) return found->second;
+    Topic* t = participant_->create_topic(name, type, TOPIC_QOS_DEFAULT);
+    if (t == nullptr) throw DdsError("cannot create topic " + name + " of " + type);
+    topics_[name] = t;
+    return t;
+}
+
+DataWriter* Node::make_writer(Topic* topic, const std::string& profile, const WriterTweak& tweak) {
+    DataWriterQos qos;
+    if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK)
+        throw DdsError("no writer profile " + profile + " in the loaded QoS profiles");
+    if (tweak) tweak(qos);
+    DataWriter* w = publisher_->create_datawriter(topic, qos);
+    if (w == nullptr) throw DdsError("cannot create writer of " + topic->get_name() + " (" + profile + ")");
+    return w;
+}
+
+DataReader* Node::make_reader(Topic* topic, const std::string& profile, const ReaderTweak& tweak) {
+    DataReaderQos qos;
+    if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK)
+        throw DdsError("no reader profile " + profile + " in the loaded QoS profiles");
+    if (tweak) tweak(qos);
+    DataReader* r = subscriber_->create_datareader(topic, qos);
+    if (r == nullptr) throw DdsError("cannot create reader of " + topic->get_name() + " (" + profile + ")");
+    return r;
+}
+
+}  // namespace dds
+}  // namespace rapid_runtime
