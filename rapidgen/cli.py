@@ -12,7 +12,6 @@ from typing import Sequence
 
 from rapidgen import __version__, backends, codes
 from rapidgen.diagnostics import DiagnosticSink, FileLineCache, Severity, render
-from rapidgen.argtypes import domain_id
 
 
 def _common_idl_args(p: argparse.ArgumentParser) -> None:
@@ -53,7 +52,13 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"rapidgen {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
+    for add, _run in SUBCOMMANDS.values():
+        add(sub)
+    return parser
 
+
+# -- each subcommand's arguments -------------------------------------------------------------
+def _add_ir(sub) -> None:
     ir_p = sub.add_parser("ir", help="print the resolved model of IDL files as JSON")
     ir_p.add_argument("files", nargs="+", metavar="FILE", help="IDL files")
     _common_idl_args(ir_p)
@@ -61,6 +66,8 @@ def build_parser() -> argparse.ArgumentParser:
     ir_p.add_argument("--no-loc", action="store_true", help="omit source locations from the JSON")
     ir_p.add_argument("-o", "--output", metavar="FILE", help="write the JSON to FILE instead of stdout")
 
+
+def _add_generate(sub) -> None:
     gen_p = sub.add_parser("generate", help="generate bindings from an asset descriptor or IDL files")
     gen_p.add_argument("inputs", nargs="+", metavar="ASSET.yaml|FILE.idl")
     _common_idl_args(gen_p)
@@ -72,35 +79,52 @@ def build_parser() -> argparse.ArgumentParser:
     gen_p.add_argument("--package", metavar="NAME", help="name of the generated Python package (default: "
                        "rapid_<asset name> for an asset, rapid_types for IDL alone)")
 
+
+def _add_check(sub) -> None:
     chk_p = sub.add_parser("check", help="regenerate the project's targets in memory and report stale output")
     chk_p.add_argument("--project", default="rapidgen.yaml", metavar="FILE", help="project file (default: rapidgen.yaml)")
     chk_p.add_argument("--fix", action="store_true", help="rewrite stale output instead of failing")
     _diag_args(chk_p)
 
+
+def _add_summary(sub) -> None:
     sum_p = sub.add_parser("summary", help="parse IDL files and print a one-line-per-module summary")
     sum_p.add_argument("files", nargs="+", metavar="FILE")
     _common_idl_args(sum_p)
     _diag_args(sum_p)
 
+
+def _add_validate(sub) -> None:
     val_p = sub.add_parser("validate", help="check asset descriptors against the schema and the RAPID IDL")
     val_p.add_argument("files", nargs="+", metavar="ASSET.yaml")
     val_p.add_argument("--rapid", metavar="DIR", help="folder of the RAPID base IDL (default: the "
                        "descriptor's idl.rapid, else the nearest specs/rapid above it)")
     _diag_args(val_p)
+
+
+def _add_describe(sub) -> None:
     desc_p = sub.add_parser("describe", help="print an asset's subsystems, command dictionary and telemetry")
     desc_p.add_argument("file", metavar="ASSET.yaml")
     desc_p.add_argument("--rapid", metavar="DIR", help="folder of the RAPID base IDL")
     desc_p.add_argument("--json", action="store_true", help="print the same content as JSON")
     _diag_args(desc_p)
+
+
+def _add_init(sub) -> None:
     init_p = sub.add_parser("init", help="write a commented starter asset descriptor (never overwrites)")
     init_p.add_argument("name", nargs="?", default="MyRover", metavar="NAME", help="asset name (default MyRover)")
     init_p.add_argument("-o", "--output", metavar="FILE", help="the file to write (default: <name>.yaml)")
-    _add_cmd_parser(sub)
+
+
+def _add_vectors(sub) -> None:
     vec_p = sub.add_parser("vectors", help="write golden CDR vectors (sample values and their XCDR1/XCDR2 bytes)")
     vec_p.add_argument("inputs", nargs="+", metavar="ASSET.yaml|FILE.idl")
     _common_idl_args(vec_p)
     _diag_args(vec_p)
     vec_p.add_argument("-o", "--output", required=True, metavar="FILE", help="the JSON file to write")
+
+
+def _add_diff(sub) -> None:
     diff_p = sub.add_parser("diff", help="report wire, protocol and source breaking changes between two versions")
     diff_p.add_argument("paths", nargs="+", metavar="PATH", help="OLD NEW (IDL files, folders of IDL or asset "
                         "descriptors), or one PATH with --against REV")
@@ -112,37 +136,21 @@ def build_parser() -> argparse.ArgumentParser:
                         help="exit 1 when a change of these categories is found: WIRE, PROTOCOL, SOURCE")
     diff_p.add_argument("--ignore", action="append", default=[], metavar="RULE-ID", help="do not report a rule (repeatable)")
     diff_p.add_argument("--waivers", metavar="FILE", help="accepted changes per rule and type (docs/diff.md)")
-    from rapidgen.conform.command import add_parser as _conform_parser
-    _conform_parser(sub)
-    from rapidgen.spy.command import add_parser as _spy_parser
-    _spy_parser(sub)
-    return parser
 
 
-def _add_cmd_parser(sub) -> None:
-    p = sub.add_parser("cmd", help="send a command to a live asset and print its acks (needs cyclonedds)",
-                       description="Send SUBSYSTEM COMMAND to a live asset, arguments by name, checked against "
-                       "its command dictionary first; print the acks. Exit 0 on COMPLETED/OK, else 1.")
-    p.add_argument("asset", metavar="ASSET", help="asset descriptor (ASSET.yaml) or installed asset package")
-    p.add_argument("subsystem", metavar="SUBSYSTEM")
-    p.add_argument("command_name", metavar="COMMAND")
-    p.add_argument("arguments", nargs="*", metavar="key=value", help="parameters by name; defaults fill the rest")
-    p.add_argument("--action", default="BYPASS", metavar="ACTION",
-                   help="queue action: BYPASS (default), APPEND, INSERT, REPLACE, DELETE")
-    p.add_argument("--target", metavar="CMDID", help="the queued command INSERT, REPLACE or DELETE acts on")
-    p.add_argument("--id", metavar="CMDID", help="this command's cmdId (default: a fresh unique one)")
-    p.add_argument("--source", default="rapidgen", metavar="NAME", help="cmdSrc and srcName (default rapidgen)")
-    p.add_argument("--domain", type=domain_id, metavar="N", help="DDS domain (default: the asset's)")
-    p.add_argument("--transport", choices=("local", "lan", "wan"), help="Cyclone transport of the asset's QoS "
-                   "files (default: local, loopback only, unless CYCLONEDDS_URI is set)")
-    p.add_argument("--timeout", type=float, default=30.0, metavar="S",
-                   help="seconds to wait for the asset, then for completion (default 30)")
-    p.add_argument("--discover", type=float, default=2.0, metavar="S",
-                   help="seconds to wait for the live CommandConfig before using the descriptor's (default 2)")
-    p.add_argument("--from-descriptor", action="store_true", help="use the descriptor's dictionary, not the live one")
-    p.add_argument("--no-check", action="store_true",
-                   help="send values outside their range or allowed values (the asset answers BAD_SYNTAX)")
-    p.add_argument("--no-wait", action="store_true", help="return after the first ack")
+def _add_cmd(sub) -> None:
+    from rapidgen.cmd.command import add_parser
+    add_parser(sub)
+
+
+def _add_conform(sub) -> None:
+    from rapidgen.conform.command import add_parser
+    add_parser(sub)
+
+
+def _add_spy(sub) -> None:
+    from rapidgen.spy.command import add_parser
+    add_parser(sub)
 
 
 def _sink(args: argparse.Namespace) -> DiagnosticSink:
@@ -238,7 +246,7 @@ def _cmd_init(args: argparse.Namespace) -> int:
 
 
 def _cmd_cmd(args: argparse.Namespace) -> int:
-    from rapidgen.commander import run_cmd
+    from rapidgen.cmd.command import run_cmd
     return run_cmd(args, DiagnosticSink())
 
 
@@ -284,17 +292,22 @@ def _cmd_diff(args: argparse.Namespace) -> int:
     return run_diff(args, _sink(args), report)
 
 
-_COMMANDS = {"ir": _cmd_ir, "summary": _cmd_summary, "validate": _cmd_validate, "describe": _cmd_describe,
-             "generate": _cmd_generate, "check": _cmd_check, "vectors": _cmd_vectors,
-             "diff": _cmd_diff, "init": _cmd_init, "cmd": _cmd_cmd,
-             "conform": _cmd_conform, "spy": _cmd_spy}
+# Every subcommand registers the same way: name -> (its arguments, its run), in help order.
+# The live tools (cmd, conform, spy) keep their arguments beside their code.
+SUBCOMMANDS = {
+    "ir": (_add_ir, _cmd_ir), "generate": (_add_generate, _cmd_generate), "check": (_add_check, _cmd_check),
+    "summary": (_add_summary, _cmd_summary), "validate": (_add_validate, _cmd_validate),
+    "describe": (_add_describe, _cmd_describe), "init": (_add_init, _cmd_init), "cmd": (_add_cmd, _cmd_cmd),
+    "vectors": (_add_vectors, _cmd_vectors), "diff": (_add_diff, _cmd_diff),
+    "conform": (_add_conform, _cmd_conform), "spy": (_add_spy, _cmd_spy),
+}
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        return _COMMANDS[args.command](args)
+        return SUBCOMMANDS[args.command][1](args)
     except KeyboardInterrupt:
         return 130
     except BrokenPipeError:

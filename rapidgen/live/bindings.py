@@ -1,6 +1,11 @@
-"""An asset's DDS types, tables and QoS, generated from its descriptor into a temporary
-folder and imported from there: what a live tool needs to read and write the asset's
-topics, with no generated package installed (works from the rapidgen wheel alone)."""
+"""An asset's DDS types, tables and QoS: what a live tool (`cmd`, `conform`, `spy`) needs to
+read and write the asset's topics. The one loader of live assets:
+
+    load_bindings("specs/assets/k10.yaml", sink)   generated into a temporary folder and
+                                                    imported from there (the rapidgen wheel
+                                                    alone: no generated package installed)
+    import_bindings("rapid_k10red")                 an installed generated package
+"""
 from __future__ import annotations
 
 import contextlib
@@ -39,6 +44,7 @@ class AssetBindings:
     rapid: ModuleType  # the generated `rapid` module: rapid.Command, rapid.Ack, ...
     tables: dict  # the generated asset_tables module's literals (ASSET, COMMANDS, ...)
     qos: RapidQosLike  # the package's RapidQos
+    qos_module: ModuleType | None = None  # the package's qos module (RapidQos, RapidQosError)
     _tmp: object = field(default=None, repr=False)
 
     def type_class(self, scoped: str):
@@ -74,16 +80,31 @@ def load_bindings(descriptor: str, sink: DiagnosticSink, prefix: str = "rapidliv
     if not written:
         tmp.cleanup()
         return None
-    pydir = f"{tmp.name}/python"
-    sys.path.insert(0, pydir)
+    try:
+        return import_bindings(package, tmp.name, tmp)
+    except BaseException:
+        tmp.cleanup()
+        raise
+
+
+def import_bindings(package: str, folder: str | None = None, tmp: object = None) -> AssetBindings:
+    """Import a generated package: from `folder`/python (a fresh import, replacing any
+    earlier package of that name in this process), or as installed when folder is None.
+    Raises ImportError, or the package's RapidQosError when its QoS files cannot be used."""
+    pydir = f"{folder}/python" if folder is not None else None
+    if pydir is not None:
+        sys.path.insert(0, pydir)
     try:
         importlib.invalidate_caches()
-        for mod in [m for m in sys.modules if m == package or m.startswith(package + ".")]:
-            del sys.modules[mod]  # a second asset of the same name in this process
+        if pydir is not None:
+            for mod in [m for m in sys.modules if m == package or m.startswith(package + ".")]:
+                del sys.modules[mod]  # a second asset of the same name in this process
         rapid = importlib.import_module(f"{package}.rapid")
         tables_mod = importlib.import_module(f"{package}.asset_tables")
-        qos = importlib.import_module(f"{package}.qos").RapidQos()
+        qos_module = importlib.import_module(f"{package}.qos")
+        qos = qos_module.RapidQos()
     finally:
-        sys.path.remove(pydir)
+        if pydir is not None:
+            sys.path.remove(pydir)
     tables = {k: v for k, v in vars(tables_mod).items() if k.isupper()}
-    return AssetBindings(package, tmp.name, rapid, tables, qos, tmp)
+    return AssetBindings(package, folder or "", rapid, tables, qos, qos_module, tmp)
