@@ -62,7 +62,9 @@ def run_spy(args, sink, report) -> int:
     from rapidgen.spy.watch import Watcher
     assets = [b.tables for b in bindings[1:]]
     domain = args.domain if args.domain is not None else (assets[0]["ASSET"].get("domain", 0) if assets else 0)
-    w = Watcher(domain, bindings[1:] + bindings[:1], args.partition)
+    w = Watcher(domain, bindings[1:] + bindings[:1], args.partition,
+                declared=[a["ASSET"].get("partition", a["ASSET"]["name"]) for a in assets],
+                topics={echo_topic} if echo_topic is not None else None)
     declared = Declared(assets)
     try:
         if echo_topic is not None:

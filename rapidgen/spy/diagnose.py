@@ -22,8 +22,11 @@ DIAGNOSES = {  # code -> one-line explanation (docs/spy.md's table says the same
     "SPY-SER-01": "a sample's header serial differs from its config's: readers cannot pair them",
     "SPY-TIME-01": "header timestamps look like milliseconds since 1970 (RAPID says microseconds)",
     "SPY-ACK-01": "an ack names a cmdId that no command seen on the network carried",
+    "SPY-DATA-01": "a writer sends samples that do not decode as its topic's type (e.g. invalid UTF-8, a "
+                   "length past the data): each is dropped alone, its other samples are read",
 }
 SETTLE = 1.5  # seconds a reader of ours exists before a writer it did not match is judged
+MAX_JUDGED = 64  # writers and readers of a topic compared pairwise, each (endpoint floods: the first ones)
 _DURABILITY_RANK = {"Volatile": 0, "TransientLocal": 1, "Transient": 2, "Persistent": 3}
 _US_PER_DAY = 86_400 * 1_000_000
 
@@ -47,7 +50,7 @@ class Finding:
 def diagnose(w, roles: dict, declared_pairs: dict | None = None) -> list[Finding]:
     """Every finding on what the Watcher saw. roles: (partition, topic) -> role."""
     out: list[Finding] = []
-    for rule in (_qos, _durable_configs, _types, _partitions, _serials, _timestamps, _acks):
+    for rule in (_qos, _durable_configs, _types, _partitions, _serials, _timestamps, _acks, _undecodable):
         out += rule(w, roles, declared_pairs or {})
     seen, unique = set(), []
     for f in out:
@@ -59,6 +62,11 @@ def diagnose(w, roles: dict, declared_pairs: dict | None = None) -> list[Finding
 
 def _share(a: tuple[str, ...], b: tuple[str, ...]) -> str | None:
     """A partition both endpoints are in (either side may use wildcards), else None."""
+    common = set(a) & set(b)
+    if common:
+        return min(common)
+    if not any("*" in x or "?" in x for x in (*a, *b)):
+        return None
     for x in a:
         for y in b:
             if x == y or fnmatch.fnmatchcase(x, y) or fnmatch.fnmatchcase(y, x):
@@ -73,32 +81,51 @@ def _name(w, participant: str) -> str:
     return f"{proc}[{props.get('__Pid')}]" if proc else participant[:8]
 
 
+def _by_topic(w) -> dict[str, dict[str, list]]:
+    """topic -> {"writer": [...], "reader": [...]}: endpoints but those only in partitions a
+    cap left unread, at most MAX_JUDGED of each kind per topic."""
+    out: dict[str, dict[str, list]] = {}
+    for e in w.discovery.endpoints.values():
+        if all(p in w.unread_partitions for p in e.partitions):
+            continue
+        kinds = out.setdefault(e.topic, {"writer": [], "reader": []})
+        if len(kinds[e.kind]) < MAX_JUDGED:
+            kinds[e.kind].append(e)
+    return out
+
+
+def _pairs_of(w):
+    """(writer, reader) of each topic, from _by_topic."""
+    for eps in _by_topic(w).values():
+        for wr in eps["writer"]:
+            for rd in eps["reader"]:
+                yield wr, rd
+
+
 def _qos(w, roles, _pairs):
     lib = default_library()
-    eps = list(w.discovery.endpoints.values())
-    for wr in (e for e in eps if e.kind == "writer"):
-        for rd in (e for e in eps if e.kind == "reader" and e.topic == wr.topic):
-            part = _share(wr.partitions, rd.partitions)
-            if part is None or wr.participant == rd.participant:
-                continue
-            expected = lib.profile_for_type(wr.type_name.replace(".", "::"))
-            wq, rq = lib.effective(expected) if expected else (None, None)
-            problems = []
-            if rd.qos.reliability == "Reliable" and wr.qos.reliability == "BestEffort":
-                side = _side(wq is not None and wq.reliability == "reliable",
-                             rq is not None and rq.reliability != "reliable")
-                problems.append(f"reliability: reader requests RELIABLE, writer offers BEST_EFFORT ({side})")
-            wd, rdur = _DURABILITY_RANK.get(wr.qos.durability or "", 0), _DURABILITY_RANK.get(rd.qos.durability or "", 0)
-            if rdur > wd:
-                side = _side(wq is not None and wq.durability != "volatile",
-                             rq is not None and rq.durability == "volatile")
-                problems.append(f"durability: reader requests {rd.qos.durability}, writer offers "
-                                f"{wr.qos.durability} ({side})")
-            if wr.qos.ownership and rd.qos.ownership and wr.qos.ownership != rd.qos.ownership:
-                problems.append(f"ownership: reader {rd.qos.ownership}, writer {wr.qos.ownership}")
-            for p in problems:
-                yield Finding("SPY-QOS-01", part, wr.topic, f"writer {_name(w, wr.participant)} and reader "
-                              f"{_name(w, rd.participant)}: {p}" + (f"; profile {expected}" if expected else ""))
+    for wr, rd in _pairs_of(w):
+        part = _share(wr.partitions, rd.partitions)
+        if part is None or wr.participant == rd.participant:
+            continue
+        expected = lib.profile_for_type(wr.type_name.replace(".", "::"))
+        wq, rq = lib.effective(expected) if expected else (None, None)
+        problems = []
+        if rd.qos.reliability == "Reliable" and wr.qos.reliability == "BestEffort":
+            side = _side(wq is not None and wq.reliability == "reliable",
+                         rq is not None and rq.reliability != "reliable")
+            problems.append(f"reliability: reader requests RELIABLE, writer offers BEST_EFFORT ({side})")
+        wd, rdur = _DURABILITY_RANK.get(wr.qos.durability or "", 0), _DURABILITY_RANK.get(rd.qos.durability or "", 0)
+        if rdur > wd:
+            side = _side(wq is not None and wq.durability != "volatile",
+                         rq is not None and rq.durability == "volatile")
+            problems.append(f"durability: reader requests {rd.qos.durability}, writer offers "
+                            f"{wr.qos.durability} ({side})")
+        if wr.qos.ownership and rd.qos.ownership and wr.qos.ownership != rd.qos.ownership:
+            problems.append(f"ownership: reader {rd.qos.ownership}, writer {wr.qos.ownership}")
+        for p in problems:
+            yield Finding("SPY-QOS-01", part, wr.topic, f"writer {_name(w, wr.participant)} and reader "
+                          f"{_name(w, rd.participant)}: {p}" + (f"; profile {expected}" if expected else ""))
 
 
 def _side(writer_should: bool | None, reader_off: bool | None) -> str:
@@ -123,11 +150,12 @@ def _durable_configs(w, roles, _pairs):
 
 def _types(w, roles, _pairs):
     now = time.monotonic()
+    topics = _by_topic(w)
     for (topic, part, reliable, durable), st in list(w.streams.items()):
         if now - st.created < SETTLE:
             continue
         matched = st.matched()
-        for e in w.discovery.find("writer", topic):
+        for e in topics.get(topic, {}).get("writer", []):
             if part not in e.partitions or e.key in matched or not e.type_name.startswith("rapid::"):
                 continue
             if (e.qos.reliability == "Reliable") != reliable or ((e.qos.durability or "") in
@@ -174,24 +202,24 @@ def _leaf(name: str) -> str:
 
 
 def _partitions(w, roles, _pairs):
-    eps = list(w.discovery.endpoints.values())
-    for wr in (e for e in eps if e.kind == "writer"):
-        readers = [e for e in eps if e.kind == "reader" and e.topic == wr.topic and e.participant != wr.participant]
-        if readers and not any(_share(wr.partitions, r.partitions) for r in readers):
-            where = sorted({p for r in readers for p in r.partitions})
-            yield Finding("SPY-PART-01", wr.partitions[0], wr.topic,
-                          f"writer {_name(w, wr.participant)} is in partition(s) {', '.join(map(repr, wr.partitions))}; "
-                          f"the readers of {wr.topic} are in {', '.join(map(repr, where))}")
+    for eps in _by_topic(w).values():
+        for wr in eps["writer"]:
+            readers = [e for e in eps["reader"] if e.participant != wr.participant]
+            if readers and not any(_share(wr.partitions, r.partitions) for r in readers):
+                where = sorted({p for r in readers for p in r.partitions})
+                yield Finding("SPY-PART-01", wr.partitions[0], wr.topic,
+                              f"writer {_name(w, wr.participant)} is in partition(s) "
+                              f"{', '.join(map(repr, wr.partitions))}; "
+                              f"the readers of {wr.topic} are in {', '.join(map(repr, where))}")
     partition_of = _asset_partitions(w)
     for st in w.streams.values():
         if roles.get((st.partition, st.topic)) != "command" and not st.type_name.endswith("::Command"):
             continue
         for s in st.seen:
-            asset = getattr(getattr(s.sample, "hdr", None), "assetName", "")
-            home = partition_of.get(asset)
+            home = partition_of.get(s.asset)
             if home is not None and home != st.partition:
-                yield Finding("SPY-PART-01", st.partition, st.topic, f"commands for {asset} (cmdId "
-                              f"{s.sample.cmdId!r}) are written in partition {st.partition!r}; {asset} reads "
+                yield Finding("SPY-PART-01", st.partition, st.topic, f"commands for {s.asset} (cmdId "
+                              f"{s.cmd_id!r}) are written in partition {st.partition!r}; {s.asset} reads "
                               f"commands in {home!r}")
                 break
 
@@ -201,10 +229,8 @@ def _asset_partitions(w) -> dict[str, str]:
     out: dict[str, str] = {}
     for st in w.streams.values():
         if st.type_name.endswith("Config"):
-            for s in st.seen[-1:]:
-                name = getattr(getattr(s.sample, "hdr", None), "assetName", "")
-                if name:
-                    out.setdefault(name, st.partition)
+            if st.latest is not None and st.latest.asset:
+                out.setdefault(st.latest.asset, st.partition)
     return out
 
 
@@ -216,21 +242,26 @@ def _serials(w, roles, pairs):
             by_part.setdefault(st.partition, set()).add(st.topic)
     for st in w.streams.values():
         cfg_topic = pair_config(st.topic, by_part.get(st.partition, set()), pairs.get(st.partition))
-        if cfg_topic is None or cfg_topic == st.topic or not st.seen:
+        if cfg_topic is None or cfg_topic == st.topic or not st.by_writer:
             continue
         configs = w.seen(cfg_topic, st.partition)
         if not configs:
             continue
-        owner = {c.writer and _participant(w, c.writer): c.sample.hdr.serial for c in configs}  # latest wins
+        owner = {c.writer and _participant(w, c.writer): c.serial for c in configs}  # latest wins
         bad = []
-        for s in st.seen:
-            serial = owner.get(s.writer and _participant(w, s.writer), configs[-1].sample.hdr.serial)
-            if s.sample.hdr.serial != serial:
-                bad.append((s, serial))
+        seen = st.seen
+        for s in seen:
+            who = s.writer and _participant(w, s.writer)
+            serial = owner.get(who, configs[-1].serial)
+            if s.serial != serial:
+                bad.append((s, who, serial))
         if bad:
-            yield Finding("SPY-SER-01", st.partition, st.topic, f"{len(bad)} of {len(st.seen)} samples carry serial "
-                          f"{bad[-1][0].sample.hdr.serial}; {cfg_topic} from the same participant has serial "
-                          f"{bad[-1][1]}")
+            s, who, serial = bad[-1]
+            source = "the same participant" if who in owner else \
+                _name(w, (configs[-1].writer and _participant(w, configs[-1].writer)) or "?")
+            yield Finding("SPY-SER-01", st.partition, st.topic, f"{len(bad)} of {len(seen)} samples carry serial "
+                          f"{s.serial} (e.g. from {_name(w, who or '?')}); {cfg_topic} from {source} has serial "
+                          f"{serial}")
 
 
 def _participant(w, writer: str) -> str | None:
@@ -242,8 +273,8 @@ def _timestamps(w, roles, _pairs):
     now_us = time.time() * 1e6
     for st in w.streams.values():
         for s in reversed(st.seen[-20:]):
-            ts = getattr(getattr(s.sample, "hdr", None), "timeStamp", None)
-            if isinstance(ts, int) and ts > 0 and abs(ts * 1000 - now_us) < 30 * _US_PER_DAY \
+            ts = s.time_stamp
+            if ts is not None and ts > 0 and abs(ts * 1000 - now_us) < 30 * _US_PER_DAY \
                     and abs(ts * 1000 - now_us) < abs(ts - now_us):
                 yield Finding("SPY-TIME-01", st.partition, st.topic,
                               f"hdr.timeStamp {ts} is {time.strftime('%Y-%m-%d', time.gmtime(ts / 1000))} read as "
@@ -252,16 +283,23 @@ def _timestamps(w, roles, _pairs):
 
 
 def _acks(w, roles, _pairs):
-    sent = {s.sample.cmdId for st in w.streams.values() if st.type_name.endswith("::Command") for s in st.seen}
+    sent = w.cmd_ids
     listening = {st.partition: st.created for st in w.streams.values() if st.type_name.endswith("::Command")}
     for st in w.streams.values():
         if not st.type_name.endswith("::Ack"):
             continue
         since = max(w.started, listening.get(st.partition, w.started))
-        ghosts = [s.sample for s in st.seen if s.at >= since + 1.0
+        ghosts = [s for s in st.seen if s.at >= since + 1.0
                   and (s.stamp is None or s.stamp >= w.started_wall + 1.0)  # earlier: commands we could not see
-                  and s.sample.cmdId not in sent]
+                  and s.cmd_id is not None and s.cmd_id not in sent]
         if ghosts:
-            ids = sorted({a.cmdId for a in ghosts})
+            ids = sorted({a.cmd_id or "" for a in ghosts})
             yield Finding("SPY-ACK-01", st.partition, st.topic, f"{len(ghosts)} ack(s) name {len(ids)} cmdId(s) no "
-                          f"command seen carried (e.g. {ids[0]!r} from {ghosts[0].hdr.srcName or '?'!r})")
+                          f"command seen carried (e.g. {ids[0]!r} from {ghosts[0].src or '?'!r})")
+
+
+def _undecodable(w, roles, _pairs):
+    for d in w.dropped():
+        who = f"writer {d['writer']} ({_name(w, d['participant'])})" if d["participant"] else d["writer"]
+        yield Finding("SPY-DATA-01", d["partition"], d["topic"], f"{d['count']} sample(s) from {who} "
+                      f"did not decode and were dropped ({d['error']})")

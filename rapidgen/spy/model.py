@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import math
 from dataclasses import dataclass, field
 
 from rapidgen.qos.spec import QosSpec, default_library
@@ -50,7 +51,8 @@ def profile_of(qos, type_name: str, writer: bool, library: QosSpec | None = None
 
 def plain(value):
     """A decoded sample as JSON-ready data: structs as dicts, enums by name, unions as
-    {discriminator: value}, bytes as hex."""
+    {discriminator: value}, bytes as hex, NaN and infinities as the strings "NaN",
+    "Infinity", "-Infinity" (JSON has no such numbers)."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return {f.name: plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
     if isinstance(value, enum.Enum):
@@ -62,8 +64,8 @@ def plain(value):
     if hasattr(value, "discriminator") and hasattr(value, "value"):  # an IdlUnion
         d = value.discriminator
         return {getattr(d, "name", str(d)): plain(value.value)}
-    if isinstance(value, float) and value != value:
-        return "NaN"
+    if isinstance(value, float) and not math.isfinite(value):
+        return "NaN" if value != value else ("Infinity" if value > 0 else "-Infinity")
     return value
 
 
@@ -117,6 +119,8 @@ class Snapshot:
     participants: list[dict] = field(default_factory=list)  # key, process, pid, host
     assets: list[AssetView] = field(default_factory=list)
     findings: list = field(default_factory=list)  # diagnose.Finding
+    dropped: list[dict] = field(default_factory=list)  # undecodable samples per writer (Watcher.dropped)
+    limits: list[str] = field(default_factory=list)  # what a cap left out (Watcher.limits)
 
     def asset(self, name_or_partition: str) -> AssetView | None:
         return next((a for a in self.assets if name_or_partition in (a.name, a.partition)), None)
@@ -125,7 +129,7 @@ class Snapshot:
         return {"domain": self.domain, "seconds": round(self.seconds, 3), "participants": self.participants,
                 "assets": [dict(dataclasses.asdict(a), topics=[dict(dataclasses.asdict(t), profile=t.profile)
                                                                for t in a.topics]) for a in self.assets],
-                "findings": [f.as_dict() for f in self.findings]}
+                "findings": [f.as_dict() for f in self.findings], "dropped": self.dropped, "limits": self.limits}
 
 
 def rate(arrivals: list[float]) -> float | None:

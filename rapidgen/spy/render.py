@@ -15,13 +15,19 @@ def _rate(t) -> str:
     return got + (f" ({t.declared_rate:g})" if t.declared_rate else "")
 
 
+def _partitions(p: dict) -> str:
+    shown = ", ".join(repr(x) for x in p["partitions"][:8])
+    more = len(p["partitions"]) - 8 + p.get("other_partitions", 0)
+    return (shown + (f" (+{more} more)" if more > 0 else "")) or "-"
+
+
 def text(snap: Snapshot) -> str:
     n_p, n_a = len(snap.participants), len(snap.assets)
     out = [f"rapidgen spy: domain {snap.domain}, {n_p} participant{'s' * (n_p != 1)}, "
            f"{n_a} partition{'s' * (n_a != 1)}, {snap.seconds:.1f} s watched", "", "Participants"]
     out += table(["participant", "process", "pid", "host", "partitions"],
                  [[p["key"][:17], p["process"] or "?", p["pid"] or "?", p["host"] or "?",
-                   ", ".join(repr(x) for x in p["partitions"]) or "-"] for p in snap.participants])
+                   _partitions(p)] for p in snap.participants])
     for a in snap.assets:
         label = f"'{a.partition}'" if a.partition else "'' (the default partition)"
         out += ["", f"Asset {a.name} (partition {label}, {len(a.participants)} participant"
@@ -41,11 +47,14 @@ def text(snap: Snapshot) -> str:
                 out += [f"    {line}" for line in config_lines(t.latest)]
     out += ["", "Findings" if snap.findings else "Findings: none"]
     out += [f"  {f.text()}" for f in snap.findings]
+    if snap.limits:
+        out += ["", "Limits reached (docs/spy.md)"]
+        out += [f"  {line}" for line in snap.limits]
     return "\n".join(visible(line) for line in out) + "\n"
 
 
 def as_json(snap: Snapshot) -> str:
-    return json.dumps(snap.as_dict(), indent=2, ensure_ascii=True, default=str) + "\n"
+    return json.dumps(snap.as_dict(), indent=2, ensure_ascii=True, allow_nan=False, default=str) + "\n"
 
 
 CLEAR = "\x1b[H\x1b[2J"
