@@ -50,6 +50,21 @@ def runtime_build(tmp_path_factory) -> Path:
 
 
 @pytest.fixture(scope="session")
+def logic_under_tsan(runtime_build: Path) -> Path:
+    """The logic suite again, runtime and test built with ThreadSanitizer (handlers run on
+    threads of their own, acks go out under the manager's lock)."""
+    base = runtime_build.parent / "tsan"
+    flags = [f"-DCMAKE_CXX_FLAGS={FLAGS} -fsanitize=thread -g -O1", "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread"]
+    run(["cmake", "-S", str(ROOT / "runtime" / "cpp"), "-B", str(base / "runtime"), "-DCMAKE_BUILD_TYPE=Debug",
+         *flags])
+    build(base / "runtime")
+    run(["cmake", "-S", str(HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *flags,
+         f"-Drapid_runtime_cpp_DIR={base / 'runtime'}"])
+    build(base / "tests", "logic")
+    return base / "tests" / "logic"
+
+
+@pytest.fixture(scope="session")
 def k10_bridge(runtime_build: Path) -> Path:
     """K10's bridge on the runtime: K10's C++ types generated and built, then the program."""
     base = runtime_build.parent

@@ -20,6 +20,12 @@ def test_logic_suite_passes(runtime_build):
     assert ran and int(ran.group(1)) >= 30, res.stdout[-2000:]
 
 
+def test_logic_suite_is_clean_under_thread_sanitizer(logic_under_tsan):
+    res = subprocess.run([str(logic_under_tsan), "--gtest_brief=1"], capture_output=True, text=True, timeout=600,
+                         env=dict(os.environ, TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"))
+    assert res.returncode == 0 and "ThreadSanitizer" not in res.stderr, res.stdout[-3000:] + res.stderr[-6000:]
+
+
 # ---- K10's bridge on the C++ runtime against `rapidgen conform` ---------------------------------
 
 DOMAIN = 43  # the C++ runtime's tests use domains 40-49
