@@ -114,7 +114,7 @@ class Discovery:
     def _take(self, kind: str, reader) -> list:
         """Up to POLL_LIMIT samples, one at a time: a sample cyclonedds cannot convert
         raises inside take() and is lost, alone."""
-        from rapidgen.backends.escape import visible
+        from rapidgen.textsafe import visible
         out: list = []
         failures = 0
         while len(out) + failures < POLL_LIMIT:

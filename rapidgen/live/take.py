@@ -11,7 +11,9 @@ untrusted, any participant in a partition may write any RAPID topic with any byt
   others taken with it are lost).
 - Batches are small (raw bytes of a CommandConfig at its IDL bounds are 4.6 MB).
 - dedupe: a writer republishing the same bytes for the same instance (a durable config at
-  10 Hz) is decoded once; the earlier value is handed out again.
+  10 Hz) is decoded once; the earlier value is handed out again. The bytes remembered for
+  that are bounded per reader (remember_bytes).
+- Each sample handed out carries `wire_size` (its encoded bytes), for callers that budget.
 - The tables are bounded: MAX_WRITERS writers are counted one by one, then as "others".
 
 The runtime keeps the same rules for the robot side in rapid_runtime/untrusted.py (a robot
@@ -40,8 +42,9 @@ class Drop:
 
 
 class GuardedReader:
-    def __init__(self, reader, dedupe: bool = False, batch: int = BATCH) -> None:
-        self.reader, self.dedupe, self.batch = reader, dedupe, batch
+    def __init__(self, reader, dedupe: bool = False, batch: int = BATCH,
+                 remember_bytes: int = MAX_REMEMBERED_BYTES) -> None:
+        self.reader, self.dedupe, self.batch, self.remember_bytes = reader, dedupe, batch, remember_bytes
         self.drops: collections.OrderedDict[int, Drop] = collections.OrderedDict()
         self.dropped = 0
         self.reused = 0  # samples not decoded again (same writer, instance and bytes)
@@ -77,6 +80,7 @@ class GuardedReader:
             sample = self._decode(data_type, data, info)
             if sample is not None:
                 sample.sample_info = info
+                sample.wire_size = len(data)
                 out.append(sample)
         return len(raw), out
 
@@ -97,7 +101,7 @@ class GuardedReader:
             old = self._last.pop(key, None)
             self._last_bytes += len(data) - (len(old[0]) if old else 0)
             self._last[key] = (bytes(data), sample)
-            while len(self._last) > MAX_REMEMBERED or self._last_bytes > MAX_REMEMBERED_BYTES:
+            while len(self._last) > 1 and (len(self._last) > MAX_REMEMBERED or self._last_bytes > self.remember_bytes):
                 self._last_bytes -= len(self._last.popitem(last=False)[1][0])
             return copy.copy(sample)
         return sample

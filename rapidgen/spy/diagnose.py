@@ -168,7 +168,7 @@ def _types(w, roles, _pairs):
 def layout_diff(w, endpoint, stream) -> str:
     """Which member differs, from the writer's announced type information (XTypes type
     lookup); 'type information unavailable' when the writer sent none."""
-    import dataclasses
+    from rapidgen.spy.layout import first_difference
     tid = w.type_ids.get(endpoint.key)
     ours = w.type_class(endpoint.type_name)
     if tid is None or ours is None:
@@ -178,27 +178,7 @@ def layout_diff(w, endpoint, stream) -> str:
         theirs, _ = get_types_for_typeid(w.dp, tid, 1_000_000_000)  # timeout in ns
     except Exception as exc:  # type lookup failed or timed out
         return f"layout differs (type information not resolved: {type(exc).__name__})"
-    a: list[tuple[str, str]] = [(f.name, _tname(f.type)) for f in dataclasses.fields(ours)]
-    b: list[tuple[str, str]] = [(f.name, _tname(f.type)) for f in dataclasses.fields(theirs)] if dataclasses.is_dataclass(theirs) else []
-    for i in range(max(len(a), len(b))):
-        x, y = (a[i] if i < len(a) else None), (b[i] if i < len(b) else None)
-        if x is None:  # i < max(len(a), len(b)), so b has member i
-            return f"member #{i + 1} '{b[i][0]}' is extra (RAPID's type has {len(a)} members)"
-        if y is None:
-            return f"member #{i + 1} '{x[0]}' ({x[1]}) is missing"
-        if x[0] != y[0]:
-            return f"member #{i + 1} is '{y[0]}', RAPID's is '{x[0]}'"
-        if x[1] != y[1] and not (_leaf(x[1]) == _leaf(y[1])):
-            return f"member '{x[0]}' is {y[1]}, RAPID's is {x[1]}"
-    return "layout differs in a nested type or in bounds"
-
-
-def _tname(t) -> str:
-    return getattr(t, "__name__", None) or str(t)
-
-
-def _leaf(name: str) -> str:
-    return name.rsplit(".", 1)[-1]
+    return first_difference(ours, theirs) or "layout differs in bounds or extensibility"
 
 
 def _partitions(w, roles, _pairs):

@@ -11,7 +11,7 @@ import json
 import sys
 import time
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.spy.model import plain
 
 BACKLOG_BYTES = 16 << 20  # wire bytes of samples waiting to be printed

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from rapidgen.asset.describe import table
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.spy.collect import config_lines
 from rapidgen.spy.model import Snapshot
 

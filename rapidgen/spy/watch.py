@@ -63,20 +63,6 @@ class Seen:
     size: int = 0  # wire bytes
 
 
-class SpyReader(GuardedReader):
-    """GuardedReader that notes each sample's wire size (`wire_size`) and, with dedupe,
-    remembers at most REMEMBER_BYTES of past configs (take.py's own cap is per process
-    kind, 64 MB; spy has a reader per topic and partition)."""
-
-    def _decode(self, data_type, data: bytes, info):
-        sample = super()._decode(data_type, data, info)
-        if sample is not None:
-            sample.wire_size = len(data)
-        while self.dedupe and self._last_bytes > REMEMBER_BYTES and len(self._last) > 1:
-            self._last_bytes -= len(self._last.popitem(last=False)[1][0])
-        return sample
-
-
 @dataclass
 class Stream:
     """One of our readers: a topic in a partition with one writer QoS."""
@@ -266,7 +252,8 @@ class Watcher:
         except Exception:  # e.g. one topic name used with two types: shown, not read
             self.undecodable.add((ep.topic, ep.type_name))
             return None
-        guard = SpyReader(reader, dedupe=config, batch=CONFIG_BATCH if config else BATCH)
+        guard = GuardedReader(reader, dedupe=config, batch=CONFIG_BATCH if config else BATCH,
+                              remember_bytes=REMEMBER_BYTES)
         self.streams[key] = Stream(ep.topic, partition, ep.type_name, reader, time.monotonic(), guard, config)
         return self.streams[key]
 

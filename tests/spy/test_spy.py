@@ -70,6 +70,22 @@ def _sabotaged(domain):
         bridge.stop()
 
 
+def _hand_written(domain):
+    """A K10 bridge beside a ground tool whose ParameterUnion.vec3d is a plain double[3]."""
+    bridge = BridgeProcess(python_dir("k10"), SEEDS["k10"], domain)
+    tool = subprocess.Popen([sys.executable, "-m", "tests.spy.plain_vec3d", str(python_dir("k10")), SEEDS["k10"],
+                             str(domain), "30"], cwd=ROOT, env=env_for(python_dir("k10"), SEEDS["k10"]),
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        bridge.wait_ready()
+        assert tool.stdout.readline().startswith("plain-vec3d ready"), tool.stderr.read()[-2000:]
+        return spy("k10", domain)
+    finally:
+        tool.kill()
+        tool.communicate()
+        bridge.stop()
+
+
 @pytest.fixture(scope="module")
 def runs():
     pytest.importorskip("cyclonedds")
@@ -78,7 +94,9 @@ def runs():
         seed_f = pool.map(_seed, [(a, DOMAIN + i) for i, a in enumerate(seeds)])
         broken_f = pool.map(_broken, [(k, DOMAIN + 6 + i) for i, k in enumerate(BROKEN)])
         sab_f = pool.submit(_sabotaged, DOMAIN + 9)
-        return {"seeds": dict(zip(seeds, seed_f)), "broken": dict(zip(BROKEN, broken_f)), "saboteur": sab_f.result()}
+        hand_f = pool.submit(_hand_written, DOMAIN + 10)
+        return {"seeds": dict(zip(seeds, seed_f)), "broken": dict(zip(BROKEN, broken_f)), "saboteur": sab_f.result(),
+                "hand-written": hand_f.result()}
 
 
 def _tables(asset: str) -> AssetFacts:
@@ -129,6 +147,15 @@ def test_saboteur_triggers_qos_partition_type_and_ack_diagnoses(runs):
     assert "member #1 is 'cmdId', RAPID's is 'hdr'" in text["SPY-TYPE-01"]
     assert "'K10Blue'" in text["SPY-PART-01"]
     assert all(f["explanation"] == DIAGNOSES[f["code"]] for f in found)
+
+
+def test_type_diagnosis_names_the_nested_member_that_differs(runs):
+    """A tool whose ParameterUnion.vec3d is double[3] where RAPID has Vec3d: the diagnosis
+    names that member (it used to blame cmdName, a top-level typedef that matches)."""
+    found = [f for f in runs["hand-written"]["findings"] if f["code"] == "SPY-TYPE-01"]
+    assert len(found) == 1, runs["hand-written"]["findings"]
+    assert "ParameterUnion.vec3d is double[3], RAPID's is Vec3d" in found[0]["message"], found[0]
+    assert "cmdName" not in found[0]["message"]
 
 
 # ---- without a network --------------------------------------------------------------------------
