@@ -55,35 +55,30 @@ def _broken(job):
         bridge.stop()
 
 
-def _sabotaged(domain):
+def _beside(module: str, ready: str, domain: int):
+    """spy's view of a K10 bridge with another participant beside it (tests/spy/<module>.py,
+    which prints `ready` once its writers exist)."""
     bridge = BridgeProcess(python_dir("k10"), SEEDS["k10"], domain)
-    sab = subprocess.Popen([sys.executable, "-m", "tests.spy.saboteur", str(python_dir("k10")), SEEDS["k10"],
-                            str(domain), "30"], cwd=ROOT, env=env_for(python_dir("k10"), SEEDS["k10"]),
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    other = subprocess.Popen([sys.executable, "-m", f"tests.spy.{module}", str(python_dir("k10")), SEEDS["k10"],
+                              str(domain), "30"], cwd=ROOT, env=env_for(python_dir("k10"), SEEDS["k10"]),
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         bridge.wait_ready()
-        assert sab.stdout.readline().startswith("saboteur ready"), sab.stderr.read()[-2000:]
+        assert other.stdout.readline().startswith(ready), other.stderr.read()[-2000:]
         return spy("k10", domain)
     finally:
-        sab.kill()
-        sab.communicate()
+        other.kill()
+        other.communicate()
         bridge.stop()
+
+
+def _sabotaged(domain):
+    return _beside("saboteur", "saboteur ready", domain)
 
 
 def _hand_written(domain):
-    """A K10 bridge beside a ground tool whose ParameterUnion.vec3d is a plain double[3]."""
-    bridge = BridgeProcess(python_dir("k10"), SEEDS["k10"], domain)
-    tool = subprocess.Popen([sys.executable, "-m", "tests.spy.plain_vec3d", str(python_dir("k10")), SEEDS["k10"],
-                             str(domain), "30"], cwd=ROOT, env=env_for(python_dir("k10"), SEEDS["k10"]),
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        bridge.wait_ready()
-        assert tool.stdout.readline().startswith("plain-vec3d ready"), tool.stderr.read()[-2000:]
-        return spy("k10", domain)
-    finally:
-        tool.kill()
-        tool.communicate()
-        bridge.stop()
+    """A ground tool whose ParameterUnion.vec3d is a plain double[3] (tests/spy/plain_vec3d.py)."""
+    return _beside("plain_vec3d", "plain-vec3d ready", domain)
 
 
 @pytest.fixture(scope="module")
