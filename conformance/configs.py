@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import time
 
-from rapidgen.conform.model import REQUIRED, Fail, Unsupported, check, expect
+from rapidgen.backends.escape import visible
+from rapidgen.conform.model import REQUIRED, Blocked, Unsupported, check, expect
 
 from .dds import qos_mismatch
 
@@ -36,6 +37,14 @@ def durable(s):
            f"nothing on {', '.join(missing)}")
 
 
+def _latest(s, topic: str):
+    """The latest config received on topic (waiting for it when CFG-02 was not run)."""
+    got = s.latest(topic, timeout=s.timeout)
+    if got is None:
+        raise Blocked(f"no {topic} received (CFG-02)")
+    return got
+
+
 def _plain(x):
     """A received sample (or member) as plain data, float32 members as received."""
     if hasattr(x, "__dataclass_fields__"):
@@ -59,12 +68,12 @@ def _expected(s, topic: str, sample):
 def content(s):
     bad = []
     for t in _configs(s):
-        got = s.latest(t)
+        got = _latest(s, t)
         want = _expected(s, t, got)
         if _plain(got) != _plain(want):
             g, w = _plain(got), _plain(want)
             diff = next((k for k in w if k != "hdr" and g.get(k) != w.get(k)), "?")
-            bad.append(f"{t}.{diff}: {str(g.get(diff))[:120]} (expected {str(w.get(diff))[:120]})")
+            bad.append(f"{t}.{diff}: {visible(str(g.get(diff)))[:120]} (expected {visible(str(w.get(diff)))[:120]})")
     expect(not bad, "the descriptor's configs", "; ".join(bad))
 
 
@@ -73,7 +82,7 @@ def content(s):
 def headers(s):
     bad = []
     for t in _configs(s):
-        h = s.latest(t).hdr
+        h = _latest(s, t).hdr
         if h.assetName != s.asset or not h.srcName:
             bad.append(f"{t}: srcName={h.srcName!r} assetName={h.assetName!r}")
     expect(not bad, f"assetName {s.asset!r} and a non-empty srcName", "; ".join(bad))
@@ -85,6 +94,7 @@ def headers(s):
 def serials(s):
     bad = []
     for t in _configs(s):
+        _latest(s, t)
         got = s.client.samples(t)
         serials = [r.sample.hdr.serial for r in got]
         if not serials[-1]:

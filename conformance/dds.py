@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from collections.abc import Set as AbstractSet
 
+from rapidgen.backends.escape import visible
 from rapidgen.conform.model import REQUIRED, check, expect
 
 PROFILES = {  # profile -> (reliability, durability, history kind): rapid-protocol.md 6
@@ -76,7 +77,8 @@ def reader_qos(s):
 def type_names(s):
     want = {p["topic"]: p["type"] for p in s.facts.publications}
     want["rapid_command"] = "rapid::Command"
-    bad = [f"{e.topic}: {e.type_name}" for e in s.endpoints() if e.topic in want and e.type_name != want[e.topic]]
+    bad = [f"{e.topic}: {visible(e.type_name)}" for e in s.endpoints()
+           if e.topic in want and e.type_name != want[e.topic]]
     expect(not bad, "the descriptor's types (" + ", ".join(sorted(set(want.values()))[:4]) + ", ...)", "; ".join(bad))
 
 
@@ -84,7 +86,7 @@ def type_names(s):
        "rapid-protocol.md 6: assets set the DDS PARTITION to their own name")
 def partition(s):
     names = {p["topic"] for p in s.facts.publications} | {"rapid_command"}
-    bad = [f"{e.kind} {e.topic}: {list(e.qos.partitions)}" for e in s.endpoints()
+    bad = [f"{e.kind} {e.topic}: {visible(str(list(e.qos.partitions)))}" for e in s.endpoints()
            if e.topic in names and s.facts.partition not in e.qos.partitions]
     expect(not bad, f"partition {s.facts.partition!r}", "; ".join(bad))
 
@@ -104,12 +106,21 @@ def declared_writers(s):
        "rapid-protocol.md 6 (requested/offered incompatible QoS status)", needs=("DDS-01", "DDS-02", "CFG-02", "CMD-13"),
        late=True)
 def incompatible(s):
-    bad = []
-    for t, found in s.client.incompatible.items():
+    bad: list[str] = []
+    strangers: list[str] = []
+    for t, found in sorted(s.client.incompatible.items()):
         why = sorted({f"{side} incompatible QoS (policy id {pid})" for side, pid in found if pid != TYPE_CONSISTENCY})
-        if why:
-            bad.append(f"{t}: {', '.join(why)}")
+        if not why:
+            continue
+        # The status does not say whose endpoint it was: it is the asset's when one of the
+        # asset's endpoints on the topic (in its partition) is not matched with ours.
+        kind = "reader" if t == "rapid_command" else "writer"
+        ours = s.client.matched_keys(t)
+        unmatched = [e for e in s.endpoints(kind, t) if s.facts.partition in e.partitions and e.key not in ours]
+        (bad if unmatched else strangers).append(f"{t}: {', '.join(why)}")
     expect(not bad, "no incompatible-QoS status on the runner's profile endpoints", "; ".join(bad))
+    if strangers:
+        return "not the asset's (each of its endpoints on the topic is matched): " + "; ".join(strangers)
 
 
 @check("DDS-07", REQUIRED, "Writers with a RAPID type name are matched (their type is RAPID's)",

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import time
 
+from rapidgen.backends.escape import visible
 from rapidgen.conform.asset import valid_args
 from rapidgen.conform.model import REQUIRED, Blocked, Unsupported, check, expect
 from rapidgen.conform.session import describe
@@ -114,7 +115,7 @@ def records(s):
                 listed.add(rec.cmd.cmdId)
                 status = getattr(rec.trStatus, "name", str(rec.trStatus))
                 if status not in allowed:
-                    bad.append(f"{name} record {rec.cmd.cmdId}: {status}")
+                    bad.append(f"{name} record {visible(rec.cmd.cmdId)}: {visible(status)}")
     missing = [cid for cid in s.memo.get("fifo", []) if cid not in listed]
     expect(not bad, "record statuses matching their list", "; ".join(sorted(set(bad))[:4]))
     expect(not missing, "the appended commands listed in QueueState", f"{len(missing)} never listed")

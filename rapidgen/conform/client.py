@@ -1,27 +1,53 @@
 """The runner's own DDS endpoints in the asset's partition, each with its topic's
 profile QoS (so an incompatibility the asset causes shows up as a status here):
 a command writer, an ack reader, a reader per config and telemetry topic. One thread
-takes every sample as it arrives and stamps it with its arrival time."""
+takes every sample as it arrives and stamps it with its arrival time.
+
+The wire is untrusted (any participant in the partition may write any topic, with any
+bytes), so every take goes through rapidgen.live.take.GuardedReader: a sample that does not
+decode is dropped alone and counted against its writer, a durable sample repeated by its
+writer is decoded once, batches are small. Samples are attributed before they are decoded:
+only those of the asset's own participants (Session.find_asset) are kept and judged; a
+stranger's are counted per participant and topic (decoded only when small, to tell
+undecodable ones and acks answering the runner's commands) and never judged. What is kept
+is bounded per topic and per cmdId; what was not kept is counted for the report."""
 from __future__ import annotations
 
+import collections
 import itertools
 import math
 import os
 import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
+
+from rapidgen.live.take import GuardedReader
 
 if TYPE_CHECKING:
     from cyclonedds.sub import DataReader
 
 COMMAND, ACK = "rapid_command", "rapid_ack"
 
+# Batches per take: a config may be 4.6 MB at its IDL bounds (raw bytes are held per batch).
+CONFIG_BATCH, BATCH = 2, 32
+TAKE_PER_ROUND = 256  # samples taken from one reader before the pump turns to the next
+# What is kept of the asset's samples, per topic: the latest KEEP_SAMPLES, and at most
+# KEEP_BYTES of wire bytes among them (a durable sample repeated by its writer counts once).
+KEEP_SAMPLES, KEEP_BYTES = 2048, 32 << 20
+KEEP_ACKS_PER_CMD = 64  # acks kept per cmdId the runner sent
+KEEP_OTHER_ACKS = 1024  # acks kept for cmdIds the runner did not send (CMD-11 and CMD-12 look at them)
+STRANGER_DECODE = 64 << 10  # a stranger's sample larger than this is counted, not decoded
+MAX_STRANGERS = 64  # participants tallied one by one; past this, as "other participants"
+MAX_WRITERS = 4096  # writer handle -> participant, remembered
+UNKNOWN = "unknown"  # a sample whose writer had left when it was taken
+
 
 @dataclass
 class Received:
     at: float  # time.monotonic() at arrival
-    sample: object
+    sample: Any
+    size: int = 0  # wire bytes decoded for it (0: a repeat of the writer's previous sample)
 
 
 @dataclass
@@ -36,8 +62,58 @@ class AckSeen:
     src: str
 
 
+@dataclass
+class Stranger:
+    """What one participant that is not the asset sent us (counted, never judged)."""
+    participant: str
+    samples: dict[str, list[int]] = field(default_factory=dict)  # topic -> [count, bytes, not decoded]
+    acks_for_runner: int = 0  # its acks carrying a cmdId the runner sent
+
+
+@dataclass
+class Kept:
+    """The asset's samples of one topic, bounded (KEEP_SAMPLES, KEEP_BYTES)."""
+    items: collections.deque = field(default_factory=collections.deque)
+    bytes: int = 0
+    total: int = 0
+    discarded: int = 0
+    discarded_bytes: int = 0
+
+    def add(self, r: Received) -> None:
+        self.items.append(r)
+        self.bytes += r.size
+        self.total += 1
+        while len(self.items) > KEEP_SAMPLES or (self.bytes > KEEP_BYTES and len(self.items) > 1):
+            old = self.items.popleft()
+            self.bytes -= old.size
+            self.discarded += 1
+            self.discarded_bytes += old.size
+
+
 def enum_name(value) -> str:
     return getattr(value, "name", None) or str(value)
+
+
+class _Guard(GuardedReader):
+    """GuardedReader that attributes each sample to its writer's participant before decoding
+    it: a stranger's sample is tallied and never handed out."""
+
+    def __init__(self, reader, client: "Client", topic: str, dedupe: bool, batch: int) -> None:
+        super().__init__(reader, dedupe=dedupe, batch=batch)
+        self.client, self.topic = client, topic
+
+    def _decode(self, data_type, data: bytes, info):
+        who = self.client.participant_of(self.reader, info.publication_handle)
+        if who not in self.client.asset_participants:
+            small = len(data) <= STRANGER_DECODE
+            sample = super()._decode(data_type, data, info) if small else None
+            self.client.stranger(who, self.topic, len(data), sample, decoded=small)
+            return None
+        reused = self.reused
+        sample = super()._decode(data_type, data, info)
+        if sample is not None:
+            sample.wire_size = 0 if self.reused > reused else len(data)
+        return sample
 
 
 class Client:
@@ -53,18 +129,32 @@ class Client:
         q = bindings.qos
         self.publisher = Publisher(participant, qos=q.publisher())
         self.subscriber = Subscriber(participant, qos=q.subscriber())
-        self.incompatible: dict[str, list[tuple[str, int | None]]] = {}  # topic -> [("requested", policy id)]
+        # topic -> {(side, policy id)}: a set, so a stranger's stream of mismatched endpoints stays bounded
+        self.incompatible: dict[str, set[tuple[str, int | None]]] = {}
         self._topics: dict[str, object] = {}
         self.lock = threading.Condition()
+        self._who_lock = threading.Lock()
         self.readers: dict[str, DataReader[Any]] = {}
-        self.received: dict[str, list[Received]] = {}
-        self.acks: list[AckSeen] = []
+        self.guards: dict[str, _Guard] = {}
+        self.extra_guards: list[_Guard] = []  # readers a check opens itself (CMD-13): their drops are reported too
+        self.listened: dict[str, list] = {}  # topic -> our endpoints with an incompatible-QoS listener
+        self.received: dict[str, Kept] = {}
+        self.acks: list[AckSeen] = []  # append-only (checks iterate it while the pump appends)
+        self._ack_count = 0
+        self._acks_per_cmd: collections.Counter[str] = collections.Counter()
+        self._other_acks = 0
+        self.acks_not_kept = 0
         self.sent: dict[str, object] = {}  # cmdId -> Command we wrote
+        # participants whose samples are judged (GUIDs as Discovery spells them); set before start()
+        self.asset_participants: set[str] = set()
+        self.strangers: dict[str, Stranger] = {}
+        self._writers: collections.OrderedDict[int, str] = collections.OrderedDict()
         self._ids = itertools.count(1)
         self.command_writer = None
         if COMMAND in q.topics:
             self.command_writer = DataWriter(self.publisher, self.topic(COMMAND, bindings.rapid.Command),
                                              qos=q.writer(COMMAND), listener=self._listener(COMMAND, Listener))
+            self.listened.setdefault(COMMAND, []).append(self.command_writer)
         self.stopping = threading.Event()
         self._thread = threading.Thread(target=self._pump, daemon=True, name="conform-readers")
 
@@ -84,7 +174,7 @@ class Client:
 
     def _incompatible(self, topic: str, side: str, status) -> None:
         with self.lock:
-            self.incompatible.setdefault(topic, []).append((side, getattr(status, "last_policy_id", None)))
+            self.incompatible.setdefault(topic, set()).add((side, getattr(status, "last_policy_id", None)))
 
     def profile_reader(self, topic: str, type_name: str, relaxed: bool = False):
         """A reader of topic with its profile's QoS and KEEP_ALL history (history is local:
@@ -96,49 +186,133 @@ class Client:
         if relaxed:
             qos = qos + Q(P.Durability.Volatile)
         listener = None if relaxed else self._listener(topic, Listener)
-        return self._DataReader(self.subscriber, self.topic(topic, self.b.type_class(type_name)), qos=qos,
-                                listener=listener)
+        reader = self._DataReader(self.subscriber, self.topic(topic, self.b.type_class(type_name)), qos=qos,
+                                  listener=listener)
+        if listener is not None:
+            self.listened.setdefault(topic, []).append(reader)
+        return reader
+
+    def guard(self, reader, topic: str) -> _Guard:
+        """reader's samples through a GuardedReader that keeps only the asset's (durable
+        topics deduplicated, configs in batches of CONFIG_BATCH)."""
+        config = topic in self.b.tables["CONFIGS"]
+        durable = any(p["topic"] == topic and p["role"] in ("config", "state") for p in self.b.tables["PUBLICATIONS"])
+        return _Guard(reader, self, topic, dedupe=config or durable, batch=CONFIG_BATCH if config else BATCH)
 
     def start(self, topics: dict[str, str]) -> "Client":
         """Read every topic (name -> type) and the acks; start taking samples."""
         for topic, type_name in topics.items():
             if topic != ACK:
                 self.readers[topic] = self.profile_reader(topic, type_name)
-                self.received[topic] = []
+                self.guards[topic] = self.guard(self.readers[topic], topic)
+                self.received[topic] = Kept()
         if self.command_writer is not None:
             self.ack_reader = self.profile_reader(ACK, "rapid::Ack", relaxed=True)
+            self.ack_guard: _Guard | None = _Guard(self.ack_reader, self, ACK, dedupe=False, batch=BATCH)
         else:
             self.ack_reader = None
+            self.ack_guard = None
         self._thread.start()
         return self
 
+    # ---- who wrote it ----------------------------------------------------------------------
+    def participant_of(self, reader, handle: int) -> str:
+        """The GUID of the participant whose writer has this publication handle (UNKNOWN
+        once the writer left)."""
+        with self._who_lock:
+            got = self._writers.get(handle)
+            if got is not None:
+                self._writers.move_to_end(handle)
+                return got
+        try:
+            ep = reader.get_matched_publication_data(handle)
+        except Exception:  # the writer left already
+            ep = None
+        if ep is None:
+            return UNKNOWN
+        got = str(ep.participant_key)
+        with self._who_lock:
+            self._writers[handle] = got
+            while len(self._writers) > MAX_WRITERS:
+                self._writers.popitem(last=False)
+        return got
+
+    def stranger(self, who: str, topic: str, size: int, sample, decoded: bool) -> None:
+        with self.lock:
+            s = self.strangers.get(who)
+            if s is None:
+                key = who if len(self.strangers) < MAX_STRANGERS else "other participants"
+                s = self.strangers.setdefault(key, Stranger(key))
+            if topic not in s.samples and len(s.samples) >= 64:
+                topic = "other topics"
+            tally = s.samples.setdefault(topic, [0, 0, 0])
+            tally[0] += 1
+            tally[1] += size
+            tally[2] += not decoded
+            if sample is not None and topic == ACK and getattr(sample, "cmdId", None) in self.sent:
+                s.acks_for_runner += 1
+
+    # ---- the pump ----------------------------------------------------------------------------
     def _pump(self) -> None:
         while not self.stopping.is_set():
-            now = time.monotonic()
             got = False
-            for topic, r in list(self.readers.items()):
-                for s in r.take(N=1024):
-                    if s is not None and not type(s).__name__.startswith("Invalid"):
-                        got = True
-                        with self.lock:
-                            self.received[topic].append(Received(now, s))
-            if self.ack_reader is not None:
-                for s in self.ack_reader.take(N=1024):
-                    if hasattr(s, "cmdId"):
-                        with self.lock:
-                            self.acks.append(AckSeen(len(self.acks), now, s.cmdId, enum_name(s.status),
-                                                     enum_name(s.completedStatus), s.message, s.hdr.assetName,
-                                                     s.hdr.srcName))
-                            self.lock.notify_all()
-                        got = True
+            for topic, g in list(self.guards.items()):
+                now = time.monotonic()
+                samples = g.take_all(TAKE_PER_ROUND)
+                if samples:
+                    got = True
+                    with self.lock:
+                        kept = self.received[topic]
+                        for s in samples:
+                            kept.add(Received(now, s, getattr(s, "wire_size", 0)))
+            if self.ack_guard is not None:
+                now = time.monotonic()
+                for s in self.ack_guard.take_all(TAKE_PER_ROUND):
+                    with self.lock:
+                        self._ack(s, now)
+                    got = True
             if got:
                 with self.lock:
                     self.lock.notify_all()
             time.sleep(0.005)
 
+    def _ack(self, s, now: float) -> None:
+        """Keep an ack of the asset (caller holds the lock), within the caps."""
+        cid = s.cmdId
+        self._ack_count += 1
+        if cid in self.sent:
+            self._acks_per_cmd[cid] += 1
+            keep = self._acks_per_cmd[cid] <= KEEP_ACKS_PER_CMD
+        else:
+            self._other_acks += 1
+            keep = self._other_acks <= KEEP_OTHER_ACKS
+        if not keep:
+            self.acks_not_kept += 1
+            return
+        self.acks.append(AckSeen(self._ack_count - 1, now, cid, enum_name(s.status), enum_name(s.completedStatus),
+                                 s.message, s.hdr.assetName, s.hdr.srcName))
+
     def stop(self) -> None:
         self.stopping.set()
         self._thread.join(timeout=5)
+
+    # ---- what was not judged -------------------------------------------------------------------
+    def dropped(self) -> list[str]:
+        """One line per writer whose samples did not decode, per topic whose samples were not
+        all kept, and for acks not kept."""
+        lines = [line for g in [*self.guards.values(), *([self.ack_guard] if self.ack_guard else [])]
+                 for line in g.summary()]
+        lines += [f"{line} (a reader a check opened)" for g in self.extra_guards for line in g.summary()]
+        with self.lock:
+            for topic, k in self.received.items():
+                if k.discarded:
+                    lines.append(f"{topic}: {k.discarded} older sample(s) of the asset ({_size(k.discarded_bytes)}) "
+                                 f"not kept (kept the latest {len(k.items)} of {k.total}: at most {KEEP_SAMPLES} "
+                                 f"samples and {_size(KEEP_BYTES)} per topic)")
+            if self.acks_not_kept:
+                lines.append(f"{ACK}: {self.acks_not_kept} ack(s) of the asset not kept (at most {KEEP_ACKS_PER_CMD} "
+                             f"per cmdId sent, {KEEP_OTHER_ACKS} for other cmdIds)")
+        return lines
 
     # ---- commands ------------------------------------------------------------------------
     def new_id(self, source: str) -> str:
@@ -188,14 +362,53 @@ class Client:
 
     def samples(self, topic: str) -> list[Received]:
         with self.lock:
-            return list(self.received.get(topic, ()))
+            k = self.received.get(topic)
+            return list(k.items) if k else []
 
     def wait_sample(self, topic: str, timeout: float) -> list[Received]:
         end = time.monotonic() + timeout
         with self.lock:
-            while not self.received.get(topic) and time.monotonic() < end:
+            while not self.samples(topic) and time.monotonic() < end:
                 self.lock.wait(max(0.0, end - time.monotonic()))
-            return list(self.received.get(topic, ()))
+            return self.samples(topic)
+
+    # ---- matching ---------------------------------------------------------------------------
+    def matched_keys(self, topic: str) -> set[str]:
+        """Keys of the remote endpoints our listened endpoints on topic are matched with."""
+        out: set[str] = set()
+        for ent in self.listened.get(topic, ()):
+            reader = hasattr(ent, "get_matched_publications")
+            try:
+                handles = ent.get_matched_publications() if reader else ent.get_matched_subscriptions()
+            except Exception:  # deleted meanwhile
+                continue
+            for h in handles:
+                try:
+                    data = ent.get_matched_publication_data(h) if reader else ent.get_matched_subscription_data(h)
+                except Exception:  # left meanwhile
+                    continue
+                if data is not None:
+                    out.add(str(data.key))
+        return out
+
+    def matched_asset(self, entity, reader: bool) -> bool:
+        """entity (our writer or reader) is matched with an endpoint of the asset's."""
+        try:
+            handles = entity.get_matched_publications() if reader else entity.get_matched_subscriptions()
+        except Exception:
+            return False
+        for h in handles:
+            try:
+                data = entity.get_matched_publication_data(h) if reader else entity.get_matched_subscription_data(h)
+            except Exception:
+                continue
+            if data is not None and str(data.participant_key) in self.asset_participants:
+                return True
+        return False
+
+
+def _size(n: int) -> str:
+    return f"{n / (1 << 20):.1f} MiB" if n >= 1 << 20 else f"{n / 1024:.1f} KiB" if n >= 1024 else f"{n} B"
 
 
 def finite(x) -> bool:

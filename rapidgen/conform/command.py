@@ -8,6 +8,7 @@ import os
 import sys
 import time
 from rapidgen.argtypes import domain_id
+from rapidgen.backends.escape import visible
 
 
 def add_parser(sub) -> None:
@@ -23,7 +24,18 @@ def add_parser(sub) -> None:
     p.add_argument("--json", metavar="FILE", help="write a JSON report")
     p.add_argument("--timeout", type=float, default=10.0, metavar="S",
                    help="seconds to wait for an asset's answer (default 10)")
+    p.add_argument("--participant", action="append", default=[], type=_guid_prefix, metavar="GUID",
+                   help="judge the participant(s) whose GUID starts with this (hex, 8 digits or more; default: the "
+                        "participant with the most of the asset's endpoints in its partition)")
     p.add_argument("--list", action="store_true", help="list the checks and exit")
+
+
+def _guid_prefix(text: str) -> str:
+    import argparse
+    digits = "".join(ch for ch in text.lower() if ch not in "-:.")
+    if len(digits) < 8 or any(ch not in "0123456789abcdef" for ch in digits):
+        raise argparse.ArgumentTypeError(f"not a GUID prefix (8 or more hex digits): {text!r}")
+    return digits
 
 
 def _ids(values: list[str]) -> list[str]:
@@ -67,28 +79,38 @@ def _run(args, bindings, chosen) -> int:
 
     domain = bindings.tables["ASSET"].get("domain", 0) if args.domain is None else args.domain
     t0 = time.monotonic()
-    session = Session(bindings, domain, timeout=args.timeout)
-    name = session.asset
-    print(f"rapidgen conform: looking for asset {name} (partition {session.facts.partition}) in domain {domain} "
-          f"via {os.environ.get('CYCLONEDDS_URI', 'Cyclone defaults')}", flush=True)
+    session = Session(bindings, domain, timeout=args.timeout, participants=tuple(args.participant))
+    name, partition = visible(session.asset), visible(session.facts.partition)
+    print(f"rapidgen conform: looking for asset {name} (partition {partition}) in domain {domain} "
+          f"via {visible(os.environ.get('CYCLONEDDS_URI', 'Cyclone defaults'))}", flush=True)
     if not session.find_asset(min(15.0, 1.5 * args.timeout)):
-        print(f"rapidgen conform: no participant with {name}'s topics in partition {session.facts.partition} "
-              f"on domain {domain} (is the asset running, on this domain and transport?)", file=sys.stderr)
+        if args.participant:
+            print(f"rapidgen conform: no participant with {name}'s topics in partition {partition} on domain "
+                  f"{domain} has a GUID starting with {', '.join(args.participant)}", file=sys.stderr)
+        else:
+            print(f"rapidgen conform: no participant with {name}'s topics in partition {partition} "
+                  f"on domain {domain} (is the asset running, on this domain and transport?)", file=sys.stderr)
         session.close()
         return 1
-    print(f"found {name}: {len(session.endpoints())} endpoints; running {len(chosen)} checks", flush=True)
+    print(f"found {name}: {len(session.endpoints())} endpoints of participant "
+          f"{', '.join(map(session.participant_text, sorted(session.asset_participants)))}; "
+          f"running {len(chosen)} checks", flush=True)
     total = len(chosen)
     counter = iter(range(1, total + 1))
     results = run_checks(session, chosen, lambda r: print(R.progress_line(r, next(counter), total), flush=True))
     seconds = time.monotonic() - t0
     session.close()
+    notes = session.notes()
     ok = passed(results)
     print()
     print(R.table(results, name, seconds), flush=True)
+    text = R.notes_text(notes)
+    if text:
+        print(text, flush=True)
     if args.junit:
         with open(args.junit, "wb") as fh:
-            fh.write(R.junit(results, name, seconds))
+            fh.write(R.junit(results, name, seconds, notes))
     if args.json:
         with open(args.json, "w", encoding="utf-8") as fh:
-            fh.write(R.as_json(results, name, seconds, ok, domain))
+            fh.write(R.as_json(results, name, seconds, ok, domain, notes))
     return 0 if ok else 1

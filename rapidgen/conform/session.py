@@ -6,18 +6,21 @@ from __future__ import annotations
 import re
 import time
 
+from rapidgen.backends.escape import visible
 from rapidgen.conform.asset import AssetFacts, Cmd, valid_args
-from rapidgen.conform.client import Client
+from rapidgen.conform.client import UNKNOWN, Client
 from rapidgen.conform.model import Fail, Unsupported
 
 COMPLETED, OK = "ACK_COMPLETED", "ACK_COMPLETED_OK"
 ACCESS_TOPIC = "rapid_accesscontrol_state"
 NO_CONTROLLER = ("", "No Controller")  # soraCore / Astrobee (rapid-protocol.md 5b)
 COOKIE = re.compile(r"^[0-9a-fA-F]{16}$")
+MAX_LISTED = 32  # strangers listed one by one in a report
 
 
 class Session:
-    def __init__(self, bindings, domain: int, timeout: float = 10.0) -> None:
+    def __init__(self, bindings, domain: int, timeout: float = 10.0, participants: tuple[str, ...] = ()) -> None:
+        from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant
         from cyclonedds.domain import DomainParticipant
 
         from rapidgen.live.discovery import Discovery
@@ -28,9 +31,13 @@ class Session:
         self.timeout = timeout
         self.participant = DomainParticipant(domain)
         self.discovery = Discovery(self.participant)
+        self._births_reader = BuiltinDataReader(self.participant, BuiltinTopicDcpsParticipant)
+        self.births: dict[str, int] = {}  # participant GUID -> its announced creation time (ns)
         self.client = Client(bindings, self.participant, self.asset)
         self.source = self.facts.runner_source()
         self.asset_participants: set[str] = set()
+        self.chosen = tuple(_hex(p) for p in participants)  # --participant: GUID prefixes (hex)
+        self.identification = ""  # how the asset's participant was chosen (for the report)
         self.started = time.monotonic()
         self.memo: dict = {}  # results of shared steps, by name
 
@@ -39,21 +46,86 @@ class Session:
         """Every topic the asset publishes (name -> type), from the descriptor."""
         return {p["topic"]: p["type"] for p in self.facts.publications}
 
-    def find_asset(self, timeout: float = 15.0) -> bool:
-        """Wait until a participant shows any endpoint of the asset's RAPID topics in its
-        partition; then start our readers (so every config we read is as a late joiner)."""
-        names = set(self.topics()) | {"rapid_command"}
+    def expected(self) -> set[tuple[str, str]]:
+        """The (kind, topic) endpoints the descriptor says the asset has."""
+        want = {("writer", p["topic"]) for p in self.facts.publications}
+        if self.facts.subsystems:
+            want.add(("reader", "rapid_command"))
+        return want
 
-        def seen(d) -> bool:
-            eps = [e for e in d.endpoints.values() if e.topic in names]
-            self.asset_participants = {e.participant for e in eps if self.facts.partition in e.partitions}
-            return bool(self.asset_participants)
-        ok = self.discovery.wait_until(seen, timeout)
-        if ok:  # let the rest of its endpoints arrive
-            self.discovery.wait_until(lambda d: False, 0.5)
-            seen(self.discovery)
+    def candidates(self) -> dict[str, int]:
+        """Participants with an endpoint of the asset's topics in its partition, each with how
+        many of the descriptor's endpoints it has there (discovery order)."""
+        names = set(self.topics()) | {"rapid_command"}
+        want = self.expected()
+        found: dict[str, set] = {}
+        for e in self.discovery.endpoints.values():
+            if e.topic in names and self.facts.partition in e.partitions:
+                found.setdefault(e.participant, set()).add((e.kind, e.topic))
+        return {p: len(got & want) for p, got in found.items()}
+
+    def find_asset(self, timeout: float = 15.0, settle: float = 0.5, most: float = 3.0) -> bool:
+        """Find the asset's participant, then start our readers (so every config we read is as
+        a late joiner). Any participant in the partition may write the asset's topics; only
+        one is judged:
+        - with --participant, the candidates whose GUID starts with one of the given prefixes;
+        - else the candidate with the most of the descriptor's endpoints (a writer per
+          publication, the command reader) in the partition; of equals, the oldest (the
+          earliest creation time its discovery data announced), and the report says the
+          choice was ambiguous.
+        Candidates are participants with an endpoint of the asset's topics in its partition;
+        the choice is made once the candidates stop changing for `settle` s (at most `most` s
+        after the first). Every other participant is a stranger: reported, never judged."""
+        if not self.discovery.wait_until(lambda d: bool(self.candidates()), timeout):
+            self.client.start(self.topics())
+            return False
+        first = last_change = time.monotonic()
+        seen = self.candidates()
+        while time.monotonic() - last_change < settle and time.monotonic() - first < most:
+            time.sleep(0.05)
+            self.discovery.poll()
+            now = self.candidates()
+            if now != seen:
+                seen, last_change = now, time.monotonic()
+        ok = self._choose(seen)
+        self.client.asset_participants = set(self.asset_participants)
         self.client.start(self.topics())
         return ok
+
+    def _choose(self, cands: dict[str, int]) -> bool:
+        want = len(self.expected())
+        if self.chosen:
+            self.asset_participants = {p for p in cands if _hex(p).startswith(self.chosen)}
+            self.identification = (f"--participant {', '.join(self.chosen)}: {len(self.asset_participants)} of "
+                                   f"{len(cands)} candidate(s)")
+            return bool(self.asset_participants)
+        best = max(cands.values())
+        self._read_births()
+        tied = sorted((p for p, n in cands.items() if n == best), key=lambda p: self.births.get(p, 1 << 63))
+        self.asset_participants = {tied[0]}
+        self.identification = (f"participant {tied[0]}: {best} of the {want} endpoints the descriptor implies, "
+                               f"the most of {len(cands)} candidate(s) in partition {self.facts.partition}")
+        if len(tied) > 1:
+            self.identification += (f"; ambiguous: {len(tied) - 1} other(s) have as many ({', '.join(tied[1:4])}), "
+                                    f"the oldest participant is judged (choose with --participant)")
+        return True
+
+    def _read_births(self) -> None:
+        """Each participant's creation time as it announced it (the source timestamp of its
+        discovery sample): of participants that look equally like the asset, the one that was
+        there first is judged. Taken one at a time: a sample cyclonedds cannot convert is lost
+        alone."""
+        for _ in range(4096):
+            try:
+                got = self._births_reader.take(N=1)
+            except Exception:  # an unreadable discovery sample (Discovery reports those)
+                continue
+            if not got:
+                return
+            info = getattr(got[0], "sample_info", None)
+            stamp = getattr(info, "source_timestamp", None)
+            if isinstance(stamp, int) and len(self.births) < 4096:
+                self.births.setdefault(str(got[0].key), stamp)
 
     def endpoints(self, kind: str | None = None, topic: str | None = None):
         """The asset's endpoints (any partition: a wrong one is a finding, not invisible)."""
@@ -83,7 +155,7 @@ class Session:
             return False
         end = time.monotonic() + timeout
         while time.monotonic() < end:
-            if w.get_matched_subscriptions() and r.get_matched_publications():
+            if self.client.matched_asset(w, reader=False) and self.client.matched_asset(r, reader=True):
                 return True
             time.sleep(0.02)
         return False
@@ -143,6 +215,53 @@ class Session:
 
     def close(self) -> None:
         self.client.stop()
+
+    # ---- what was not judged ------------------------------------------------------------------
+    def participant_text(self, key: str) -> str:
+        """'<GUID> (process P, pid N, host H)' from Cyclone's participant properties."""
+        if key == UNKNOWN:
+            return "unknown (writers that had left when their samples were taken)"
+        p = self.discovery.participants.get(key)
+        props = p.properties if p is not None else {}
+        about = [f"{label} {str(props[k])[:48]}" for k, label in (("__ProcessName", "process"), ("__Pid", "pid"),
+                                                                     ("__Hostname", "host")) if k in props]
+        return visible(key + (f" ({', '.join(about)})" if about else ""))
+
+    def notes(self) -> dict:
+        """The asset's participant(s), strangers in the partition and what was dropped: plain
+        data for the reports, every wire string made visible."""
+        discovery_notes: list[str] = []
+        try:  # the report is written whatever discovery makes of the asset leaving (CMD-14's crash)
+            self.discovery.poll()
+            discovery_notes += getattr(self.discovery, "notes", lambda: [])()  # what it dropped or left out
+        except Exception as exc:
+            discovery_notes.append(f"discovery could not be read at the end of the run ({type(exc).__name__}: {exc})")
+        part = self.facts.partition
+        in_partition: dict[str, set[str]] = {}
+        for e in list(self.discovery.endpoints.values()):
+            if e.participant not in self.asset_participants and isinstance(e.topic, str) \
+                    and (part in e.partitions or "*" in e.partitions):
+                in_partition.setdefault(e.participant, set()).add(f"{e.kind} {e.topic}")
+        with self.client.lock:
+            tallies = {k: (dict(v.samples), v.acks_for_runner) for k, v in self.client.strangers.items()}
+        strangers = []
+        for key in list(dict.fromkeys([*in_partition, *tallies]))[:MAX_LISTED]:
+            samples, answered = tallies.get(key, ({}, 0))
+            strangers.append({
+                "participant": self.participant_text(key),
+                "endpoints": sorted(visible(t)[:120] for t in in_partition.get(key, ()))[:64],
+                "samples": {visible(t): {"count": c, "bytes": b, "not_decoded": nd}
+                            for t, (c, b, nd) in samples.items()},
+                "acks_for_runner": answered})
+        more = len(set(in_partition) | set(tallies)) - len(strangers)
+        return {"asset_participants": [self.participant_text(p) for p in sorted(self.asset_participants)],
+                "identification": visible(self.identification), "strangers": strangers, "more_strangers": max(0, more),
+                "dropped": [visible(line) for line in [*self.client.dropped(), *discovery_notes]]}
+
+
+def _hex(guid: str) -> str:
+    """A GUID or prefix as bare lowercase hex (dashes, colons and dots dropped)."""
+    return "".join(ch for ch in guid.lower() if ch in "0123456789abcdef")
 
 
 def describe(acks: list) -> str:
