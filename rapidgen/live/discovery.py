@@ -136,22 +136,28 @@ class Discovery:
         self.ignored[what] = self.ignored.get(what, 0) + n
 
     def poll(self) -> None:
+        from cyclonedds.core import InstanceState
+
         for kind, reader in self._readers:
             for s in self._take(kind, reader):
                 info = getattr(s, "sample_info", None)
-                alive = info is None or "ALIVE" == getattr(getattr(info, "instance_state", None), "name", "ALIVE")
-                key = str(s.key)
+                # a participant or endpoint that left comes as a key-only sample (InvalidSample)
+                alive = info is None or (bool(info.valid_data) and info.instance_state == InstanceState.Alive)
+                key = str(getattr(getattr(s, "key_sample", s), "key", ""))
+                if not alive:
+                    if kind == "participant":
+                        self.participants.pop(key, None)
+                    else:
+                        self.endpoints.pop(key, None)
+                        self.type_ids.pop(key, None)
+                    continue
                 if kind == "participant":
                     if key != self.own:
                         self._participant(key, s, alive)
                     continue
                 if str(s.participant_key) == self.own:
                     continue
-                if alive:
-                    self._endpoint(kind, key, s)
-                else:
-                    self.endpoints.pop(key, None)
-                    self.type_ids.pop(key, None)
+                self._endpoint(kind, key, s)
 
     def _participant(self, key: str, s, alive: bool) -> None:
         if not alive:

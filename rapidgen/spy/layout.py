@@ -14,7 +14,7 @@ import typing
 MAX_DEPTH = 32
 
 
-def first_difference(ours: type, theirs: type) -> str | None:
+def first_difference(ours: object, theirs: object) -> str | None:
     """'ParameterUnion.vec3d is double[3], RAPID's is Vec3d (...)', or None when alike."""
     return _Walk().types(ours, theirs, _short(ours), top=True, depth=0)
 
