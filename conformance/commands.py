@@ -6,7 +6,7 @@ import os
 import time
 from typing import Any
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.conform.asset import valid_args, wrong_type
 from rapidgen.conform.model import RECOMMENDED, REQUIRED, Unsupported, check, expect
 from rapidgen.conform.session import describe

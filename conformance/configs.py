@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.conform.model import REQUIRED, Blocked, Unsupported, check, expect
 
 from .dds import qos_mismatch

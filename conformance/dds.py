@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from collections.abc import Set as AbstractSet
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.conform.model import REQUIRED, check, expect
 
 PROFILES = {  # profile -> (reliability, durability, history kind): rapid-protocol.md 6

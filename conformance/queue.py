@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import time
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.conform.asset import valid_args
 from rapidgen.conform.model import REQUIRED, Blocked, Unsupported, check, expect
 from rapidgen.conform.session import describe

@@ -8,7 +8,7 @@ import os
 import sys
 import time
 from rapidgen.argtypes import domain_id
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 
 
 def add_parser(sub) -> None:

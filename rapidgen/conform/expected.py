@@ -1,5 +1,10 @@
 """The configs the descriptor implies, as samples of the generated types (the asset
-tables hold them as plain data with IDL member names)."""
+tables hold them as plain data with IDL member names).
+
+Deliberately a second computation: the runtimes build the same samples
+(rapid_runtime/messages.py config(), the C++ runtime's generated configs), and the
+conformance runner judges them, so it must not share their bugs. This is the one place an
+asset fact is computed again outside rapidgen/asset/resolved.py (docs/architecture.md)."""
 from __future__ import annotations
 
 

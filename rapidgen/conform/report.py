@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import xml.etree.ElementTree as ET
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.conform.model import BLOCKED, ERROR, FAIL, PASS, UNSUPPORTED, Result
 
 MARK = {PASS: "pass", FAIL: "FAIL", UNSUPPORTED: "n/a ", BLOCKED: "blkd", ERROR: "ERR "}

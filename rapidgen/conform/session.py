@@ -6,7 +6,7 @@ from __future__ import annotations
 import re
 import time
 
-from rapidgen.backends.escape import visible
+from rapidgen.textsafe import visible
 from rapidgen.conform.asset import AssetFacts, Cmd, valid_args
 from rapidgen.conform.client import UNKNOWN, Client
 from rapidgen.conform.model import Fail, Unsupported
