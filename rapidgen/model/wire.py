@@ -1,4 +1,5 @@
-"""Wire sizes every target agrees on: primitive sizes, enum widths, and the largest XCDR1
+"""Wire sizes every target agrees on: primitive sizes, enum widths, the fewest bytes a value
+takes in XCDR1 (decoders refuse a count the bytes left cannot hold), and the largest XCDR1
 encoding of a struct's key (big-endian, from offset 0), which decides whether the RTPS key
 hash is the key bytes themselves (16 or fewer) or their MD5."""
 from __future__ import annotations
@@ -20,6 +21,30 @@ def enum_size(e: ir.Enum) -> int:
 
 def align(offset: int, n: int) -> int:
     return -(-offset // n) * n
+
+
+def min_size(model: ir.Model, t: ir.Type, depth: int = 0) -> int:
+    """Fewest bytes a value of t takes in XCDR1 (alignment ignored): a decoder refuses a
+    count that the bytes left cannot hold before it allocates anything."""
+    r = model.resolve_alias(t)
+    if depth > MAX_DEPTH:
+        return 0
+    if isinstance(r, ir.Primitive):
+        return PRIMITIVE_SIZES.get(r.name, 1)
+    if isinstance(r, ir.String):
+        return 5  # length and terminating NUL
+    if isinstance(r, ir.Sequence):
+        return 4
+    if isinstance(r, ir.Array):
+        return math.prod(r.dims) * min_size(model, r.element, depth + 1)
+    d = model.get(r.name) if isinstance(r, ir.TypeRef) else None
+    if isinstance(d, ir.Enum):
+        return enum_size(d)
+    if isinstance(d, ir.Struct):
+        return sum(min_size(model, m.type, depth + 1) for m in model.all_members(d))
+    if isinstance(d, ir.Union):
+        return min_size(model, d.discriminator, depth + 1)
+    return 0
 
 
 def key_end(model: ir.Model, t: ir.Type, offset: int, depth: int = 0) -> int:

@@ -14,9 +14,8 @@ from typing import Callable
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.typewalk import TypeSpeller
 from rapidgen.diagnostics import SourceLoc
-from rapidgen.model import ir
+from rapidgen.model import ir, wire
 from rapidgen.model.wire import enum_size
-from rapidgen.model.wire import PRIMITIVE_SIZES as SIZES
 
 PRIMITIVES = {
     "int8": "i8", "uint8": "u8", "int16": "i16", "uint16": "u16", "int32": "i32", "uint32": "u32",
@@ -101,28 +100,9 @@ class TypeMap(TypeSpeller):
         return str(value)
 
     # -- sizes ------------------------------------------------------------------------
-    def min_size(self, t: ir.Type, depth: int = 0) -> int:
-        """Fewest bytes a value takes on the wire (alignment ignored): a decoder refuses a
-        count the bytes left cannot hold before it allocates."""
-        r = self.real(t)
-        if depth > 50:
-            return 0
-        if isinstance(r, ir.Primitive):
-            return SIZES.get(r.name, 1)
-        if isinstance(r, ir.String):
-            return 5
-        if isinstance(r, ir.Sequence):
-            return 4
-        if isinstance(r, ir.Array):
-            return math.prod(r.dims) * self.min_size(r.element, depth + 1)
-        d = self.decl(r)
-        if isinstance(d, ir.Enum):
-            return enum_size(d)
-        if isinstance(d, ir.Struct):
-            return sum(self.min_size(m.type, depth + 1) for m in self.model.all_members(d))
-        if isinstance(d, ir.Union):
-            return self.min_size(d.discriminator, depth + 1)
-        return 0
+    def min_size(self, t: ir.Type) -> int:
+        """Fewest bytes a value takes on the wire (model/wire.py)."""
+        return wire.min_size(self.model, t)
 
     # -- serde --------------------------------------------------------------------------
     def serde_with(self, t: ir.Type) -> str | None:
