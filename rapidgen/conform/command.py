@@ -55,14 +55,10 @@ def run_conform(args, sink, report) -> int:
     if unknown:
         print(f"rapidgen conform: unknown check id(s): {', '.join(unknown)} (see --list)", file=sys.stderr)
         return 2
-    from rapidgen.live.dds import DdsUnavailable, require_cyclonedds
-    try:
-        require_cyclonedds()
-    except DdsUnavailable as exc:
-        print(f"rapidgen conform: {exc}", file=sys.stderr)
+    from rapidgen.live.dds import dds_missing, use_transport
+    if dds_missing("conform"):
         return 1
     from rapidgen.live.bindings import load_bindings
-    from rapidgen.live.dds import use_transport
 
     bindings = load_bindings(args.file, sink, prefix="rapidconform")
     if bindings is None:

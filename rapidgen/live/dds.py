@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import importlib
 import os
+import sys
 
 TRANSPORTS = ("local", "lan", "wan")
 
@@ -19,6 +20,16 @@ def require_cyclonedds():
         raise DdsUnavailable(
             f"this command talks DDS and needs the cyclonedds package ({exc}); "
             "install it with: pip install 'rapidgen[dds]'") from None
+
+
+def dds_missing(tool: str) -> bool:
+    """True (said on stderr, the tool then exits 1) when cyclonedds is not installed."""
+    try:
+        require_cyclonedds()
+    except DdsUnavailable as exc:
+        print(f"rapidgen {tool}: {exc}", file=sys.stderr)
+        return True
+    return False
 
 
 def use_transport(config_path: str, keep_environment: bool) -> str:

@@ -47,11 +47,8 @@ def run_spy(args, sink, report) -> int:
     if args.seconds is not None and args.seconds <= 0 or args.count is not None and args.count <= 0:
         print("rapidgen spy: --seconds and --count must be positive", file=sys.stderr)
         return 2
-    from rapidgen.live.dds import DdsUnavailable, require_cyclonedds, use_transport
-    try:
-        require_cyclonedds()
-    except DdsUnavailable as exc:
-        print(f"rapidgen spy: {exc}", file=sys.stderr)
+    from rapidgen.live.dds import dds_missing, use_transport
+    if dds_missing("spy"):
         return 1
     bindings = _bindings(args.asset, sink)
     report(sink)
