@@ -8,7 +8,9 @@ handlers. Prints "bridge ready" once every config is published and commands are 
 from __future__ import annotations
 
 import argparse
+import copy
 import signal
+import struct
 import sys
 import threading
 import time
@@ -19,10 +21,11 @@ from rapid_runtime import messages as M
 from rapid_runtime.acks import COMPLETED, NOT
 from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
+from rapid_runtime.images import describe as describe_image
 from rapid_runtime.intake import Intake
 from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapid_runtime.tables import Tables
-from rapid_runtime.telemetry import ordered_values
+from rapid_runtime.telemetry import TelemetryError, ordered_values, typed_values
 from rapid_runtime.untrusted import visible
 
 COMMAND_TOPIC = "rapid_command"
@@ -223,6 +226,96 @@ class TelemetryPublisher:
         r = self.b.rapid
         self._write(e, "sample", "rapid::TextMessage", r.TextMessage(
             hdr=self._hdr(e), level=r.MessageLevel[level], category=category, message=message))
+
+    # ---- images ------------------------------------------------------------------------------
+    def _meta(self, e: dict, width: int | None, height: int | None, offset, extras: dict | None):
+        w, h = width or e.get("width") or 0, height or e.get("height") or 0
+        return M.image_meta(self.b.rapid, e.get("sensor") or "", e.get("sensor_type") or "", w, h, offset,
+                            typed_values(extras))
+
+    def image(self, data: bytes, mime: str | None = None, width: int | None = None, height: int | None = None,
+              index: int = 0, stamp: int | None = None, offset=None, extras: dict | None = None,
+              state: bool = False) -> None:
+        """One picture on the index-th image entry's sample topic (ImageSensorSample).
+        ImageMetadata names the declared sensor and sensor type; width, height and mimeType
+        are the picture's own when its header says them (PNG, JPEG, GIF, BMP, PNM), else the
+        arguments', else the declared ones. A mime, width or height given that contradicts the
+        header, or more bytes than the type holds, is a TelemetryError. offset: (xyz, rot9)
+        of the sensor in the asset frame (default origin, identity); extras: ImageMetadata
+        extras, key -> value or (DataType, value). state=True also publishes ImageSensorState
+        with the same metadata."""
+        e = self.of("image", index)
+        data = bytes(data)
+        info = describe_image(data)
+        if info is not None:
+            wrong = [f"{what} {given!r} (the picture's header says {real!r})"
+                     for what, given, real in (("mime", mime, info.mime), ("width", width, info.width),
+                                               ("height", height, info.height))
+                     if given is not None and given != real]
+            if wrong:
+                raise TelemetryError(f"image {e.get('sensor')}: {'; '.join(wrong)}")
+            mime, width, height = info.mime, info.width, info.height
+        bound = self._bound("rapid::ImageSensorSample", "data")
+        if bound is not None and len(data) > bound:
+            raise TelemetryError(f"image {e.get('sensor')}: {len(data)} bytes, ImageSensorSample.data holds {bound}")
+        meta = self._meta(e, width, height, offset, extras)
+        hdr = self._hdr(e, stamp)
+        r = self.b.rapid
+        if state:
+            self._write(e, "state", "rapid::ImageSensorState", M.image_state(r, hdr, meta))
+        self._write(e, "sample", "rapid::ImageSensorSample",
+                    M.image_sample(r, hdr, meta, mime or e.get("mime") or "", data))
+
+    def image_state(self, width: int | None = None, height: int | None = None, index: int = 0,
+                    stamp: int | None = None, offset=None, extras: dict | None = None) -> None:
+        """The index-th image entry's ImageSensorState (its sensor's metadata: declared size
+        unless given; offset and extras as for image())."""
+        e = self.of("image", index)
+        self._write(e, "state", "rapid::ImageSensorState",
+                    M.image_state(self.b.rapid, self._hdr(e, stamp), self._meta(e, width, height, offset, extras)))
+
+    def _bound(self, type_name: str, member: str) -> int | None:
+        return M.shape(M.members(type_class(self.b.rapid, type_name))[member]).bound
+
+    # ---- extension types -----------------------------------------------------------------------
+    def custom(self, values=None, role: str = "sample", index: int = 0, stamp: int | None = None) -> int:
+        """A message of the index-th custom entry's role (config, sample or state), of the
+        generated class its descriptor names. values: the class's members by name (nested
+        structs as dicts, enums by enumerator name, unions as {case: value}; members not given
+        keep their defaults), or an instance of the class. hdr (a rapid::Header member, when
+        the type has one) is filled: a config gets a new, larger serial when its content
+        changed and is written only then (as Bridge.publish_config); samples and states copy
+        their config's serial. Returns the serial. A member the type lacks or a value that
+        does not fit: TelemetryError."""
+        e = self.of("custom", index)
+        type_name = e.get("types", {}).get(role)
+        if type_name is None or role not in e["topics"]:
+            raise TelemetryError(f"custom telemetry entry {index} has no {role} (it has {', '.join(e['topics'])})")
+        cls = type_class(self.b.rapid, type_name)
+        try:
+            msg = M.build(cls, dict(values or {}) if not isinstance(values, cls) else values)
+        except (KeyError, TypeError, ValueError) as exc:
+            raise TelemetryError(f"{type_name}: {exc.args[0] if exc.args else exc}") from None
+        topic = e["topics"][role]
+        has_hdr = "hdr" in M.members(cls)
+        if role == "config":
+            content = copy.deepcopy(msg)
+            if has_hdr:
+                content.hdr = None
+            serial, changed = self.b.serials.update(topic, content)
+            if not changed:
+                return serial
+        else:
+            config = e["topics"].get("config")
+            serial = self.b.serials.of(config) if config else self.b.serials.start
+        if has_hdr:
+            msg = copy.copy(msg)
+            msg.hdr = M.header(self.b.rapid, self.b.name, self.b.name, serial, stamp=stamp)
+        try:
+            self.b.node.writer(topic, cls).write(msg)
+        except (TypeError, ValueError, struct.error) as exc:  # cyclonedds serializes on write
+            raise TelemetryError(f"{type_name}: not written: {type(exc).__name__}: {exc}") from None
+        return serial
 
 
 def _positive(text: str) -> int:

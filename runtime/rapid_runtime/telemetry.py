@@ -31,6 +31,38 @@ def ordered_values(keys: list[dict], values: dict) -> list[tuple[str, object]]:
     return out
 
 
+def typed_values(values: dict | None) -> list[tuple[str, str, object]]:
+    """(key, DataType, value) per entry of a free key -> value mapping (image extras): a value
+    given as (DataType, value) keeps its type; otherwise bool is RAPID_BOOL, int RAPID_INT
+    (RAPID_LONGLONG past 32 bits), float RAPID_DOUBLE, str RAPID_STRING, 3 numbers
+    RAPID_VEC3d, 9 numbers RAPID_MAT33f."""
+    out = []
+    for key, v in (values or {}).items():
+        if isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], str) and v[0].startswith("RAPID_"):
+            dtype, v = v
+        elif isinstance(v, bool):
+            dtype = "RAPID_BOOL"
+        elif isinstance(v, int):
+            dtype = "RAPID_INT" if -(1 << 31) <= v < (1 << 31) else "RAPID_LONGLONG"
+        elif isinstance(v, float):
+            dtype = "RAPID_DOUBLE"
+        elif isinstance(v, str):
+            dtype = "RAPID_STRING"
+        elif isinstance(v, (list, tuple)) and len(v) in (3, 9):
+            dtype = "RAPID_VEC3d" if len(v) == 3 else "RAPID_MAT33f"
+        else:
+            raise TelemetryError(f"value {key}: no DataType for {v!r} (give it as (DataType, value))")
+        try:
+            v = coerce(dtype, v)
+        except (TypeError, ValueError) as exc:
+            raise TelemetryError(f"value {key}: {exc}") from None
+        why = shape_error(dtype, v)
+        if why:
+            raise TelemetryError(f"value {key}: {why} ({dtype})")
+        out.append((str(key), dtype, v))
+    return out
+
+
 def zero(dtype: str) -> object:
     return {"RAPID_BOOL": False, "RAPID_STRING": "", "RAPID_INT": 0, "RAPID_LONGLONG": 0,
             "RAPID_VEC3d": [0.0] * 3, "RAPID_MAT33f": [0.0] * 9}.get(dtype, 0.0)

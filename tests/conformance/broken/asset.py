@@ -3,8 +3,6 @@ but not started, so a kind can patch any of them before anything is written."""
 from __future__ import annotations
 
 import importlib
-import threading
-import time
 
 from rapid_runtime import bridge as B
 from rapid_runtime import manager as manager_module
@@ -64,9 +62,9 @@ class Asset:
         return self.bridge.node.writer(topic, type_class(self.rapid, self.publication(topic)["type"]))
 
     def start(self) -> None:
-        """Start the bridge, and publish the other declared telemetry with a rate: the
-        simulator publishes no image or extension telemetry (docs/runtime.md), so without
-        this TEL-08 would fail on every broken asset. A kind leaves a topic in `quiet`."""
+        """Start the bridge. The simulator publishes every declared telemetry topic
+        (docs/runtime.md, Simulation); a kind leaves a topic in `quiet`: its writer exists
+        but nothing is ever written on it."""
         others = [p for p in self.tables.publications if p.get("rate") and p["role"] in ("sample", "state")
                   and (e := self._entry_of(p["topic"])) is not None and e["kind"] not in PAIRED]
         # Writers first, from this thread: the simulator's thread creates its own as it starts,
@@ -74,23 +72,27 @@ class Asset:
         # with another's profile (seen: a position writer made TransientLocal).
         for p in others:
             self.writer(p["topic"])
+        if self.quiet:
+            node, real = self.bridge.node, self.bridge.node.writer
+
+            def writer(topic, cls, keep_last=None):
+                w = real(topic, cls, keep_last)
+                return Silent(w) if topic in self.quiet else w
+            node.writer = writer
         self.bridge.start()
-        loud = [p for p in others if p["topic"] not in self.quiet]
-        if loud:
-            threading.Thread(target=self._others, args=(loud,), daemon=True, name="other-telemetry").start()
 
     def _entry_of(self, topic: str) -> dict | None:
         return next((t for t in self.tables.telemetry if topic in t["topics"].values()), None)
 
-    def _others(self, pubs: list[dict]) -> None:
-        due = {p["topic"]: 0.0 for p in pubs}
-        while not self.bridge.stopped.wait(0.05):
-            now = time.monotonic()
-            for p in pubs:
-                if now < due[p["topic"]]:
-                    continue
-                due[p["topic"]] = now + 1.0 / p["rate"]
-                config = self._entry_of(p["topic"])["topics"].get("config")  # type: ignore[index]
-                hdr = M.header(self.rapid, self.tables.name, self.tables.name, self.bridge.serials.of(config)
-                               if config else self.bridge.serials.start)
-                self.writer(p["topic"]).write(type_class(self.rapid, p["type"])(hdr=hdr))
+
+class Silent:
+    """A writer that exists (matched, discovered) and writes nothing."""
+
+    def __init__(self, writer) -> None:
+        self._writer = writer
+
+    def write(self, sample) -> None:
+        pass
+
+    def __getattr__(self, name):
+        return getattr(self._writer, name)
