@@ -32,7 +32,6 @@ import xml.etree.ElementTree as ET
 
 def _load(asset_path: str):
     from rapidgen.asset import load_asset
-    from rapidgen.asset.publish import configs
     from rapidgen.cli import report
     from rapidgen.diagnostics import DiagnosticSink
 
@@ -41,7 +40,7 @@ def _load(asset_path: str):
     if loaded is None or sink.has_errors:
         report(sink)
         raise SystemExit(1)
-    return loaded, configs(loaded)
+    return loaded, loaded.configs
 
 
 def _class_of(package: str, scoped: str):

@@ -50,8 +50,8 @@ class Intake:
         with self.cond:
             self.stopping = True
             self.cond.notify_all()
-        if threading.current_thread() is not self.thread:
-            self.thread.join(timeout=5)
+        if self.thread.is_alive() and threading.current_thread() is not self.thread:
+            self.thread.join(timeout=5)  # never started for an asset without commands
 
     # ---- the reader thread -----------------------------------------------------------------
     def offer(self, cmd: Cmd, writer: int) -> None:
