@@ -11,15 +11,17 @@ ACTIONS = (BYPASS, APPEND, DELETE, INSERT, REPLACE)
 HEAD = "head"  # INSERT's target naming the front of the queue (rapid-protocol.md section 4)
 
 # Ack.message is a String128: at most 127 bytes on the wire (Astrobee copies 128 bytes
-# unterminated, so a full 128 would lose its terminator there).
+# unterminated, so a full 128 would lose its terminator there). Python's cyclonedds refuses
+# to encode one over 128 characters, or one with a lone surrogate, and the ack is lost: every
+# message goes through clip() before it is written (manager.py), handler results included.
 MESSAGE_BYTES = 127
 
 
-def clip(text: str, limit: int = MESSAGE_BYTES) -> str:
-    """text cut to at most `limit` UTF-8 bytes, never inside a character."""
-    data = text.encode("utf-8", "replace")
-    if len(data) <= limit:
-        return text
+def clip(text: object, limit: int = MESSAGE_BYTES) -> str:
+    """text as an Ack.message: its first `limit` UTF-8 bytes, never cut inside a character;
+    what UTF-8 cannot encode (a lone surrogate, e.g. from bytes decoded with
+    surrogateescape) becomes '?'; anything but a string is str() of it."""
+    data = (text if isinstance(text, str) else str(text)).encode("utf-8", "replace")
     return data[:limit].decode("utf-8", "ignore")
 
 

@@ -330,7 +330,14 @@ class CommandManager:
 
     # ---- state topics ------------------------------------------------------------------------
     def _ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None:
-        self.out.ack(cmd, status, completed, clip(message))
+        """Every ack goes out here, its message clipped (acks.clip: at most 127 UTF-8 bytes,
+        nothing cyclonedds cannot encode), whoever wrote it: the runtime's reasons, handler
+        results, progress texts. A write that still fails is logged: the command's state
+        moves on all the same (a lost ack must not leave the queue stuck)."""
+        try:
+            self.out.ack(cmd, status, completed, clip(message))
+        except Exception as exc:  # DDS refusing a write: the commander hears nothing of this one
+            self.out.log(f"{status} ack of {cmd.cmd_id!r} not written: {type(exc).__name__}: {str(exc)[:120]}")
         if status == COMPLETED:  # each command's last ack: keep the last `window` commands' acks
             self.acked.append(_key_of(cmd))
             while len(self.acked) > self.window:
