@@ -44,7 +44,9 @@ def _diag_args(p: argparse.ArgumentParser) -> None:
                    "(an unknown code, or a code that is never a warning, is a usage error)")
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The whole command line, or (only=NAME) the top level with NAME's subcommand alone:
+    a run builds just the parser it uses, so `generate` never imports the live tools."""
     parser = argparse.ArgumentParser(prog="rapidgen", description=(
         "Compile RAPID IDL and asset descriptors into DDS bindings; check assets against the protocol."),
         epilog=f"targets (generate --lang): {', '.join(backends.known())}. "
@@ -52,8 +54,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"rapidgen {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
-    for add, _run in SUBCOMMANDS.values():
-        add(sub)
+    for name, (add, _run) in SUBCOMMANDS.items():
+        if only is None or name == only:
+            add(sub)
     return parser
 
 
@@ -303,8 +306,15 @@ SUBCOMMANDS = {
 }
 
 
+def _command_of(argv: Sequence[str]) -> str | None:
+    """The subcommand a command line names, when its first word is one (else None: the
+    whole parser then reports usage, help or the version)."""
+    return argv[0] if argv and argv[0] in SUBCOMMANDS else None
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(only=_command_of(argv))
     args = parser.parse_args(argv)
     try:
         return SUBCOMMANDS[args.command][1](args)

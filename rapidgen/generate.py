@@ -6,6 +6,8 @@ one language never touches another's files.
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import sys
 from dataclasses import dataclass
@@ -13,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from rapidgen import backends
 from rapidgen.backends.base import QOS_LIBRARY, GeneratedFile, GenerationError, Options, printable
-from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+from rapidgen.diagnostics import Diagnostic, DiagnosticSink, SourceLoc
 from rapidgen.model.ir import Model
 
 if TYPE_CHECKING:  # the asset package is loaded only for descriptors
@@ -82,24 +84,177 @@ def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
     if problem:
         sink.error("RG0802", problem, SourceLoc("<command line>", 0, 0), "name targets with --lang a,b")
         return None
-    asset = inputs.asset
-    chosen = {lang: backends.get(lang) for lang in langs}
-    extra = [c for b in chosen.values() for c in b.companions(asset) if c not in chosen]
-    everyone = {**chosen, **{c: backends.get(c) for c in extra}}
-    needs = frozenset().union(*(b.needs(asset) for b in everyone.values()))
-    qos_library = None
-    if QOS_LIBRARY in needs:
-        from rapidgen.qos.spec import default_library
-        qos_library = default_library()
-    options = Options(source=inputs.source, package=package, qos_library=qos_library)
-    out: dict[str, list[GeneratedFile]] = {}
+    renderer = _Renderer(inputs, package)
     try:
-        for lang, backend in everyone.items():
-            out[lang] = backend.generate(inputs.model, asset, options)
+        return {lang: renderer.target(lang) for lang in langs}
     except GenerationError as exc:
         exc.report(sink)
         return None
-    return {lang: b.embed(out[lang], {c: out[c] for c in b.companions(asset)}) for lang, b in chosen.items()}
+
+
+class _Renderer:
+    """Renders targets on demand, each at most once, a target's companions before it: the
+    unit of work that render() runs in order and generate/check spread over two processes."""
+
+    def __init__(self, inputs: Inputs, package: str | None) -> None:
+        self.inputs, self.package = inputs, package
+        self.raw: dict[str, list[GeneratedFile]] = {}  # generate()'s files, before embedding
+        self._library: object | None = None
+
+    def _options(self, needs: frozenset[str]) -> Options:
+        if QOS_LIBRARY in needs and self._library is None:
+            from rapidgen.qos.spec import default_library
+            self._library = default_library()
+        return Options(source=self.inputs.source, package=self.package,
+                       qos_library=self._library if QOS_LIBRARY in needs else None)
+
+    def _generate(self, lang: str) -> list[GeneratedFile]:
+        if lang not in self.raw:
+            backend, asset = backends.get(lang), self.inputs.asset
+            self.raw[lang] = backend.generate(self.inputs.model, asset, self._options(backend.needs(asset)))
+        return self.raw[lang]
+
+    def target(self, lang: str) -> list[GeneratedFile]:
+        """The target's files with its companions' embedded (raises GenerationError)."""
+        backend, asset = backends.get(lang), self.inputs.asset
+        files = self._generate(lang)
+        return backend.embed(files, {c: self._generate(c) for c in backend.companions(asset)})
+
+
+# -- two processes ----------------------------------------------------------------------------
+# `generate` with several targets and `check` with several project targets spread their work
+# over two processes: the back ends are pure functions of the parsed input, so a forked child
+# renders some targets (it inherits the parsed model) and hands the files back, pickled. The
+# output is the same as in one process; RAPIDGEN_JOBS=1 keeps everything in one.
+
+def jobs() -> int:
+    """How many processes to use: 2 where fork exists, the process may run on two CPUs or
+    more and runs no other Python thread (a forked child would get only this one), else 1."""
+    text = os.environ.get("RAPIDGEN_JOBS", "").strip()
+    if text.isdigit() and int(text) <= 1:
+        return 1
+    if not hasattr(os, "fork"):
+        return 1
+    try:
+        cpus = len(os.sched_getaffinity(0))
+    except AttributeError:  # not Linux
+        cpus = os.cpu_count() or 1
+    import threading
+    return 2 if cpus >= 2 and threading.active_count() == 1 else 1
+
+
+class _Queue:
+    """Job numbers 0..n-1 handed out first come, first served to the two processes: one
+    byte each in a pipe, read one at a time (a pipe read of one byte is atomic)."""
+
+    def __init__(self, n: int) -> None:
+        self.read, write = os.pipe()
+        os.write(write, bytes(range(n)))  # n <= 255, far below a pipe's buffer
+        os.close(write)
+
+    def take(self) -> int | None:
+        got = os.read(self.read, 1)
+        return got[0] if got else None
+
+    def close(self) -> None:
+        os.close(self.read)
+
+
+def _share(count: int, work) -> list:
+    """work(i) for every i < count, over two processes when jobs() says so; the results
+    in order. Results (and exceptions) of the child's jobs come back pickled."""
+    import pickle
+
+    if count < 2 or count > 255 or jobs() < 2:
+        return [work(i) for i in range(count)]
+    queue = _Queue(count)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: never returns into the caller
+        code = 0
+        try:
+            os.close(read)
+            done = []
+            while (i := queue.take()) is not None:
+                try:
+                    done.append((i, True, work(i)))
+                except Exception as exc:  # noqa: BLE001 (raised again in the parent)
+                    done.append((i, False, _portable(exc)))
+                    break
+            with os.fdopen(write, "wb") as out:
+                pickle.dump(done, out, protocol=pickle.HIGHEST_PROTOCOL)
+        except BaseException:  # noqa: BLE001 (the parent reports a child that sent nothing)
+            code = 70
+        finally:
+            os._exit(code)
+    os.close(write)
+    results: dict[int, object] = {}
+    try:
+        error: BaseException | None = None
+        while error is None and (i := queue.take()) is not None:
+            try:
+                results[i] = work(i)
+            except Exception as exc:  # noqa: BLE001 (raised below, once the child is reaped)
+                error = exc
+        with os.fdopen(read, "rb") as got:
+            data = got.read()
+        _, status = os.waitpid(pid, 0)
+        pid = 0
+    finally:
+        queue.close()
+        if pid:  # interrupted: stop the child we started, then reap it
+            import signal
+            os.kill(pid, signal.SIGTERM)
+            os.waitpid(pid, 0)
+    if error is not None:
+        raise error
+    if not data:
+        raise RuntimeError(f"a rapidgen worker process ended without its results "
+                           f"(exit status {os.waitstatus_to_exitcode(status)})")
+    for i, ok, value in pickle.loads(data):
+        if not ok:
+            raise value
+        results[i] = value
+    return [results[i] for i in range(count)]
+
+
+def _portable(exc: Exception) -> Exception:
+    """exc if it survives pickling, else a RuntimeError saying what it was."""
+    import pickle
+    try:
+        pickle.loads(pickle.dumps(exc))
+        return exc
+    except Exception:  # noqa: BLE001
+        return RuntimeError(f"{type(exc).__name__}: {exc}")
+
+
+def _render_shared(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
+                   package: str | None) -> dict[str, list[GeneratedFile]] | None:
+    """render(), its targets spread over two processes."""
+    langs, problem = backends.parse_langs(langs)
+    if problem:
+        sink.error("RG0802", problem, SourceLoc("<command line>", 0, 0), "name targets with --lang a,b")
+        return None
+    renderer = _Renderer(inputs, package)
+
+    def one(i: int) -> tuple[list[GeneratedFile] | None, list[Diagnostic]]:
+        local = DiagnosticSink()
+        try:
+            return renderer.target(langs[i]), []
+        except GenerationError as exc:
+            exc.report(local)
+            return None, list(local.diagnostics)
+
+    done = _share(len(langs), one)
+    out = {}
+    for lang, (files, diags) in zip(langs, done):
+        sink.extend(diags)
+        if files is None:
+            return None  # as render(): the first target that fails stops the run
+        out[lang] = files
+    return out
 
 
 def write_outputs(out_dir: str, per_lang: dict[str, list[GeneratedFile]], sink: DiagnosticSink) -> bool:
@@ -145,46 +300,52 @@ def _call_writer(function, folder: str, files: list[GeneratedFile], sink: Diagno
 
 def generate_command(paths: list[str], include: list[str], defines: dict[str, str], langs: list[str],
                      out_dir: str, package: str | None, sink: DiagnosticSink) -> bool:
-    inputs = load_inputs(paths, include, sink, defines)
-    per_lang = render(inputs, langs, sink, package) if inputs else None
-    return per_lang is not None and write_outputs(out_dir, per_lang, sink)
+    with _no_cyclic_gc():
+        inputs = load_inputs(paths, include, sink, defines)
+        per_lang = _render_shared(inputs, langs, sink, package) if inputs else None
+        return per_lang is not None and write_outputs(out_dir, per_lang, sink)
+
+
+@contextlib.contextmanager
+def _no_cyclic_gc():
+    """The cyclic garbage collector paused for one command: the model and the views hold
+    (almost) no cycles, and its full collections over the growing heap only cost time (the
+    front end pauses it for the same reason). Anything cyclic is collected afterwards."""
+    import gc
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was:
+            gc.enable()
 
 
 def check_command(project: str, fix: bool, sink: DiagnosticSink) -> int:
-    """Regenerate every target of the project file in memory; report (or fix) what is stale."""
+    """Regenerate every target of the project file in memory; report (or fix) what is stale.
+    The targets are spread over two processes (_share); what each prints comes out in the
+    project file's order."""
     from rapidgen.project import load_project
-    from rapidgen.writer import compare_tree
 
     targets = load_project(project, sink)
     if targets is None:
         return 1
+
+    def one(i: int) -> tuple[bool, str, str, list[Diagnostic]]:
+        local = DiagnosticSink(silenced=sink.silenced, warnings_as_errors=sink.warnings_as_errors)
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            stale = _check_target(targets[i], fix, local)
+        return stale, out.getvalue(), err.getvalue(), list(local.diagnostics)
+
     stale = 0
-    for t in targets:
-        inputs = load_inputs(list(t.inputs), list(t.include), sink)
-        if inputs is not None:
-            inputs.source = t.source
-        per_lang = render(inputs, list(t.lang), sink, t.package) if inputs else None
-        if per_lang is None:
-            continue
-        if fix:
-            write_outputs(t.out, per_lang, sink)
-            continue
-        lines, count = [], 0
-        for lang, files in per_lang.items():
-            diff = _call_writer(compare_tree, os.path.join(t.out, lang), files, sink)
-            if diff is None:
-                continue
-            sink.extend(diff.problems)
-            count += len(files)
-            for label, items in (("missing", diff.missing), ("differs", diff.differs),
-                                 ("no longer generated", diff.extra), ("interrupted run", diff.interrupted)):
-                lines += [f"  {label}: {lang}/{item}" for item in items]
-        if lines:
-            stale += 1
-            print(f"{t.name}: stale ({t.out})")
-            print("\n".join(lines))
-        else:
-            print(f"{t.name}: up to date ({count} files)")
+    with _no_cyclic_gc():
+        done = _share(len(targets), one)
+    for is_stale, out, err, diags in done:
+        sys.stdout.write(out)
+        sys.stderr.write(err)
+        sink.extend(diags)
+        stale += is_stale
     if sink.has_errors:
         return 1
     if stale:
@@ -192,3 +353,34 @@ def check_command(project: str, fix: bool, sink: DiagnosticSink) -> int:
               file=sys.stderr)
         return 1
     return 0
+
+
+def _check_target(t, fix: bool, sink: DiagnosticSink) -> bool:
+    """One project target: compare (or rewrite) its output; prints what it finds. True when stale."""
+    from rapidgen.writer import compare_tree
+
+    inputs = load_inputs(list(t.inputs), list(t.include), sink)
+    if inputs is not None:
+        inputs.source = t.source
+    per_lang = render(inputs, list(t.lang), sink, t.package) if inputs else None
+    if per_lang is None:
+        return False
+    if fix:
+        write_outputs(t.out, per_lang, sink)
+        return False
+    lines, count = [], 0
+    for lang, files in per_lang.items():
+        diff = _call_writer(compare_tree, os.path.join(t.out, lang), files, sink)
+        if diff is None:
+            continue
+        sink.extend(diff.problems)
+        count += len(files)
+        for label, items in (("missing", diff.missing), ("differs", diff.differs),
+                             ("no longer generated", diff.extra), ("interrupted run", diff.interrupted)):
+            lines += [f"  {label}: {lang}/{item}" for item in items]
+    if lines:
+        print(f"{t.name}: stale ({t.out})")
+        print("\n".join(lines))
+        return True
+    print(f"{t.name}: up to date ({count} files)")
+    return False

@@ -57,7 +57,7 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass, field
-from typing import Iterable, Iterator
+from typing import Callable, Iterable, Iterator
 
 from rapidgen.backends.base import GeneratedFile
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink, Severity, SourceLoc
@@ -409,12 +409,58 @@ def _fsync_dir(path: str) -> None:
 
 
 def _write_new(path: str, data: bytes, mode: int) -> None:
+    """A new file; the caller fsyncs it (_fsync_all: many at once)."""
     fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
     with os.fdopen(fd, "wb") as fh:
         fh.write(data)
         fh.flush()
         os.fchmod(fh.fileno(), mode)
-        os.fsync(fh.fileno())
+
+
+SYNC_THREADS = 8  # fsync releases the GIL, and the file system commits concurrent ones together
+
+
+def _fsync_all(paths: list[str], sync: Callable[[str], None] | None = None) -> None:
+    """fsync every path (files or folders), several at a time; the first error is raised
+    once all are done."""
+    sync = sync or _fsync_path
+    if len(paths) < 2:
+        for p in paths:
+            sync(p)
+        return
+    import threading
+
+    errors: list[BaseException] = []
+    queue = list(reversed(paths))
+    lock = threading.Lock()
+
+    def work() -> None:
+        while True:
+            with lock:
+                if not queue or errors:
+                    return
+                path = queue.pop()
+            try:
+                sync(path)
+            except BaseException as exc:  # noqa: BLE001 (raised below, in the caller's thread)
+                with lock:
+                    errors.append(exc)
+
+    threads = [threading.Thread(target=work, daemon=True) for _ in range(min(SYNC_THREADS, len(paths)))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    if errors:
+        raise errors[0]
+
+
+def _fsync_path(path: str) -> None:
+    fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
 
 
 def _commit(root: str, writes: list[tuple[str, bytes]], removes: list[tuple[str, str]]) -> None:
@@ -431,9 +477,11 @@ def _commit(root: str, writes: list[tuple[str, bytes]], removes: list[tuple[str,
                 mode = 0o644
             _write_new(os.path.join(staging, f"{i}.tmp"), data, mode)
             renames.append([rel, f"{i}.tmp"])
+        _fsync_all([os.path.join(staging, name) for _, name in renames])  # all durable before the commit
         journal = json.dumps({"version": 1, "removes": [list(r) for r in removes],
                               "renames": renames}).encode("utf-8")
         _write_new(os.path.join(staging, "journal.tmp"), journal, 0o600)
+        _fsync_path(os.path.join(staging, "journal.tmp"))
         os.replace(os.path.join(staging, "journal.tmp"), os.path.join(staging, JOURNAL))  # the commit
     except BaseException:  # not committed: the old output is untouched, drop what was staged
         shutil.rmtree(staging, ignore_errors=True)
@@ -475,8 +523,7 @@ def _apply(root: str, removes: list, renames: list[list[str]]) -> None:
                 break
             touched.add(os.path.dirname(folder))
             folder = os.path.dirname(folder)
-    for folder in sorted(touched):
-        _fsync_dir(folder)
+    _fsync_all(sorted(touched), _fsync_dir)
     os.unlink(os.path.join(staging, JOURNAL))
     shutil.rmtree(staging)
 

@@ -324,11 +324,21 @@ class Model:
 
     def resolve_alias(self, t: Type) -> Type:
         """Follow typedefs to the underlying type (the one unalias: see `unalias`)."""
+        if type(t) is not TypeRef or t.kind != "typedef":  # most types: nothing to follow
+            return t
         return unalias(t, self.by_name.get)
 
     @cached_property
     def _flat(self) -> dict[str, tuple[Member, ...]]:
         return {}
+
+    @cached_property
+    def _memos(self) -> dict[str, dict]:
+        return {}
+
+    def memo(self, name: str) -> dict:
+        """A dict kept with the model for a query's results (the model never changes)."""
+        return self._memos.setdefault(name, {})
 
     def all_members(self, struct: Struct) -> tuple[Member, ...]:
         """Members in wire order: base members first (the one flattening: see `flatten`)."""

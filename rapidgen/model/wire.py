@@ -26,25 +26,41 @@ def align(offset: int, n: int) -> int:
 def min_size(model: ir.Model, t: ir.Type, depth: int = 0) -> int:
     """Fewest bytes a value of t takes in XCDR1 (alignment ignored): a decoder refuses a
     count that the bytes left cannot hold before it allocates anything."""
+    return _min_size(model, t, depth, model.memo("wire.min_size"))[0]
+
+
+def _min_size(model: ir.Model, t: ir.Type, depth: int, memo: dict) -> tuple[int, int, bool]:
+    """(size, levels below `depth` it looked, whether MAX_DEPTH cut it short). A struct's or
+    union's size is remembered when nothing cut it short, and reused wherever its levels
+    fit under MAX_DEPTH again: the same value, computed once."""
     r = model.resolve_alias(t)
     if depth > MAX_DEPTH:
-        return 0
+        return 0, 0, True
     if isinstance(r, ir.Primitive):
-        return PRIMITIVE_SIZES.get(r.name, 1)
+        return PRIMITIVE_SIZES.get(r.name, 1), 0, False
     if isinstance(r, ir.String):
-        return 5  # length and terminating NUL
+        return 5, 0, False  # length and terminating NUL
     if isinstance(r, ir.Sequence):
-        return 4
+        return 4, 0, False
     if isinstance(r, ir.Array):
-        return math.prod(r.dims) * min_size(model, r.element, depth + 1)
+        size, below, cut = _min_size(model, r.element, depth + 1, memo)
+        return math.prod(r.dims) * size, below + 1, cut
     d = model.get(r.name) if isinstance(r, ir.TypeRef) else None
     if isinstance(d, ir.Enum):
-        return enum_size(d)
-    if isinstance(d, ir.Struct):
-        return sum(min_size(model, m.type, depth + 1) for m in model.all_members(d))
-    if isinstance(d, ir.Union):
-        return min_size(model, d.discriminator, depth + 1)
-    return 0
+        return enum_size(d), 0, False
+    if isinstance(d, (ir.Struct, ir.Union)):
+        known = memo.get(d.scoped_name)
+        if known is not None and depth + known[1] <= MAX_DEPTH:
+            return known[0], known[1], False
+        parts = ([_min_size(model, m.type, depth + 1, memo) for m in model.all_members(d)] if isinstance(d, ir.Struct)
+                 else [_min_size(model, d.discriminator, depth + 1, memo)])
+        size = sum(p[0] for p in parts)
+        below = 1 + max((p[1] for p in parts), default=0) if parts else 0
+        cut = any(p[2] for p in parts)
+        if not cut:
+            memo[d.scoped_name] = (size, below)
+        return size, below, cut
+    return 0, 0, False
 
 
 def key_end(model: ir.Model, t: ir.Type, offset: int, depth: int = 0) -> int:

@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from rapidgen.backends.base import QOS_LIBRARY, GeneratedFile, Options, check_output, notice
-from rapidgen.backends.python import asset_tables, namer
+from rapidgen.backends.python import namer
 from rapidgen.backends.python.view import PackageView, UnsupportedInput, build
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
@@ -39,7 +39,10 @@ def companions(asset: "LoadedAsset | None") -> tuple[str, ...]:
 def embed(files: list[GeneratedFile], other: dict[str, list[GeneratedFile]]) -> list[GeneratedFile]:
     """The qos target's files under <package>/qos_files/ (package data: RapidQos() works
     after `pip install`)."""
-    return asset_tables.with_qos_files(files, other.get("qos", []))
+    if not other.get("qos"):
+        return files
+    from rapidgen.backends.python import asset_tables
+    return asset_tables.with_qos_files(files, other["qos"])
 
 
 def package_for(asset: "LoadedAsset | None", options: Options) -> str:
@@ -57,6 +60,7 @@ def view(model: Model, asset: "LoadedAsset | None", options: Options) -> Package
 def asset_files(model: Model, asset: "LoadedAsset", options: Options, pkg: PackageView) -> list[GeneratedFile]:
     """The asset's tables, handlers and bridge (asset_tables.py). The QoS files come in
     through embed() (a back end imports no other)."""
+    from rapidgen.backends.python import asset_tables  # reads the descriptor's classes: assets only
     return asset_tables.generate(asset, pkg.package, pkg.header)
 
 
@@ -64,7 +68,10 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
     """Raises UnsupportedInput when the model uses what cyclonedds cannot encode."""
     pkg = view(model, asset, options)
     extras = asset_files(model, asset, options, pkg) if asset is not None else []
-    runtime = asset_tables.runtime_view(pkg.package) if extras else None  # package data: qos_files/
+    runtime = None
+    if extras:
+        from rapidgen.backends.python import asset_tables
+        runtime = asset_tables.runtime_view(pkg.package)  # package data: qos_files/
     files = [GeneratedFile("pyproject.toml", render("python", "pyproject.toml.j2", p=pkg.project, runtime=runtime)),
              GeneratedFile(pkg.support_path, render("python", "_support.py.j2", header=pkg.header)),
              GeneratedFile(pkg.qos.path, render("python", "qos.py.j2", q=pkg.qos))]

@@ -18,7 +18,6 @@ from rapidgen.backends.base import (QOS_LIBRARY, GeneratedFile, Options, check_o
 from rapidgen.backends.escape import crate_name
 from rapidgen.backends.rust.asset import AssetView
 from rapidgen.backends.rust.asset import build as asset_view
-from rapidgen.qos.spec import QosSpec
 from rapidgen.backends.rust.view import Builder, CrateView, UnsupportedInput
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
@@ -51,8 +50,11 @@ def crate_for(asset: "LoadedAsset | None", options: Options) -> str:
 def view(model: Model, asset: "LoadedAsset | None", options: Options) -> tuple[CrateView, AssetView | None]:
     builder = Builder(model)
     c = builder.build(crate_for(asset, options), notice(options.source), options.source)
+    if asset is None:
+        return c, None
+    from rapidgen.qos.spec import QosSpec  # the driver read the library for an asset (needs())
     library = options.qos_library if isinstance(options.qos_library, QosSpec) else None
-    return c, (asset_view(asset, builder, library) if asset is not None else None)
+    return c, asset_view(asset, builder, library)
 
 
 def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:

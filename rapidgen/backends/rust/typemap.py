@@ -125,11 +125,11 @@ class TypeMap(TypeSpeller):
         """An expression writing the value at `place` to Writer `w`, and whether it is a
         Result (to be followed by `?`)."""
         r = self.real(t)
-        w = rust_str(what)
         if isinstance(r, ir.Primitive):
             if r.name == "boolean":
                 return f"w.put_bool({place})", False
             return f"w.put::<{PRIMITIVES[r.name]}>({place})", False
+        w = rust_str(what) if isinstance(r, (ir.String, ir.Sequence)) else ""
         if isinstance(r, ir.String):
             return f"w.put_string({ref(place)}, {r.bound or 0}, {w})", True
         if isinstance(r, ir.Sequence):
@@ -199,11 +199,11 @@ class TypeMap(TypeSpeller):
 
     def _decode(self, t: ir.Type, what: str) -> tuple[str, bool]:
         r = self.real(t)
-        w = rust_str(what)
         if isinstance(r, ir.Primitive):
             if r.name == "boolean":
                 return "r.get_bool()", True
             return f"r.get::<{PRIMITIVES[r.name]}>()", True
+        w = rust_str(what) if isinstance(r, (ir.String, ir.Sequence, ir.Array)) else ""
         if isinstance(r, ir.String):
             return f"r.get_string({r.bound or 0}, {w})", True
         if isinstance(r, ir.Sequence):
