@@ -6,6 +6,7 @@ Exit codes: 0 success, 1 errors in the input (diagnostics on stderr), 2 usage er
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import sys
 from typing import Sequence
@@ -42,6 +43,9 @@ def _diag_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("-W", dest="warn", action="append", default=[], metavar="no-CODE|error", type=_warn_value,
                    help="-W no-RG0501 silences a warning code; -W error turns warnings into errors "
                    "(an unknown code, or a code that is never a warning, is a usage error)")
+    p.add_argument("--format", default="text", choices=("text", "github"),
+                   help="diagnostics as text (default) or as GitHub Actions annotations on stdout "
+                   "(::error file=...,line=...::..., docs/ci.md)")
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
@@ -161,6 +165,12 @@ def _sink(args: argparse.Namespace) -> DiagnosticSink:
     return DiagnosticSink(silenced=silenced, warnings_as_errors="error" in args.warn)
 
 
+def _report(args: argparse.Namespace):
+    """report() in the format the command line asks for (--format)."""
+    fmt = getattr(args, "format", "text")
+    return report if fmt == "text" else functools.partial(report, fmt=fmt)
+
+
 def _defines(items: list[str]) -> dict[str, str]:
     out = {}
     for item in items:
@@ -169,8 +179,9 @@ def _defines(items: list[str]) -> dict[str, str]:
     return out
 
 
-def report(sink: DiagnosticSink, stream=None) -> None:
-    """Print every diagnostic, then a count."""
+def report(sink: DiagnosticSink, stream=None, fmt: str = "text") -> None:
+    """Print every diagnostic, then a count (`fmt` github: each as a GitHub Actions
+    annotation on stdout, the count on stderr)."""
     stream = stream or sys.stderr
     lines = FileLineCache()
     if codes.checking():  # diagnostics some stages add to the sink directly (notes)
@@ -178,8 +189,13 @@ def report(sink: DiagnosticSink, stream=None) -> None:
             promoted = d.severity is Severity.ERROR and sink.warnings_as_errors
             if not (promoted and codes.can_be_silenced(d.code)):
                 codes.check(d.code, d.severity.value)
-    for d in sink.sorted():
-        print(render(d, lines), file=stream)
+    if fmt == "github":
+        from rapidgen.annotations import of_diagnostic
+        for d in sink.sorted():
+            print(of_diagnostic(d), file=sys.stdout)
+    else:
+        for d in sink.sorted():
+            print(render(d, lines), file=stream)
     errors = sum(1 for d in sink.diagnostics if d.severity is Severity.ERROR)
     warnings = sum(1 for d in sink.diagnostics if d.severity is Severity.WARNING)
     if errors or warnings:
@@ -194,7 +210,7 @@ def _cmd_ir(args: argparse.Namespace) -> int:
 
     sink = _sink(args)
     model, _ = load_idl(args.files, args.include, sink, _defines(args.define))
-    report(sink)
+    _report(args)(sink)
     if model is None:
         return 1
     text = model_to_json(model, loc=not args.no_loc)
@@ -205,7 +221,7 @@ def _cmd_ir(args: argparse.Namespace) -> int:
 
     failed = DiagnosticSink()  # the diagnostics above are already printed
     if write_output(args.output, text, failed) is None:
-        report(failed)
+        _report(args)(failed)
         return 1
     return 0
 
@@ -215,7 +231,7 @@ def _cmd_summary(args: argparse.Namespace) -> int:
 
     sink = _sink(args)
     model, pre = load_idl(args.files, args.include, sink, _defines(args.define))
-    report(sink)
+    _report(args)(sink)
     if model is None:
         return 1
     counts: dict[str, dict[str, int]] = {}
@@ -235,12 +251,12 @@ def _cmd_summary(args: argparse.Namespace) -> int:
 
 def _cmd_validate(args: argparse.Namespace) -> int:
     from rapidgen.asset.describe import run_validate
-    return run_validate(args.files, args.rapid, _sink(args), report)
+    return run_validate(args.files, args.rapid, _sink(args), _report(args))
 
 
 def _cmd_describe(args: argparse.Namespace) -> int:
     from rapidgen.asset.describe import run_describe
-    return run_describe(args.file, args.rapid, _sink(args), report, as_json=args.json)
+    return run_describe(args.file, args.rapid, _sink(args), _report(args), as_json=args.json)
 
 
 def _cmd_init(args: argparse.Namespace) -> int:
@@ -262,7 +278,7 @@ def _cmd_generate(args: argparse.Namespace) -> int:
         return 2
     sink = _sink(args)
     ok = generate_command(args.inputs, args.include, _defines(args.define), langs, args.output, args.package, sink)
-    report(sink)
+    _report(args)(sink)
     return 0 if ok else 1
 
 
@@ -270,14 +286,14 @@ def _cmd_check(args: argparse.Namespace) -> int:
     from rapidgen.generate import check_command
 
     sink = _sink(args)
-    code = check_command(args.project, args.fix, sink)
-    report(sink)
+    code = check_command(args.project, args.fix, sink, annotate=args.format == "github")
+    _report(args)(sink)
     return code
 
 
 def _cmd_vectors(args: argparse.Namespace) -> int:
     from rapidgen.vectors import run_vectors
-    return run_vectors(args.inputs, args.include, args.output, _sink(args), report, _defines(args.define))
+    return run_vectors(args.inputs, args.include, args.output, _sink(args), _report(args), _defines(args.define))
 
 
 def _cmd_conform(args: argparse.Namespace) -> int:
@@ -292,7 +308,7 @@ def _cmd_spy(args: argparse.Namespace) -> int:
 
 def _cmd_diff(args: argparse.Namespace) -> int:
     from rapidgen.diff.command import run_diff
-    return run_diff(args, _sink(args), report)
+    return run_diff(args, _sink(args), _report(args))
 
 
 # Every subcommand registers the same way: name -> (its arguments, its run), in help order.

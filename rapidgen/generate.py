@@ -321,7 +321,7 @@ def _no_cyclic_gc():
             gc.enable()
 
 
-def check_command(project: str, fix: bool, sink: DiagnosticSink) -> int:
+def check_command(project: str, fix: bool, sink: DiagnosticSink, annotate: bool = False) -> int:
     """Regenerate every target of the project file in memory; report (or fix) what is stale.
     The targets are spread over two processes (_share); what each prints comes out in the
     project file's order."""
@@ -335,7 +335,7 @@ def check_command(project: str, fix: bool, sink: DiagnosticSink) -> int:
         local = DiagnosticSink(silenced=sink.silenced, warnings_as_errors=sink.warnings_as_errors)
         out, err = io.StringIO(), io.StringIO()
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            stale = _check_target(targets[i], fix, local)
+            stale = _check_target(targets[i], fix, local, annotate)
         return stale, out.getvalue(), err.getvalue(), list(local.diagnostics)
 
     stale = 0
@@ -355,8 +355,9 @@ def check_command(project: str, fix: bool, sink: DiagnosticSink) -> int:
     return 0
 
 
-def _check_target(t, fix: bool, sink: DiagnosticSink) -> bool:
-    """One project target: compare (or rewrite) its output; prints what it finds. True when stale."""
+def _check_target(t, fix: bool, sink: DiagnosticSink, annotate: bool = False) -> bool:
+    """One project target: compare (or rewrite) its output; prints what it finds (annotate:
+    each stale file as a GitHub Actions annotation too). True when stale."""
     from rapidgen.writer import compare_tree
 
     inputs = load_inputs(list(t.inputs), list(t.include), sink)
@@ -381,6 +382,12 @@ def _check_target(t, fix: bool, sink: DiagnosticSink) -> bool:
     if lines:
         print(f"{t.name}: stale ({t.out})")
         print("\n".join(lines))
+        if annotate:
+            from rapidgen.annotations import command
+            for line in lines:
+                label, _, rel = line.strip().partition(": ")
+                print(command("error", f"{label}: generated output is stale; run `rapidgen check --fix` and commit it",
+                              SourceLoc(f"{t.out}/{rel}", 0, 0), f"rapidgen check: {t.name}"))
         return True
     print(f"{t.name}: up to date ({count} files)")
     return False

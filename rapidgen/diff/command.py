@@ -12,7 +12,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Callable, overload
 
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink, SourceLoc, did_you_mean
-from rapidgen.diff.render import as_json, text
+from rapidgen.diff.render import as_json, github, text
 from rapidgen.diff.rules import CATEGORIES, RULES, Finding
 from rapidgen.diff.sides import Side, kind_of, load_side
 
@@ -111,6 +111,12 @@ def run_diff(args, sink: DiagnosticSink, report: Callable[[DiagnosticSink], None
             return 1
         found = [replace(f, old=remap.loc(f.old)) for f in compare(old, new)]
     kept = [f for f in found if f.rule.id not in args.ignore and not any(w.covers(f) for w in waivers)]
-    out = as_json(kept, len(found) - len(kept)) if args.json else text(kept, len(found) - len(kept))
+    waived = len(found) - len(kept)
+    if args.json:
+        out = as_json(kept, waived)
+    elif getattr(args, "format", "text") == "github":
+        out = github(kept, waived, fail_on, args.against)
+    else:
+        out = text(kept, waived)
     sys.stdout.write(out)
     return 1 if any(f.rule.category in fail_on for f in kept) else 0

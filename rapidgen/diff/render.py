@@ -1,4 +1,5 @@
-"""Findings as compiler-like text (the default) or JSON (`--json`)."""
+"""Findings as compiler-like text (the default), JSON (`--json`) or GitHub Actions
+annotations (`--format github`)."""
 from __future__ import annotations
 
 import json
@@ -26,11 +27,15 @@ def text(findings: list[Finding], waived: int) -> str:
         if f.new is not None and head is not f.new:
             lines.append(f"  {_loc(f.new)}: note: in NEW")
         lines.append(f"  = {f.rule.title}: {f.rule.why}")
+    lines.append(_summary(findings, waived))
+    return "\n".join(lines) + "\n"
+
+
+def _summary(findings: list[Finding], waived: int) -> str:
     c = counts(findings)
     summary = ", ".join(f"{c[k]} {k}" for k in CATEGORIES)
-    lines.append(f"rapidgen diff: {summary} change{'s' * (len(findings) != 1)}"
-                 + (f" ({waived} waived)" if waived else ""))
-    return "\n".join(lines) + "\n"
+    return (f"rapidgen diff: {summary} change{'s' * (len(findings) != 1)}"
+            + (f" ({waived} waived)" if waived else ""))
 
 
 def _jfile(name: str) -> str:
@@ -62,3 +67,27 @@ def as_json(findings: list[Finding], waived: int) -> str:
     }
     out = json.dumps(doc, indent=2, ensure_ascii=False)
     return _RAW.sub(lambda m: f"\\u{ord(m.group()):04x}", out) + "\n"
+
+
+def github(findings: list[Finding], waived: int, fail_on: set[str], rev: str | None) -> str:
+    """One annotation per finding (error when its category is in --fail-on, else warning)
+    at its NEW location; a finding only OLD has (a removal) names the file without a line
+    (the line is OLD's), then the text summary line."""
+    from rapidgen.annotations import command
+
+    lines = []
+    for f in findings:
+        level = "error" if f.rule.category in fail_on else "warning"
+        title = f"{f.rule.category.lower()}[{f.rule.id}]: {f.rule.title}"
+        message = f"{f.message} ({f.rule.why})"
+        if f.new is not None:
+            lines.append(command(level, message, f.new, title))
+        elif f.old is not None:
+            old = f.old
+            if rev is not None and old.file.startswith(f"{rev}:"):
+                old = old._replace(file=old.file[len(rev) + 1:])
+            lines.append(command(level, f"{message}; in OLD at {f.old}", old, title, with_line=False))
+        else:
+            lines.append(command(level, message, None, title))
+    lines.append(_summary(findings, waived))
+    return "\n".join(lines) + "\n"
