@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from rapidgen.conform.model import REQUIRED, Blocked, Unsupported, check, expect
+from rapidgen.conform.session import OK, describe
 
 from .commands import _ready
 from .dds import qos_mismatch
@@ -10,10 +11,10 @@ TOPIC = "rapid_accesscontrol_state"
 INTRUDER = "RapidConformanceIntruder"
 
 
-def _access(s):
+def _access(s, answers: bool = True):
     if not s.facts.has_type("AccessControl"):
         raise Unsupported("the asset has no AccessControl subsystem")
-    _ready(s)
+    _ready(s, answers)
 
 
 def _other(s, cmd=None):
@@ -29,7 +30,7 @@ def _other(s, cmd=None):
 @check("ACC-01", REQUIRED, "AccessControlState is published and durable", "rapid-protocol.md 5b; RapidStateQos",
        needs=("CMD-01",))
 def published(s):
-    _access(s)
+    _access(s, answers=False)  # judges the state alone
     eps = s.wait_endpoint("writer", TOPIC)
     if not eps:
         raise Blocked(f"no {TOPIC} writer (DDS-06)")
@@ -42,7 +43,7 @@ def published(s):
        "rapid-protocol.md 5b (soraCore: granted; Astrobee: cookie, then grabControl)", needs=("ACC-01",))
 def request(s):
     _access(s)
-    if s.controller(0.5) == s.source:
+    if s.holder == s.source or s.controller(0.5) == s.source:
         s.run(("AccessControl", "releaseControl"), [])
     acks = s.take_control(s.source)
     now = s.controller(2.0, want=s.source)
@@ -60,6 +61,41 @@ def refused(s):
     s.expect_refused(s.run(c, source=b), f"{c.subsystem}/{c.name} from {b} (not the controller)")
 
 
+@check("ACC-07", REQUIRED, "requestControl while another source holds control leaves control with it",
+       "rapid-protocol.md 5b: soraCore queues the requester, Astrobee answers with a cookie; neither hands control over",
+       needs=("ACC-02",))
+def request_held(s):
+    _access(s)
+    request = s.facts.command("AccessControl", "requestControl")
+    b = _other(s, request) if request is not None else None
+    if b is None:
+        raise Unsupported("no AccessControl/requestControl")
+    s.ensure_control()
+    before = s.controller(1.0, want=s.source)
+    c = s.facts.harmless()  # the acks must say it too: a command of the holder's accepted before and after
+    accepted = c is not None and _ok(s, s.run(c))
+    try:
+        acks = s.run(("AccessControl", "requestControl"), [], source=b)
+        now = s.controller(0.5, want=b)  # a state handing control over comes with the answer, or soon after
+        want = f"controller still {s.source!r} after {b}'s requestControl (queued, or a cookie)"
+        expect(now != b, want, f"controller {now!r} (was {before!r}); requestControl answered {describe(acks)}")
+        if accepted:
+            probe = s.run(c)
+            expect(_ok(s, probe), want, f"{c.subsystem}/{c.name} from {s.source}, accepted before, answered "
+                                        f"{describe(probe)} after the request (AccessControlState names {now!r})")
+    finally:  # b's request may have moved control whatever the state says: take it back
+        s.holder = None
+        try:
+            s.ensure_control()
+        except Blocked:  # answers that cannot be judged: the checks that need them say so
+            pass
+
+
+def _ok(s, acks) -> bool:
+    f = s.final(acks)
+    return f is not None and f.completed == OK
+
+
 @check("ACC-04", REQUIRED, "grabControl takes control", "rapid-protocol.md 5b: grabControl always succeeds",
        needs=("ACC-02",))
 def grab(s):
@@ -67,11 +103,13 @@ def grab(s):
     b = _other(s)
     g = s.facts.command("AccessControl", "grabControl")
     if g is not None and g.params:
-        s.take_control(b)
+        acks = s.take_control(b)
     else:
-        s.expect_ok(s.run(("AccessControl", "grabControl"), [], source=b), "grabControl")
+        acks = s.run(("AccessControl", "grabControl"), [], source=b)
+        s.expect_ok(acks, "grabControl")
     now = s.controller(2.0, want=b)
-    expect(now == b, f"controller {b!r}", repr(now))
+    expect(now == b, f"controller {b!r} in AccessControlState once grabControl is answered",
+           f"{now!r} after grabControl answered {describe(acks[-2:])}")
 
 
 @check("ACC-05", REQUIRED, "releaseControl by a source without control is refused",

@@ -62,19 +62,52 @@ def _expected(s, topic: str, sample):
     return type(want).deserialize(want.serialize())
 
 
+# CommandConfig lists whose order is the asset's choice (5b: soraCore sorts entries by name,
+# Astrobee keeps its config file's order): compared as multisets, keyed by name. A CommandDef's
+# parameters keep their order (arguments are matched by position), as do the other configs'
+# lists (valueKeys[i] describes values[i]; jointDefinitions[i] index i).
+UNORDERED = {"availableSubsystems": None, "availableSubsystemTypes": "commands"}
+
+
+def _unordered(config: dict) -> dict:
+    """A CommandConfig (plain) with its unordered lists sorted by name (each type's
+    commands too); other configs unchanged."""
+    if "availableSubsystems" not in config:
+        return config
+    out = dict(config)
+    for key, inner in UNORDERED.items():
+        items = [dict(x, **{inner: sorted(x[inner], key=_key)}) if inner else x for x in config.get(key, [])]
+        out[key] = sorted(items, key=_key)
+    return out
+
+
+def _key(x) -> tuple[str, str]:
+    """By name, then by the whole entry (two entries of one name compare as a multiset too)."""
+    return (str(x.get("name", "")) if isinstance(x, dict) else "", repr(x))
+
+
 @check("CFG-03", REQUIRED, "Each config's content equals what the descriptor implies",
-       "descriptor (computed CommandConfig, AgentConfig, PositionConfig, JointConfig); 5b: entries sorted by name",
-       needs=("CFG-02",))
+       "descriptor (computed CommandConfig, AgentConfig, PositionConfig, JointConfig); 5b: entries in any order "
+       "(soraCore sorts by name)", needs=("CFG-02",))
 def content(s):
-    bad = []
+    bad, order = [], []
     for t in _configs(s):
         got = _latest(s, t)
-        want = _expected(s, t, got)
-        if _plain(got) != _plain(want):
-            g, w = _plain(got), _plain(want)
-            diff = next((k for k in w if k != "hdr" and g.get(k) != w.get(k)), "?")
-            bad.append(f"{t}.{diff}: {visible(str(g.get(diff)))[:120]} (expected {visible(str(w.get(diff)))[:120]})")
-    expect(not bad, "the descriptor's configs", "; ".join(bad))
+        g, w = _plain(got), _plain(_expected(s, t, got))
+        g.pop("hdr", None)
+        w.pop("hdr", None)
+        if g == w:
+            continue
+        gu, wu = _unordered(g), _unordered(w)
+        if gu == wu:
+            order.append(f"{t}: " + ", ".join(k for k in UNORDERED if g.get(k) != w.get(k))
+                         + " (or their commands) in another order than the descriptor's")
+            continue
+        diff = next((k for k in wu if gu.get(k) != wu.get(k)), "?")
+        bad.append(f"{t}.{diff}: {visible(str(gu.get(diff)))[:120]} (expected {visible(str(wu.get(diff)))[:120]})")
+    expect(not bad, "the descriptor's configs (entries of the CommandConfig in any order)", "; ".join(bad))
+    if order:
+        return "; ".join(order) + " (either is conformant: rapid-protocol.md 5b)"
 
 
 @check("CFG-04", REQUIRED, "Config headers name the asset (assetName) and a source (srcName)",
@@ -88,18 +121,30 @@ def headers(s):
     expect(not bad, f"assetName {s.asset!r} and a non-empty srcName", "; ".join(bad))
 
 
+# Judged at the end of the run: a serial must stay put for the whole run, and an asset that
+# republishes its configs with a new serial every few seconds looks right at first.
 @check("CFG-05", REQUIRED, "Config serials are set and stay put while the content does not change",
        "rapid-protocol.md 5 and 5b: serial set once (start time in seconds); a new one only on a change",
-       needs=("CFG-02",))
+       needs=("CFG-02",), late=True)
 def serials(s):
     bad = []
     for t in _configs(s):
         _latest(s, t)
         got = s.client.samples(t)
-        serials = [r.sample.hdr.serial for r in got]
-        if not serials[-1]:
+        if not got[-1].sample.hdr.serial:
             bad.append(f"{t}: serial 0")
-        contents = {repr({k: v for k, v in _plain(r.sample).items() if k != "hdr"}) for r in got}
-        if len(set(serials)) > 1 and len(contents) == 1:
-            bad.append(f"{t}: serial changed {serials} with the same content")
+        # each run of one content: the serials it was published with, and when (seconds into the run)
+        runs: list[tuple[str, list[tuple[int, float]]]] = []
+        for r in got:
+            content = repr({k: v for k, v in _plain(r.sample).items() if k != "hdr"})
+            if not runs or runs[-1][0] != content:
+                runs.append((content, []))
+            seen = runs[-1][1]
+            if not seen or seen[-1][0] != r.sample.hdr.serial:
+                seen.append((r.sample.hdr.serial, r.at - s.started))
+        for _content, seen in runs:
+            if len(seen) > 1:
+                shown = ", ".join(f"{serial} at {at:.1f} s" for serial, at in seen[:4])
+                more = f" and {len(seen) - 4} more" if len(seen) > 4 else ""
+                bad.append(f"{t}: same content republished with serial {shown}{more}")
     expect(not bad, "a non-zero serial, changed only with the content", "; ".join(bad))

@@ -47,6 +47,7 @@ def _published(s, pubs):
 
 
 def _paired(s):
+    """(publication, its config's topic, the latest config, the samples) per paired topic."""
     for p in _topics(s):
         cfg = s.facts.config_of(p["topic"])
         got = s.client.samples(p["topic"])
@@ -54,12 +55,30 @@ def _paired(s):
             yield p, cfg, s.latest(cfg), got
 
 
+# A sample and its config travel on two topics: around a config republished with a new
+# serial, a sample may come a little before or after it with either serial.
+RACE = 1.0
+
+
+# Judged at the end of the run, on every sample kept (as CFG-05): the rule holds for the whole run.
 @check("TEL-02", REQUIRED, "Sample serials equal their config's serial",
-       "rapid-protocol.md 5: samples copy the config's header, serial included", needs=("TEL-01", "CFG-02"))
+       "rapid-protocol.md 5: samples copy the config's header, serial included", needs=("TEL-01", "CFG-02"), late=True)
 def serial(s):
-    bad = [f"{p['topic']}: {sorted({r.sample.hdr.serial for r in got})[:3]} (config {cfg.hdr.serial})"
-           for p, _c, cfg, got in _paired(s) if any(r.sample.hdr.serial != cfg.hdr.serial for r in got)]
+    bad = []
+    for p, cfg_topic, cfg, got in _paired(s):
+        configs = [(r.at, r.sample.hdr.serial) for r in s.client.samples(cfg_topic)]
+        wrong = [r for r in got if r.sample.hdr.serial not in _serials_at(configs, r.at)]
+        if wrong:
+            bad.append(f"{p['topic']}: {sorted({r.sample.hdr.serial for r in wrong})[:3]} (config {cfg.hdr.serial})")
     expect(not bad, "every sample's serial equal to its config's", "; ".join(bad))
+
+
+def _serials_at(configs: list[tuple[float, int]], at: float) -> set[int]:
+    """The serials a sample that arrived at `at` may carry: its config's then (the latest
+    received before it, else the first), and any config's received within RACE of it."""
+    before = [serial for t, serial in configs if t <= at]
+    out = {before[-1] if before else configs[0][1]} if configs else set()
+    return out | {serial for t, serial in configs if abs(t - at) <= RACE}
 
 
 def _disc(u) -> str:
@@ -87,22 +106,51 @@ def aligned(s):
     expect(not bad, "one value per key, of the key's DataType", "; ".join(bad))
 
 
-@check("TEL-04", REQUIRED, "Sample timestamps are microseconds since 1970 and recent",
-       "rapid-protocol.md 3 and 5b: timeStamp in microseconds (milliseconds are a known sender bug)",
-       needs=("TEL-01",))
+ADVANCE_OVER = 1.0  # s of arrivals over which a topic's stamps must be seen to advance
+ADVANCE = (0.5, 2.0)  # stamps advance between these times the arrival time over that span
+
+
+# Judged at the end of the run (samples of the whole run): stamps must be microseconds, recent,
+# and advance with time (a frozen stamp passed when only the last sample's age was looked at).
+@check("TEL-04", REQUIRED, "Sample timestamps are microseconds since 1970, recent, and advance with time",
+       "rapid-protocol.md 3 and 5b: timeStamp in microseconds, the data's time (milliseconds are a known sender bug)",
+       needs=("TEL-01",), late=True)
 def stamps(s):
+    pubs = _topics(s)
+    _wait_span(s, pubs, max(3.0, 2.5 / min(p["rate"] for p in pubs)))
     bad = []
     now = time.time_ns() // 1000
-    for p in _topics(s):
+    for p in pubs:
         got = s.client.samples(p["topic"])
         if not got:
             continue
         ts = got[-1].sample.hdr.timeStamp
         if ts < MICROS_2001:
             bad.append(f"{p['topic']}: {ts} (milliseconds?)" if ts > MICROS_2001 // 1000 else f"{p['topic']}: {ts}")
-        elif abs(now - ts) > 60_000_000:
+            continue
+        if abs(now - ts) > 60_000_000:
             bad.append(f"{p['topic']}: {(now - ts) / 1e6:.1f} s from now")
-    expect(not bad, "microseconds since the epoch, within 60 s of now", "; ".join(bad))
+            continue
+        first, last = got[0], got[-1]
+        span = last.at - first.at
+        if span < ADVANCE_OVER:
+            continue  # too few samples to say (TEL-06 judges the rates)
+        moved = (last.sample.hdr.timeStamp - first.sample.hdr.timeStamp) / 1e6
+        if not ADVANCE[0] * span <= moved <= ADVANCE[1] * span:
+            distinct = len({r.sample.hdr.timeStamp for r in got})
+            bad.append(f"{p['topic']}: stamps advanced {moved:.2f} s over {span:.1f} s of arrivals "
+                       f"({len(got)} samples, {distinct} distinct stamp(s); first {first.sample.hdr.timeStamp})")
+    expect(not bad, "microseconds since the epoch, within 60 s of now, advancing with time", "; ".join(bad))
+
+
+def _wait_span(s, pubs, timeout: float) -> None:
+    """Until each topic's samples span ADVANCE_OVER s of arrivals (or the timeout)."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        spans = [s.client.samples(p["topic"]) for p in pubs]
+        if all(g and g[-1].at - g[0].at >= ADVANCE_OVER for g in spans):
+            return
+        time.sleep(0.05)
 
 
 @check("TEL-05", REQUIRED, "Sample headers name the asset (assetName) and a source (srcName)",

@@ -37,6 +37,9 @@ TAKE_PER_ROUND = 256  # samples taken from one reader before the pump turns to t
 KEEP_SAMPLES, KEEP_BYTES = 2048, 32 << 20
 KEEP_ACKS_PER_CMD = 64  # acks kept per cmdId the runner sent
 KEEP_OTHER_ACKS = 1024  # acks kept for cmdIds the runner did not send (CMD-11 and CMD-12 look at them)
+# cmdIds seen on rapid_command (any commander's, the runner's too), remembered: an ack whose
+# cmdId nobody sent is evidence (CMD-12) only when it is not one of these.
+KEEP_COMMANDED = 8192
 STRANGER_DECODE = 64 << 10  # a stranger's sample larger than this is counted, not decoded
 MAX_STRANGERS = 64  # participants tallied one by one; past this, as "other participants"
 MAX_WRITERS = 4096  # writer handle -> participant, remembered
@@ -145,6 +148,10 @@ class Client:
         self._other_acks = 0
         self.acks_not_kept = 0
         self.sent: dict[str, object] = {}  # cmdId -> Command we wrote
+        self.sent_at: dict[str, float] = {}  # cmdId -> time.monotonic() when we first wrote it
+        # cmdIds any commander wrote (our command reader sees every writer's): bounded, oldest out
+        self.commanded: collections.OrderedDict[str, None] = collections.OrderedDict()
+        self.command_guard: GuardedReader | None = None
         # participants whose samples are judged (GUIDs as Discovery spells them); set before start()
         self.asset_participants: set[str] = set()
         self.strangers: dict[str, Stranger] = {}
@@ -209,6 +216,11 @@ class Client:
         if self.command_writer is not None:
             self.ack_reader = self.profile_reader(ACK, "rapid::Ack", relaxed=True)
             self.ack_guard: _Guard | None = _Guard(self.ack_reader, self, ACK, dedupe=False, batch=BATCH)
+            # Every commander's commands (cmdIds only): an ack for a cmdId nobody sent is a finding
+            # (CMD-12), one for another commander's is not. Not listened to: no check judges it.
+            self.command_reader = self._DataReader(self.subscriber, self.topic(COMMAND, self.b.rapid.Command),
+                                                   qos=self.b.qos.reader(COMMAND) + self._Qos(self._Policy.History.KeepAll))
+            self.command_guard = GuardedReader(self.command_reader, batch=BATCH)
         else:
             self.ack_reader = None
             self.ack_guard = None
@@ -265,6 +277,9 @@ class Client:
                         kept = self.received[topic]
                         for s in samples:
                             kept.add(Received(now, s, getattr(s, "wire_size", 0)))
+            if self.command_guard is not None:  # before the acks: a command is seen before its answer
+                for c in self.command_guard.take_all(TAKE_PER_ROUND):
+                    self._commanded(c.cmdId)
             if self.ack_guard is not None:
                 now = time.monotonic()
                 for s in self.ack_guard.take_all(TAKE_PER_ROUND):
@@ -275,6 +290,15 @@ class Client:
                 with self.lock:
                     self.lock.notify_all()
             time.sleep(0.005)
+
+    def _commanded(self, cmd_id) -> None:
+        if not isinstance(cmd_id, str):
+            return
+        with self.lock:
+            self.commanded[cmd_id] = None
+            self.commanded.move_to_end(cmd_id)
+            while len(self.commanded) > KEEP_COMMANDED:
+                self.commanded.popitem(last=False)
 
     def _ack(self, s, now: float) -> None:
         """Keep an ack of the asset (caller holds the lock), within the caps."""
@@ -302,6 +326,9 @@ class Client:
         all kept, and for acks not kept."""
         lines = [line for g in [*self.guards.values(), *([self.ack_guard] if self.ack_guard else [])]
                  for line in g.summary()]
+        if self.command_guard is not None:
+            lines += [f"{line} (commands: their cmdIds tell other commanders' acks from acks for cmdIds nobody sent)"
+                      for line in self.command_guard.summary()]
         lines += [f"{line} (a reader a check opened)" for g in self.extra_guards for line in g.summary()]
         with self.lock:
             for topic, k in self.received.items():
@@ -337,6 +364,7 @@ class Client:
                         targetCmdId=target)
         with self.lock:
             self.sent.setdefault(cmd_id, cmd)
+            self.sent_at.setdefault(cmd_id, time.monotonic())
         if self.command_writer is None:  # callers check Session.needs_commands() first
             raise RuntimeError("the asset takes no commands: no command writer")
         self.command_writer.write(cmd)
@@ -346,19 +374,12 @@ class Client:
         with self.lock:
             return [a for a in self.acks if a.cmd_id == cmd_id]
 
-    def wait_final(self, cmd_id: str, timeout: float = 10.0) -> list[AckSeen]:
-        return self.wait_status(cmd_id, ("ACK_COMPLETED",), timeout)
-
-    def wait_status(self, cmd_id: str, statuses: tuple[str, ...], timeout: float) -> list[AckSeen]:
-        """The cmdId's acks once one has a status in statuses (or at the timeout)."""
-        end = time.monotonic() + timeout
+    def unsent(self, since: float = 0.0) -> list[AckSeen]:
+        """The asset's acks (arrived at or after `since`) whose cmdId nobody sent: neither the
+        runner nor any commander seen on rapid_command."""
         with self.lock:
-            while not any(a.cmd_id == cmd_id and a.status in statuses for a in self.acks):
-                left = end - time.monotonic()
-                if left <= 0:
-                    break
-                self.lock.wait(left)
-        return self.acks_of(cmd_id)
+            return [a for a in self.acks if a.at >= since and a.cmd_id not in self.sent
+                    and a.cmd_id not in self.commanded]
 
     def samples(self, topic: str) -> list[Received]:
         with self.lock:

@@ -9,13 +9,16 @@ import time
 from rapidgen.textsafe import visible
 from rapidgen.conform.asset import AssetFacts, Cmd, valid_args
 from rapidgen.conform.client import UNKNOWN, Client
-from rapidgen.conform.model import Fail, Unsupported
+from rapidgen.conform.model import Blocked, Fail, Unsupported
 
 COMPLETED, OK = "ACK_COMPLETED", "ACK_COMPLETED_OK"
 ACCESS_TOPIC = "rapid_accesscontrol_state"
 NO_CONTROLLER = ("", "No Controller")  # soraCore / Astrobee (rapid-protocol.md 5b)
 COOKIE = re.compile(r"^[0-9a-fA-F]{16}$")
 MAX_LISTED = 32  # strangers listed one by one in a report
+# An ack for a cmdId nobody sent arrived after ours was sent, and none carries ours this long
+# after it: the asset does not answer with the cmdIds it was sent (CMD-12's finding).
+GRACE = 1.0
 
 
 class Session:
@@ -40,6 +43,12 @@ class Session:
         self.identification = ""  # how the asset's participant was chosen (for the report)
         self.started = time.monotonic()
         self.memo: dict = {}  # results of shared steps, by name
+        # cmdIds the runner waited for an answer to, in order (CMD-12: were they answered?)
+        self.awaited: dict[str, None] = {}
+        # Who holds control, from the acks the runner got (grabControl answered OK: its sender;
+        # releaseControl answered OK: nobody known); None when not known. AccessControlState
+        # is the asset's word, and a check judges it: taking control never relies on it.
+        self.holder: str | None = None
 
     # ---- the asset on the network ------------------------------------------------------------
     def topics(self) -> dict[str, str]:
@@ -162,12 +171,62 @@ class Session:
 
     def run(self, cmd: Cmd | tuple[str, str], args=None, source: str | None = None, timeout: float | None = None,
             **kw) -> list:
-        """Send and wait for the final ack; returns the acks of that cmdId."""
+        """Send and wait for the final ack; returns the acks of that cmdId. BLOCKED at once
+        when an earlier command showed the asset's answers cannot be judged (answers())."""
+        self.answers()
         sub, name = (cmd.subsystem, cmd.name) if isinstance(cmd, Cmd) else cmd
         if args is None:
             args = valid_args(cmd) if isinstance(cmd, Cmd) else []
-        cid = self.client.send(sub, name, args, source=self.source if source is None else source, **kw)
-        return self.client.wait_final(cid, self.timeout if timeout is None else timeout)
+        source = self.source if source is None else source
+        cid = self.client.send(sub, name, args, source=source, **kw)
+        acks = self.wait_acks(cid, (COMPLETED,), timeout)
+        f = self.final(acks)
+        if sub == "AccessControl" and f is not None and f.completed == OK:
+            if name == "grabControl":
+                self.holder = source
+            elif name in ("releaseControl", "transferControl"):
+                self.holder = None
+        return acks
+
+    def wait_acks(self, cmd_id: str, statuses: tuple[str, ...] = (COMPLETED,), timeout: float | None = None) -> list:
+        """The cmdId's acks once one has a status in statuses, or at the timeout. Ends sooner,
+        BLOCKED, once acks for cmdIds nobody sent (not the runner, no commander seen on
+        rapid_command) have come since the command was sent and, GRACE s later, still none
+        that answers it: the asset mangles cmdIds, CMD-12 says so, and waiting out every
+        timeout would only repeat it."""
+        c = self.client
+        self.awaited.setdefault(cmd_id, None)
+        end = time.monotonic() + (self.timeout if timeout is None else timeout)
+        since = c.sent_at.get(cmd_id, time.monotonic())
+        with c.lock:
+            while True:
+                acks = [a for a in c.acks if a.cmd_id == cmd_id]
+                now = time.monotonic()
+                if any(a.status in statuses for a in acks) or now >= end:
+                    return acks
+                odd = c.unsent(since)
+                if odd and now - odd[0].at >= GRACE:
+                    why = (f"no ack carries cmdId {visible(cmd_id)!r} {now - since:.1f} s after it was sent; the "
+                           f"asset's acks carry cmdIds nobody sent ({_ids(odd)}) (CMD-12)")
+                    self.memo.setdefault("answers", why)
+                    raise Blocked(why)
+                c.lock.wait(min(end - now, 0.1) if odd else end - now)
+
+    def answers(self) -> None:
+        """BLOCKED when an earlier command showed that the asset's answers cannot be judged:
+        they carry cmdIds nobody sent (CMD-12), or a valid command got no ack at all (CMD-02)."""
+        why = self.memo.get("answers")
+        if why:
+            raise Blocked(why)
+
+    def silent_since(self, since: float) -> None:
+        """For a check that judges that no ack came: BLOCKED when acks for cmdIds nobody sent
+        came meanwhile (an ack for its command may be among them, under another cmdId)."""
+        odd = self.client.unsent(since)
+        if odd:
+            why = f"the asset's acks carry cmdIds nobody sent ({_ids(odd)}) (CMD-12)"
+            self.memo.setdefault("answers", why)
+            raise Blocked(why)
 
     @staticmethod
     def final(acks: list):
@@ -196,9 +255,14 @@ class Session:
 
     def take_control(self, source: str) -> list:
         """requestControl (soraCore: granted when free); Astrobee publishes a cookie in
-        requestors[0] that grabControl(cookie) turns into control. Returns the acks."""
+        requestors[0] that grabControl(cookie) turns into control. Returns the acks. The
+        holder (Session.holder) is the source once the state names it after an OK, or once
+        grabControl(cookie) is answered OK."""
         acks = self.run(("AccessControl", "requestControl"), [], source=source)
+        f = self.final(acks)
         if self.controller(1.5, want=source) == source:
+            if f is not None and f.completed == OK:
+                self.holder = source
             return acks
         s = self.latest(ACCESS_TOPIC)
         grab = self.facts.command("AccessControl", "grabControl")
@@ -206,12 +270,22 @@ class Session:
             acks = acks + self.run(("AccessControl", "grabControl"), [("RAPID_STRING", s.requestors[0])], source=source)
         return acks
 
+    def grab_control(self, source: str) -> list:
+        """Take control whoever holds it: grabControl (soraCore: always succeeds), or with
+        Astrobee's cookie (requestControl, then grabControl(cookie)). Its OK ack, not
+        AccessControlState, says that source holds control."""
+        grab = self.facts.command("AccessControl", "grabControl")
+        if grab is not None and not grab.params:
+            return self.run(("AccessControl", "grabControl"), [], source=source)
+        return self.take_control(source)
+
     def ensure_control(self) -> None:
-        """Our source holds control on an asset with access control (or nothing to do)."""
-        if not self.facts.has_type("AccessControl"):
+        """Our source holds control on an asset with access control (or nothing to do),
+        judged from the acks the runner got: an asset whose AccessControlState lags (ACC-04's
+        finding) must not make later checks fail for want of control."""
+        if not self.facts.has_type("AccessControl") or self.holder == self.source:
             return
-        if self.controller(0.5) != self.source:
-            self.take_control(self.source)
+        self.grab_control(self.source)
 
     def close(self) -> None:
         self.client.stop()
@@ -262,6 +336,13 @@ class Session:
 def _hex(guid: str) -> str:
     """A GUID or prefix as bare lowercase hex (dashes, colons and dots dropped)."""
     return "".join(ch for ch in guid.lower() if ch in "0123456789abcdef")
+
+
+def _ids(acks: list, most: int = 3) -> str:
+    """The distinct cmdIds of acks, quoted and escaped, the first `most` of them."""
+    ids = list(dict.fromkeys(a.cmd_id for a in acks))
+    text = ", ".join(repr(visible(i)[:60]) for i in ids[:most])
+    return text + (f" and {len(ids) - most} more" if len(ids) > most else "")
 
 
 def describe(acks: list) -> str:

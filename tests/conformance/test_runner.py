@@ -22,3 +22,30 @@ def test_blocked_is_neither_pass_nor_fail():
     assert got["X-02"].message == "not judged: no state writer (X-01)"
     assert "X-02" in got["X-03"].message
     assert not passed(list(got.values())[1:])  # a required BLOCKED check alone fails the run
+
+
+def _rows(header: str) -> list[list[str]]:
+    """The rows of the docs/conformance.md table under `header` (a header line), as cells."""
+    from tests.runtime.live import ROOT
+    lines = (ROOT / "docs" / "conformance.md").read_text(encoding="utf-8").splitlines()
+    start = lines.index(header) + 2
+    rows = []
+    for line in lines[start:]:
+        if not line.startswith("| "):
+            break
+        rows.append([c.strip() for c in line.strip("|").split(" | ")])
+    return rows
+
+
+def test_docs_list_every_check_as_registered():
+    from rapidgen.conform.model import all_checks
+    want = [[c.id, c.level, c.title, c.rule] for c in all_checks().values()]
+    assert _rows("| id | level | title | rule |") == want
+
+
+def test_docs_list_every_broken_asset_with_its_check():
+    """The table of broken assets is the registry of kinds: each with the check it fails
+    alone (test_conformance.py runs them), '-' for a variant that must pass."""
+    from tests.conformance.broken import KINDS
+    got = {kind: check for check, kind, _what in _rows("| check | kind | what the asset gets wrong |")}
+    assert got == {k: a or "-" for k, a in KINDS.items()}

@@ -13,18 +13,15 @@ from typing import Callable
 
 KINDS: dict[str, str | None] = {}
 PATCHES: dict[str, Callable] = {}
-# What a kind may break besides its check, depending on timing (each entry says why).
-MAY_ALSO: dict[str, set[str]] = {}
 
 
-def kind(name: str, aims: str | None, may_also: tuple[str, ...] = ()):
-    """Register fn(asset) as the broken asset `name`, failing check `aims`."""
+def kind(name: str, aims: str | None):
+    """Register fn(asset) as the broken asset `name`, failing check `aims` and no other (the
+    checks it keeps from judging are BLOCKED); None: a variant that must pass every check."""
     def register(fn: Callable) -> Callable:
         if name in KINDS:
             raise ValueError(f"broken kind {name} registered twice")
         KINDS[name], PATCHES[name] = aims, fn
-        if may_also:
-            MAY_ALSO[name] = set(may_also)
         return fn
     return register
 

@@ -69,3 +69,27 @@ def stop_needs_control(a):
     """stopAllMotion goes through the allow-list and the control gate like any command."""
     import rapid_runtime.access as access_module  # the manager calls it through the module
     access_module.always_allowed = lambda subsystem_type, command: False
+
+
+@kind("request-steals-control", "ACC-07")
+def request_steals_control(a):
+    """requestControl hands control to the requester even while another source holds it
+    (soraCore queues the requester, Astrobee answers with a cookie: 5b)."""
+    control = a.manager.control
+
+    def request(source):
+        before = control.controller
+        control._give(source)
+        return None, f"control granted to {source} (was {before or 'free'})"
+    control.request = request
+
+
+@kind("grab-unpublished", "ACC-04")
+def grab_unpublished(a):
+    """grabControl takes control but AccessControlState is not republished (the state keeps
+    the previous controller): ACC-04 alone sees it; the runner must not trust that state when
+    it takes control back later (CMD-14)."""
+    def grab(m, run):
+        err, note = m.control.grab(run.cmd.cmd_src)
+        return (EXEC_FAILED, err) if err else (OK, note)
+    a.manager_module.BUILTINS[GRAB] = grab

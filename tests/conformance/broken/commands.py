@@ -161,6 +161,16 @@ def volatile_acks(a):
     a.patch_qos({"rapid_ack": Qos(Policy.Durability.Volatile)})
 
 
+@kind("ack-ids-truncated", "CMD-12")
+def ack_ids_truncated(a):
+    """Acks carry the command's cmdId cut to 12 characters (a fixed-size buffer in a
+    bridge): no ack carries a cmdId that was sent. Every check that waits for an answer is
+    then BLOCKED; CMD-12 names the cmdIds seen that nobody sent."""
+    def change(ack, cmd, status, completed, message):
+        return ack(dataclasses.replace(cmd, cmd_id=cmd.cmd_id[:12]), status, completed, message)
+    _wrap_ack(a, change)
+
+
 @kind("crash-on-bad-input", "CMD-14")
 def crash_on_bad_input(a):
     on_command = a.bridge._on_command
@@ -189,3 +199,24 @@ def astrobee_acks(a):
         return ack(dataclasses.replace(cmd, src_name=a.tables.name), status, completed, message)
     _wrap_ack(a, change)
 
+
+
+@kind("odd-ack-text", None)
+def odd_ack_text(a):
+    """Command results cyclonedds cannot encode as Ack.message: the runtime's own commands'
+    are 300 characters long, the handlers' (Mobility/stopAllMotion's, say) short but with a
+    lone surrogate (text decoded with surrogateescape). The runtime clips every message
+    before writing it (rapid_runtime/acks.py clip): must pass (before, ACC-06's ack was lost)."""
+    long = "\udcff" + "\u00fc" * 150
+
+    def longer(fn):
+        def run(m, r):
+            out = fn(m, r)
+            return out if out is None else (out[0], long + out[1])
+        return run
+    builtins = a.manager_module.BUILTINS
+    for key in list(builtins):
+        builtins[key] = longer(builtins[key])
+    sim = a.bridge.handlers
+    run = sim.run
+    sim.run = lambda ctx, entry, kw: "\udcff " + str(run(ctx, entry, kw))

@@ -47,3 +47,36 @@ def config_without_source(a):
 def zero_serial(a):
     a.bridge.serials.start = 0
     a.bridge.serials._last = 0
+
+
+@kind("serial-drift", "CFG-05")
+def serial_drift(a):
+    """Every config republished every 3 s with a new serial and the same content (a bridge
+    that stamps each publication anew); samples follow the new serial, so only the rule
+    that a serial stays put while the content does is broken. Caught only by a judgment
+    at the end of the run: the first publications look right."""
+    import threading
+
+    from rapid_runtime.dds import type_class
+
+    b = a.bridge
+
+    def republish():
+        while not b.stopped.wait(3.0):
+            for topic, (type_name, value) in a.tables.configs.items():
+                serial = b.serials._last = b.serials._last + 1
+                b.serials._serial[topic] = serial
+                hdr = a.M.header(a.rapid, b.name, b.name, serial)
+                b.node.writer(topic, type_class(a.rapid, type_name)).write(a.M.config(a.rapid, type_name, value, hdr))
+    threading.Thread(target=republish, daemon=True, name="serial-drift").start()
+
+
+@kind("config-order", None)
+def config_order(a):
+    """The CommandConfig's subsystems, subsystem types and each type's commands in the
+    reverse of the descriptor's order (Astrobee keeps its config file's order, soraCore
+    sorts by name: rapid-protocol.md 5b): must pass, the order reported as information."""
+    type_name, value = a.tables.configs["rapid_command_config"]
+    types = [dict(t, commands=list(reversed(t["commands"]))) for t in reversed(value["availableSubsystemTypes"])]
+    a.tables.configs["rapid_command_config"] = (type_name, dict(
+        value, availableSubsystems=list(reversed(value["availableSubsystems"])), availableSubsystemTypes=types))

@@ -19,13 +19,14 @@ def sample_qos(a):
     a.patch_qos({topic: Qos(Policy.Reliability.Reliable(100_000_000))})
 
 
-@kind("command-reader-qos", "DDS-02",
-      may_also=("QUE-02",))  # keep-last-2 drops queued commands only when several arrive before it takes them
+@kind("command-reader-qos", "DDS-02")
 def command_reader_qos(a):
-    """Keeps only the last 2 commands: commands can be dropped (not KeepLast(1): discovery
-    shows an unannounced history as KeepLast(1), see DDS-02)."""
+    """Keeps only the last 64 unread commands: a burst past 64 is dropped (commands cannot
+    be: KeepAll). Deep enough that the run's own bursts (3 appended at once) are never
+    dropped, so no other check sees it (a depth of 2 once made QUE-02 fail too). Not
+    KeepLast(1): discovery shows an unannounced history as KeepLast(1), see DDS-02."""
     from cyclonedds.qos import Policy, Qos
-    a.patch_qos(readers={"rapid_command": Qos(Policy.History.KeepLast(2))})
+    a.patch_qos(readers={"rapid_command": Qos(Policy.History.KeepLast(64))})
 
 
 @kind("exclusive-ownership", "DDS-03")

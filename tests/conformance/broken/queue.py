@@ -73,3 +73,23 @@ def queue_record_status(a):
     def succeeded(rapid, hdr, pending, active, completed):
         return records(rapid, hdr, [(c, r, "Q_STATUS_SUCCEEDED") for c, r, _ in pending], active, completed)
     a.M.queue_state = succeeded
+
+
+@kind("queue-parallel", "QUE-02")
+def queue_parallel(a):
+    """Queued commands acknowledged QUEUED, then all started at once (each on its own
+    thread, none waiting for the one before): an instant command behind a long drive
+    executes while the drive still runs. QUE-04 and QUE-05 are then BLOCKED."""
+    m = a.manager
+
+    def start_all():
+        while not m.suspended:
+            run = m.pending.pop_ready(lambda subsystem: False)
+            if run is None:
+                break
+            m.active = run
+            m._start(run)
+            if not run.done and run not in m.bypass:  # where cancelAll and stopAllMotion still reach it
+                m.bypass.append(run)
+        m._publish_queue()
+    m._service = start_all

@@ -73,3 +73,12 @@ def millivolts(a):
 def gps_silent(a):
     """The GPS extension's writer exists but no fix is ever written (the plugin is not loaded)."""
     a.quiet.add(a.entry("custom")["topics"]["sample"])
+
+
+@kind("frozen-stamps", "TEL-04")
+def frozen_stamps(a):
+    """Every sample stamped with the bridge's start time (microseconds, recent at first):
+    the stamps never advance. TEL-06 (rates from the stamps) is then BLOCKED."""
+    start = time.time_ns() // 1000
+    hdr = a.B.TelemetryPublisher._hdr
+    a.B.TelemetryPublisher._hdr = lambda self, entry, stamp=None: hdr(self, entry, start)
