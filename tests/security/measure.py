@@ -8,6 +8,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 
@@ -26,28 +27,35 @@ class Measured:
 
 
 def run_measured(argv: list[str], env: dict, cwd: str | os.PathLike, timeout: float = 240) -> Measured:
-    """Run argv to completion; its own peak RSS from wait4 (not the other children's)."""
+    """Run argv to completion; its own peak resident set, VmHWM of its address space read
+    every 20 ms while it runs. (wait4's ru_maxrss will not do: Linux carries the parent's
+    high-water mark into a forked child across exec, so under a large pytest process every
+    child would seem to peak at pytest's size.)"""
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
         proc = subprocess.Popen(argv, cwd=cwd, env=env, stdout=out, stderr=err, stdin=subprocess.DEVNULL)
-        _, status, usage = _wait4(proc, timeout)
+        peak_kb = 0
+        end = time.monotonic() + timeout
+        while proc.poll() is None:
+            peak_kb = max(peak_kb, _hwm_kb(proc.pid))
+            if time.monotonic() > end:
+                proc.kill()
+            time.sleep(0.02)
         out.seek(0)
         err.seek(0)
-        code = os.waitstatus_to_exitcode(status)
-        return Measured(code, out.read().decode("utf-8", "replace"), err.read().decode("utf-8", "replace"),
-                        usage.ru_maxrss / 1024)
+        return Measured(proc.returncode, out.read().decode("utf-8", "replace"), err.read().decode("utf-8", "replace"),
+                        peak_kb / 1024)
 
 
-def _wait4(proc: subprocess.Popen, timeout: float):
-    import signal
-    import threading
-    timer = threading.Timer(timeout, lambda: os.kill(proc.pid, signal.SIGKILL))
-    timer.start()
+def _hwm_kb(pid: int) -> int:
+    """VmHWM of a running process in kB (0 once it is gone)."""
     try:
-        got = os.wait4(proc.pid, 0)
-    finally:
-        timer.cancel()
-    proc.returncode = os.waitstatus_to_exitcode(got[1])  # Popen must not wait for it again
-    return got
+        with open(f"/proc/{pid}/status") as fh:
+            for line in fh:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1])
+    except OSError:
+        pass
+    return 0
 
 
 def assert_clean(text: str, where: str) -> None:
