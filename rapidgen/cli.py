@@ -328,10 +328,35 @@ def _command_of(argv: Sequence[str]) -> str | None:
     return argv[0] if argv and argv[0] in SUBCOMMANDS else None
 
 
+# Commands that hold nothing outside the process (no DDS participant, no temporary folder
+# left open) once they return: a process that runs one of them ends without freeing its
+# objects one by one (_hard_exit), as mypy does; freeing a large model took ~0.1 s.
+_QUICK_EXIT = frozenset({"ir", "generate", "check", "summary", "validate", "describe", "vectors", "diff"})
+
+
+def _hard_exit(code: int) -> None:
+    try:
+        sys.stdout.flush()
+        sys.stderr.flush()
+    except (BrokenPipeError, ValueError):  # a reader gone, or a stream closed: nothing left to say
+        pass
+    os._exit(code)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    """The command line; `argv` None: this process's own (the console script and `python -m
+    rapidgen`), and then a compiler command ends the process itself when done."""
+    whole_process = argv is None
     argv = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser(only=_command_of(argv))
     args = parser.parse_args(argv)
+    code = _run(args)
+    if whole_process and args.command in _QUICK_EXIT:
+        _hard_exit(code)
+    return code
+
+
+def _run(args: argparse.Namespace) -> int:
     try:
         return SUBCOMMANDS[args.command][1](args)
     except KeyboardInterrupt:

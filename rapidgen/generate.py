@@ -160,14 +160,34 @@ class _Queue:
         os.close(self.read)
 
 
-def _share(count: int, work) -> list:
+class _Alternate:
+    """Jobs dealt in turn: this process the even ones, the child the odd ones (`generate`:
+    a few targets of known order, where the first come, first served queue would hand the
+    last target to whoever is done first, though it may be the one to start early)."""
+
+    def __init__(self, n: int) -> None:
+        self.n, self.next = n, 0
+
+    def child(self) -> None:
+        self.next = 1
+
+    def take(self) -> int | None:
+        i, self.next = self.next, self.next + 2
+        return i if i < self.n else None
+
+    def close(self) -> None:
+        pass
+
+
+def _share(count: int, work, alternate: bool = False) -> list:
     """work(i) for every i < count, over two processes when jobs() says so; the results
-    in order. Results (and exceptions) of the child's jobs come back pickled."""
+    in order. The jobs go first come, first served (or, alternate, in turn). Results (and
+    exceptions) of the child's jobs come back pickled."""
     import pickle
 
     if count < 2 or count > 255 or jobs() < 2:
         return [work(i) for i in range(count)]
-    queue = _Queue(count)
+    queue: _Queue | _Alternate = _Alternate(count) if alternate else _Queue(count)
     sys.stdout.flush()
     sys.stderr.flush()
     read, write = os.pipe()
@@ -176,6 +196,8 @@ def _share(count: int, work) -> list:
         code = 0
         try:
             os.close(read)
+            if isinstance(queue, _Alternate):
+                queue.child()
             done = []
             while (i := queue.take()) is not None:
                 try:
@@ -247,7 +269,7 @@ def _render_shared(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
             exc.report(local)
             return None, list(local.diagnostics)
 
-    done = _share(len(langs), one)
+    done = _share(len(langs), one, alternate=True)
     out = {}
     for lang, (files, diags) in zip(langs, done):
         sink.extend(diags)

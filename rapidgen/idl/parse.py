@@ -8,6 +8,7 @@ translated into diagnostics with the original file:line:col and a hint.
 """
 from __future__ import annotations
 
+import bisect
 import copy
 import functools
 import re
@@ -81,20 +82,46 @@ def _keywords() -> frozenset[str]:
 
 
 class _Locator:
-    """Maps positions in the preprocessed text back to original files."""
+    """Maps positions in the preprocessed text back to original files.
+
+    Tokens arrive in order, so the run of lines (preprocess.LineMap) of the last lookup is
+    kept: most lookups are then one comparison, not a walk through the line map."""
 
     def __init__(self, pre: PreprocessResult) -> None:
         self.pre = pre
+        self._lo = self._hi = self._base = 0  # output lines [lo, hi) come from file's lines base...
+        self._file = ""
+
+    def origin(self, line: int) -> tuple[str, int]:
+        """pre.origin(line)."""
+        if self._lo <= line < self._hi:
+            return self._file, self._base + line - self._lo
+        lines = self.pre.line_map
+        if not 1 <= line <= len(lines):
+            return self.pre.origin(line)
+        run = bisect.bisect_right(lines.starts, line - 1) - 1
+        start = lines.starts[run]
+        end = lines.starts[run + 1] if run + 1 < len(lines.starts) else lines.count
+        self._file, self._base = lines.origins[run]
+        self._lo, self._hi = start + 1, end + 1
+        return self._file, self._base + line - self._lo
 
     def at(self, line: int, col: int, end_line: int | None = None, end_col: int | None = None) -> SourceLoc:
-        file, oline = self.pre.origin(line)
+        file, oline = self.origin(line)
         if end_line is not None and end_line == line and end_col is not None:
             return SourceLoc(file, oline, col, oline, end_col)
         return SourceLoc(file, oline, col, oline, col + 1)
 
     def token(self, tok: Token) -> SourceLoc:
-        assert tok.line is not None and tok.column is not None  # the lexer places every token
-        return self.at(tok.line, tok.column, tok.end_line, tok.end_column)
+        line = tok.line
+        assert line is not None and tok.column is not None  # the lexer places every token
+        if self._lo <= line < self._hi:
+            file, oline = self._file, self._base + line - self._lo
+        else:
+            file, oline = self.origin(line)
+        if tok.end_line == line and tok.end_column is not None:
+            return SourceLoc(file, oline, tok.column, oline, tok.end_column)
+        return SourceLoc(file, oline, tok.column, oline, tok.column + 1)
 
 
 class _Label:

@@ -81,6 +81,9 @@ def test_shared_work_runs_in_two_processes_and_keeps_order():
     got = generate._share(6, work)
     assert [v for v, _ in got] == [0, 1, 4, 9, 16, 25]
     assert len({pid for _, pid in got}) == 2 and os.getpid() in {pid for _, pid in got}
+    dealt = generate._share(5, work, alternate=True)  # generate's targets: in turn
+    assert [v for v, _ in dealt] == [0, 1, 4, 9, 16]
+    assert [pid == os.getpid() for _, pid in dealt] == [True, False, True, False, True]
 
 
 def test_an_error_in_shared_work_reaches_the_caller():
@@ -89,8 +92,9 @@ def test_an_error_in_shared_work_reaches_the_caller():
             raise ValueError("job 3")
         return i
 
-    with pytest.raises(ValueError, match="job 3"):
-        generate._share(5, work)
+    for alternate in (False, True):
+        with pytest.raises(ValueError, match="job 3"):
+            generate._share(5, work, alternate)
 
 
 def test_one_process_and_two_write_the_same_files(tmp_path, monkeypatch):

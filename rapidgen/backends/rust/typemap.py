@@ -11,7 +11,9 @@ import math
 import struct as _struct
 from typing import Callable
 
-from rapidgen.backends.escape import rust_str
+import re
+
+from rapidgen.backends import escape
 from rapidgen.backends.typewalk import TypeSpeller
 from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir, wire
@@ -33,6 +35,15 @@ SERDE_ARRAYS = "crate::serde_arrays"
 CDR = "crate::cdr"
 
 
+_PLAIN = re.compile(r'[ !#-\[\]-~]*')  # printable ASCII but '"' and '\\': what rust_str keeps as it is
+
+
+def rust_str(text: str) -> str:
+    """escape.rust_str (the one definition), without its character loop for text it keeps as
+    it is: the view quotes a member path or two per member."""
+    return f'"{text}"' if _PLAIN.fullmatch(text) else escape.rust_str(text)
+
+
 def ref(place: str) -> str:
     """A reference to the value at `place`."""
     return place[1:] if place.startswith("*") else "&" + place
@@ -46,6 +57,7 @@ class TypeMap(TypeSpeller):
 
     def __init__(self, model: ir.Model, path: Callable[[str], str]) -> None:
         super().__init__(model)
+        self.real = model.resolve_alias  # type: ignore[method-assign]  # TypeSpeller.real, one call less
         self.path = path
         self.variant: Callable[[ir.Enum, str], str] = lambda e, n: n  # set by the view
         self._n = 0

@@ -12,7 +12,7 @@ import re
 from dataclasses import dataclass, field
 
 from rapidgen.backends import base
-from rapidgen.backends.escape import rust_str
+from rapidgen.backends.rust.typemap import rust_str
 from rapidgen.backends.rust import namer
 from rapidgen.backends.rust.typemap import ENUM_REPR, TypeMap, enum_size
 from rapidgen.backends.typewalk import Unsupported, spelled_members
