@@ -218,8 +218,9 @@ class Client:
             self.ack_guard: _Guard | None = _Guard(self.ack_reader, self, ACK, dedupe=False, batch=BATCH)
             # Every commander's commands (cmdIds only): an ack for a cmdId nobody sent is a finding
             # (CMD-12), one for another commander's is not. Not listened to: no check judges it.
+            keep_all = self._Qos(self._Policy.History.KeepAll)
             self.command_reader = self._DataReader(self.subscriber, self.topic(COMMAND, self.b.rapid.Command),
-                                                   qos=self.b.qos.reader(COMMAND) + self._Qos(self._Policy.History.KeepAll))
+                                                   qos=self.b.qos.reader(COMMAND) + keep_all)
             self.command_guard = GuardedReader(self.command_reader, batch=BATCH)
         else:
             self.ack_reader = None

@@ -272,12 +272,16 @@ class Session:
 
     def grab_control(self, source: str) -> list:
         """Take control whoever holds it: grabControl (soraCore: always succeeds), or with
-        Astrobee's cookie (requestControl, then grabControl(cookie)). Its OK ack, not
-        AccessControlState, says that source holds control."""
+        Astrobee's cookie (requestControl, then grabControl(cookie)); requestControl when
+        grabControl is refused. Its OK ack, not AccessControlState, says that source holds
+        control."""
         grab = self.facts.command("AccessControl", "grabControl")
+        acks: list = []
         if grab is not None and not grab.params:
-            return self.run(("AccessControl", "grabControl"), [], source=source)
-        return self.take_control(source)
+            acks = self.run(("AccessControl", "grabControl"), [], source=source)
+            if self.holder == source:
+                return acks
+        return acks + self.take_control(source)  # no grabControl, or refused: ask
 
     def ensure_control(self) -> None:
         """Our source holds control on an asset with access control (or nothing to do),
