@@ -281,23 +281,27 @@ def _render_shared(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
 
 def write_outputs(out_dir: str, per_lang: dict[str, list[GeneratedFile]], sink: DiagnosticSink) -> bool:
     """Write each target into out_dir/<lang>; print a line per target. False on a write error."""
+    return all(_write_lang(out_dir, lang, files, sink) for lang, files in per_lang.items())
+
+
+def _write_lang(out_dir: str, lang: str, files: list[GeneratedFile], sink: DiagnosticSink) -> bool:
+    """One target's folder, out_dir/<lang> (its own manifest and lock); prints its line."""
     from rapidgen.writer import write_tree
 
-    for lang, files in per_lang.items():
-        folder = os.path.join(out_dir, lang)
-        report = _call_writer(write_tree, folder, files, sink)
-        if report is None:
-            return False
-        sink.extend(report.problems)
-        if report.failed:
-            return False
-        if report.recovered:
-            print(f"{folder}: completed a run that was interrupted")
-        print(f"{folder}: {len(report.written)} written, {len(report.unchanged)} unchanged"
-              + (f", {len(report.removed)} removed" if report.removed else "")
-              + (f", {len(report.kept_user)} user files kept" if report.kept_user else ""))
-        for rel in report.kept_edited:
-            print(f"  kept {rel}: no longer generated, but edited by hand", file=sys.stderr)
+    folder = os.path.join(out_dir, lang)
+    report = _call_writer(write_tree, folder, files, sink)
+    if report is None:
+        return False
+    sink.extend(report.problems)
+    if report.failed:
+        return False
+    if report.recovered:
+        print(f"{folder}: completed a run that was interrupted")
+    print(f"{folder}: {len(report.written)} written, {len(report.unchanged)} unchanged"
+          + (f", {len(report.removed)} removed" if report.removed else "")
+          + (f", {len(report.kept_user)} user files kept" if report.kept_user else ""))
+    for rel in report.kept_edited:
+        print(f"  kept {rel}: no longer generated, but edited by hand", file=sys.stderr)
     return True
 
 
@@ -324,8 +328,138 @@ def generate_command(paths: list[str], include: list[str], defines: dict[str, st
                      out_dir: str, package: str | None, sink: DiagnosticSink) -> bool:
     with _no_cyclic_gc():
         inputs = load_inputs(paths, include, sink, defines)
-        per_lang = _render_shared(inputs, langs, sink, package) if inputs else None
-        return per_lang is not None and write_outputs(out_dir, per_lang, sink)
+    if inputs is None:
+        return False
+    with _model_frozen():
+        langs, problem = backends.parse_langs(langs)
+        if problem:
+            sink.error("RG0802", problem, SourceLoc("<command line>", 0, 0), "name targets with --lang a,b")
+            return False
+        if len(langs) < 2 or jobs() < 2:
+            per_lang = render(inputs, langs, sink, package)
+            return per_lang is not None and write_outputs(out_dir, per_lang, sink)
+        return _generate_in_two(_Renderer(inputs, package), langs, out_dir, sink)
+
+
+def _generate_in_two(renderer: "_Renderer", langs: list[str], out_dir: str, sink: DiagnosticSink) -> bool:
+    """render() then write_outputs(), the targets dealt in turn to this process and a forked
+    child, each rendering and writing its own (each target has its own folder, manifest and
+    lock; no process holds the other's files). Both render before either writes: a target
+    the back end refuses stops the run with nothing written, as in one process. The child's
+    diagnostics and printed lines come back pickled and everything is printed in target
+    order, up to the first target whose folder could not be written, as in one process."""
+    import pickle
+    import signal
+
+    ours, theirs = list(range(0, len(langs), 2)), list(range(1, len(langs), 2))
+    files: dict[int, list[GeneratedFile]] = {}
+
+    def render_some(indexes: list[int]) -> list[tuple[int, list[Diagnostic]]]:
+        """[(i, diagnostics)] of the first target that fails; [] when all rendered."""
+        for i in indexes:
+            local = DiagnosticSink(silenced=sink.silenced, warnings_as_errors=sink.warnings_as_errors)
+            try:
+                files[i] = renderer.target(langs[i])
+            except GenerationError as exc:
+                exc.report(local)
+                return [(i, list(local.diagnostics))]
+        return []
+
+    def write_some(indexes: list[int]) -> list[tuple[int, bool, str, str, list[Diagnostic]]]:
+        done = []
+        for i in indexes:
+            local = DiagnosticSink(silenced=sink.silenced, warnings_as_errors=sink.warnings_as_errors)
+            out, err = io.StringIO(), io.StringIO()
+            with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+                ok = _write_lang(out_dir, langs[i], files.pop(i), local)
+            done.append((i, ok, out.getvalue(), err.getvalue(), list(local.diagnostics)))
+        return done
+
+    sys.stdout.flush()
+    sys.stderr.flush()
+    up_r, up_w = os.pipe()  # child -> parent: pickled results
+    down_r, down_w = os.pipe()  # parent -> child: b"w" write, b"" stop
+    pid = os.fork()
+    if pid == 0:  # the child: never returns into the caller
+        code = 0
+        try:
+            os.close(up_r)
+            os.close(down_w)
+            with os.fdopen(up_w, "wb") as up:
+                try:
+                    pickle.dump(("rendered", render_some(theirs)), up, protocol=pickle.HIGHEST_PROTOCOL)
+                    up.flush()
+                    if os.read(down_r, 1) == b"w":
+                        pickle.dump(("written", write_some(theirs)), up, protocol=pickle.HIGHEST_PROTOCOL)
+                except Exception as exc:  # noqa: BLE001 (raised again in the parent)
+                    pickle.dump(("error", _portable(exc)), up, protocol=pickle.HIGHEST_PROTOCOL)
+        except BaseException:  # noqa: BLE001 (the parent reports a child that sent nothing)
+            code = 70
+        finally:
+            os._exit(code)
+    os.close(up_w)
+    os.close(down_r)
+    up = os.fdopen(up_r, "rb")
+    finished = False  # the child was told what to do and has answered: it is ending by itself
+    try:
+        failed = render_some(ours)
+        kind, value = _receive(up, pickle)
+        failed += value
+        if failed:  # the first refused target in order, as render() reports it
+            os.close(down_w)
+            down_w = -1
+            i, diags = min(failed, key=lambda f: f[0])
+            sink.extend(diags)
+            finished = True
+            return False
+        os.write(down_w, b"w")
+        os.close(down_w)
+        down_w = -1
+        written = write_some(ours)
+        kind, value = _receive(up, pickle)
+        written += value
+        finished = True
+        for i, ok, out, err, diags in sorted(written, key=lambda w: w[0]):
+            sys.stdout.write(out)
+            sys.stderr.write(err)
+            sink.extend(diags)
+            if not ok:
+                return False
+        return True
+    finally:
+        if down_w >= 0:
+            os.close(down_w)
+        up.close()
+        if not finished:  # leaving early (an exception, an interrupt): stop the child we started
+            try:
+                os.kill(pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+        os.waitpid(pid, 0)
+
+
+def _receive(up, pickle) -> tuple[str, list]:
+    """The child's next message; raises what it raised, or when it sent nothing."""
+    try:
+        kind, value = pickle.load(up)
+    except EOFError:
+        raise RuntimeError("a rapidgen worker process ended without its results") from None
+    if kind == "error":
+        raise value
+    return kind, value
+
+
+@contextlib.contextmanager
+def _model_frozen():
+    """What exists now (the parsed model, the imports) set aside by the cyclic garbage
+    collector for the block: the back ends' cyclic garbage (views, template contexts) is
+    collected as they go, and collections do not walk the model again and again."""
+    import gc
+    gc.freeze()
+    try:
+        yield
+    finally:
+        gc.unfreeze()
 
 
 @contextlib.contextmanager
