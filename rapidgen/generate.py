@@ -385,14 +385,14 @@ def _generate_in_two(renderer: "_Renderer", langs: list[str], out_dir: str, sink
         try:
             os.close(up_r)
             os.close(down_w)
-            with os.fdopen(up_w, "wb") as up:
+            with os.fdopen(up_w, "wb") as to_parent:
                 try:
-                    pickle.dump(("rendered", render_some(theirs)), up, protocol=pickle.HIGHEST_PROTOCOL)
-                    up.flush()
+                    pickle.dump(("rendered", render_some(theirs)), to_parent, protocol=pickle.HIGHEST_PROTOCOL)
+                    to_parent.flush()
                     if os.read(down_r, 1) == b"w":
-                        pickle.dump(("written", write_some(theirs)), up, protocol=pickle.HIGHEST_PROTOCOL)
+                        pickle.dump(("written", write_some(theirs)), to_parent, protocol=pickle.HIGHEST_PROTOCOL)
                 except Exception as exc:  # noqa: BLE001 (raised again in the parent)
-                    pickle.dump(("error", _portable(exc)), up, protocol=pickle.HIGHEST_PROTOCOL)
+                    pickle.dump(("error", _portable(exc)), to_parent, protocol=pickle.HIGHEST_PROTOCOL)
         except BaseException:  # noqa: BLE001 (the parent reports a child that sent nothing)
             code = 70
         finally:
