@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/cpp/CMakeLists.txt.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "c23d263d37b61606051cd0c6fb5a9811985e58b54e2b32fdda5ae8a8d488686e"
+KEY = "14ea982159d34066726cb4f42ab5d1816ceaa1757a0fd62daf59f4f9af219c76"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'CMakeLists.txt.j2'
 
@@ -12,6 +12,7 @@ def root(context, missing=missing, environment=environment):
     cond_expr_undefined = Undefined
     if 0: yield None
     l_0_p = resolve('p')
+    l_0_bridge = resolve('bridge')
     try:
         t_1 = environment.filters['cpp_comment']
     except KeyError:
@@ -31,7 +32,15 @@ def root(context, missing=missing, environment=environment):
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
     yield '),\n# after `cmake --install`, or with '
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
-    yield "_DIR set to this project's build folder.\ncmake_minimum_required(VERSION 3.16)\nproject("
+    yield "_DIR set to this project's build folder.\n"
+    if (undefined(name='bridge') if l_0_bridge is missing else l_0_bridge):
+        pass
+        yield "# The asset's bridge "
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield "_bridge (bridge/: the C++ RAPID runtime on these types) is\n# built too when find_package(rapid_runtime_cpp) finds the runtime (rapidgen's runtime/cpp;\n# rapid_runtime_cpp_DIR=<its build folder>, or installed); -D"
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_BRIDGE=OFF skips it.\n'
+    yield 'cmake_minimum_required(VERSION 3.16)\nproject('
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
     yield ' VERSION 1.0.0 LANGUAGES CXX)\n\nfind_package(fastcdr REQUIRED)\nfind_package(fastrtps REQUIRED)\n\nadd_library('
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
@@ -74,6 +83,31 @@ def root(context, missing=missing, environment=environment):
     yield 'Config.cmake\n    ${CMAKE_CURRENT_BINARY_DIR}/'
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
     yield 'ConfigVersion.cmake DESTINATION ${_config_dir})\n'
+    if (undefined(name='bridge') if l_0_bridge is missing else l_0_bridge):
+        pass
+        yield '\noption('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_BRIDGE "build '
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_bridge (needs rapid_runtime_cpp)" ON)\nif('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_BRIDGE)\n    find_package(rapid_runtime_cpp QUIET)\n    if(rapid_runtime_cpp_FOUND)\n        add_executable('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_bridge\n            bridge/dispatch.cpp\n            bridge/handlers.cpp\n            bridge/main.cpp\n            bridge/profiles.cpp\n            bridge/tables.cpp)\n        set_target_properties('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_bridge PROPERTIES CXX_EXTENSIONS OFF)\n        target_compile_features('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_bridge PRIVATE cxx_std_17)\n        rapid_runtime_cpp_add_dds('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_bridge PACKAGE '
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield ')\n        install(TARGETS '
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_bridge RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})\n    else()\n        message(STATUS "'
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield ': rapid_runtime_cpp not found; '
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_bridge is not built "\n                       "(set rapid_runtime_cpp_DIR to the runtime\'s build folder)")\n    endif()\nendif()\n'
 
 blocks = {}
-debug_info = '1=19&2=21&3=23&4=29&6=31&11=33&12=35&13=41&14=43&15=45&18=47&22=49&23=51&27=55&28=59&29=63&31=65&32=67&34=69&35=71'
+debug_info = '1=20&2=22&3=24&4=30&5=32&6=35&8=37&11=40&16=42&17=44&18=50&19=52&20=54&23=56&27=58&28=60&32=64&33=68&34=72&36=74&37=76&39=78&40=80&41=82&43=85&44=89&47=91&53=93&54=95&55=97&56=101&58=103'

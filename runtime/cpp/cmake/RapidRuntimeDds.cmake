@@ -21,7 +21,10 @@ function(rapid_runtime_cpp_add_dds target)
     target_sources(${target} PRIVATE
         ${RAPID_RUNTIME_CPP_DDS_DIR}/src/messages.cpp
         ${RAPID_RUNTIME_CPP_DDS_DIR}/src/node.cpp
-        ${RAPID_RUNTIME_CPP_DDS_DIR}/src/bridge.cpp)
+        ${RAPID_RUNTIME_CPP_DDS_DIR}/src/bridge.cpp
+        ${RAPID_RUNTIME_CPP_DDS_DIR}/src/telemetry.cpp
+        ${RAPID_RUNTIME_CPP_DDS_DIR}/src/simulate.cpp
+        ${RAPID_RUNTIME_CPP_DDS_DIR}/src/program.cpp)
     target_include_directories(${target} PRIVATE ${_types_dir} ${RAPID_RUNTIME_CPP_DDS_DIR}/include)
     target_link_libraries(${target} PRIVATE rapid_runtime_cpp::core ${ARG_PACKAGE}::${ARG_PACKAGE} fastrtps fastcdr)
 endfunction()

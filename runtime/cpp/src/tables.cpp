@@ -36,4 +36,22 @@ std::vector<std::string> Tables::subsystems_of_type(std::string_view type) const
     return out;
 }
 
+const TelemetryTopic* TelemetrySpec::topic(std::string_view role) const {
+    for (const auto& t : topics)
+        if (t.role == role) return &t;
+    return nullptr;
+}
+
+const TelemetrySpec* Tables::telemetry_of(std::string_view kind, std::size_t index) const {
+    for (const auto& t : telemetry)
+        if (t.kind == kind && index-- == 0) return &t;
+    return nullptr;
+}
+
+std::size_t Tables::count_of(std::string_view kind) const {
+    std::size_t n = 0;
+    for (const auto& t : telemetry) n += t.kind == kind ? 1 : 0;
+    return n;
+}
+
 }  // namespace rapid_runtime

@@ -38,6 +38,7 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
     NodeOptions node;
     node.domain = options.domain < 0 ? tables.domain : options.domain;
     node.profiles_file = options.profiles_file;
+    node.profiles_xml = options.profiles_xml;
     node.transport = options.transport;
     node.partition = tables.partition.empty() ? tables.name : tables.partition;
     node_ = std::make_unique<Node>(node);

@@ -14,13 +14,18 @@ Node::Node(const NodeOptions& options) : partition_(options.partition) {
     auto* factory = DomainParticipantFactory::get_instance();
     const char* env = std::getenv("FASTDDS_DEFAULT_PROFILES_FILE");
     if (env == nullptr) env = std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE");
-    if (options.profiles_file.empty() && (env == nullptr || *env == '\0'))
+    if (options.profiles_file.empty() && options.profiles_xml.empty() && (env == nullptr || *env == '\0'))
         throw DdsError("no QoS profiles: give the generated qos/fastdds/rapid_qos_profiles.xml or set "
                        "FASTDDS_DEFAULT_PROFILES_FILE (Fast DDS's defaults would leave loopback)");
     factory->load_profiles();  // FASTDDS_DEFAULT_PROFILES_FILE, when set
-    if (!options.profiles_file.empty() &&
-        factory->load_XML_profiles_file(options.profiles_file) != ReturnCode_t::RETCODE_OK)
-        throw DdsError("cannot load QoS profiles " + options.profiles_file);
+    if (!options.profiles_file.empty()) {
+        if (factory->load_XML_profiles_file(options.profiles_file) != ReturnCode_t::RETCODE_OK)
+            throw DdsError("cannot load QoS profiles " + options.profiles_file);
+    } else if (!options.profiles_xml.empty() &&
+               factory->load_XML_profiles_string(options.profiles_xml.data(), options.profiles_xml.size()) !=
+                   ReturnCode_t::RETCODE_OK) {
+        throw DdsError("cannot load the built-in QoS profiles");
+    }
     participant_ = factory->create_participant_with_profile(options.domain, "rapid_" + options.transport);
     if (participant_ == nullptr)
         throw DdsError("no participant from profile rapid_" + options.transport + " on domain " +

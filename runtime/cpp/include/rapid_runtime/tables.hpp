@@ -4,9 +4,11 @@
 #ifndef RAPID_RUNTIME_TABLES_HPP
 #define RAPID_RUNTIME_TABLES_HPP
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "value.hpp"
@@ -55,6 +57,52 @@ struct AccessSpec {
     std::vector<AccessRule> rules;
 };
 
+// A topic of a telemetry entry: its role (config, state, sample), name and QoS profile.
+struct TelemetryTopic {
+    std::string role;
+    std::string topic;
+    std::string qos;  // profile name in the generated Fast DDS XML
+};
+
+struct Joint {
+    std::string frame;  // JointDef.frameName
+    std::string dof;
+    std::string unit;
+    std::optional<double> min;
+    std::optional<double> max;
+};
+
+// One telemetry entry of the descriptor (kind agent, position, joint, image, text or
+// custom), with what each kind declares; the rest stays empty.
+struct TelemetrySpec {
+    std::string kind;
+    std::vector<TelemetryTopic> topics;
+    std::optional<double> rate;  // Hz; none: on change only
+    std::string subsystem;
+    std::vector<Param> values;  // agent and position value keys, in valueKeys order
+    // position
+    std::string frame;
+    std::string pose_encoding;  // RotationEncoding enumerator name
+    std::string velocity_encoding;
+    // joint
+    std::string group;
+    std::vector<std::string> fields;
+    std::vector<Joint> joints;
+    // image
+    std::string sensor;
+    std::string sensor_type;
+    std::string mime;
+    int width = 0;
+    int height = 0;
+    // text
+    std::vector<std::string> categories;
+    // custom: role -> DDS type name (the message types the generated code publishes)
+    std::vector<std::pair<std::string, std::string>> types;
+
+    // The topic of a role, or nullptr.
+    const TelemetryTopic* topic(std::string_view role) const;
+};
+
 // A command of the dictionary as found for a subsystem.
 struct CommandRef {
     const SubsystemType* type = nullptr;
@@ -70,12 +118,16 @@ struct Tables {
     std::vector<Subsystem> subsystems;  // in CommandConfig order
     std::vector<SubsystemType> types;
     std::optional<AccessSpec> access;  // none: any source may command
+    std::vector<TelemetrySpec> telemetry;  // the descriptor's telemetry entries, in order
 
     const std::string* type_of(std::string_view subsystem) const;
     const SubsystemType* subsystem_type(std::string_view type) const;
     CommandRef command(std::string_view subsystem, std::string_view name) const;
     bool has_type(std::string_view type) const;
     std::vector<std::string> subsystems_of_type(std::string_view type) const;
+    // The index-th telemetry entry of a kind ("agent", ...), or nullptr.
+    const TelemetrySpec* telemetry_of(std::string_view kind, std::size_t index = 0) const;
+    std::size_t count_of(std::string_view kind) const;
 };
 
 }  // namespace rapid_runtime

@@ -41,6 +41,7 @@ inline constexpr int ACK_HISTORY = 8;
 struct BridgeOptions {
     int domain = -1;  // -1: the tables' domain
     std::string profiles_file;  // the asset's generated qos/fastdds/rapid_qos_profiles.xml
+    std::string profiles_xml;  // or its content (a generated bridge's built-in copy)
     std::string transport = "local";
     std::size_t command_window = COMMAND_WINDOW;
     std::int64_t serial = -1;  // the configs' first serial (-1: start time in seconds)
@@ -86,6 +87,7 @@ public:
     bool stopping() const { return stop_requested_.load(); }
 
     Node& node() { return *node_; }
+    const Tables& tables() const { return tables_; }
     CommandManager& manager() { return *manager_; }
     void log(const std::string& text) override { (*log_)(text); }
 

@@ -2,8 +2,9 @@
 // readers per topic with their RAPID profile, in the asset's partition.
 //
 // DDS traffic stays where the profiles say: the participant is created from a profile of
-// the generated Fast DDS XML ("rapid_local": loopback only), loaded from `profiles_file`
-// and from FASTDDS_DEFAULT_PROFILES_FILE (load_profiles()). Without either it refuses to
+// the generated Fast DDS XML ("rapid_local": loopback only), loaded from `profiles_file`,
+// else from `profiles_xml` (the XML itself: a generated bridge carries its asset's), and
+// from FASTDDS_DEFAULT_PROFILES_FILE (load_profiles()). Without any of them it refuses to
 // start rather than fall back to Fast DDS's defaults (multicast on every interface).
 #ifndef RAPID_RUNTIME_DDS_NODE_HPP
 #define RAPID_RUNTIME_DDS_NODE_HPP
@@ -36,6 +37,7 @@ public:
 struct NodeOptions {
     int domain = 0;
     std::string profiles_file;  // the generated qos/fastdds/rapid_qos_profiles.xml
+    std::string profiles_xml;  // or its content (used when profiles_file is empty)
     std::string transport = "local";  // participant profile "rapid_<transport>"
     std::string partition;  // the asset's; overrides the profiles' partition
 };

@@ -1,0 +1,186 @@
+#include "rapid_runtime/dds/program.hpp"
+
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include <rapid_runtime/simulator.hpp>
+#include <rapid_runtime/text.hpp>
+
+namespace rapid_runtime {
+namespace dds {
+
+namespace {
+
+std::atomic<bool> signalled{false};
+
+extern "C" void on_signal(int) { signalled = true; }
+
+struct Args {
+    bool simulate = false;
+    double sim_speed = 1.0;
+    std::optional<int> domain;
+    std::string transport = "local";
+    std::string qos;
+    double seconds = -1;
+    std::size_t command_window = COMMAND_WINDOW;
+};
+
+void usage(std::ostream& out, const char* prog, const Tables& t) {
+    out << "usage: " << prog
+        << " [--simulate] [--sim-speed X] [--domain N] [--transport local|lan|wan] [--qos PROFILES_XML]\n"
+           "       [--seconds S] [--command-window N]\n\n"
+           "RAPID bridge of asset "
+        << visible(t.name)
+        << " (rapid_runtime_cpp on Fast DDS).\n"
+           "  --simulate          a simulated robot behind the handlers\n"
+           "  --sim-speed X       simulated time runs X times faster (default 1)\n"
+           "  --domain N          DDS domain (default "
+        << t.domain
+        << ")\n"
+           "  --transport NAME    participant profile rapid_NAME of the QoS profiles: local (loopback only,\n"
+           "                      the default), lan, wan, wan_tcp\n"
+           "  --qos FILE          Fast DDS profiles to use instead of the built-in ones (the asset's\n"
+           "                      generated qos/fastdds/rapid_qos_profiles.xml)\n"
+           "  --seconds S         stop after S seconds (default: run until stopped)\n"
+           "  --command-window N  commands remembered (repeated cmdIds, acks kept; default "
+        << COMMAND_WINDOW << ")\n";
+}
+
+bool number(const std::string& text, double& out) {
+    char* end = nullptr;
+    out = std::strtod(text.c_str(), &end);
+    return !text.empty() && end != nullptr && *end == '\0' && std::isfinite(out);
+}
+
+bool integer(const std::string& text, long long& out) {
+    char* end = nullptr;
+    out = std::strtoll(text.c_str(), &end, 10);
+    return !text.empty() && end != nullptr && *end == '\0';
+}
+
+// false: usage error (said on stderr)
+bool parse(int argc, char** argv, Args& a, bool& help) {
+    for (int i = 1; i < argc; ++i) {
+        std::string key = argv[i];
+        if (key == "--help" || key == "-h") {
+            help = true;
+            return true;
+        }
+        if (key == "--simulate") {
+            a.simulate = true;
+            continue;
+        }
+        if (i + 1 >= argc) {
+            std::cerr << argv[0] << ": " << key << (key.rfind("--", 0) == 0 ? " needs a value" : ": unknown argument")
+                      << "\n";
+            return false;
+        }
+        std::string value = argv[++i];
+        double x = 0;
+        long long n = 0;
+        bool ok = true;
+        if (key == "--sim-speed") {
+            ok = number(value, x) && x > 0;
+            a.sim_speed = x;
+        } else if (key == "--domain") {
+            ok = integer(value, n) && n >= 0 && n <= 232;
+            a.domain = static_cast<int>(n);
+        } else if (key == "--transport") {
+            ok = !value.empty();
+            for (char c : value) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+            a.transport = value;
+        } else if (key == "--qos") {
+            ok = !value.empty();
+            a.qos = value;
+        } else if (key == "--seconds") {
+            ok = number(value, x) && x >= 0;
+            a.seconds = x;
+        } else if (key == "--command-window") {
+            ok = integer(value, n) && n >= 1;
+            a.command_window = static_cast<std::size_t>(n);
+        } else {
+            std::cerr << argv[0] << ": unknown option " << visible(key) << "\n";
+            return false;
+        }
+        if (!ok) {
+            std::cerr << argv[0] << ": bad value for " << key << ": " << visible(value) << "\n";
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+int run_bridge(int argc, char** argv, const Program& program) {
+    const Tables& tables = *program.tables;
+    const char* prog = argc > 0 ? argv[0] : "bridge";
+    Args args;
+    bool help = false;
+    if (!parse(argc, argv, args, help)) {
+        usage(std::cerr, prog, tables);
+        return 2;
+    }
+    if (help) {
+        usage(std::cout, prog, tables);
+        return 0;
+    }
+    BridgeOptions options;
+    options.domain = args.domain.value_or(tables.domain);
+    options.transport = args.transport;
+    options.command_window = args.command_window;
+    if (args.qos.empty()) options.profiles_xml = std::string(program.profiles_xml);
+    else options.profiles_file = args.qos;
+
+    std::unique_ptr<Simulator> simulator;
+    std::unique_ptr<BridgeHandlers> handlers;
+    Handlers* serving = nullptr;
+    if (args.simulate) {
+        simulator = std::make_unique<Simulator>(tables, args.sim_speed);
+        serving = simulator.get();
+    } else {
+        handlers = program.make_handlers ? program.make_handlers() : std::make_unique<BridgeHandlers>();
+        serving = handlers.get();
+    }
+    try {
+        Bridge bridge(tables, *serving, options);
+        if (program.publish_configs) program.publish_configs(bridge);
+        std::unique_ptr<SimulatedTelemetry> telemetry;
+        if (simulator) {
+            telemetry = std::make_unique<SimulatedTelemetry>(bridge, *simulator, program.custom);
+            telemetry->prepare();
+        }
+        bridge.start();
+        if (telemetry) telemetry->start();
+        if (handlers) handlers->on_start(bridge);
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        std::cout << "bridge ready: asset " << visible(tables.name) << ", domain " << options.domain << ", partition "
+                  << visible(tables.partition.empty() ? tables.name : tables.partition)
+                  << (simulator ? ", simulated" : "") << std::endl;
+        const auto end = args.seconds < 0 ? std::chrono::steady_clock::time_point::max()
+                                          : std::chrono::steady_clock::now() +
+                                                std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                    std::chrono::duration<double>(args.seconds));
+        while (!signalled && !bridge.wait(0.1) && std::chrono::steady_clock::now() < end) {
+        }
+        if (handlers) handlers->on_stop();
+        if (telemetry) telemetry->stop();
+        bridge.stop();
+    } catch (const std::exception& e) {
+        std::cerr << prog << ": " << e.what() << std::endl;
+        return 1;
+    }
+    std::cout << "bridge stopped" << std::endl;
+    return 0;
+}
+
+}  // namespace dds
+}  // namespace rapid_runtime

@@ -1,0 +1,228 @@
+#include "rapid_runtime/dds/telemetry.hpp"
+
+#include <cmath>
+
+#include <rapid_runtime/images.hpp>
+
+namespace rapid_runtime {
+namespace dds {
+
+namespace {
+
+bool number(const Value& v, double& out) {
+    if (auto* d = std::get_if<double>(&v)) out = *d;
+    else if (auto* f = std::get_if<float>(&v)) out = *f;
+    else if (auto* i = std::get_if<std::int32_t>(&v)) out = *i;
+    else if (auto* l = std::get_if<std::int64_t>(&v)) out = static_cast<double>(*l);
+    else return false;
+    return true;
+}
+
+std::string kind_name(DataType t) { return std::string(name_of(t)); }
+
+Value zero(DataType t) {
+    switch (t) {
+        case DataType::Bool: return false;
+        case DataType::Double: return 0.0;
+        case DataType::Float: return 0.0f;
+        case DataType::Int: return std::int32_t{0};
+        case DataType::LongLong: return std::int64_t{0};
+        case DataType::String: return std::string();
+        case DataType::Vec3d: return Vec3d{};
+        case DataType::Mat33f: return Mat33f{};
+    }
+    return false;
+}
+
+}  // namespace
+
+Value coerce(DataType type, const Value& v, const std::string& key) {
+    double x = 0.0;
+    bool is_number = number(v, x);
+    auto wrong = [&]() {
+        return TelemetryError("value " + key + ": " + repr(v) + " is not a " + kind_name(type));
+    };
+    switch (type) {
+        case DataType::Bool:
+            if (!std::holds_alternative<bool>(v)) throw wrong();
+            return v;
+        case DataType::Double:
+            if (!is_number) throw wrong();
+            return x;
+        case DataType::Float:
+            if (!is_number) throw wrong();
+            return static_cast<float>(x);
+        case DataType::Int:
+            if (!is_number || x != std::trunc(x) || x < -2147483648.0 || x > 2147483647.0) throw wrong();
+            return static_cast<std::int32_t>(x);
+        case DataType::LongLong:
+            if (auto* l = std::get_if<std::int64_t>(&v)) return *l;
+            if (!is_number || x != std::trunc(x) || std::abs(x) > 9.2e18) throw wrong();
+            return static_cast<std::int64_t>(x);
+        case DataType::String: {
+            auto* s = std::get_if<std::string>(&v);
+            if (s == nullptr) throw wrong();
+            if (auto why = shape_error(v)) throw TelemetryError("value " + key + ": " + *why);
+            return v;
+        }
+        case DataType::Vec3d:
+            if (!std::holds_alternative<Vec3d>(v)) throw wrong();
+            return v;
+        case DataType::Mat33f:
+            if (!std::holds_alternative<Mat33f>(v)) throw wrong();
+            return v;
+    }
+    throw wrong();
+}
+
+std::array<float, 9> rotation_about_z(const std::string& encoding, double heading) {
+    std::array<float, 9> r{};
+    if (encoding == "RAPID_ROT_QUAT") {
+        r[2] = static_cast<float>(std::sin(heading / 2));
+        r[3] = static_cast<float>(std::cos(heading / 2));
+    } else if (encoding == "RAPID_ROT_M33") {
+        float c = static_cast<float>(std::cos(heading)), s = static_cast<float>(std::sin(heading));
+        r = {c, -s, 0, s, c, 0, 0, 0, 1};
+    } else if (encoding == "RAPID_ROT_XYZ" || encoding == "RAPID_ROT_VEL") {
+        r[2] = static_cast<float>(heading);
+    } else if (encoding == "RAPID_ROT_ZYX" || encoding == "RAPID_ROT_ZYZ") {
+        r[0] = static_cast<float>(heading);
+    }
+    return r;
+}
+
+const TelemetrySpec& Telemetry::entry(const std::string& kind, std::size_t index) const {
+    const TelemetrySpec* e = t_.telemetry_of(kind, index);
+    if (e == nullptr)
+        throw TelemetryError("asset " + t_.name + " declares " + std::to_string(t_.count_of(kind)) + " " + kind +
+                             " telemetry entries (no index " + std::to_string(index) + ")");
+    return *e;
+}
+
+const std::string& Telemetry::topic(const TelemetrySpec& e, const std::string& role, std::string& qos) const {
+    const TelemetryTopic* t = e.topic(role);
+    if (t == nullptr) throw TelemetryError(e.kind + " telemetry entry has no " + role + " topic");
+    qos = t->qos;
+    return t->topic;
+}
+
+std::vector<::rapid::ParameterUnion> Telemetry::values(const TelemetrySpec& e,
+                                                        const std::map<std::string, Value>& given) const {
+    for (const auto& [key, v] : given) {
+        bool known = false;
+        for (const auto& k : e.values) known = known || k.name == key;
+        if (!known) throw TelemetryError("undeclared value key: " + key);
+    }
+    std::vector<::rapid::ParameterUnion> out;
+    out.reserve(e.values.size());
+    for (const auto& k : e.values) {
+        auto found = given.find(k.name);
+        Value v = found != given.end() ? coerce(k.type, found->second, k.name)
+                  : k.default_value   ? coerce(k.type, *k.default_value, k.name)
+                                      : zero(k.type);
+        out.push_back(union_of(v));
+    }
+    return out;
+}
+
+namespace {
+const std::string& config_topic(const TelemetrySpec& e) {
+    static const std::string none;
+    const TelemetryTopic* c = e.topic("config");
+    return c ? c->topic : none;
+}
+}  // namespace
+
+void Telemetry::agent_state(const std::map<std::string, Value>& given, std::size_t index) {
+    const auto& e = entry("agent", index);
+    std::string qos;
+    const auto& name = topic(e, "state", qos);
+    ::rapid::AgentState s;
+    s.values = values(e, given);
+    b_.publish(name, s, config_topic(e), qos);
+}
+
+void Telemetry::position(const std::array<double, 3>& xyz, const std::array<float, 9>& rot,
+                         const std::array<double, 3>& velocity_xyz, const std::array<float, 9>& velocity_rot,
+                         const std::map<std::string, Value>& given, std::size_t index) {
+    const auto& e = entry("position", index);
+    std::string qos;
+    const auto& name = topic(e, "sample", qos);
+    ::rapid::PositionSample s;
+    s.pose.xyz = xyz;
+    s.pose.rot = rot;
+    s.velocity.xyz = velocity_xyz;
+    s.velocity.rot = velocity_rot;
+    s.values = values(e, given);
+    b_.publish(name, s, config_topic(e), qos);
+}
+
+void Telemetry::joints(const std::vector<double>& positions, const std::vector<double>& velocities,
+                       const std::vector<double>& torques, std::size_t index) {
+    const auto& e = entry("joint", index);
+    std::size_t n = e.joints.size();
+    if (positions.size() != n || (!velocities.empty() && velocities.size() != n) ||
+        (!torques.empty() && torques.size() != n))
+        throw TelemetryError("joint sample: " + std::to_string(positions.size()) + " positions for " +
+                             std::to_string(n) + " joints");
+    std::string qos;
+    const auto& name = topic(e, "sample", qos);
+    ::rapid::JointSample s;
+    s.anglePos.assign(positions.begin(), positions.end());
+    s.angleVel.assign(velocities.begin(), velocities.end());
+    s.torque.assign(torques.begin(), torques.end());
+    b_.publish(name, s, config_topic(e), qos);
+}
+
+void Telemetry::text(const std::string& message, const std::string& category, ::rapid::MessageLevel level,
+                     std::size_t index) {
+    const auto& e = entry("text", index);
+    std::string qos;
+    const auto& name = topic(e, "sample", qos);
+    ::rapid::TextMessage s;
+    s.level = level;
+    s.category = category;
+    s.message = message;
+    b_.publish(name, s, config_topic(e), qos);
+}
+
+::rapid::ImageMetadata Telemetry::meta(const TelemetrySpec& e, int width, int height) const {
+    ::rapid::ImageMetadata m;
+    m.sensorName = e.sensor;
+    m.sensorType = e.sensor_type;
+    m.offset.rot = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    m.width = width;
+    m.height = height;
+    return m;
+}
+
+void Telemetry::image(const std::vector<std::uint8_t>& data, std::size_t index, bool state) {
+    const auto& e = entry("image", index);
+    ImageInfo info{e.mime, e.width, e.height};
+    describe_image(data, info);
+    std::string qos;
+    if (state && e.topic("state") != nullptr) {
+        const auto& name = topic(e, "state", qos);
+        ::rapid::ImageSensorState s;
+        s.meta = meta(e, info.width, info.height);
+        b_.publish(name, s, config_topic(e), qos);
+    }
+    const auto& name = topic(e, "sample", qos);
+    ::rapid::ImageSensorSample s;
+    s.meta = meta(e, info.width, info.height);
+    s.mimeType = info.mime;
+    s.data = data;
+    b_.publish(name, s, config_topic(e), qos);
+}
+
+void Telemetry::image_state(std::size_t index) {
+    const auto& e = entry("image", index);
+    std::string qos;
+    const auto& name = topic(e, "state", qos);
+    ::rapid::ImageSensorState s;
+    s.meta = meta(e, e.width, e.height);
+    b_.publish(name, s, config_topic(e), qos);
+}
+
+}  // namespace dds
+}  // namespace rapid_runtime

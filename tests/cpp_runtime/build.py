@@ -1,0 +1,179 @@
+"""Builds shared by the C++ runtime's tests (tests/cpp_runtime) and the conformance tier's
+C++ bridges (tests/conformance/test_cpp_asset.py): each is made once per pytest session,
+in the session's temp folder, with -Wall -Wextra -Werror.
+
+    runtime_dir(f)      runtime/cpp built (rapid_runtime_cpp_DIR for find_package)
+    generated(f, seed)  `rapidgen generate <descriptor> --lang cpp` (the package)
+    seed_bridges(f)     every seed's <package>_bridge and the hostile descriptor's, one
+                        CMake build of them all (K10's file by file, the others as unity
+                        builds: seeds/CMakeLists.txt)
+
+`f` is pytest's tmp_path_factory. The seeds are tests.runtime.live.SEEDS (all six unless
+RAPIDGEN_CPP_SEEDS names some, comma-separated) and HOSTILE, K10 with names C++ reserves
+and text that ends comments and strings (hostile_descriptor())."""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from tests.runtime.live import SEEDS
+
+ROOT = Path(__file__).resolve().parents[2]
+HERE = Path(__file__).resolve().parent
+FLAGS = "-Wall -Wextra -Werror"
+JOBS = str(max(1, min(4, os.cpu_count() or 1)))
+_CACHE: dict[tuple[str, str], object] = {}  # (session temp folder, what) -> result
+
+
+def run(cmd: list[str], timeout: float = 1200) -> subprocess.CompletedProcess:
+    res = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=ROOT)
+    assert res.returncode == 0, f"{' '.join(cmd)}\n{res.stdout[-3000:]}\n{res.stderr[-6000:]}"
+    return res
+
+
+def configure(src: Path, build: Path, *defs: str, build_type: str = "Release") -> None:
+    run(["cmake", "-S", str(src), "-B", str(build), f"-DCMAKE_BUILD_TYPE={build_type}", f"-DCMAKE_CXX_FLAGS={FLAGS}",
+         *defs])
+
+
+def build(build_dir: Path, *targets: str) -> None:
+    extra = [a for t in targets for a in ("--target", t)]
+    run(["cmake", "--build", str(build_dir), "-j", JOBS, *extra])
+
+
+def needs_toolchain() -> None:
+    if shutil.which("cmake") is None or shutil.which("g++") is None or \
+            not Path("/usr/include/fastdds/dds/topic/TopicDataType.hpp").exists() or \
+            not Path("/usr/include/gtest/gtest.h").exists():
+        pytest.fail("cmake, g++, googletest and libfastrtps-dev/libfastcdr-dev are needed (scripts/setup.sh)")
+
+
+def _once(factory, what: str, make):
+    key = (str(factory.getbasetemp()), what)
+    if key not in _CACHE:
+        _CACHE[key] = make()
+    return _CACHE[key]
+
+
+def base(factory) -> Path:
+    return _once(factory, "base", lambda: factory.mktemp("cpp-runtime"))  # type: ignore[no-any-return]
+
+
+def runtime_dir(factory) -> Path:
+    def make() -> Path:
+        needs_toolchain()
+        out = base(factory) / "runtime"
+        configure(ROOT / "runtime" / "cpp", out)
+        build(out)
+        return out
+    return _once(factory, "runtime", make)  # type: ignore[no-any-return]
+
+
+def descriptor(factory, seed: str) -> Path:
+    """The seed's descriptor (HOSTILE's written to the session's folder)."""
+    if seed != HOSTILE:
+        return ROOT / "specs" / "assets" / f"{seed}.yaml"
+
+    def make() -> Path:
+        path = base(factory) / "hostile.yaml"
+        path.write_text(yaml.safe_dump(hostile_descriptor(), allow_unicode=True), encoding="utf-8")
+        return path
+    return _once(factory, "hostile.yaml", make)  # type: ignore[no-any-return]
+
+
+def generated(factory, seed: str) -> Path:
+    """The seed's generated C++ package (its cpp/ folder)."""
+    def make() -> Path:
+        out = base(factory) / "gen" / seed
+        run([sys.executable, "-m", "rapidgen", "generate", str(descriptor(factory, seed)), "--lang", "cpp", "-o",
+             str(out)])
+        return out / "cpp"
+    return _once(factory, f"gen-{seed}", make)  # type: ignore[no-any-return]
+
+
+def package_of(cpp: Path) -> str:
+    return next(p.parent.name for p in (cpp / "include").glob("*/asset.hpp"))
+
+
+def chosen_seeds() -> list[str]:
+    names = [s.strip() for s in os.environ.get("RAPIDGEN_CPP_SEEDS", "").split(",") if s.strip()]
+    return [s for s in [*SEEDS, HOSTILE] if not names or s in names]
+
+
+def seed_bridges(factory) -> dict[str, Path]:
+    """Every chosen seed's bridge, built as the generated CMakeLists says (the types library
+    and <package>_bridge, found runtime), all in one CMake project (HERE/seeds)."""
+    def make() -> dict[str, Path]:
+        runtime = runtime_dir(factory)
+        seeds = chosen_seeds()
+        dirs = {s: generated(factory, s) for s in seeds}
+        out = base(factory) / "bridges"
+        configure(HERE / "seeds", out, f"-Drapid_runtime_cpp_DIR={runtime}",
+                  "-DSEED_DIRS=" + ";".join(str(d) for d in dirs.values()), f"-DPLAIN_DIR={dirs.get('k10', '')}")
+        build(out, *(f"{package_of(d)}_bridge" for d in dirs.values()))
+        return {s: out / d.parent.name / f"{package_of(d)}_bridge" for s, d in dirs.items()}
+    return _once(factory, "bridges", make)  # type: ignore[no-any-return]
+
+
+def dds_env() -> dict[str, str]:
+    """The environment without Fast DDS profile variables: the bridge's built-in profiles
+    (rapid_local: loopback only) are what it uses."""
+    return {k: v for k, v in os.environ.items() if not k.startswith(("FASTDDS_", "FASTRTPS_"))}
+
+
+# ---- a descriptor C++ must not take as it is ---------------------------------------------------------
+
+HOSTILE = "hostile"
+HOSTILE_RULES = '''
+subsystem_types:
+  - name: "class"
+    description: 'ends */ a comment ??/ and a "quote" \\ back'
+    commands:
+      - name: "delete"
+        description: "x */ y"
+        parameters:
+          - {name: "ctx", type: RAPID_STRING, allowed: ["a\\"b", "??=", "\\\\"], default: "??="}
+          - {name: "this", type: RAPID_FLOAT, unit: "m*/s", range: [-3.0e+38, 3.0e+38], default: 0}
+          - {name: "my-arg", type: RAPID_INT, range: [-2147483648, 2147483647]}
+          - {name: "my arg", type: RAPID_LONGLONG, default: -9223372036854775808}
+          - {name: "9lives", type: RAPID_VEC3d, default: [1, 2.5, -3]}
+          - {name: "\u00dcber", type: RAPID_MAT33f}
+          - {name: "assert", type: RAPID_BOOL, default: true}
+      - name: "class Handler"
+      - name: "ClassHandler"
+      - name: "do-it"
+        parameters:
+          - {name: "std", type: RAPID_STRING}
+          - {name: "rapid_runtime", type: RAPID_DOUBLE, range: [0, 1]}
+  - name: "Class Handler"
+    commands:
+      - {name: "on_start"}
+      - {name: "HandlerSet"}
+subsystems:
+  - {name: "x y", type: "class"}
+  - {name: "Twin One", type: "Class Handler"}
+  - {name: "Twin Two", type: "Class Handler"}
+'''
+
+
+def hostile_descriptor() -> dict:
+    """K10's descriptor plus subsystem types, commands and parameters named like C++
+    keywords, macros and the generated code's own names, and text that ends comments and
+    strings (its telemetry and extension types stay)."""
+    k10 = ROOT / "specs" / "assets" / "k10.yaml"
+    data = yaml.safe_load(k10.read_text(encoding="utf-8"))
+    data["idl"] = {k: str((k10.parent / v).resolve()) if isinstance(v, str) else [str((k10.parent / x).resolve())
+                   for x in v] for k, v in data["idl"].items()}
+    hostile = yaml.safe_load(HOSTILE_RULES)
+    data["subsystem_types"] += hostile["subsystem_types"]
+    data["subsystems"] += hostile["subsystems"]
+    data["asset"]["name"] = "Hostile_1"
+    data["asset"]["description"] = 'a "robot" */ with ??/ trigraphs \\'
+    data["dds"] = {"domain": 7, "partition": 'Hostile "1" part'}  # (no ? or *: DDS partition wildcards)
+    return data
