@@ -21,7 +21,7 @@ ASSETS = sorted(SEEDS)
 BROKEN = sorted(KINDS)
 # More kinds than DDS domains (ids end at 232): a broken run takes a free domain and gives
 # it back once its bridge and runner have left it cleanly; the queue hands out the least
-# recently used one. 231 is test_no_asset's, 232 the C++ asset's (test_cpp_asset.py).
+# recently used one. 231 is test_no_asset's; 232 is free.
 BROKEN_DOMAINS = range(DOMAIN_BASE + len(ASSETS), DOMAIN_BASE + 31)
 
 
