@@ -38,6 +38,7 @@ class Tool:
     argv: list[str]  # the output folder and the IDL file are filled in by command()
     package: str | None = None  # Debian package, when not installed
     env: dict[str, str] | None = None
+    cwd: Path = REPO  # rapidgen runs from this checkout (`python -m rapidgen` imports it from there)
 
     def installed(self) -> bool:
         return shutil.which(self.argv[0]) is not None
@@ -52,11 +53,12 @@ class Run:
     rss_mib: float
 
 
-def run_once(argv: list[str], env: dict[str, str] | None) -> Run:
-    """Spawn argv and reap it with wait4: wall time from spawn to reap, the child's own peak RSS."""
+def run_once(argv: list[str], env: dict[str, str] | None, cwd: Path = REPO) -> Run:
+    """Spawn argv and reap it with wait4: wall time from spawn to reap, the child's own peak
+    RSS (with what it reaped: rapidgen's second process)."""
     with tempfile.TemporaryFile() as err:
         start = time.perf_counter()
-        proc = subprocess.Popen(argv, cwd=REPO, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+        proc = subprocess.Popen(argv, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                 stderr=err, env=env)
         _, status, usage = os.wait4(proc.pid, 0)
         elapsed = time.perf_counter() - start
@@ -68,10 +70,12 @@ def run_once(argv: list[str], env: dict[str, str] | None) -> Run:
     return Run(elapsed, usage.ru_maxrss / 1024)  # Linux: KiB
 
 
-def tools_for(python: str, env: dict[str, str]) -> list[Tool]:
+def tools_for(python: str, env: dict[str, str], baseline: Path | None = None) -> list[Tool]:
     rapidgen = [python, "-m", "rapidgen", "generate", "{idl}", "-o", "{out}", "--lang"]
     tools = [Tool(f"rapidgen {t}", [*rapidgen, t], env=env) for t in TARGETS]
     tools.append(Tool("rapidgen all four", [*rapidgen, ",".join(TARGETS)], env=env))
+    if baseline is not None:  # another checkout of rapidgen (an older commit), the same command
+        tools.append(Tool("baseline all four", [*rapidgen, ",".join(TARGETS)], env=env, cwd=baseline))
     tools.append(Tool("idlc", ["idlc", "-o", "{out}", "{idl}"], APT_PACKAGES["idlc"]))
     tools.append(Tool("fastddsgen", ["fastddsgen", "-d", "{out}", "{idl}"], APT_PACKAGES["fastddsgen"]))
     return tools
@@ -91,7 +95,7 @@ def measure(tools: list[Tool], idl: Path, repeat: int) -> dict[str, list[Run] | 
                 continue
             with tempfile.TemporaryDirectory(prefix="bench-codegen-") as out:
                 try:
-                    run = run_once(t.command(idl, Path(out)), t.env)
+                    run = run_once(t.command(idl, Path(out)), t.env, t.cwd)
                 except (RuntimeError, OSError) as exc:
                     results[t.name] = f"failed: {exc}"
                     continue
@@ -112,12 +116,12 @@ def cell(result: list[Run] | str) -> str:
     return f"{min(times):.3f} / {statistics.median(times):.3f}, {max(r.rss_mib for r in result):.0f} MiB"
 
 
-def check_time(python: str, env: dict[str, str], repeat: int) -> str:
-    """`rapidgen check` on this repository (every seed and the RAPID set, all their targets)."""
+def check_time(python: str, env: dict[str, str], repeat: int, cwd: Path = REPO) -> str:
+    """`rapidgen check` on a checkout (every seed and the RAPID set, all their targets)."""
     times, code = [], 0
     for rep in range(repeat + 1):
         start = time.perf_counter()
-        proc = subprocess.run([python, "-m", "rapidgen", "check"], cwd=REPO, env=env, capture_output=True)
+        proc = subprocess.run([python, "-m", "rapidgen", "check"], cwd=cwd, env=env, capture_output=True)
         if rep:
             times.append(time.perf_counter() - start)
         code = proc.returncode
@@ -144,6 +148,8 @@ def report(rows: list[tuple[int, int, dict]], tools: list[Tool]) -> None:
         idlc, fast = best(res["idlc"]), best(res["fastddsgen"])
         alone = [best(res.get(f"rapidgen {t}", "")) for t in TARGETS]
         parts = [f"all four / idlc {ratio(every, idlc)}", f"fastddsgen / all four {ratio(fast, every)}"]
+        if "baseline all four" in res:
+            parts.append(f"baseline / all four {ratio(best(res['baseline all four']), every)}")
         if all(a is not None for a in alone):
             parts.append(f"the four one at a time / all four at once {ratio(sum(alone), every)}")  # type: ignore[arg-type]
         print(f"  {n:>5} structs: " + "; ".join(parts))
@@ -174,6 +180,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     p.add_argument("--only", metavar="TOOLS", help="comma-separated subset of the columns, e.g. "
                    "'rapidgen all four,idlc'")
     p.add_argument("--no-check", action="store_true", help="do not time `rapidgen check`")
+    p.add_argument("--baseline", metavar="DIR", type=Path, help="another rapidgen checkout (e.g. `git worktree add "
+                   "DIR REV`): its `generate` of all four targets as one more column, in the same run")
     p.add_argument("--keep", metavar="DIR", type=Path, help="write the IDL files to DIR and keep them")
     p.add_argument("--install", action="store_true", help="apt-get install cyclonedds-tools fastddsgen first (root)")
     args = p.parse_args(argv)
@@ -192,7 +200,7 @@ def main(argv: list[str] | None = None) -> int:
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     if args.jobs is not None:
         env["RAPIDGEN_JOBS"] = str(args.jobs)
-    tools = tools_for(sys.executable, env)
+    tools = tools_for(sys.executable, env, args.baseline.resolve() if args.baseline else None)
     if args.only:
         wanted = {w.strip() for w in args.only.split(",")}
         tools = [t for t in tools if t.name in wanted or t.name.removeprefix("rapidgen ") in wanted]
@@ -208,6 +216,8 @@ def main(argv: list[str] | None = None) -> int:
             rows.append((n, lines, measure(tools, idl, args.repeat)))
             print(f"... {n} structs done", file=sys.stderr, flush=True)
     check = None if args.no_check else check_time(sys.executable, env, args.repeat)
+    base_check = (check_time(sys.executable, env, args.repeat, args.baseline.resolve())
+                  if args.baseline and not args.no_check else None)
     for name in ("rapidgen all four", "idlc", "fastddsgen"):  # the ratios read these columns
         for _, _, res in rows:
             res.setdefault(name, "not measured (--only)")
@@ -217,6 +227,8 @@ def main(argv: list[str] | None = None) -> int:
     report(rows, tools)
     if check is not None:
         print(f"\nrapidgen check (this repository): {check}")
+    if base_check is not None:
+        print(f"rapidgen check (the baseline, on its own tree): {base_check}")
     if stale.returncode != 0:
         print("\nnote: some precompiled templates are stale, so those are compiled on every run "
               "(python -m rapidgen.backends.templating --write):\n  " + stale.stdout.strip().replace("\n", "\n  "))

@@ -16,14 +16,13 @@ from typing import TYPE_CHECKING
 from rapidgen.backends.base import (QOS_LIBRARY, GeneratedFile, Options, check_output, embed_nothing,
                                    no_companions, notice)
 from rapidgen.backends.escape import crate_name
-from rapidgen.backends.rust.asset import AssetView
-from rapidgen.backends.rust.asset import build as asset_view
 from rapidgen.backends.rust.view import Builder, CrateView, UnsupportedInput
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
 
 if TYPE_CHECKING:
     from rapidgen.asset import LoadedAsset
+    from rapidgen.backends.rust.asset import AssetView
 
 NAME = "rust"
 DEFAULT_CRATE = "rapid_types"
@@ -47,11 +46,12 @@ def crate_for(asset: "LoadedAsset | None", options: Options) -> str:
     return DEFAULT_CRATE
 
 
-def view(model: Model, asset: "LoadedAsset | None", options: Options) -> tuple[CrateView, AssetView | None]:
+def view(model: Model, asset: "LoadedAsset | None", options: Options) -> "tuple[CrateView, AssetView | None]":
     builder = Builder(model)
     c = builder.build(crate_for(asset, options), notice(options.source), options.source)
     if asset is None:
         return c, None
+    from rapidgen.backends.rust.asset import build as asset_view  # an asset's tables: assets only
     from rapidgen.qos.spec import QosSpec  # the driver read the library for an asset (needs())
     library = options.qos_library if isinstance(options.qos_library, QosSpec) else None
     return c, asset_view(asset, builder, library)
