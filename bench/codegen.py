@@ -74,7 +74,8 @@ def tools_for(python: str, env: dict[str, str], baseline: Path | None = None) ->
     rapidgen = [python, "-m", "rapidgen", "generate", "{idl}", "-o", "{out}", "--lang"]
     tools = [Tool(f"rapidgen {t}", [*rapidgen, t], env=env) for t in TARGETS]
     tools.append(Tool("rapidgen all four", [*rapidgen, ",".join(TARGETS)], env=env))
-    if baseline is not None:  # another checkout of rapidgen (an older commit), the same command
+    if baseline is not None:  # another checkout of rapidgen (an older commit), the same commands
+        tools += [Tool(f"baseline {t}", [*rapidgen, t], env=env, cwd=baseline) for t in TARGETS]
         tools.append(Tool("baseline all four", [*rapidgen, ",".join(TARGETS)], env=env, cwd=baseline))
     tools.append(Tool("idlc", ["idlc", "-o", "{out}", "{idl}"], APT_PACKAGES["idlc"]))
     tools.append(Tool("fastddsgen", ["fastddsgen", "-d", "{out}", "{idl}"], APT_PACKAGES["fastddsgen"]))
@@ -181,7 +182,7 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
                    "'rapidgen all four,idlc'")
     p.add_argument("--no-check", action="store_true", help="do not time `rapidgen check`")
     p.add_argument("--baseline", metavar="DIR", type=Path, help="another rapidgen checkout (e.g. `git worktree add "
-                   "DIR REV`): its `generate` of all four targets as one more column, in the same run")
+                   "DIR REV`): its `generate` of each target and all four as more columns, in the same run")
     p.add_argument("--keep", metavar="DIR", type=Path, help="write the IDL files to DIR and keep them")
     p.add_argument("--install", action="store_true", help="apt-get install cyclonedds-tools fastddsgen first (root)")
     args = p.parse_args(argv)
@@ -203,7 +204,8 @@ def main(argv: list[str] | None = None) -> int:
     tools = tools_for(sys.executable, env, args.baseline.resolve() if args.baseline else None)
     if args.only:
         wanted = {w.strip() for w in args.only.split(",")}
-        tools = [t for t in tools if t.name in wanted or t.name.removeprefix("rapidgen ") in wanted]
+        tools = [t for t in tools if t.name in wanted or t.name.removeprefix("rapidgen ") in wanted
+                 or t.name.startswith("baseline ") and "baseline" in wanted]
     stale = subprocess.run([sys.executable, "-m", "rapidgen.backends.templating", "--check"], cwd=REPO, env=env,
                            capture_output=True, text=True)
     load_before = os.getloadavg()
