@@ -322,6 +322,36 @@ SUBCOMMANDS = {
 }
 
 
+# Tools that live in their own package: the module has add_parser(sub) and run(args) -> int
+# and is imported only when its command runs (or for the whole --help).
+_TOOL_MODULES = {
+    "secure": "rapidgen.secure.command", "record": "rapidgen.record.command",
+    "replay": "rapidgen.record.replay_command", "monitor": "rapidgen.monitor.command",
+}
+
+
+def _tool(module: str):
+    import importlib
+
+    def add(sub) -> None:
+        importlib.import_module(module).add_parser(sub)
+
+    def run(args: argparse.Namespace) -> int:
+        return int(importlib.import_module(module).run(args))
+    return add, run
+
+
+def _present(module: str) -> bool:
+    import importlib.util
+    try:
+        return importlib.util.find_spec(module) is not None
+    except ModuleNotFoundError:  # its package is not there (yet)
+        return False
+
+
+SUBCOMMANDS.update({name: _tool(mod) for name, mod in _TOOL_MODULES.items() if _present(mod)})
+
+
 def _command_of(argv: Sequence[str]) -> str | None:
     """The subcommand a command line names, when its first word is one (else None: the
     whole parser then reports usage, help or the version)."""
