@@ -18,12 +18,13 @@ import json
 from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
+from typing import TYPE_CHECKING
 
-import jsonschema
-
-from rapidgen.asset.schema import end_of, report_capped
 from rapidgen.asset.yamlread import YamlDoc, parse_yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
+
+if TYPE_CHECKING:
+    import jsonschema
 
 MAX_BYTES = 1024 * 1024
 PACKAGED = "rapidgen/qos/rapid.yaml"  # how diagnostics name the packaged library
@@ -208,6 +209,7 @@ class QosSpec:
 
 @functools.lru_cache(maxsize=1)
 def _validator() -> jsonschema.Draft202012Validator:
+    import jsonschema  # only where a library is schema-checked (~0.05 s of imports)
     return jsonschema.Draft202012Validator(schema())
 
 
@@ -218,10 +220,12 @@ def schema() -> dict:
 
 @functools.lru_cache(maxsize=1)
 def default_library() -> QosSpec:
-    """The library the package ships; a broken one is a packaging bug."""
+    """The library the package ships; a broken one is a packaging bug. Its schema check is
+    tests/qos/test_spec.py's, not every run's (the file is part of the package); the
+    semantic checks still run."""
     sink = DiagnosticSink()
     text = resources.files("rapidgen.qos").joinpath("rapid.yaml").read_text("utf-8")
-    spec = parse_qos(text, PACKAGED, sink)
+    spec = parse_qos(text, PACKAGED, sink, schema_checked=True)
     if spec is None:
         raise RuntimeError(f"the packaged QoS library is invalid: {sink.diagnostics[0]}")
     return spec
@@ -246,20 +250,26 @@ def load_qos(path: str, sink: DiagnosticSink) -> QosSpec | None:
     return parse_qos(text, path, sink)
 
 
-def parse_qos(text: str, file: str, sink: DiagnosticSink) -> QosSpec | None:
+def parse_qos(text: str, file: str, sink: DiagnosticSink, schema_checked: bool = False) -> QosSpec | None:
+    """`schema_checked`: the text is known to pass the schema (the packaged library)."""
     doc = parse_yaml(text.lstrip("\ufeff"), file, sink)
     if doc is None:
         return None
     if doc.data is None:
         sink.error("RG1602", "the QoS library is empty", doc.loc(()), "start with 'version: 1'")
         return None
-    if report_capped(_validator().iter_errors(doc.data), sink, lambda e: _translated(e, doc),
-                     end_of(doc), "RG1602"):
+    if not schema_checked and not _schema_ok(doc, sink):
         return None
     spec = _build(doc)
     if not _check(spec, doc, sink):
         return None
     return dataclasses.replace(spec, profiles=tuple(ordered(spec)))
+
+
+def _schema_ok(doc: YamlDoc, sink: DiagnosticSink) -> bool:
+    from rapidgen.asset.schema import end_of, report_capped  # imports jsonschema
+    return not report_capped(_validator().iter_errors(doc.data), sink, lambda e: _translated(e, doc),
+                             end_of(doc), "RG1602")
 
 
 _TYPES = {"object": "a mapping", "array": "a list", "string": "a string", "boolean": "true or false",

@@ -242,3 +242,14 @@ def test_mutated_libraries_give_diagnostics_never_exceptions():
         sink = DiagnosticSink()
         spec = parse_qos("".join(text), "m.yaml", sink)
         assert (spec is None) == bool(sink.errors)
+
+
+def test_packaged_library_passes_its_schema():
+    """default_library() skips the schema check each run; this is where it happens."""
+    from importlib import resources
+
+    from rapidgen.diagnostics import DiagnosticSink
+    text = resources.files("rapidgen.qos").joinpath("rapid.yaml").read_text("utf-8")
+    sink = DiagnosticSink()
+    assert parse_qos(text, "rapid.yaml", sink) is not None, sink.diagnostics
+    assert not sink.diagnostics

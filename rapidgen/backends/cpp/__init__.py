@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING
 
 from rapidgen.backends.base import QOS_LIBRARY, GeneratedFile, Options, check_output, notice
 from rapidgen.backends.cpp import asset as asset_tables
-from rapidgen.backends.cpp import bridge
 from rapidgen.backends.typewalk import Unsupported
 from rapidgen.backends.cpp.view import Builder, PackageView, UnsupportedInput
 from rapidgen.backends.escape import cmake_name, cpp_str
@@ -46,9 +45,12 @@ def companions(asset: "LoadedAsset | None") -> tuple[str, ...]:
 
 def embed(files: list[GeneratedFile], other: dict[str, list[GeneratedFile]]) -> list[GeneratedFile]:
     """The qos target's Fast DDS XML built into the bridge (bridge/profiles.cpp)."""
-    xml = next((f.content for f in other.get("qos", []) if f.path == bridge.PROFILES_XML), None)
     target = f"{BRIDGE}/profiles.cpp"
-    if xml is None or not any(f.path == target for f in files):
+    if not any(f.path == target for f in files):
+        return files
+    from rapidgen.backends.cpp import bridge
+    xml = next((f.content for f in other.get("qos", []) if f.path == bridge.PROFILES_XML), None)
+    if xml is None:
         return files
     lines = [cpp_str(line) for line in xml.splitlines(keepends=True)]
     return [GeneratedFile(f.path, _with_profiles(f.content, lines)) if f.path == target else f for f in files]
@@ -89,6 +91,7 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
              GeneratedFile(f"{inc}/topics.hpp", render("cpp", "topics.hpp.j2", p=p)),
              GeneratedFile("src/types.cpp", render("cpp", "types.cpp.j2", p=p))]
     if asset is not None:
+        from rapidgen.backends.cpp import bridge  # the descriptor's classes: an asset's only
         try:
             a = asset_tables.build(asset, b)
             v = bridge.build(asset, b, p.package, a)

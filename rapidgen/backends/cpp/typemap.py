@@ -33,6 +33,7 @@ class TypeMap(TypeSpeller):
         super().__init__(model)
         self.q = qualified
         self._loop = 0
+        self._max: dict[str, int] = {}  # a struct's or union's max_size, once known exactly
 
     # -- spelling (typewalk.TypeSpeller.spell walks; these spell) ---------------------
     def cpp(self, t: ir.Type, loc: SourceLoc) -> str:
@@ -111,12 +112,20 @@ class TypeMap(TypeSpeller):
         d = self.decl(r)
         if isinstance(d, ir.Enum):
             return 2 * enum_size(d) - 1
+        if not isinstance(d, (ir.Struct, ir.Union)):
+            return UNBOUNDED
+        known = self._max.get(d.scoped_name)
+        if known is not None:
+            return known
         if isinstance(d, ir.Struct):
-            return min(UNBOUNDED, sum(self.max_size(m.type, depth + 1) for m in self.model.all_members(d)))
-        if isinstance(d, ir.Union):
-            return min(UNBOUNDED, self.max_size(d.discriminator, depth + 1)
+            size = min(UNBOUNDED, sum(self.max_size(m.type, depth + 1) for m in self.model.all_members(d)))
+        else:
+            size = min(UNBOUNDED, self.max_size(d.discriminator, depth + 1)
                        + max((self.max_size(c.member.type, depth + 1) for c in d.cases), default=0))
-        return UNBOUNDED
+        # A finite size is exact; UNBOUNDED may be the depth cut's when reached below the top.
+        if size < UNBOUNDED or depth == 0:
+            self._max[d.scoped_name] = size
+        return size
 
     # -- statements -------------------------------------------------------------------
     def _var(self) -> str:
