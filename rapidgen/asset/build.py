@@ -96,6 +96,15 @@ class _Builder:
                      for role in ("config", "sample", "state") if role in obj)
         return S.CustomTelemetry(messages=msgs, **common)
 
+    def stream(self, path: tuple, obj: dict) -> S.StreamSpec:
+        return S.StreamSpec(name=obj["name"], type=obj["type"], rate=obj["rate"],
+                            direction=obj.get("direction", "input"), topic=obj.get("topic"),
+                            source=obj.get("source"), deadline_ms=obj.get("deadline_ms"),
+                            liveliness_ms=obj.get("liveliness_ms"), on_loss=obj.get("on_loss", "stop"),
+                            subsystem=obj.get("subsystem"), state_key=obj.get("state_key"),
+                            missed_key=obj.get("missed_key"), description=obj.get("description", ""),
+                            **self.locs(path, obj))
+
     def path_in(self, rel: str) -> str:
         return os.path.normpath(os.path.join(self.base_dir, rel))
 
@@ -136,6 +145,7 @@ class _Builder:
                                              **self.locs(("subsystems", i), s))
                              for i, s in enumerate(d.get("subsystems", ()))),
             telemetry=tuple(self.telemetry(("telemetry", i), t) for i, t in enumerate(d.get("telemetry", ()))),
+            streams=tuple(self.stream(("streams", i), s) for i, s in enumerate(d.get("streams", ()))),
             native=native, access_control=access, loc=self.doc.loc(()),
             field_locs=tuple(field_locs) + self.locs((), d)["field_locs"])
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from rapidgen.asset.check_streams import check_streams
 from rapidgen.asset.check_telemetry import check_telemetry
 from rapidgen.asset.check_values import ValueChecker
 from rapidgen.asset.facts import fits, utf8_len
@@ -73,6 +74,7 @@ class Checker:
         self.native()
         self.access_control()
         check_telemetry(self)
+        check_streams(self)
 
     # -- subsystem types and commands -------------------------------------------------------
     def subsystem_types(self) -> None:

@@ -134,6 +134,11 @@ def describe(loaded: LoadedAsset) -> str:
     out += table(["topic", "type", "role", "rate", "QoS"],
                  [[p.topic, p.type, p.role, _rate(p), p.qos] for p in pubs])
     out += _details(spec, pubs)
+    if loaded.streams:
+        out += ["", "Setpoint streams (DEADLINE and LIVELINESS QoS, outside the command queue)"]
+        out += table(["stream", "dir", "type", "topic", "partition", "rate", "deadline", "lease", "on loss", "QoS"],
+                     [[s.name, s.direction, s.type, s.topic, s.partition, f"{s.rate:g} Hz", f"{s.deadline_ms:g} ms",
+                       f"{s.liveliness_ms:g} ms", s.on_loss, s.profile] for s in loaded.streams])
     if spec.native is not None:
         n = spec.native
         out += ["", "Native passthrough",
@@ -223,6 +228,11 @@ def describe_data(loaded: LoadedAsset) -> dict:
         "publications": [{"topic": p.topic, "type": p.type, "role": p.role, "rate": p.rate, "qos": p.qos}
                          for p in pubs],
         "telemetry": telemetry,
+        "streams": [{"name": s.name, "direction": s.direction, "type": s.type, "topic": s.topic,
+                     "partition": s.partition, "rate": s.rate, "deadline_ms": s.deadline_ms,
+                     "liveliness_ms": s.liveliness_ms, "on_loss": s.on_loss, "subsystem": s.subsystem,
+                     "state_key": s.state_key, "missed_key": s.missed_key, "qos": s.profile,
+                     "description": s.description} for s in loaded.streams],
         "native": None if spec.native is None else {
             "subsystem": spec.native.subsystem, "command": spec.native.command,
             "parameter": spec.native.parameter, "description": spec.native.description},

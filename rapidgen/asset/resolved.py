@@ -11,11 +11,12 @@ fails when one does).
     loaded.command_topic      the topic it reads commands on (None: telemetry only)
     loaded.configs            topic -> (config type, computed value)
     loaded.telemetry_topics   per telemetry entry: role -> full topic name
+    loaded.streams            setpoint streams with defaults resolved (topic, deadline, QoS profile)
     loaded.facts              what the IDL says (bounds, DataTypes, topic constants)
 
 Each fact is computed on first use and kept (the checks run on a descriptor that may still
 hold errors, so nothing is computed before it is asked for). The rules live in
-dictionary.py, topics.py and publish.py; only this module calls them.
+dictionary.py, topics.py, publish.py and streams.py; only this module calls them.
 
 The one deliberate second computation is the conformance runner's expectation of what a
 live asset publishes (rapidgen/conform/expected.py): it judges the runtimes, so it must
@@ -26,7 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cached_property
 
-from rapidgen.asset import dictionary, publish, topics
+from rapidgen.asset import dictionary, publish, streams, topics
 from rapidgen.asset.facts import Facts
 from rapidgen.asset.spec import AccessControlSpec, AssetSpec, SubsystemSpec, SubsystemTypeSpec
 from rapidgen.diagnostics import SourceLoc
@@ -79,6 +80,10 @@ class LoadedAsset:
         """For each telemetry entry (spec.telemetry order): role -> full topic name."""
         return tuple({role: (f"{topic}-{t.suffix}" if t.suffix else topic) for role, _type, topic, _loc in msgs}
                      for t, msgs in zip(self.spec.telemetry, self.telemetry_messages))
+
+    @cached_property
+    def streams(self) -> tuple[streams.Stream, ...]:
+        return tuple(streams.resolve(self.spec, self.facts))
 
     @property
     def access(self) -> AccessControlSpec | None:

@@ -156,6 +156,25 @@ class CustomTelemetry(Telemetry):
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
+class StreamSpec(Located):
+    """A setpoint stream as written; defaults are resolved in streams.py."""
+
+    name: str
+    type: str
+    rate: Number
+    direction: str = "input"
+    topic: str | None = None
+    source: str | None = None
+    deadline_ms: Number | None = None
+    liveliness_ms: Number | None = None
+    on_loss: str = "stop"
+    subsystem: str | None = None
+    state_key: str | None = None
+    missed_key: str | None = None
+    description: str = ""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
 class NativeSpec(Located):
     subsystem: str = "Native"
     command: str = "native"
@@ -193,5 +212,6 @@ class AssetSpec(Located):
     subsystem_types: tuple[SubsystemTypeSpec, ...] = ()  # as written; standard ones are in standard.py
     subsystems: tuple[SubsystemSpec, ...] = ()
     telemetry: tuple[Telemetry, ...] = ()
+    streams: tuple[StreamSpec, ...] = ()
     native: NativeSpec | None = None
     access_control: AccessControlSpec | None = None
