@@ -1,0 +1,197 @@
+"""The keystore `rapidgen secure` creates or brings up to date, laid out like SROS2's:
+
+    KEYSTORE/
+      public/identity_ca.cert.pem        the CA that signs participants' certificates
+      public/permissions_ca.cert.pem     the CA that signs governance and permissions
+      private/identity_ca.key.pem        (the team's own CAs: put their cert and key here first)
+      private/permissions_ca.key.pem
+      enclaves/governance.xml, governance.p7s
+      enclaves/<name>/                   one per asset (its name) and ground tool (its source)
+        cert.pem key.pem identity_ca.cert.pem permissions_ca.cert.pem
+        governance.p7s permissions.xml permissions.p7s
+
+A participant needs only its enclave folder. Everything is owner-only (0600/0700). A run
+keeps what is still right: the CAs, a participant's key and certificate while they are
+issued by the identity CA and valid for more than a quarter of their life (`--rotate`
+re-issues them all), and a signed file whose XML did not change."""
+from __future__ import annotations
+
+import datetime
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from rapidgen.secure import pki, xmldocs
+from rapidgen.secure.deploy import Deployment, partition_of
+
+CAS = ("identity_ca", "permissions_ca")
+
+
+class KeystoreError(Exception):
+    """A keystore that cannot be used as it is (a CA's key that is not its certificate's...)."""
+
+
+@dataclass
+class Outcome:
+    created: list[str] = field(default_factory=list)
+    updated: list[str] = field(default_factory=list)
+    kept: list[str] = field(default_factory=list)
+    strangers: list[str] = field(default_factory=list)  # enclaves the deployment does not name
+
+
+def enclave(root: Path, name: str) -> Path:
+    return root / "enclaves" / name
+
+
+def _ca(root: Path, which: str, days: int, out: Outcome) -> tuple[pki.Pair, bool]:
+    cert, key = root / "public" / f"{which}.cert.pem", root / "private" / f"{which}.key.pem"
+    if cert.exists() or key.exists():
+        try:
+            pair = pki.load_pair(cert, key)
+        except (OSError, ValueError) as exc:
+            raise KeystoreError(f"{which}: {exc}") from None
+        if pair.cert.not_valid_after_utc <= pki.now():
+            raise KeystoreError(f"{which} expired on {pair.cert.not_valid_after_utc:%Y-%m-%d}: "
+                                "a new CA means new certificates for every participant (move the keystore aside)")
+        out.kept.append(which)
+        return pair, False
+    pair = pki.make_ca(f"rapidgen {which.replace('_', ' ')}", max(days * 2, 3650))
+    pki.write_private(key, pki.key_pem(pair.key))
+    pki.write_private(cert, pki.cert_pem(pair.cert))
+    out.created.append(which)
+    return pair, True
+
+
+def _identity(folder: Path, name: str, ca: pki.Pair, days: int, rotate: bool, out: Outcome) -> pki.Pair:
+    cert_file, key_file = folder / "cert.pem", folder / "key.pem"
+    if not rotate and cert_file.exists():
+        try:
+            pair = pki.load_pair(cert_file, key_file)
+        except (OSError, ValueError):
+            pair = None
+        if pair is not None and pki.issued_by(pair.cert, ca.cert) and pair.cert.subject == pki.subject(name):
+            life = pair.cert.not_valid_after_utc - pair.cert.not_valid_before_utc
+            if pair.cert.not_valid_after_utc - pki.now() > life / 4:
+                out.kept.append(f"{name}/cert.pem")
+                return pair
+    (out.updated if cert_file.exists() else out.created).append(f"{name}/cert.pem")
+    start = pki.now() - datetime.timedelta(minutes=5)
+    pair = pki.issue(ca, name, start, start + datetime.timedelta(days=days))
+    pki.write_private(key_file, pki.key_pem(pair.key))
+    pki.write_private(cert_file, pki.cert_pem(pair.cert))
+    return pair
+
+
+def _signed(xml_file: Path, data: bytes, signer: pki.Pair, resign: bool, out: Outcome, label: str) -> None:
+    p7s = xml_file.with_suffix(".p7s")
+    changed = pki.write_private(xml_file, data)
+    if changed or resign or not p7s.exists():
+        pki.write_private(p7s, pki.sign_smime(data, signer))
+        out.updated.append(label)
+    else:
+        out.kept.append(label)
+
+
+def grants(dep: Deployment, name: str) -> tuple[xmldocs.Rule, ...]:
+    """What participant `name` may publish and read (docs in xmldocs)."""
+    C = xmldocs.Criterion
+    if name in dep.assets:
+        a = dep.assets[name]
+        part = (partition_of(a),)
+        return (xmldocs.Rule(dep.domains_of(a), (C(tuple(sorted({p.topic for p in a.publications})), part),),
+                             (C((a.command_topic,), part),) if a.command_topic else ()),)
+    tool = next(t for t in dep.tools if t.source == name)
+    by_domains: dict[tuple[int, ...], list[str]] = {}
+    for asset in tool.watch:
+        by_domains.setdefault(dep.domains_of(dep.assets[asset]), []).append(asset)
+    rules = []
+    for domains, assets in sorted(by_domains.items()):
+        commands: dict[str, list[str]] = {}
+        for asset in assets:
+            a = dep.assets[asset]
+            if asset in tool.command and a.command_topic:
+                commands.setdefault(a.command_topic, []).append(partition_of(a))
+        pub = tuple(C((topic,), tuple(sorted(parts))) for topic, parts in sorted(commands.items()))
+        sub = tuple(C(tuple(sorted({p.topic for p in dep.assets[a].publications})), (partition_of(dep.assets[a]),))
+                    for a in assets)
+        rules.append(xmldocs.Rule(domains, pub, sub))
+    return tuple(rules)
+
+
+def build(dep: Deployment, root: Path, rotate: bool = False) -> Outcome:
+    out = Outcome()
+    pki.make_dirs(root)
+    for sub in ("public", "private", "enclaves"):
+        pki.make_dirs(root / sub)
+    identity_ca, new_identity = _ca(root, "identity_ca", dep.validity_days, out)
+    permissions_ca, new_permissions = _ca(root, "permissions_ca", dep.validity_days, out)
+    gov = xmldocs.governance()
+    _signed(root / "enclaves" / "governance.xml", gov, permissions_ca, new_permissions, out, "governance")
+    gov_p7s = (root / "enclaves" / "governance.p7s").read_bytes()
+    for name in dep.names():
+        folder = enclave(root, name)
+        pki.make_dirs(folder)
+        pair = _identity(folder, name, identity_ca, dep.validity_days, rotate or new_identity, out)
+        pki.write_private(folder / "identity_ca.cert.pem", pki.cert_pem(identity_ca.cert))
+        pki.write_private(folder / "permissions_ca.cert.pem", pki.cert_pem(permissions_ca.cert))
+        pki.write_private(folder / "governance.p7s", gov_p7s)
+        grant = xmldocs.Grant(name, grants(dep, name), pair.cert.not_valid_before_utc, pair.cert.not_valid_after_utc)
+        _signed(folder / "permissions.xml", xmldocs.permissions(grant), permissions_ca, new_permissions, out,
+                f"{name}/permissions")
+    known = set(dep.names())
+    out.strangers = sorted(p.name for p in (root / "enclaves").iterdir() if p.is_dir() and p.name not in known)
+    return out
+
+
+@dataclass(frozen=True)
+class Finding:
+    severity: str  # "error" | "warning"
+    file: str  # relative to the keystore
+    message: str
+
+
+def check(root: Path, dep: Deployment | None, warn_days: int) -> list[Finding]:
+    """Expired or soon-expiring certificates and grants, a participant's certificate not from
+    the identity CA, missing files, and (with the deployment) permissions that are not what
+    the deployment and descriptors say."""
+    found: list[Finding] = []
+    now = pki.now()
+    soon = now + datetime.timedelta(days=warn_days)
+
+    def dates(rel: str, cert) -> None:
+        end = cert.not_valid_after_utc
+        if end <= now:
+            found.append(Finding("error", rel, f"expired on {end:%Y-%m-%d %H:%M} UTC"))
+        elif end <= soon:
+            found.append(Finding("warning", rel, f"expires on {end:%Y-%m-%d %H:%M} UTC, in {(end - now).days} days"))
+
+    cas = {}
+    for which in CAS:
+        rel = f"public/{which}.cert.pem"
+        try:
+            cas[which] = pki.load_pair(root / rel, root / "private" / f"{which}.key.pem").cert
+        except (OSError, ValueError) as exc:
+            found.append(Finding("error", rel, f"unusable: {getattr(exc, 'strerror', None) or exc}"))
+            continue
+        dates(rel, cas[which])
+    names = dep.names() if dep else sorted(p.name for p in (root / "enclaves").iterdir() if p.is_dir()) \
+        if (root / "enclaves").is_dir() else []
+    for name in names:
+        folder = enclave(root, name)
+        for f in ("cert.pem", "key.pem", "identity_ca.cert.pem", "permissions_ca.cert.pem", "governance.p7s",
+                  "permissions.xml", "permissions.p7s"):
+            if not (folder / f).is_file():
+                found.append(Finding("error", f"enclaves/{name}/{f}", "missing (run rapidgen secure)"))
+        try:
+            pair = pki.load_pair(folder / "cert.pem", folder / "key.pem")
+        except (OSError, ValueError):
+            continue
+        dates(f"enclaves/{name}/cert.pem", pair.cert)
+        if "identity_ca" in cas and not pki.issued_by(pair.cert, cas["identity_ca"]):
+            found.append(Finding("error", f"enclaves/{name}/cert.pem", "not issued by public/identity_ca.cert.pem"))
+        if dep is not None and (folder / "permissions.xml").is_file():
+            want = xmldocs.permissions(xmldocs.Grant(name, grants(dep, name), pair.cert.not_valid_before_utc,
+                                                     pair.cert.not_valid_after_utc))
+            if (folder / "permissions.xml").read_bytes() != want:
+                found.append(Finding("error", f"enclaves/{name}/permissions.xml",
+                                     "not what the deployment and descriptors grant now (run rapidgen secure)"))
+    return found
