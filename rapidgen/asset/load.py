@@ -6,6 +6,7 @@ folder or the nearest folder above it (the project layout rapidgen itself uses).
 """
 from __future__ import annotations
 
+import dataclasses
 import glob
 import os
 
@@ -96,4 +97,7 @@ def load_asset(path: str, sink: DiagnosticSink, rapid_dir: str | None = None) ->
     spec = build_spec(doc, os.path.dirname(path))
     loaded = LoadedAsset(spec, _idl_model(spec, rapid_dir, sink))
     check_asset(loaded, sink)
+    if isinstance(doc.data, dict) and "ros2" in doc.data:
+        from rapidgen.ros2.section import read_ros2  # only for descriptors that map onto ROS 2
+        loaded = dataclasses.replace(loaded, ros2=read_ros2(doc, loaded, sink))
     return loaded

@@ -38,6 +38,8 @@ from rapidgen.model.ir import Model
 class LoadedAsset:
     spec: AssetSpec
     model: Model | None  # None when the IDL could not be loaded (errors are in the sink)
+    # The checked `ros2:` section as plain data (rapidgen/ros2/section.py), None without one.
+    ros2: dict | None = None
 
     @cached_property
     def facts(self) -> Facts:

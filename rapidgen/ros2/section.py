@@ -1,0 +1,458 @@
+"""The descriptor's `ros2:` section: read, checked against the asset and the ROS 2 message
+definitions, and turned into the plain data `<pkg>/ros2_map.py` carries.
+
+Every problem is located at the YAML key or value it concerns (RG1501-RG1506). The
+section is checked by hand rather than by the JSON Schema so that a field path or a
+parameter name can be judged against the message and the command it belongs to.
+"""
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from rapidgen.asset.yamlread import YamlDoc
+from rapidgen.diagnostics import DiagnosticSink
+from rapidgen.ros2 import msgdefs
+from rapidgen.ros2.msgdefs import FLOATS, INTEGERS, Field
+
+_TOPIC = re.compile(r"^/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*$")
+_NODE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]{0,63}$")
+NUMERIC = ("RAPID_DOUBLE", "RAPID_FLOAT", "RAPID_INT", "RAPID_LONGLONG")
+VEC3_MSGS = ("geometry_msgs/msg/Point", "geometry_msgs/msg/Vector3")
+QUAT = "geometry_msgs/msg/Quaternion"
+# Where a pose (and a velocity) sits in the messages a position entry may be fed from.
+POSE_SOURCES = {
+    "geometry_msgs/msg/PoseStamped": ("pose", None),
+    "geometry_msgs/msg/Pose": ("", None),
+    "nav_msgs/msg/Odometry": ("pose.pose", "twist.twist"),
+    "geometry_msgs/msg/PoseWithCovariance": ("pose", None),
+}
+JOINT_SOURCE = "sensor_msgs/msg/JointState"
+ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33", "RAPID_ROT_XYZ", "RAPID_ROT_ZYX", "RAPID_ROT_NONE")
+VELOCITY_ENCODINGS = ("RAPID_ROT_NONE", "RAPID_ROT_VEL")
+
+_SECTION_KEYS = ("node", "telemetry", "commands")
+_FEED_KEYS = ("topic", "type", "feeds", "index", "joints", "values", "description")
+_COMMAND_KEYS = ("command", "publish", "until", "description")
+_PUBLISH_KEYS = ("topic", "type", "fields")
+_UNTIL_KEYS = ("topic", "type", "field", "equals", "timeout")
+
+
+class _Reader:
+    def __init__(self, doc: YamlDoc, loaded: Any, sink: DiagnosticSink) -> None:
+        self.doc, self.loaded, self.sink = doc, loaded, sink
+        self.ok = True
+
+    # -- reporting -----------------------------------------------------------------------
+    def error(self, code: str, message: str, path: tuple, hint: str, key: bool = False) -> None:
+        loc = self.doc.key_loc(path) if key else self.doc.loc(path)
+        self.sink.error(code, message, loc, hint)
+        self.ok = False
+
+    def mapping(self, value: object, path: tuple, keys: tuple[str, ...], required: tuple[str, ...]) -> bool:
+        if not isinstance(value, dict):
+            self.error("RG1505", f"'{'.'.join(map(str, path))}' must be a mapping", path,
+                       f"keys: {', '.join(keys)}")
+            return False
+        good = True
+        for k in value:
+            if k not in keys:
+                self.error("RG1505", f"unknown key '{k}'", path + (k,), f"keys here: {', '.join(keys)}", key=True)
+                good = False
+        for k in required:
+            if k not in value:
+                self.error("RG1505", f"missing key '{k}'", path, f"add '{k}:'")
+                good = False
+        return good
+
+    def text(self, value: object, path: tuple, what: str) -> str | None:
+        if not isinstance(value, str) or not value:
+            self.error("RG1505", f"{what} must be text", path, "quote it")
+            return None
+        return value
+
+    def topic(self, value: object, path: tuple) -> str | None:
+        t = self.text(value, path, "a topic")
+        if t is not None and not _TOPIC.match(t):
+            self.error("RG1505", f"'{t}' is not a ROS 2 topic name", path,
+                       "letters, digits and _ in /-separated tokens, each starting with a letter or _")
+            return None
+        return t
+
+    def msg_type(self, value: object, path: tuple) -> msgdefs.MsgDef | None:
+        t = self.text(value, path, "a message type")
+        if t is None:
+            return None
+        name = msgdefs.full_name(t)
+        if name is None:
+            self.error("RG1501", f"'{t}' is not a ROS 2 message type name", path,
+                       "write package/msg/Type, e.g. sensor_msgs/msg/JointState")
+            return None
+        found = msgdefs.lookup(name)
+        if found is None:
+            self.error("RG1501", f"unknown ROS 2 message type {name}", path,
+                       "not installed (no share/<package>/msg/<Type>.msg on AMENT_PREFIX_PATH or in this "
+                       f"Python's prefix) and not one of the {len(msgdefs.BUILTIN)} built in (docs/ros2.md)")
+        return found
+
+    def field(self, msg: msgdefs.MsgDef, path_text: object, path: tuple, key: bool = False) -> Field | None:
+        if not isinstance(path_text, str) or not path_text:
+            self.error("RG1505", "a field path must be text", path, "write e.g. pose.position", key)
+            return None
+        found, why = msgdefs.resolve_path(msg, path_text)
+        if found is None:
+            self.error("RG1502", f"{msg.name} has no field '{path_text}'", path, why or "", key)
+        return found
+
+    # -- the section ---------------------------------------------------------------------
+    def read(self, section: object) -> dict | None:
+        root = ("ros2",)
+        if not self.mapping(section, root, _SECTION_KEYS, ()):
+            return None
+        assert isinstance(section, dict)
+        node = section.get("node", "rapid_" + re.sub(r"[^A-Za-z0-9_]", "_", self.loaded.spec.name).lower())
+        if "node" in section and (not isinstance(node, str) or not _NODE.match(node)):
+            self.error("RG1505", f"'{node}' is not a ROS 2 node name", root + ("node",),
+                       "letters, digits and _, starting with a letter or _ (at most 64)")
+        feeds = self.items(section.get("telemetry", []), root + ("telemetry",), self.feed)
+        commands = self.items(section.get("commands", []), root + ("commands",), self.command)
+        self.duplicates(feeds, commands)
+        if not self.ok:
+            return None
+        return {"node": node, "telemetry": [f for f, _ in feeds],
+                "commands": {c["command"]: c for c, _ in commands}}
+
+    def items(self, value: object, path: tuple, read) -> list[tuple[dict, tuple]]:
+        if not isinstance(value, list):
+            self.error("RG1505", f"'{path[-1]}' must be a list", path, "one '- ' item per mapping")
+            return []
+        out = []
+        for i, item in enumerate(value):
+            got = read(item, path + (i,))
+            if got is not None:
+                out.append((got, path + (i,)))
+        return out
+
+    def duplicates(self, feeds: list[tuple[dict, tuple]], commands: list[tuple[dict, tuple]]) -> None:
+        seen: dict[object, tuple] = {}
+        for f, p in feeds:  # an agent entry may take its values from several topics, each value from one
+            keys = [(f["index"], v[0]) for v in f["values"]] if f["feeds"] == "agent" else [(f["feeds"], f["index"])]
+            for k in keys:
+                if k in seen:
+                    what = f"agent value '{k[1]}'" if f["feeds"] == "agent" else \
+                        f"{f['feeds']} telemetry entry {f['index']}"
+                    self.error("RG1506", f"{what} is fed twice", p, f"first fed at line {self.doc.loc(seen[k]).line}")
+                seen.setdefault(k, p)
+        for c, p in commands:
+            k = c["command"]
+            if k in seen:
+                self.error("RG1506", f"command '{k}' is mapped twice", p + ("command",),
+                           f"first mapped at line {self.doc.loc(seen[k]).line}")
+            seen.setdefault(k, p + ("command",))
+
+    # -- telemetry: ROS 2 topic -> RAPID sample ------------------------------------------
+    def feed(self, item: object, path: tuple) -> dict | None:
+        if not self.mapping(item, path, _FEED_KEYS, ("topic", "type", "feeds")):
+            return None
+        assert isinstance(item, dict)
+        topic = self.topic(item["topic"], path + ("topic",))
+        msg = self.msg_type(item["type"], path + ("type",))
+        kind = item["feeds"]
+        if kind not in ("joint", "position", "agent"):
+            self.error("RG1505", f"'{kind}' is not a telemetry kind a ROS 2 topic can feed", path + ("feeds",),
+                       "joint (from sensor_msgs/msg/JointState), position (PoseStamped, Pose, Odometry) or agent")
+            return None
+        index = item.get("index", 0)
+        if not isinstance(index, int) or isinstance(index, bool) or index < 0:
+            self.error("RG1505", "index must be a number from 0", path + ("index",), "which entry of that kind")
+            return None
+        entries = [t for t in self.loaded.spec.telemetry if t.kind == kind]
+        if index >= len(entries):
+            self.error("RG1504", f"the descriptor declares {len(entries)} {kind} telemetry entr"
+                       f"{'y' if len(entries) == 1 else 'ies'}, no entry {index}", path + ("feeds",),
+                       f"add a 'kind: {kind}' entry under telemetry, or fix 'index'")
+            return None
+        if topic is None or msg is None:
+            return None
+        entry = entries[index]
+        out: dict[str, Any] = {"topic": topic, "type": msg.name, "feeds": kind, "index": index,
+                               "rate": entry.rate}
+        for k, what in (("joints", "joint"), ("values", "agent")):
+            if k in item and kind != what:
+                self.error("RG1505", f"'{k}' is for {what} feeds", path + (k,), "leave it out")
+        if kind == "joint":
+            return self.joint_feed(item, path, msg, entry, out)
+        if kind == "position":
+            return self.position_feed(path, msg, entry, out)
+        return self.agent_feed(item, path, msg, entry, out)
+
+    def joint_feed(self, item: dict, path: tuple, msg: msgdefs.MsgDef, entry: Any, out: dict) -> dict | None:
+        if msg.name != JOINT_SOURCE:
+            self.error("RG1503", f"{msg.name} cannot feed joint telemetry", path + ("type",),
+                       f"joint telemetry comes from {JOINT_SOURCE} (names matched to the JointConfig's joints)")
+            return None
+        frames = [j.frame for j in entry.joints]
+        names = item.get("joints", frames)
+        if not isinstance(names, list) or not all(isinstance(n, str) and n for n in names):
+            self.error("RG1505", "'joints' must be a list of ROS 2 joint names", path + ("joints",),
+                       "one name per joint of the JointConfig, in its order")
+            return None
+        if len(names) != len(frames):
+            self.error("RG1503", f"{len(names)} ROS 2 joint names for {len(frames)} RAPID joints",
+                       path + ("joints",), "one name per joint of the JointConfig, in its order: "
+                       + ", ".join(frames[:6]) + (", ..." if len(frames) > 6 else ""))
+            return None
+        out["joints"] = list(names)
+        out["fields"] = list(entry.fields or ("anglePos",))
+        return out
+
+    def position_feed(self, path: tuple, msg: msgdefs.MsgDef, entry: Any, out: dict) -> dict | None:
+        source = POSE_SOURCES.get(msg.name)
+        if source is None:
+            self.error("RG1503", f"{msg.name} cannot feed position telemetry", path + ("type",),
+                       "position telemetry comes from " + ", ".join(sorted(POSE_SOURCES)))
+            return None
+        if entry.pose_encoding not in ENCODINGS:
+            self.error("RG1503", f"the position entry's pose_encoding {entry.pose_encoding} cannot be made from a "
+                       "ROS 2 quaternion", path + ("feeds",), "use " + ", ".join(ENCODINGS))
+            return None
+        if entry.velocity_encoding not in VELOCITY_ENCODINGS:
+            self.error("RG1503", f"the position entry's velocity_encoding {entry.velocity_encoding} cannot be made "
+                       "from a ROS 2 twist", path + ("feeds",), "use RAPID_ROT_NONE or RAPID_ROT_VEL")
+            return None
+        if entry.values:
+            self.error("RG1503", "the position entry declares values a pose message does not carry",
+                       path + ("feeds",), "move them to an agent entry fed by a topic")
+            return None
+        out.update(pose=source[0], twist=source[1], encoding=entry.pose_encoding,
+                   velocity_encoding=entry.velocity_encoding)
+        return out
+
+    def agent_feed(self, item: dict, path: tuple, msg: msgdefs.MsgDef, entry: Any, out: dict) -> dict | None:
+        values = item.get("values")
+        vpath = path + ("values",)
+        if not isinstance(values, dict) or not values:
+            self.error("RG1505", "an agent feed needs 'values': {value key: field path}", path,
+                       "e.g. values: {batteryCharge: percentage}")
+            return None
+        keys = {v.name: v for v in entry.values}
+        got = []
+        for key, field_path in values.items():
+            v = keys.get(key)
+            if v is None:
+                self.error("RG1504", f"the agent entry has no value '{key}'", vpath + (key,),
+                           "its values: " + ", ".join(keys) if keys else "it declares no values", key=True)
+                continue
+            f = self.field(msg, field_path, vpath + (key,))
+            if f is None:
+                continue
+            conv = _value_from(f, v.type)
+            if conv is None:
+                self.error("RG1503", f"{msg.name} field '{field_path}' ({_spell(f)}) cannot carry {key} "
+                           f"({v.type})", vpath + (key,), _fits_hint(v.type))
+                continue
+            got.append([key, field_path, conv])
+        out["values"] = got
+        return out
+
+    # -- commands: RAPID command -> ROS 2 message ----------------------------------------
+    def command(self, item: object, path: tuple) -> dict | None:
+        if not self.mapping(item, path, _COMMAND_KEYS, ("command", "publish")):
+            return None
+        assert isinstance(item, dict)
+        name = self.text(item["command"], path + ("command",), "a command")
+        if name is None:
+            return None
+        cmd = self.find_command(name, path + ("command",))
+        if cmd is None:
+            return None
+        out: dict[str, Any] = {"command": name}
+        out["publish"] = self.publish(item["publish"], path + ("publish",), cmd)
+        if "until" in item:
+            out["until"] = self.until(item["until"], path + ("until",))
+        return out if out["publish"] is not None and out.get("until", True) is not None else None
+
+    def find_command(self, name: str, path: tuple) -> Any:
+        sub, slash, cname = name.partition("/")
+        subs = {s.name: s for s in self.loaded.subsystems}
+        if not slash or sub not in subs:
+            self.error("RG1504", f"'{name}' names no subsystem of the asset", path,
+                       "write Subsystem/command; subsystems: " + ", ".join(subs))
+            return None
+        t = self.loaded.types.get(subs[sub].type)
+        cmd = next((c for c in (t.commands if t else ()) if c.name == cname), None)
+        if cmd is None:
+            self.error("RG1504", f"subsystem '{sub}' has no command '{cname}'", path,
+                       "its commands: " + ", ".join(c.name for c in (t.commands if t else ())))
+        return cmd
+
+    def publish(self, value: object, path: tuple, cmd: Any) -> dict | None:
+        if not self.mapping(value, path, _PUBLISH_KEYS, ("topic", "type")):
+            return None
+        assert isinstance(value, dict)
+        topic = self.topic(value["topic"], path + ("topic",))
+        msg = self.msg_type(value["type"], path + ("type",))
+        fields = value.get("fields", {})
+        if not isinstance(fields, dict):
+            self.error("RG1505", "'fields' must map field paths to parameters", path + ("fields",),
+                       "e.g. fields: {pose.position: xyz}")
+            return None
+        if topic is None or msg is None:
+            return None
+        params = {p.name: (i, p) for i, p in enumerate(cmd.parameters)}
+        got = []
+        for fpath, source in fields.items():
+            where = path + ("fields", fpath)
+            f = self.field(msg, fpath, where, key=True)
+            if f is None:
+                continue
+            conv = self.source(f, fpath, source, where, params, msg.name)
+            if conv is not None:
+                got.append([fpath, *conv])
+        header = msg.field("header")  # stamped with the time of sending
+        return {"topic": topic, "type": msg.name, "fields": got,
+                "stamp": header is not None and header.type == "std_msgs/msg/Header"}
+
+    def source(self, f: Field, fpath: str, source: object, where: tuple, params: dict, mname: str) -> list | None:
+        """[conversion, parameter indices or a constant]: how the field is filled."""
+        if isinstance(source, dict):
+            if set(source) != {"value"}:
+                self.error("RG1505", "a constant is written {value: ...}", where, "or name a parameter")
+                return None
+            const = source["value"]
+            if _const_fits(f, const):
+                return ["const", const]
+            self.error("RG1503", f"{const!r} does not fit {mname} field '{fpath}' ({_spell(f)})", where,
+                       "give a value of the field's type")
+            return None
+        names = source if isinstance(source, list) else [source]
+        idx = []
+        for n in names:
+            if not isinstance(n, str) or n not in params:
+                self.error("RG1504", f"the command has no parameter {n!r}", where,
+                           "its parameters: " + (", ".join(params) or "none") + "; a constant is {value: ...}")
+                return None
+            idx.append(params[n][0])
+        types = [params[n][1].type for n in names]
+        conv = _arg_to_field(f, types, isinstance(source, list))
+        if conv is None:
+            self.error("RG1503", f"{', '.join(f'{n} ({t})' for n, t in zip(names, types))} does not fit "
+                       f"{mname} field '{fpath}' ({_spell(f)})", where, _field_hint(f))
+            return None
+        return [conv, idx]
+
+    def until(self, value: object, path: tuple) -> dict | None:
+        if not self.mapping(value, path, _UNTIL_KEYS, ("topic", "type", "field", "equals")):
+            return None
+        assert isinstance(value, dict)
+        topic = self.topic(value["topic"], path + ("topic",))
+        msg = self.msg_type(value["type"], path + ("type",))
+        timeout = value.get("timeout")
+        if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float))
+                                    or timeout <= 0):
+            self.error("RG1505", "timeout must be a number of seconds above 0", path + ("timeout",),
+                       "leave it out to wait until the command is cancelled")
+            return None
+        if topic is None or msg is None:
+            return None
+        f = self.field(msg, value["field"], path + ("field",))
+        if f is None:
+            return None
+        if not _const_fits(f, value["equals"]):
+            self.error("RG1503", f"{value['equals']!r} does not fit {msg.name} field '{value['field']}' "
+                       f"({_spell(f)})", path + ("equals",), "give a value of the field's type")
+            return None
+        return {"topic": topic, "type": msg.name, "field": value["field"], "equals": value["equals"],
+                "timeout": timeout}
+
+
+# -- what fits what ------------------------------------------------------------------------
+def _spell(f: Field) -> str:
+    return f.type + ("[]" if f.array and f.size is None else f"[{f.size}]" if f.array else "")
+
+
+def _value_from(f: Field, dtype: str) -> str | None:
+    """How a message field becomes an AgentState value of dtype, or None."""
+    if f.array:
+        return None
+    if dtype in NUMERIC and (f.type in FLOATS or f.type in INTEGERS):
+        return "int" if dtype in ("RAPID_INT", "RAPID_LONGLONG") and f.type in INTEGERS else \
+            "float" if dtype in ("RAPID_DOUBLE", "RAPID_FLOAT") else None
+    if dtype == "RAPID_BOOL" and f.type == "bool":
+        return "bool"
+    if dtype == "RAPID_STRING" and f.type == "string":
+        return "str"
+    if dtype == "RAPID_VEC3d" and f.type in VEC3_MSGS:
+        return "vec3"
+    return None
+
+
+def _fits_hint(dtype: str) -> str:
+    return {"RAPID_VEC3d": "a geometry_msgs Point or Vector3 field", "RAPID_BOOL": "a bool field",
+            "RAPID_STRING": "a string field", "RAPID_INT": "an integer field",
+            "RAPID_LONGLONG": "an integer field"}.get(dtype, "a float32/float64 field (or an integer)")
+
+
+def _arg_to_field(f: Field, types: list[str], listed: bool) -> str | None:
+    """How command arguments of `types` fill field f, or None when they do not fit."""
+    numeric = all(t in NUMERIC for t in types)
+    if f.array:
+        if f.type in FLOATS and listed and numeric and (f.size is None or f.size == len(types)):
+            return "list"
+        if f.type in FLOATS and not listed and types[0] in ("RAPID_VEC3d", "RAPID_MAT33f") and \
+                (f.size is None or f.size == (3 if types[0] == "RAPID_VEC3d" else 9)):
+            return "list"
+        return None
+    if listed and len(types) != 1:
+        return None
+    t = types[0]
+    if f.type in FLOATS:
+        return "float" if t in NUMERIC else None
+    if f.type in INTEGERS:
+        return "int" if t in ("RAPID_INT", "RAPID_LONGLONG") else None
+    if f.type == "bool":
+        return "bool" if t == "RAPID_BOOL" else None
+    if f.type == "string":
+        return "str" if t == "RAPID_STRING" else None
+    if f.type in VEC3_MSGS:
+        return "vec3" if t == "RAPID_VEC3d" else None
+    if f.type == QUAT:
+        return {"RAPID_VEC3d": "quat_rpy", "RAPID_MAT33f": "quat_m33"}.get(t)
+    return None
+
+
+def _field_hint(f: Field) -> str:
+    if f.array:
+        return "a float array takes a list of numeric parameters, a RAPID_VEC3d or a RAPID_MAT33f"
+    if f.type == QUAT:
+        return "a quaternion takes a RAPID_VEC3d (roll, pitch, yaw) or a RAPID_MAT33f (rotation matrix)"
+    if f.type in VEC3_MSGS:
+        return "a Point or Vector3 takes a RAPID_VEC3d"
+    if f.type in INTEGERS:
+        return "an integer field takes RAPID_INT or RAPID_LONGLONG"
+    if f.type in FLOATS:
+        return "a float field takes RAPID_FLOAT, RAPID_DOUBLE, RAPID_INT or RAPID_LONGLONG"
+    if f.primitive:
+        return f"a {f.type} field takes a RAPID_{'BOOL' if f.type == 'bool' else 'STRING'}"
+    return "map its primitive fields one by one (e.g. pose.position.x)"
+
+
+def _const_fits(f: Field, value: object) -> bool:
+    if f.array:
+        return False
+    if f.type == "bool":
+        return isinstance(value, bool)
+    if f.type == "string":
+        return isinstance(value, str)
+    if f.type in INTEGERS:
+        return isinstance(value, int) and not isinstance(value, bool)
+    if f.type in FLOATS:
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+    return False
+
+
+def read_ros2(doc: YamlDoc, loaded: Any, sink: DiagnosticSink) -> dict | None:
+    """The checked mapping as plain data (see ros2_map.py in the generated package), or None
+    with errors in the sink. `loaded` is the descriptor's LoadedAsset."""
+    assert isinstance(doc.data, dict)
+    return _Reader(doc, loaded, sink).read(doc.data["ros2"])
