@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/qos/fastdds.xml.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "ea707de3612fb206a5eb4c03bac0df77183b81de5b2ed0659ce5e88b7c648c43"
+KEY = "5c0ed371b2252ea252a8d517b8d8c7d07af2319363124e3e653bc9da18140e02"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'fastdds.xml.j2'
 
@@ -17,6 +17,7 @@ def root(context, missing=missing, environment=environment):
     l_0_transports = resolve('transports')
     l_0_participants = resolve('participants')
     l_0_profiles = resolve('profiles')
+    l_0_streams = resolve('streams')
     l_0_m = missing
     try:
         t_1 = environment.filters['indent']
@@ -223,7 +224,48 @@ def root(context, missing=missing, environment=environment):
         yield escape(environment.finalize(t_2(t_1(context.call(environment.getattr((undefined(name='m') if l_0_m is missing else l_0_m), 'fastdds_endpoint'), environment.getattr(l_1_p, 'reader'), l_1_p, _loop_vars=_loop_vars), 6))))
         yield '\n    </data_reader>\n'
     l_1_p = missing
+    for l_1_s in (undefined(name='streams') if l_0_streams is missing else l_0_streams):
+        _loop_vars = {}
+        pass
+        yield '\n    <!-- '
+        yield escape(environment.finalize(t_3(environment.getattr(l_1_s, 'description'))))
+        yield ': best effort, keep last 1, DEADLINE, LIVELINESS, preallocated -->\n    <data_writer profile_name="'
+        yield escape(environment.finalize(environment.getattr(l_1_s, 'name')))
+        yield '">\n      <topic>\n        <historyQos>\n          <kind>KEEP_LAST</kind>\n          <depth>1</depth>\n        </historyQos>\n        <resourceLimitsQos>\n          <max_samples>1</max_samples>\n          <max_instances>1</max_instances>\n          <max_samples_per_instance>1</max_samples_per_instance>\n          <allocated_samples>1</allocated_samples>\n        </resourceLimitsQos>\n      </topic>\n      <qos>\n        <reliability>\n          <kind>BEST_EFFORT</kind>\n        </reliability>\n        <durability>\n          <kind>VOLATILE</kind>\n        </durability>\n        <deadline>\n          <period><sec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'deadline'), 'sec')))
+        yield '</sec><nanosec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'deadline'), 'nanosec')))
+        yield '</nanosec></period>\n        </deadline>\n        <liveliness>\n          <kind>AUTOMATIC</kind>\n          <lease_duration><sec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'lease'), 'sec')))
+        yield '</sec><nanosec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'lease'), 'nanosec')))
+        yield '</nanosec></lease_duration>\n          <announcement_period><sec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'announcement'), 'sec')))
+        yield '</sec><nanosec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'announcement'), 'nanosec')))
+        yield '</nanosec></announcement_period>\n        </liveliness>\n        <publishMode>\n          <kind>SYNCHRONOUS</kind>\n        </publishMode>\n        <partition>\n          <names>\n            <name>'
+        yield escape(environment.finalize(environment.getattr(l_1_s, 'writer_partition')))
+        yield '</name>\n          </names>\n        </partition>\n      </qos>\n      <historyMemoryPolicy>PREALLOCATED_WITH_REALLOC</historyMemoryPolicy>\n    </data_writer>\n    <data_reader profile_name="'
+        yield escape(environment.finalize(environment.getattr(l_1_s, 'name')))
+        yield '">\n      <topic>\n        <historyQos>\n          <kind>KEEP_LAST</kind>\n          <depth>1</depth>\n        </historyQos>\n        <resourceLimitsQos>\n          <max_samples>'
+        yield escape(environment.finalize(environment.getattr(l_1_s, 'reader_instances')))
+        yield '</max_samples>\n          <max_instances>'
+        yield escape(environment.finalize(environment.getattr(l_1_s, 'reader_instances')))
+        yield '</max_instances>\n          <max_samples_per_instance>1</max_samples_per_instance>\n          <allocated_samples>'
+        yield escape(environment.finalize(environment.getattr(l_1_s, 'reader_instances')))
+        yield '</allocated_samples>\n        </resourceLimitsQos>\n      </topic>\n      <qos>\n        <reliability>\n          <kind>BEST_EFFORT</kind>\n        </reliability>\n        <durability>\n          <kind>VOLATILE</kind>\n        </durability>\n        <deadline>\n          <period><sec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'deadline'), 'sec')))
+        yield '</sec><nanosec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'deadline'), 'nanosec')))
+        yield '</nanosec></period>\n        </deadline>\n        <liveliness>\n          <kind>AUTOMATIC</kind>\n          <lease_duration><sec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'lease'), 'sec')))
+        yield '</sec><nanosec>'
+        yield escape(environment.finalize(environment.getattr(environment.getattr(l_1_s, 'lease'), 'nanosec')))
+        yield '</nanosec></lease_duration>\n        </liveliness>\n        <partition>\n          <names>\n            <name>'
+        yield escape(environment.finalize(environment.getattr(l_1_s, 'reader_partition')))
+        yield '</name>\n          </names>\n        </partition>\n      </qos>\n      <historyMemoryPolicy>PREALLOCATED_WITH_REALLOC</historyMemoryPolicy>\n    </data_reader>\n'
+    l_1_s = missing
     yield '  </profiles>\n</dds>\n'
 
 blocks = {}
-debug_info = '1=42&3=45&4=47&22=53&24=57&25=59&26=61&27=64&29=66&30=69&32=71&34=74&35=78&39=82&41=85&42=89&49=96&51=100&52=102&53=108&54=111&57=114&58=117&60=119&61=122&63=124&66=127&67=129&69=132&70=136&72=138&79=143&81=146&82=150&86=154&88=157&89=161&95=166&97=169&98=171&99=173&100=175&101=177&102=179&103=181&106=183&108=186&109=190&114=195&120=198&122=202&123=213&124=215&126=217&127=219'
+debug_info = '1=43&3=46&4=48&22=54&24=58&25=60&26=62&27=65&29=67&30=70&32=72&34=75&35=79&39=83&41=86&42=90&49=97&51=101&52=103&53=109&54=112&57=115&58=118&60=120&61=123&63=125&66=128&67=130&69=133&70=137&72=139&79=144&81=147&82=151&86=155&88=158&89=162&95=167&97=170&98=172&99=174&100=176&101=178&102=180&103=182&106=184&108=187&109=191&114=196&120=199&122=203&123=214&124=216&126=218&127=220&130=223&132=227&133=229&154=231&158=235&159=239&166=243&172=245&179=247&180=249&182=251&193=253&197=257&201=261'

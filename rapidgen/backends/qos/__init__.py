@@ -19,7 +19,7 @@ import json
 from rapidgen.backends.base import (QOS_LIBRARY, GeneratedFile, GenerationError, Options, check_output,
                                    embed_nothing, no_companions, notice)
 from rapidgen.backends.escape import xml_comment as comment_text  # noqa: F401 (kept for callers)
-from rapidgen.backends.qos import topicmap, view
+from rapidgen.backends.qos import streams, topicmap, view
 from rapidgen.backends.templating import render as render_template
 from rapidgen.diagnostics import did_you_mean
 from rapidgen.model.ir import Model
@@ -85,7 +85,7 @@ def render(spec: QosSpec, model: Model, asset, options: Options) -> list[Generat
 
     transports, participants = view.fastdds_view(spec, asset)
     files.append(GeneratedFile(FASTDDS_FILE, render_template(
-        NAME, "fastdds.xml.j2", transports=transports, participants=participants,
+        NAME, "fastdds.xml.j2", transports=transports, participants=participants, streams=streams.profiles(asset),
         profiles=view.effective_profiles(spec, asset, view.FASTDDS_NAMES, True), **common)))
 
     files.append(GeneratedFile(DDS_XML_FILE, render_template(
