@@ -1,0 +1,108 @@
+"""What the descriptors given with --asset add to the live data: the command dictionary's
+units, ranges, allowed values, defaults and descriptions (the live CommandConfig carries
+names and types only), the telemetry values' units and warning/critical thresholds, and the
+access-control sources (offered as cmdSrc choices)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Sequence
+
+
+def _threshold(t) -> dict | None:
+    return None if t is None else {"below": t.below, "above": t.above}
+
+
+def level_of(value: float | None, hint: dict | None) -> str:
+    """ok | warning | critical: below `below` or above `above` of a level raises it (NaN: critical)."""
+    if value is None or not hint:
+        return "ok"
+    if value != value:
+        return "critical" if hint.get("critical") or hint.get("warning") else "ok"
+    for level in ("critical", "warning"):
+        t = hint.get(level)
+        if t and ((t["below"] is not None and value < t["below"]) or (t["above"] is not None and value > t["above"])):
+            return level
+    return "ok"
+
+
+@dataclass
+class AssetHints:
+    name: str
+    partition: str
+    commands: dict  # the tables' COMMANDS: type -> command -> entry
+    subsystems: dict  # subsystem -> type
+    values: dict[str, dict] = field(default_factory=dict)  # value key -> unit, min, max, warning, critical
+    sources: list[str] = field(default_factory=list)
+
+
+class Hints:
+    def __init__(self, assets: list[AssetHints] | None = None) -> None:
+        self.by_partition = {a.partition: a for a in assets or ()}
+
+    @classmethod
+    def of(cls, tables_and_specs: Sequence[tuple[dict, object]]) -> "Hints":
+        """From (generated tables, rapidgen.asset LoadedAsset.spec) pairs."""
+        out = []
+        for tables, spec in tables_and_specs:
+            asset = tables["ASSET"]
+            h = AssetHints(asset["name"], asset.get("partition") or asset["name"], tables["COMMANDS"],
+                           tables["SUBSYSTEMS"],
+                           sources=[r["source"] for r in (tables.get("ACCESS") or {}).get("rules", ())])
+            for entry in getattr(spec, "telemetry", ()):
+                for v in getattr(entry, "values", ()):
+                    h.values[v.name] = {"unit": v.unit, "min": v.min, "max": v.max, "description": v.description,
+                                        "warning": _threshold(v.warning), "critical": _threshold(v.critical)}
+            out.append(h)
+        return cls(out)
+
+    def value(self, partition: str, key: str) -> dict | None:
+        a = self.by_partition.get(partition)
+        return a.values.get(key) if a else None
+
+    def commands_for(self, partition: str, config: dict | None) -> dict:
+        """The page's command dictionary: the live CommandConfig (plain form) with the
+        descriptor's hints where name and type agree; the descriptor's alone until a live
+        config arrives; nothing without either."""
+        a = self.by_partition.get(partition)
+        sources = a.sources if a else []
+        if config is None:
+            if a is None:
+                return {"origin": None, "subsystems": [], "sources": sources}
+            types = {t: [{"name": c, "abortable": e["abortable"], "suspendable": e["suspendable"],
+                          "parameters": [{"key": p["name"], "type": p["type"]} for p in e["parameters"]]}
+                         for c, e in cmds.items()] for t, cmds in a.commands.items()}
+            subs = list(a.subsystems.items())
+            origin = "descriptor"
+        else:
+            types = {t["name"]: t["commands"] for t in config["availableSubsystemTypes"]}
+            subs = [(s["name"], s["subsystemTypeName"]) for s in config["availableSubsystems"]]
+            origin = "live"
+        out = []
+        for sub, tname in subs:
+            known = a.commands.get(tname, {}) if a else {}
+            commands = []
+            for c in types.get(tname, ()):
+                mine = known.get(c["name"], {})
+                by_name = {p["name"]: p for p in mine.get("parameters", ())}
+                params = []
+                for p in c["parameters"]:
+                    d = by_name.get(p["key"])
+                    hint = d if d and d["type"] == p["type"] else {}
+                    params.append({"name": p["key"], "type": p["type"], "unit": hint.get("unit"),
+                                   "min": hint.get("min"), "max": hint.get("max"),
+                                   "allowed": list(hint.get("allowed") or ()), "default": hint.get("default"),
+                                   "has_default": bool(hint.get("has_default")),
+                                   "description": hint.get("description") or ""})
+                commands.append({"name": c["name"], "abortable": c["abortable"], "suspendable": c["suspendable"],
+                                 "description": mine.get("description", ""), "parameters": params})
+            out.append({"subsystem": sub, "type": tname, "commands": commands})
+        return {"origin": origin, "subsystems": out, "sources": sources}
+
+    def param(self, commands: dict, subsystem: str, command: str) -> list[dict] | None:
+        """A command's parameters from a dictionary commands_for() made (None: unknown)."""
+        for s in commands.get("subsystems", ()):
+            if s["subsystem"] == subsystem:
+                for c in s["commands"]:
+                    if c["name"] == command:
+                        return c["parameters"]
+        return None
