@@ -28,7 +28,7 @@ POSE_SOURCES = {
     "geometry_msgs/msg/PoseWithCovariance": ("pose", None),
 }
 JOINT_SOURCE = "sensor_msgs/msg/JointState"
-ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33", "RAPID_ROT_XYZ", "RAPID_ROT_ZYX", "RAPID_ROT_NONE")
+ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33", "RAPID_ROT_NONE")
 VELOCITY_ENCODINGS = ("RAPID_ROT_NONE", "RAPID_ROT_VEL")
 
 _SECTION_KEYS = ("node", "telemetry", "commands")

@@ -61,7 +61,11 @@ def asset_files(model: Model, asset: "LoadedAsset", options: Options, pkg: Packa
     """The asset's tables, handlers and bridge (asset_tables.py). The QoS files come in
     through embed() (a back end imports no other)."""
     from rapidgen.backends.python import asset_tables  # reads the descriptor's classes: assets only
-    return asset_tables.generate(asset, pkg.package, pkg.header)
+    files = asset_tables.generate(asset, pkg.package, pkg.header)
+    if asset.ros2 is not None:  # the descriptor maps the asset onto ROS 2
+        from rapidgen.backends.python import ros2_files
+        files += ros2_files.generate(asset, pkg.package, pkg.header)
+    return files
 
 
 def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> list[GeneratedFile]:
