@@ -13,7 +13,7 @@ from rapidgen.conform.session import COMPLETED, describe
 
 from .dds import qos_mismatch
 
-QUIET = 1.0  # s without an ack that shows a command was ignored
+QUIET = 1.0  # s without an ack that shows a command was ignored (plus the link's round trips: s.pause)
 NEXT = {  # ack status -> statuses that may follow it for one cmdId (5b, both implementations)
     None: {"ACK_QUEUED", "ACK_EXECUTING", "ACK_COMPLETED"},
     "ACK_QUEUED": {"ACK_EXECUTING", "ACK_COMPLETED", "ACK_REQUEUED"},
@@ -117,7 +117,7 @@ def other_asset(s):
     c = _harmless(s)
     since = time.monotonic()
     cid = s.client.send(c.subsystem, c.name, valid_args(c), source=s.source, asset=s.asset + "Other")
-    time.sleep(QUIET)
+    s.pause(QUIET)
     s.silent_since(since)
     acks = s.client.acks_of(cid)
     expect(not acks, f"no ack within {QUIET:g} s", describe(acks))
@@ -132,7 +132,7 @@ def repeated(s):
     before = len(s.client.acks_of(cid))
     since = time.monotonic()
     s.client.send(c.subsystem, c.name, valid_args(c), source=s.source, cmd_id=cid)
-    time.sleep(QUIET)
+    s.pause(QUIET)
     s.silent_since(since)
     after = s.client.acks_of(cid)
     expect(len(after) == before, "no new ack for the repeated cmdId", describe(after[before:]))
@@ -146,7 +146,7 @@ def late_acks(s):
     cid = s.memo.get("valid")
     reader = s.client.guard(s.client.profile_reader("rapid_ack", "rapid::Ack"), "rapid_ack")  # the asset's acks only
     s.client.extra_guards.append(reader)
-    end = time.monotonic() + 3.0
+    end = time.monotonic() + s.allow(3.0)
     seen = 0
     found = False
     while time.monotonic() < end and not found:
@@ -205,7 +205,7 @@ def sequence(s):
 @check("CMD-04", REQUIRED, "Nothing follows a cmdId's final COMPLETED ack", "rapid-protocol.md 5b",
        needs=("CMD-02",), late=True)
 def after_final(s):
-    time.sleep(0.5)
+    s.pause(0.5)
     bad = []
     for cid in _judged(s):
         acks = s.client.acks_of(cid)

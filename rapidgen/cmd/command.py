@@ -10,6 +10,7 @@ from rapidgen.argtypes import domain_id
 from rapidgen.cmd.arguments import complete
 from rapidgen.cmd.dictionary import live_config, merged_tables
 from rapidgen.cmd.line import CMDLINE, CmdLine, did_you_mean, report
+from rapidgen.cmd.timing import allow, round_trip
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.textsafe import visible
 
@@ -37,6 +38,9 @@ def add_parser(sub) -> None:
                    help="seconds to wait for the asset, then for completion (default 30)")
     p.add_argument("--discover", type=float, default=2.0, metavar="S",
                    help="seconds to wait for the live CommandConfig before using the descriptor's (default 2)")
+    p.add_argument("--rtt", type=round_trip, default=0.0, metavar="SECONDS",
+                   help="the link's round trip (e.g. 2.6 for the Moon): each wait above grows by what the link "
+                        "costs (discovery 4 round trips, an answer 2; docs/field.md). Default 0: a LAN")
     p.add_argument("--from-descriptor", action="store_true", help="use the descriptor's dictionary, not the live one")
     p.add_argument("--no-check", action="store_true",
                    help="send values outside their range or allowed values (the asset answers BAD_SYNTAX)")
@@ -134,19 +138,19 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
     try:
         origin = "descriptor"
         if not args.from_descriptor:
-            config = live_config(commander, asset.rapid, tables.name, args.discover)
+            config = live_config(commander, asset.rapid, tables.name, allow(args.discover, args.rtt, 4))
             if config is not None:
                 tables, origin = Tables(merged_tables(asset.tables, config)), "live CommandConfig"
             else:
-                print(f"cmd: no CommandConfig from {tables.name} within {args.discover:g} s "
+                print(f"cmd: no CommandConfig from {tables.name} within {allow(args.discover, args.rtt, 4):g} s "
                       f"(domain {domain}); using the descriptor's dictionary", file=sys.stderr)
         payload = _checked(tables, action, args, line, sink, origin)
         if payload is None:
             report(sink, line)
             return 1
-        if not commander.wait_for_asset(args.timeout):
+        if not commander.wait_for_asset(allow(args.timeout, args.rtt, 4)):
             sink.error("RG1908", f"no asset {tables.name} reads commands on domain {domain}, partition "
-                       f"'{tables.partition}' (waited {args.timeout:g} s)", SourceLoc(CMDLINE, 0, 0),
+                       f"'{tables.partition}' (waited {allow(args.timeout, args.rtt, 4):g} s)", SourceLoc(CMDLINE, 0, 0),
                        "start its bridge (python -m <package>.bridge), or check --domain and --transport")
             report(sink, line)
             return 1
@@ -158,15 +162,15 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
         print(f"{tables.name} <- {args.subsystem}/{args.command_name}" + (f" {shown}" if shown else "")
               + f"  [cmdId {cmd_id}, QUEUE_{action}" + (f" {args.target}" if args.target else "")
               + f", from {args.source}]", flush=True)
-        acks = _follow(commander, cmd_id, args.timeout, stop_at_first=args.no_wait)
+        acks = _follow(commander, cmd_id, allow(args.timeout, args.rtt), stop_at_first=args.no_wait)
         _warn_strangers(commander, cmd_id)
         if not acks:
-            print(f"  no ack within {args.timeout:g} s", flush=True)
+            print(f"  no ack within {allow(args.timeout, args.rtt):g} s", flush=True)
             return 1
         final = acks[-1]
         if action == "DELETE" and final[0] == COMPLETED:
             print(f"target {visible(args.target)}:", flush=True)
-            _follow(commander, args.target, 3.0)
+            _follow(commander, args.target, allow(3.0, args.rtt))
         if final[0] == COMPLETED and final[1] != OK and "does not have control" in final[2]:
             print(f"  hint: send `rapidgen cmd {args.asset} AccessControl requestControl --source {args.source}` "
                   "first", file=sys.stderr)

@@ -8,6 +8,7 @@ import os
 import sys
 import time
 from rapidgen.argtypes import domain_id
+from rapidgen.cmd.timing import round_trip
 from rapidgen.textsafe import visible
 
 
@@ -24,6 +25,9 @@ def add_parser(sub) -> None:
     p.add_argument("--json", metavar="FILE", help="write a JSON report")
     p.add_argument("--timeout", type=float, default=10.0, metavar="S",
                    help="seconds to wait for an asset's answer (default 10)")
+    p.add_argument("--rtt", type=round_trip, default=0.0, metavar="SECONDS",
+                   help="the link's round trip (e.g. 2.6 for the Moon): every wait allows for it, so a check "
+                        "judges the asset, not the delay (default 0: a LAN)")
     p.add_argument("--participant", action="append", default=[], type=_guid_prefix, metavar="GUID",
                    help="judge the participant(s) whose GUID starts with this (hex, 8 digits or more; default: the "
                         "participant with the most of the asset's endpoints in its partition)")
@@ -75,10 +79,11 @@ def _run(args, bindings, chosen) -> int:
 
     domain = bindings.tables["ASSET"].get("domain", 0) if args.domain is None else args.domain
     t0 = time.monotonic()
-    session = Session(bindings, domain, timeout=args.timeout, participants=tuple(args.participant))
+    session = Session(bindings, domain, timeout=args.timeout, participants=tuple(args.participant), rtt=args.rtt)
     name, partition = visible(session.asset), visible(session.facts.partition)
     print(f"rapidgen conform: looking for asset {name} (partition {partition}) in domain {domain} "
-          f"via {visible(os.environ.get('CYCLONEDDS_URI', 'Cyclone defaults'))}", flush=True)
+          f"via {visible(os.environ.get('CYCLONEDDS_URI', 'Cyclone defaults'))}"
+          + (f", waits allowing for a {args.rtt:g} s round trip" if args.rtt else ""), flush=True)
     if not session.find_asset(min(15.0, 1.5 * args.timeout)):
         if args.participant:
             print(f"rapidgen conform: no participant with {name}'s topics in partition {partition} on domain "

@@ -22,7 +22,8 @@ GRACE = 1.0
 
 
 class Session:
-    def __init__(self, bindings, domain: int, timeout: float = 10.0, participants: tuple[str, ...] = ()) -> None:
+    def __init__(self, bindings, domain: int, timeout: float = 10.0, participants: tuple[str, ...] = (),
+                 rtt: float = 0.0) -> None:
         from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant
         from cyclonedds.domain import DomainParticipant
 
@@ -31,7 +32,8 @@ class Session:
         self.facts = AssetFacts(bindings.tables)
         self.asset = self.facts.name
         self.domain = domain
-        self.timeout = timeout
+        self.rtt = rtt  # the link's round trip (--rtt): every wait allows for it (allow())
+        self.timeout = self.allow(timeout)
         self.participant = DomainParticipant(domain)
         self.discovery = Discovery(self.participant)
         self._births_reader = BuiltinDataReader(self.participant, BuiltinTopicDcpsParticipant)
@@ -73,6 +75,16 @@ class Session:
                 found.setdefault(e.participant, set()).add((e.kind, e.topic))
         return {p: len(got & want) for p, got in found.items()}
 
+    def allow(self, seconds: float, trips: float = 2.0) -> float:
+        """A wait of `seconds` on loopback, over a link of round trip rtt: an answer costs one
+        round trip and a lost packet's repair another, so a check judges the asset, not the
+        link's delay."""
+        return seconds + trips * self.rtt
+
+    def pause(self, seconds: float) -> None:
+        """Sleep while an answer that should not come would have come (QUIET checks)."""
+        time.sleep(self.allow(seconds))
+
     def find_asset(self, timeout: float = 15.0, settle: float = 0.5, most: float = 3.0) -> bool:
         """Find the asset's participant, then start our readers (so every config we read is as
         a late joiner). Any participant in the partition may write the asset's topics; only
@@ -84,7 +96,9 @@ class Session:
           choice was ambiguous.
         Candidates are participants with an endpoint of the asset's topics in its partition;
         the choice is made once the candidates stop changing for `settle` s (at most `most` s
-        after the first). Every other participant is a stranger: reported, never judged."""
+        after the first). Every other participant is a stranger: reported, never judged.
+        Over a link (rtt) discovery takes a few round trips, and a lost announcement one more."""
+        timeout, settle, most = self.allow(timeout, 4), self.allow(settle, 1), self.allow(most, 4)
         if not self.discovery.wait_until(lambda d: bool(self.candidates()), timeout):
             self.client.start(self.topics())
             return False
@@ -141,7 +155,7 @@ class Session:
         return [e for e in self.discovery.find(kind, topic) if e.participant in self.asset_participants]
 
     def wait_endpoint(self, kind: str, topic: str, timeout: float = 3.0):
-        end = time.monotonic() + timeout
+        end = time.monotonic() + self.allow(timeout)
         while True:
             found = self.endpoints(kind, topic)
             if found or time.monotonic() > end:
@@ -149,7 +163,7 @@ class Session:
             time.sleep(0.05)
 
     def latest(self, topic: str, timeout: float = 0.0):
-        got = self.client.wait_sample(topic, timeout) if timeout else self.client.samples(topic)
+        got = self.client.wait_sample(topic, self.allow(timeout)) if timeout else self.client.samples(topic)
         return got[-1].sample if got else None
 
     # ---- commands ------------------------------------------------------------------------------
@@ -162,7 +176,7 @@ class Session:
         w, r = self.client.command_writer, self.client.ack_reader
         if w is None or r is None:  # no subsystems: needs_commands() reports it
             return False
-        end = time.monotonic() + timeout
+        end = time.monotonic() + self.allow(timeout)
         while time.monotonic() < end:
             if self.client.matched_asset(w, reader=False) and self.client.matched_asset(r, reader=True):
                 return True
@@ -196,7 +210,7 @@ class Session:
         timeout would only repeat it."""
         c = self.client
         self.awaited.setdefault(cmd_id, None)
-        end = time.monotonic() + (self.timeout if timeout is None else timeout)
+        end = time.monotonic() + (self.timeout if timeout is None else self.allow(timeout))
         since = c.sent_at.get(cmd_id, time.monotonic())
         with c.lock:
             while True:
@@ -245,7 +259,7 @@ class Session:
     # ---- access control -----------------------------------------------------------------------
     def controller(self, timeout: float = 2.0, want: str | None = None) -> str | None:
         """The latest AccessControlState's controller (waiting up to timeout for `want`)."""
-        end = time.monotonic() + timeout
+        end = time.monotonic() + self.allow(timeout)
         while True:
             s = self.latest(ACCESS_TOPIC)
             now = None if s is None else s.controller

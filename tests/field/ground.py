@@ -1,0 +1,160 @@
+"""The ground side of the field tests, a process in the ground namespace (CYCLONEDDS_URI
+names the site's Cyclone file). Prints one JSON document on its last line.
+
+  python -m tests.field.ground drive PACKAGE DOMAIN ROUNDS [--wave W] [--hold S] [--speed X] [--source NAME]
+      requestControl, then ROUNDS rounds of every queue action, W rounds sent at once behind
+      a drive of S s (at the bridge's speed X) that holds the queue; each round: b=APPEND, c=INSERT after b,
+      d=APPEND then e=REPLACE d, f=APPEND then g=DELETE f, h=BYPASS. Waits for every final
+      ack; reports every command's acks and the seconds from send to its COMPLETED.
+  python -m tests.field.ground late PACKAGE DOMAIN IDS.json
+      a late joiner: the durable acks of the listed cmdIds, every config, the QueueState."""
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import os
+import sys
+import time
+
+from rapid_runtime import messages as M
+from rapid_runtime.acks import COMPLETED
+from rapid_runtime.commander import Commander
+from rapid_runtime.dds import Node, type_class, use_transport
+from rapid_runtime.tables import Tables
+
+WAIT = 600.0  # s: a bound for a broken run; the tests judge what arrived, not when
+
+
+def load(package: str):
+    rapid = importlib.import_module(f"{package}.rapid")
+    tables = Tables(importlib.import_module(f"{package}.asset_tables"))
+    qos = importlib.import_module(f"{package}.qos").RapidQos()
+    use_transport(qos, None)  # the site's file (CYCLONEDDS_URI)
+    return rapid, tables, qos
+
+
+class TimedCommander(Commander):
+    """A Commander that also notes when each command's COMPLETED arrived."""
+
+    def __init__(self, *a) -> None:
+        self.sent_at: dict[str, float] = {}
+        self.done_at: dict[str, float] = {}
+        super().__init__(*a)
+
+    def _on_ack(self, sample) -> None:
+        cmd_id, status = M.ack_fields(sample)[:2]
+        if status == COMPLETED:
+            self.done_at.setdefault(cmd_id, time.monotonic())
+        super()._on_ack(sample)
+
+    def timed_send(self, *a, **kw) -> str:
+        t = time.monotonic()
+        cid = self.send(*a, **kw)
+        self.sent_at[cid] = t
+        return cid
+
+    def wait_final(self, ids, timeout: float) -> bool:
+        end = time.monotonic() + timeout
+        with self.cond:
+            while True:
+                if all(any(a[0] == COMPLETED for a in self.acks.get(i, ())) for i in ids):
+                    return True
+                left = end - time.monotonic()
+                if left <= 0:
+                    return False
+                self.cond.wait(left)
+
+
+def _point(tables, pan: float):
+    entry = tables.command("PanCam", "pointCamera")
+    return [(p.type, pan if p.name == "pan" else float(p.default or 0.0)) for p in entry.params]
+
+
+def _move(x: float):
+    return [("RAPID_STRING", "site"), ("RAPID_VEC3d", [x, 0.0, 0.0])]
+
+
+def drive(args) -> dict:
+    rapid, tables, qos = load(args.package)
+    c = TimedCommander(rapid, qos, tables.name, args.source, args.domain)
+    if not c.wait_for_asset(WAIT):
+        return {"error": "no asset"}
+    cid = c.timed_send("AccessControl", "requestControl", [])
+    c.wait_final([cid], WAIT)
+    rounds, holds, x = [], [], 0.0
+    for start in range(0, args.rounds, args.wave):
+        x = args.hold * 0.5 * args.speed if x == 0.0 else 0.0  # DRIVE_SPEED 0.5 m/s: there and back
+        wave = [c.timed_send("Mobility", "simpleMove", _move(x), action="QUEUE_APPEND")]
+        holds.append(wave[0])
+        for i in range(start, min(start + args.wave, args.rounds)):
+            pan = 0.1 + (i % 20) * 0.05
+            r = {}
+            r["b"] = c.timed_send("PanCam", "pointCamera", _point(tables, pan), action="QUEUE_APPEND")
+            r["c"] = c.timed_send("PanCam", "pointCamera", _point(tables, -pan), action="QUEUE_INSERT", target=r["b"])
+            r["d"] = c.timed_send("PanCam", "pointCamera", _point(tables, pan), action="QUEUE_APPEND")
+            r["e"] = c.timed_send("PanCam", "pointCamera", _point(tables, pan), action="QUEUE_REPLACE", target=r["d"])
+            r["f"] = c.timed_send("PanCam", "pointCamera", _point(tables, pan), action="QUEUE_APPEND")
+            r["g"] = c.timed_send("Admin", "noOp", [], action="QUEUE_DELETE", target=r["f"])
+            r["h"] = c.timed_send("PanCam", "pointCamera", _point(tables, pan), action="QUEUE_BYPASS")
+            rounds.append(r)
+            wave.extend(r.values())
+        c.wait_final(wave, WAIT)
+    with c.cond:
+        acks = {k: list(v) for k, v in c.acks.items()}
+    out = {"rounds": rounds, "holds": holds, "control": cid, "acks": acks,
+           "latency": {k: c.done_at[k] - c.sent_at[k] for k in c.sent_at if k in c.done_at}}
+    c.close()
+    return out
+
+
+def late(args) -> dict:
+    rapid, tables, qos = load(args.package)
+    with open(args.ids, encoding="utf-8") as fh:
+        ids = set(json.load(fh))
+    node = Node(rapid, qos, args.domain)
+    acks_reader = node.reader("rapid_ack", rapid.Ack)
+    configs = {t: node.reader(t, type_class(rapid, ty)) for t, (ty, _v) in tables.configs.items()}
+    queue = node.reader("rapid_queue_state", rapid.QueueState)
+    final: dict[str, list] = {}
+    got_configs: dict[str, int] = {}
+    state = None
+    end = time.monotonic() + WAIT
+    while time.monotonic() < end and not (ids <= set(final) and len(got_configs) == len(configs) and state):
+        for s in acks_reader.take(N=4096):
+            cmd_id, status, completed, message = M.ack_fields(s)
+            if cmd_id in ids:
+                final.setdefault(cmd_id, []).append([status, completed, message])
+        for topic, r in configs.items():
+            for s in r.take(N=16):
+                got_configs[topic] = s.hdr.serial
+        for s in queue.take(N=16):
+            state = {part: [[rec.cmd.cmdId, str(rec.trStatus).split(".")[-1]] for rec in getattr(s, part).records]
+                     for part in ("pending", "active", "completed")}
+        time.sleep(0.05)
+    return {"acks": final, "configs": got_configs, "config_topics": sorted(configs), "queue": state}
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser()
+    sub = ap.add_subparsers(dest="what", required=True)
+    d = sub.add_parser("drive")
+    d.add_argument("package")
+    d.add_argument("domain", type=int)
+    d.add_argument("rounds", type=int)
+    d.add_argument("--wave", type=int, default=10)
+    d.add_argument("--hold", type=float, default=8.0, help="seconds the wave's drive lasts")
+    d.add_argument("--speed", type=float, default=1.0, help="the bridge's simulation speed")
+    d.add_argument("--source", default="FieldGround")
+    late_p = sub.add_parser("late")
+    late_p.add_argument("package")
+    late_p.add_argument("domain", type=int)
+    late_p.add_argument("ids")
+    args = ap.parse_args()
+    out = drive(args) if args.what == "drive" else late(args)
+    print(json.dumps(out), flush=True)
+    os._exit(0)  # DDS threads need not be joined: the answer is printed
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,41 @@
+"""The two sites of a field test: the asset's simulated bridge in the asset namespace, ground
+tools in the ground namespace, each with the generated Cyclone `wan` (or `lan`) configuration
+whose static peers are the namespaces' own addresses (what a deployment edits in)."""
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+from tests.field.link import ADDRESS, Link
+from tests.runtime.live import ROOT, SEEDS, BridgeProcess, env_for, python_dir
+
+K10 = str(ROOT / "specs" / "assets" / "k10.yaml")
+RAPIDGEN = [sys.executable, "-m", "rapidgen"]
+
+
+def site_config(folder: Path, asset: str = "k10", transport: str = "wan") -> Path:
+    """The package's generated Cyclone file for `transport`, peers set to the two sites."""
+    src = python_dir(asset) / SEEDS[asset] / "qos_files" / "cyclonedds" / f"{transport}.xml"
+    text = src.read_text(encoding="utf-8")
+    peers = "".join(f'<Peer Address="{a}"/>' for a in ADDRESS.values())
+    text, n = re.subn(r"<Peers>.*?</Peers>", f"<Peers>{peers}</Peers>", text, flags=re.S)
+    if n == 0:  # lan: multicast discovery, no peers to set
+        assert transport == "lan", src
+    out = folder / f"{asset}-{transport}.xml"
+    out.write_text(text, encoding="utf-8")
+    return out
+
+
+def site_env(config: Path, asset: str = "k10") -> dict:
+    return dict(env_for(python_dir(asset), SEEDS[asset]), CYCLONEDDS_URI=f"file://{config}")
+
+
+def start_bridge(link: Link, config: Path, domain: int, *extra: str, asset: str = "k10") -> BridgeProcess:
+    """The asset's simulated bridge in the asset namespace (ready once it says so)."""
+    argv = link.argv("asset", [sys.executable, "-m", f"{SEEDS[asset]}.bridge", "--simulate", "--domain",
+                               str(domain), *extra])
+    bridge = BridgeProcess.of_command(argv, python_dir(asset), site_env(config, asset))
+    link.children.append(bridge.proc)
+    bridge.wait_ready(60)
+    return bridge
