@@ -147,7 +147,7 @@ def resolve_path(msg: MsgDef, path: str) -> tuple[Field | None, str | None]:
         found = current.field(m.group(1))
         if found is None:
             names = ", ".join(f.name for f in current.fields) or "none"
-            return None, f"{current.name} has no field '{m.group(1)}' (fields: {names})"
+            return None, f"no '{m.group(1)}' in {current.name}; its fields: {names}"
         if m.group(2) is not None:
             if not found.array:
                 return None, f"'{found.name}' is not an array"
