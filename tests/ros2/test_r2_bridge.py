@@ -1,0 +1,175 @@
+"""ROS 2 -> RAPID, live: Robonaut 2's ROS 2 side (examples/ros2/r2_sim_node.py, real rclpy
+from the PyPI ROS wheels) served as the RAPID asset R2Ros by the generated
+`rapid_r2ros.ros2` bridge (examples/ros2/robonaut2-ros2.yaml), driven by `rapidgen cmd`,
+watched by `rapidgen spy` and judged by `rapidgen conform`.
+
+Everything runs in one private network namespace holding only lo (tests/ros2/netns.py).
+The ROS side's Python is its own venv (tests/ros2/rosenv.py: made once, then cached).
+"""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from tests.ros2 import netns, rosenv
+
+ROOT = Path(__file__).resolve().parents[2]
+DESCRIPTOR = "examples/ros2/robonaut2-ros2.yaml"
+WAIT = 60.0  # s: a guard against a hang, never what is asserted
+# tf2's setRPY(0.1, 0.2, 0.3) as (x, y, z, w), worked out independently of the bridge
+QUAT_RPY = (0.0342708, 0.1060205, 0.1435722, 0.9833474)
+
+pytestmark = pytest.mark.skipif(os.geteuid() != 0, reason="network namespaces need root")
+
+
+def _wait_for(path: Path, text: str, proc: subprocess.Popen) -> None:
+    end = time.monotonic() + WAIT
+    while time.monotonic() < end:
+        if text in path.read_text(errors="replace"):
+            return
+        if proc.poll() is not None:
+            break
+        time.sleep(0.1)
+    pytest.fail(f"no '{text}' from {proc.args}:\n{path.read_text(errors='replace')}")
+
+
+class Scene:
+    def __init__(self, ns: list[str], tmp: Path) -> None:
+        self.ns, self.tmp = ns, tmp
+        self.controlling = False  # whether `rapidgen` (cmd's default source) holds control
+
+    def rapidgen(self, *args: str, check: bool = False) -> subprocess.CompletedProcess:
+        res = subprocess.run([*self.ns, sys.executable, "-m", "rapidgen", *args], cwd=ROOT, capture_output=True,
+                             text=True, timeout=WAIT)
+        if check:
+            assert res.returncode == 0, res.stdout + res.stderr
+        return res
+
+    def cmd(self, *args: str) -> subprocess.CompletedProcess:
+        return self.rapidgen("cmd", "--from-descriptor", DESCRIPTOR, *args)
+
+    def take_control(self) -> None:
+        """R2Ros has access control: commands come from its controller (conform takes it)."""
+        if not self.controlling:
+            res = self.cmd("AccessControl", "grabControl")
+            assert res.returncode == 0, res.stdout + res.stderr
+            self.controlling = True
+
+    def sample(self, topic: str) -> dict:
+        """The next sample of an R2Ros topic, as `rapidgen spy` decodes it."""
+        res = self.rapidgen("spy", "--asset", DESCRIPTOR, "--count", "1", "--json", "echo", topic, check=True)
+        return json.loads(res.stdout.splitlines()[0])["sample"]
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("ros2")
+    python = rosenv.ensure()
+    gen = subprocess.run([sys.executable, "-m", "rapidgen", "generate", DESCRIPTOR, "--lang", "python", "-o",
+                          str(tmp / "gen")], cwd=ROOT, capture_output=True, text=True)
+    assert gen.returncode == 0, gen.stderr
+    env = {**os.environ, "PYTHONPATH": f"{ROOT / 'runtime'}{os.pathsep}{tmp / 'gen' / 'python'}",
+           "PYTHONUNBUFFERED": "1"}
+    with netns.namespace() as ns:
+        procs = []
+        try:
+            for name, args, ready in (
+                    ("sim", [str(ROOT / "examples/ros2/r2_sim_node.py"), "--speed", "1.0"], "r2_sim ready"),
+                    ("bridge", ["-m", "rapid_r2ros.ros2"], "bridge ready")):
+                log = tmp / f"{name}.log"
+                with open(log, "w") as out:
+                    procs.append(subprocess.Popen([*ns, str(python), *args], stdout=out, stderr=subprocess.STDOUT,
+                                                  env=env, cwd=tmp))
+                _wait_for(log, ready, procs[-1])
+            yield Scene(ns, tmp)
+        finally:
+            for p in reversed(procs):
+                p.terminate()
+                try:
+                    p.wait(10)
+                except subprocess.TimeoutExpired:
+                    p.kill()
+                    p.wait()
+
+
+def test_conform_passes_every_required_check(scene):
+    report = scene.tmp / "conform.json"
+    res = scene.rapidgen("conform", DESCRIPTOR, "--json", str(report))
+    scene.controlling = False
+    assert res.returncode == 0, res.stdout[-3000:] + res.stderr
+    checks = json.loads(report.read_text())["checks"]
+    required = [c for c in checks if c["level"] == "required"]
+    assert required and all(c["outcome"] in ("PASS", "UNSUPPORTED") for c in required)
+    passed = {c["id"] for c in required if c["outcome"] == "PASS"}
+    # the telemetry fed from ROS 2 and the command path are judged, not skipped
+    assert {"TEL-01", "TEL-03", "TEL-04", "TEL-06", "CMD-02", "CMD-03", "QUE-02", "ACC-02"} <= passed
+
+
+def test_pose_command_moves_the_ros2_arm_and_its_joints_come_back(scene):
+    scene.take_control()
+    res = scene.cmd("RightArm", "Setpoint for Tool", "xyz=[0.3,0.2,-0.1]", "rpy=[0.1,0.2,0.3]")
+    assert res.returncode == 0, res.stdout + res.stderr
+    acks = [line.split()[0] for line in res.stdout.splitlines()[1:] if line.strip()]
+    assert acks[0] == "EXECUTING" and acks[-1] == "COMPLETED", res.stdout
+    assert "published on /r2_controller/right/pose_command" in res.stdout
+    assert "/r2_controller/right/status: data == 'reached'" in res.stdout
+    # the ROS 2 node got the pose as PoseStamped: frame, position, quaternion from roll/pitch/yaw
+    sim = (scene.tmp / "sim.log").read_text()
+    assert "pose_command frame=R2OriginFrame xyz=(0.3, 0.2, -0.1)" in sim
+    assert "quat=({:.6f}, {:.6f}, {:.6f}, {:.6f})".format(*QUAT_RPY) in sim
+    # its joint states (published in another order, with other joints) come back as RAPID
+    # JointSample in the JointConfig's order: the toy kinematics put x, y, z, r, p, y in joints 0-5
+    joints = scene.sample("rapid_joint_sample")
+    assert joints["anglePos"][:6] == pytest.approx([0.3, 0.2, -0.1, 0.1, 0.2, 0.3], abs=1e-6)
+    assert joints["torque"] == pytest.approx([2.5] * 7)
+    assert len(joints["angleVel"]) == 7
+    pose = scene.sample("rapid_position_sample-rightArm")["pose"]
+    assert pose["xyz"] == pytest.approx([0.3, 0.2, -0.1], abs=1e-6)
+    assert pose["rot"][:4] == pytest.approx(QUAT_RPY, abs=1e-6)  # RAPID_ROT_QUAT: x, y, z, w
+
+
+def test_agent_values_come_from_ros2_fields(scene):
+    state = scene.sample("rapid_agent_state")
+    # valueKeys order: force, torque, magnitude; each a ParameterUnion {discriminator, its member}
+    values = [next(x for k, x in v.items() if k != "discriminator") for v in state["values"]]
+    assert values[0] == pytest.approx([1.0, 2.0, -19.6])
+    assert values[1] == pytest.approx([0.1, 0.2, 0.3])
+    assert values[2] == pytest.approx((1.0 + 4.0 + 19.6 ** 2) ** 0.5, rel=1e-6)
+
+
+def test_joint_command_publishes_the_arguments_in_order(scene):
+    scene.take_control()
+    target = [0.05, -0.1, 0.15, -0.2, 0.25, -0.3, 0.35]
+    res = scene.cmd("RightArm", "Setpoint for single joint",
+                    *(f"{k}={v}" for k, v in zip(("abduction", "extension", "upperArmOuterRotation", "elbowFlexion",
+                                                  "forearmOuterRotation", "wristFlexion", "wristUlnarFlexion"),
+                                                 target)))
+    assert res.returncode == 0 and "COMPLETED OK" in res.stdout, res.stdout + res.stderr
+    sim = (scene.tmp / "sim.log").read_text()
+    line = next(ln for ln in sim.splitlines() if "joint_command" in ln)
+    got = json.loads(line.split("joint_command ", 1)[1])
+    assert got == pytest.approx(target, abs=1e-6)  # RAPID_FLOAT arguments: float32 precision
+
+
+def test_cancel_reaches_the_waiting_command(scene):
+    """A queued pose command waits for the arm (50 rad away at 1 rad/s); Queue/cancelAll
+    makes it CANCELED."""
+    scene.take_control()
+    log = scene.tmp / "long.log"
+    with open(log, "w") as out:
+        long = subprocess.Popen([*scene.ns, sys.executable, "-m", "rapidgen", "cmd", "--action", "APPEND",
+                                 "--from-descriptor", DESCRIPTOR, "RightArm", "Setpoint for Tool", "xyz=[50,-50,50]", "rpy=[0,0,0]"],
+                                cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, text=True)
+        _wait_for(log, "waiting for data on /r2_controller/right/status", long)
+        cancel = scene.cmd("Queue", "cancelAll")
+        assert cancel.returncode == 0, cancel.stdout + cancel.stderr
+        assert long.wait(WAIT) == 1
+    acks = [line.split()[:2] for line in log.read_text().splitlines()[1:] if line.strip()]
+    assert [a[0] for a in acks] == ["QUEUED", "EXECUTING", "EXECUTING", "COMPLETED"], log.read_text()
+    assert acks[-1] == ["COMPLETED", "CANCELED"]
