@@ -1,0 +1,135 @@
+"""The ros2 section without ROS 2: message definitions (installed .msg files first, the
+built-in table otherwise), the generated ros2_map.py (deterministic, descriptor strings
+as exact literals) and the mapping it carries."""
+from __future__ import annotations
+
+import ast
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+from rapidgen.asset.load import load_asset
+from rapidgen.diagnostics import DiagnosticSink
+from rapidgen.ros2 import msgdefs
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = ROOT / "examples/ros2/robonaut2-ros2.yaml"
+
+HOSTILE = 'x"); import os  # \\ \u202e'
+DESCRIPTOR = f"""\
+version: 1
+asset: {{name: Probe, kind: manipulator}}
+idl: {{rapid: {ROOT / 'specs/rapid'}}}
+subsystem_types:
+  - name: Arm
+    commands:
+      - name: say
+        parameters: [{{name: text, type: RAPID_STRING}}, {{name: rot, type: RAPID_MAT33f}}]
+subsystems: [{{name: Admin}}, {{name: Arm1, type: Arm}}]
+ros2:
+  commands:
+    - command: Arm1/say
+      publish:
+        topic: /arm/say
+        type: my_msgs/msg/Say
+        fields: {{text: text, note: {{value: {json.dumps(HOSTILE)}}}, pose.orientation: rot}}
+      until: {{topic: /arm/said, type: std_msgs/String, field: data, equals: {json.dumps(HOSTILE)}}}
+"""
+
+
+def _share(tmp_path: Path) -> Path:
+    """An installed interface package the built-in table does not know."""
+    msg = tmp_path / "prefix" / "share" / "my_msgs" / "msg"
+    msg.mkdir(parents=True)
+    (msg / "Say.msg").write_text("# a custom message\nuint8 LOUD=1\nstring text\nstring note\n"
+                                 "geometry_msgs/Pose pose\nfloat64[3] gains\n")
+    return tmp_path / "prefix"
+
+
+def _load(path: Path, monkeypatch, prefix: Path | None):
+    if prefix is not None:
+        monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
+    msgdefs.lookup.cache_clear()
+    sink = DiagnosticSink()
+    loaded = load_asset(str(path), sink)
+    msgdefs.lookup.cache_clear()
+    return loaded, sink
+
+
+def test_installed_definitions_are_read_before_the_built_in_table(tmp_path, monkeypatch):
+    prefix = _share(tmp_path)
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
+    msgdefs.lookup.cache_clear()
+    say = msgdefs.lookup("my_msgs/msg/Say")
+    assert say is not None and say.source.endswith("Say.msg")
+    assert [(f.name, f.type, f.array, f.size) for f in say.fields] == [
+        ("text", "string", False, None), ("note", "string", False, None),
+        ("pose", "geometry_msgs/msg/Pose", False, None), ("gains", "float64", True, 3)]
+    assert msgdefs.resolve_path(say, "pose.orientation.w")[0].type == "float64"
+    assert msgdefs.resolve_path(say, "gains[3]")[0] is None  # past a fixed array
+    monkeypatch.delenv("AMENT_PREFIX_PATH")
+    msgdefs.lookup.cache_clear()
+    assert msgdefs.lookup("my_msgs/msg/Say") is None or sys.prefix in msgdefs.lookup("my_msgs/msg/Say").source
+
+
+def test_the_built_in_table_parses_as_the_wheels_do():
+    msgdefs.lookup.cache_clear()
+    for name in msgdefs.BUILTIN:
+        got = msgdefs.lookup(name)
+        assert got is not None, name
+        for f in got.fields:  # every nested type is itself known
+            assert f.primitive or msgdefs.lookup(f.type) is not None, (name, f)
+
+
+def test_custom_message_validates_only_where_it_is_installed(tmp_path, monkeypatch):
+    desc = tmp_path / "probe.yaml"
+    desc.write_text(DESCRIPTOR)
+    loaded, sink = _load(desc, monkeypatch, None)
+    assert [d.code for d in sink.diagnostics] == ["RG1501"] and loaded.ros2 is None
+    loaded, sink = _load(desc, monkeypatch, _share(tmp_path))
+    assert not sink.diagnostics, [str(d) for d in sink.diagnostics]
+    pub = loaded.ros2["commands"]["Arm1/say"]["publish"]
+    assert pub["fields"] == [["text", "str", [0]], ["note", "const", HOSTILE], ["pose.orientation", "quat_m33", [1]]]
+    assert pub["stamp"] is False  # no std_msgs/Header
+
+
+def test_generated_map_is_deterministic_and_holds_strings_exactly(tmp_path, monkeypatch):
+    desc = tmp_path / "probe.yaml"
+    desc.write_text(DESCRIPTOR)
+    env = {**os.environ, "AMENT_PREFIX_PATH": str(_share(tmp_path))}
+    outs = []
+    for seed in ("1", "2"):
+        out = tmp_path / f"out{seed}"
+        res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(desc), "--lang", "python", "-o",
+                              str(out)], cwd=tmp_path, env={**env, "PYTHONHASHSEED": seed},
+                             capture_output=True, text=True)
+        assert res.returncode == 0, res.stderr
+        outs.append({p.name: p.read_bytes() for p in (out / "python" / "rapid_probe").glob("ros2*.py")})
+    assert outs[0] == outs[1] and set(outs[0]) == {"ros2.py", "ros2_map.py"}
+    source = outs[0]["ros2_map.py"].decode()
+    tree = ast.parse(source)  # the hostile text is a literal, not code
+    assigned = {t.targets[0].id: ast.literal_eval(t.value) for t in tree.body if isinstance(t, ast.Assign)}
+    cmd = assigned["COMMANDS"]["Arm1/say"]
+    assert cmd["publish"]["fields"][1] == ["note", "const", HOSTILE]
+    assert cmd["until"]["equals"] == HOSTILE
+    assert all(isinstance(t, (ast.Assign, ast.Expr)) for t in tree.body)  # a docstring and literals only
+    ast.parse(outs[0]["ros2.py"].decode())
+    assert b"rclpy" not in b"".join(v for k, v in outs[0].items() if k != "ros2.py")
+
+
+def test_no_ros2_section_no_ros2_files(tmp_path):
+    res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(ROOT / "specs/assets/k10.yaml"),
+                          "--lang", "python", "-o", str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    assert not list(tmp_path.rglob("ros2*.py"))
+
+
+def test_the_example_maps_what_the_seed_scenario_needs(monkeypatch):
+    loaded, sink = _load(EXAMPLE, monkeypatch, None)
+    assert not sink.has_errors
+    feeds = {(f["feeds"], f["topic"]) for f in loaded.ros2["telemetry"]}
+    assert ("joint", "/joint_states") in feeds and ("position", "/r2_controller/right/tool_pose") in feeds
+    pose = loaded.ros2["commands"]["RightArm/Setpoint for Tool"]["publish"]
+    assert pose["topic"] == "/r2_controller/right/pose_command" and pose["stamp"] is True
