@@ -131,6 +131,9 @@ async def _serve(source, args, what: str) -> int:
     runner = web.AppRunner(make_app(source, args.tick), access_log=None, handle_signals=False)
     await runner.setup()
     site = web.TCPSite(runner, args.bind, args.port)
+    if not _loopback(args.bind):
+        print(f"monitor: warning: the page will be served on {args.bind}: anyone who can reach this machine sees the "
+              "assets and can command them from the page (there is no login)", file=sys.stderr, flush=True)
     try:
         await site.start()
     except OSError as exc:
@@ -142,9 +145,6 @@ async def _serve(source, args, what: str) -> int:
     print(f"monitor: {what} on http://{host}:{port}/", flush=True)
     if _loopback(args.bind):
         print(f"monitor: served on {args.bind} only: this machine (--bind ADDR to share it)", flush=True)
-    else:
-        print(f"monitor: warning: served on {args.bind}: anyone who can reach this machine sees the assets and can "
-              "command them from the page (there is no login)", file=sys.stderr, flush=True)
     stop = asyncio.Event()
     loop = asyncio.get_running_loop()
     for sig in (signal.SIGINT, signal.SIGTERM):

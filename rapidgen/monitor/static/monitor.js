@@ -36,7 +36,9 @@ function stateOf(p) {
 function merge(msg) {
   const a = stateOf(msg.partition);
   for (const k of ["status", "values", "position", "images", "acks", "queue", "access"]) if (k in msg) a[k] = msg[k];
-  if ("commands" in msg) { a.commands = msg.commands; a.formsDirty = true; }
+  if ("commands" in msg && JSON.stringify(msg.commands) !== JSON.stringify(a.commands)) {
+    a.commands = msg.commands; a.formsDirty = true;  // forms redrawn only when the dictionary changed
+  }
   for (const [vid, t, v] of msg.points || []) {
     if (!a.points.has(vid)) a.points.set(vid, []);
     const s = a.points.get(vid); s.push([t, v]);
@@ -175,7 +177,8 @@ function input(p) {
 }
 
 function commandForm(a, sub, c, queue) {
-  const f = el("form", { class: "command", "data-command": sub.subsystem + "/" + c.name });
+  // novalidate: the server checks every value and says why one is refused
+  const f = el("form", { class: "command", "data-command": sub.subsystem + "/" + c.name, novalidate: true });
   const flags = [c.abortable ? "abortable" : "", c.suspendable ? "suspendable" : ""].filter(Boolean).join(", ");
   f.append(el("div", {}, el("span", { class: "title", text: c.name }),
     el("span", { class: "sub", text: (flags ? "  (" + flags + ")" : "") + (c.description ? "  " + c.description : "") })));
