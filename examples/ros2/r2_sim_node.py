@@ -11,7 +11,7 @@ Its kinematics are a toy, chosen so a test can check values end to end: the tool
 position is joints 0-2 and its roll, pitch, yaw are joints 3-5 (joint 6 turns nothing), so
 a pose command's x, y, z, roll, pitch, yaw come back as the first six joint angles.
 
-    python examples/ros2/r2_sim_node.py [--speed 1.0] [--rate 50]
+    python examples/ros2/r2_sim_node.py [--speed 1.0] [--rate 50] [--force N]
 """
 from __future__ import annotations
 
@@ -44,9 +44,9 @@ def quat_from_rpy(r: float, p: float, y: float) -> tuple[float, float, float, fl
 
 
 class R2Sim(Node):
-    def __init__(self, speed: float, rate: float) -> None:
+    def __init__(self, speed: float, rate: float, force: float) -> None:
         super().__init__("r2_sim")
-        self.speed, self.dt = speed, 1.0 / rate
+        self.speed, self.dt, self.force = speed, 1.0 / rate, force
         self.joints = [0.0] * 7
         self.target: list[float] | None = None
         self.frame = "R2OriginFrame"
@@ -107,16 +107,18 @@ class R2Sim(Node):
         w.wrench.force.x, w.wrench.force.y, w.wrench.force.z = 1.0, 2.0, -19.6
         w.wrench.torque.x, w.wrench.torque.y, w.wrench.torque.z = 0.1, 0.2, 0.3
         self.pub_wrench.publish(w)
-        self.pub_force.publish(Float64(data=math.sqrt(1.0 + 4.0 + 19.6 ** 2)))
+        self.pub_force.publish(Float64(data=self.force))
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--speed", type=float, default=1.0, help="joint speed [rad/s]")
     ap.add_argument("--rate", type=float, default=50.0, help="publication rate [Hz]")
+    ap.add_argument("--force", type=float, default=math.sqrt(1.0 + 4.0 + 19.6 ** 2),
+                    help="the wrist force magnitude published [N] (default: that of the wrench)")
     args = ap.parse_args(argv)
     rclpy.init()
-    node = R2Sim(args.speed, args.rate)
+    node = R2Sim(args.speed, args.rate, args.force)
     print("r2_sim ready", flush=True)
     try:
         rclpy.spin(node)

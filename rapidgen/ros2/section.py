@@ -31,7 +31,8 @@ JOINT_SOURCE = "sensor_msgs/msg/JointState"
 ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33", "RAPID_ROT_NONE")
 VELOCITY_ENCODINGS = ("RAPID_ROT_NONE", "RAPID_ROT_VEL")
 
-_SECTION_KEYS = ("node", "telemetry", "commands")
+_SECTION_KEYS = ("node", "telemetry", "commands", "ground")
+_GROUND_KEYS = ("namespace", "diagnostics", "node")
 _FEED_KEYS = ("topic", "type", "feeds", "index", "joints", "values", "description")
 _COMMAND_KEYS = ("command", "publish", "until", "description")
 _PUBLISH_KEYS = ("topic", "type", "fields")
@@ -117,10 +118,49 @@ class _Reader:
         feeds = self.items(section.get("telemetry", []), root + ("telemetry",), self.feed)
         commands = self.items(section.get("commands", []), root + ("commands",), self.command)
         self.duplicates(feeds, commands)
+        ground = self.ground(section["ground"], root + ("ground",), node) if "ground" in section else None
         if not self.ok:
             return None
         return {"node": node, "telemetry": [f for f, _ in feeds],
-                "commands": {c["command"]: c for c, _ in commands}}
+                "commands": {c["command"]: c for c, _ in commands}, "ground": ground}
+
+    # -- the ground side: RAPID telemetry -> ROS 2 topics --------------------------------
+    def ground(self, value: object, path: tuple, node: str) -> dict | None:
+        """Which ROS 2 topics the asset's joint, position and agent telemetry goes to."""
+        if value is True:
+            value = {}
+        if not self.mapping(value, path, _GROUND_KEYS, ()):
+            return None
+        assert isinstance(value, dict)
+        base = "/" + re.sub(r"[^A-Za-z0-9_]", "_", self.loaded.spec.name).lower()
+        ns = self.topic(value.get("namespace", base), path + ("namespace",)) if "namespace" in value else base
+        diagnostics = self.topic(value.get("diagnostics", "/diagnostics"), path + ("diagnostics",))
+        gnode = value.get("node", node + "_ground")
+        if not isinstance(gnode, str) or not _NODE.match(gnode):
+            self.error("RG1505", f"'{gnode}' is not a ROS 2 node name", path + ("node",),
+                       "letters, digits and _, starting with a letter or _ (at most 64)")
+        if ns is None or diagnostics is None:
+            return None
+        ns = ns.rstrip("/") if ns != "/" else ""
+        entries = []
+        counts: dict[str, int] = {}
+        for t in self.loaded.spec.telemetry:
+            if t.kind not in ("joint", "position", "agent"):
+                continue
+            index = counts.get(t.kind, 0)
+            counts[t.kind] = index + 1
+            sub = "/" + re.sub(r"[^A-Za-z0-9_]", "_", t.suffix) if t.suffix else ""
+            if t.kind == "joint":
+                entries.append({"kind": "joint", "index": index, "topic": f"{ns}{sub}/joint_states",
+                                "names": [j.frame for j in t.joints]})
+            elif t.kind == "position":
+                entries.append({"kind": "position", "index": index, "topic": f"{ns}{sub}/pose", "frame": t.frame,
+                                "encoding": t.pose_encoding})
+            else:
+                entries.append({"kind": "agent", "index": index, "topic": diagnostics,
+                                "values": [[v.name, v.type, v.unit or "", _levels(v.warning), _levels(v.critical)]
+                                           for v in t.values]})
+        return {"node": gnode, "entries": entries}
 
     def items(self, value: object, path: tuple, read) -> list[tuple[dict, tuple]]:
         if not isinstance(value, list):
@@ -449,6 +489,11 @@ def _const_fits(f: Field, value: object) -> bool:
     if f.type in FLOATS:
         return isinstance(value, (int, float)) and not isinstance(value, bool)
     return False
+
+
+def _levels(t: Any) -> list | None:
+    """A threshold as [below, above] (None for an open side), or None without one."""
+    return None if t is None else [t.below, t.above]
 
 
 def read_ros2(doc: YamlDoc, loaded: Any, sink: DiagnosticSink) -> dict | None:

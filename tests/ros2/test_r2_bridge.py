@@ -24,6 +24,8 @@ DESCRIPTOR = "examples/ros2/robonaut2-ros2.yaml"
 WAIT = 60.0  # s: a guard against a hang, never what is asserted
 # tf2's setRPY(0.1, 0.2, 0.3) as (x, y, z, w), worked out independently of the bridge
 QUAT_RPY = (0.0342708, 0.1060205, 0.1435722, 0.9833474)
+FORCE = 180.0  # N: the wrist force magnitude the ROS 2 node reports, past R2Ros's warning threshold (150)
+JOINTS = [f"RightArm/Joint{i}" for i in range(7)]  # the descriptor's joint frames
 
 pytestmark = pytest.mark.skipif(os.geteuid() != 0, reason="network namespaces need root")
 
@@ -42,6 +44,7 @@ def _wait_for(path: Path, text: str, proc: subprocess.Popen) -> None:
 class Scene:
     def __init__(self, ns: list[str], tmp: Path) -> None:
         self.ns, self.tmp = ns, tmp
+        self.python = rosenv.python()
         self.controlling = False  # whether `rapidgen` (cmd's default source) holds control
 
     def rapidgen(self, *args: str, check: bool = False) -> subprocess.CompletedProcess:
@@ -80,8 +83,10 @@ def scene(tmp_path_factory):
         procs = []
         try:
             for name, args, ready in (
-                    ("sim", [str(ROOT / "examples/ros2/r2_sim_node.py"), "--speed", "1.0"], "r2_sim ready"),
-                    ("bridge", ["-m", "rapid_r2ros.ros2"], "bridge ready")):
+                    ("sim", [str(ROOT / "examples/ros2/r2_sim_node.py"), "--speed", "1.0", "--force", str(FORCE)],
+                     "r2_sim ready"),
+                    ("bridge", ["-m", "rapid_r2ros.ros2"], "bridge ready"),
+                    ("ground", ["-m", "rapid_r2ros.ros2_ground"], "ros2_ground ready")):
                 log = tmp / f"{name}.log"
                 with open(log, "w") as out:
                     procs.append(subprocess.Popen([*ns, str(python), *args], stdout=out, stderr=subprocess.STDOUT,
@@ -140,7 +145,7 @@ def test_agent_values_come_from_ros2_fields(scene):
     values = [next(x for k, x in v.items() if k != "discriminator") for v in state["values"]]
     assert values[0] == pytest.approx([1.0, 2.0, -19.6])
     assert values[1] == pytest.approx([0.1, 0.2, 0.3])
-    assert values[2] == pytest.approx((1.0 + 4.0 + 19.6 ** 2) ** 0.5, rel=1e-6)
+    assert values[2] == pytest.approx(FORCE)
 
 
 def test_joint_command_publishes_the_arguments_in_order(scene):
@@ -173,3 +178,30 @@ def test_cancel_reaches_the_waiting_command(scene):
     acks = [line.split()[:2] for line in log.read_text().splitlines()[1:] if line.strip()]
     assert [a[0] for a in acks] == ["QUEUED", "EXECUTING", "EXECUTING", "COMPLETED"], log.read_text()
     assert acks[-1] == ["COMPLETED", "CANCELED"]
+
+
+def test_rapid_telemetry_comes_back_to_ros2_as_standard_messages(scene):
+    """RAPID -> ROS 2: the ground node republishes R2Ros's RAPID telemetry; a plain rclpy
+    subscriber sees joint states named as the JointConfig, the pose and diagnostics whose
+    levels follow the descriptor's thresholds."""
+    res = subprocess.run([*scene.ns, str(scene.python), str(ROOT / "tests/ros2/ros_listener.py"),
+                          "/r2ros/joint_states=sensor_msgs/msg/JointState",
+                          "/r2ros/rightArm/pose=geometry_msgs/msg/PoseStamped",
+                          "/diagnostics=diagnostic_msgs/msg/DiagnosticArray"],
+                         capture_output=True, text=True, timeout=WAIT)
+    assert res.returncode == 0, res.stderr
+    got = {m["topic"]: m["msg"] for m in map(json.loads, res.stdout.splitlines())}
+    joints = got["/r2ros/joint_states"]
+    assert joints["name"] == JOINTS and len(joints["position"]) == 7
+    assert joints["effort"] == pytest.approx([2.5] * 7) and len(joints["velocity"]) == 7
+    assert joints["stamp"] > 1_700_000_000  # the RAPID sample's own time, in seconds
+    pose = got["/r2ros/rightArm/pose"]
+    assert pose["frame"] == "R2OriginFrame" and len(pose["xyz"]) == 3
+    assert sum(q * q for q in pose["quat"]) == pytest.approx(1.0, abs=1e-5)
+    status = {s["name"]: s for s in got["/diagnostics"]["status"]}
+    assert list(status) == ["R2Ros/rightWristForce", "R2Ros/rightWristTorque", "R2Ros/rightForceMagnitude"]
+    force = status["R2Ros/rightForceMagnitude"]
+    assert force["level"] == 1 and force["message"] == "above warning threshold 150"  # WARN: 150 < 180 <= 250
+    assert float(force["values"]["value"]) == pytest.approx(FORCE) and force["values"]["unit"] == "N"
+    assert status["R2Ros/rightWristForce"]["level"] == 0  # no thresholds: OK
+    assert all(s["hardware_id"] == "R2Ros" for s in status.values())

@@ -2,8 +2,10 @@
 
     <package>/ros2_map.py   the checked mapping (rapidgen/ros2/section.py) as literals
     <package>/ros2.py       `python -m <package>.ros2`: the runtime's bridge with handlers that
-                            publish ROS 2 messages and telemetry fed from ROS 2 subscriptions;
-                            the only module of the package that imports rclpy
+                            publish ROS 2 messages and telemetry fed from ROS 2 subscriptions
+    <package>/ros2_ground.py  with `ros2: {ground: ...}`: `python -m <package>.ros2_ground`, the
+                            asset's RAPID telemetry republished as standard ROS 2 messages
+The two are the only modules of the package that import rclpy.
 
 Descriptor strings (topics, field paths, names, constants) reach the files only through the
 literal printer (py_str) or the docstring/comment escapes.
@@ -24,12 +26,17 @@ def generate(loaded: "LoadedAsset", package: str, header: str) -> list[Generated
     mapping = loaded.ros2
     if mapping is None:
         return []
-    data = {"NODE": mapping["node"], "TELEMETRY": mapping["telemetry"], "COMMANDS": mapping["commands"]}
+    data = {"NODE": mapping["node"], "TELEMETRY": mapping["telemetry"], "COMMANDS": mapping["commands"],
+            "GROUND": mapping["ground"]}
     body = "\n\n".join(f"{name} = {literal(value)}" for name, value in data.items())
     name = loaded.spec.name
-    return [
+    files = [
         GeneratedFile(f"{package}/ros2_map.py", render("python", "ros2_map.py.j2", header=header, asset=name,
                                                        body=body)),
         GeneratedFile(f"{package}/ros2.py", render("python", "ros2.py.j2", header=header, asset=name,
                                                    package=package)),
     ]
+    if mapping["ground"] is not None:
+        files.append(GeneratedFile(f"{package}/ros2_ground.py", render("python", "ros2_ground.py.j2", header=header,
+                                                                       asset=name, package=package)))
+    return files

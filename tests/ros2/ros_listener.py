@@ -1,0 +1,47 @@
+"""A plain rclpy subscriber for the tests: prints one JSON line per topic (its first
+message), then exits. usage: ros_listener.py TOPIC=pkg/msg/Type ..."""
+from __future__ import annotations
+
+import importlib
+import json
+import sys
+
+import rclpy
+
+
+def plain(msg) -> dict:
+    kind = type(msg).__name__
+    if kind == "JointState":
+        return {"name": list(msg.name), "position": list(msg.position), "velocity": list(msg.velocity),
+                "effort": list(msg.effort), "stamp": msg.header.stamp.sec}
+    if kind == "PoseStamped":
+        p, o = msg.pose.position, msg.pose.orientation
+        return {"frame": msg.header.frame_id, "xyz": [p.x, p.y, p.z], "quat": [o.x, o.y, o.z, o.w],
+                "stamp": msg.header.stamp.sec}
+    if kind == "DiagnosticArray":
+        return {"status": [{"name": s.name, "level": s.level[0], "message": s.message, "hardware_id": s.hardware_id,
+                            "values": {kv.key: kv.value for kv in s.values}} for s in msg.status]}
+    raise TypeError(kind)
+
+
+def main() -> int:
+    rclpy.init()
+    node = rclpy.create_node("rapidgen_test_listener")
+    wanted = {}
+    for arg in sys.argv[1:]:
+        topic, type_name = arg.split("=")
+        package, sub, name = type_name.split("/")
+        cls = getattr(importlib.import_module(f"{package}.{sub}"), name)
+        wanted[topic] = None
+        node.create_subscription(cls, topic, lambda m, t=topic: wanted.__setitem__(t, wanted[t] or plain(m)), 10)
+    while any(v is None for v in wanted.values()):
+        rclpy.spin_once(node, timeout_sec=0.5)
+    for topic, got in wanted.items():
+        print(json.dumps({"topic": topic, "msg": got}), flush=True)
+    node.destroy_node()
+    rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
