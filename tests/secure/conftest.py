@@ -4,7 +4,9 @@ makes (expired certificate, tampered permissions, another CA), and the programs 
 generated bridge with the runtime's security hook, and tests/secure/cpp/ground.cpp)."""
 from __future__ import annotations
 
+import contextlib
 import datetime
+import io
 import json
 import shutil
 import subprocess
@@ -28,6 +30,19 @@ DOMAIN = 124  # one of this suite's domains (the live tests run in a private nam
 
 
 def secure(*args: str) -> subprocess.CompletedProcess:
+    """`rapidgen secure ARGS` in this process (the console's start-up is most of a run's time
+    on a loaded machine; test_cli_process runs the real command once)."""
+    from rapidgen.cli import main
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = main(["secure", *args])
+        except SystemExit as exc:  # argparse
+            code = int(exc.code or 0)
+    return subprocess.CompletedProcess(["rapidgen", "secure", *args], code, out.getvalue(), err.getvalue())
+
+
+def secure_process(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "rapidgen", "secure", *args], capture_output=True, text=True,
                           cwd=ROOT, timeout=120)
 

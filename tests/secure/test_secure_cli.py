@@ -1,0 +1,223 @@
+"""`rapidgen secure` (issue 24): the keystore's layout and modes, signatures that verify
+with OpenSSL, grants that agree with the descriptors' access_control by construction,
+reuse and --check, and located deployment errors."""
+from __future__ import annotations
+
+import itertools
+import os
+import shutil
+import stat
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from rapidgen.secure import xmldocs
+from tests.secure.conftest import DEPLOYMENT, DOMAIN, ROOT, secure, secure_process, write_deployment
+
+SEEDS = ["k10", "chariot", "athlete", "xarm2", "robonaut2", "eva-suit"]
+ENCLAVE_FILES = {"cert.pem", "key.pem", "identity_ca.cert.pem", "permissions_ca.cert.pem", "governance.p7s",
+                 "permissions.xml", "permissions.p7s"}
+
+
+def test_layout_is_sroslike_and_owner_only(keystores):
+    ks = keystores["main"]
+    assert {p.name for p in (ks / "public").iterdir()} == {"identity_ca.cert.pem", "permissions_ca.cert.pem"}
+    assert {p.name for p in (ks / "private").iterdir()} == {"identity_ca.key.pem", "permissions_ca.key.pem"}
+    names = {"K10Red", "Chariot", "RapidWorkbench", "ChariotCrewDisplay", "ScienceBackroom", "Outsider"}
+    assert {p.name for p in (ks / "enclaves").iterdir() if p.is_dir()} == names
+    for name in names:
+        assert {p.name for p in (ks / "enclaves" / name).iterdir()} == ENCLAVE_FILES
+    for path in [ks, *ks.rglob("*")]:
+        mode = stat.S_IMODE(path.stat().st_mode)
+        assert mode == (0o700 if path.is_dir() else 0o600), (path, oct(mode))
+
+
+@pytest.mark.parametrize("name", ["K10Red", "RapidWorkbench"])
+def test_signed_files_verify_with_openssl_against_the_permissions_ca(keystores, name):
+    enclave = keystores["main"] / "enclaves" / name
+    for signed, xml in (("permissions.p7s", "permissions.xml"), ("governance.p7s", "../governance.xml")):
+        res = subprocess.run(["openssl", "smime", "-verify", "-in", str(enclave / signed), "-CAfile",
+                              str(enclave / "permissions_ca.cert.pem"), "-text"], capture_output=True)
+        assert res.returncode == 0, res.stderr
+        assert res.stdout.replace(b"\r\n", b"\n") == (enclave / xml).read_bytes()
+        res = subprocess.run(["openssl", "smime", "-verify", "-in", str(enclave / signed), "-CAfile",
+                              str(enclave / "identity_ca.cert.pem")], capture_output=True)
+        assert res.returncode != 0  # the identity CA did not sign it
+    res = subprocess.run(["openssl", "verify", "-CAfile", str(enclave / "identity_ca.cert.pem"),
+                          str(enclave / "cert.pem")], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+
+
+def test_grants_by_topic_and_partition(keystores):
+    enclaves = keystores["main"] / "enclaves"
+    d = str(DOMAIN)
+
+    def grants(name):
+        return xmldocs.read_grants((enclaves / name / "permissions.xml").read_bytes())
+    k10 = grants("K10Red")
+    assert k10["subscribe"] == {(d, "rapid_command", "K10Red")}
+    assert (d, "rapid_ack", "K10Red") in k10["publish"] and (d, "rapid_command", "K10Red") not in k10["publish"]
+    assert {p for _, _, p in k10["publish"]} == {"K10Red"}
+    wb = grants("RapidWorkbench")
+    assert {(t, p) for _, t, p in wb["publish"]} == {("rapid_command", "K10Red")}
+    assert (d, "rapid_ack", "Chariot") in wb["subscribe"]  # watches every asset
+    assert grants("Outsider")["publish"] == set()
+    # ScienceBackroom asked for every asset: K10's list admits it, Chariot's does not
+    assert {(t, p) for _, t, p in grants("ScienceBackroom")["publish"]} == {("rapid_command", "K10Red")}
+
+
+def _runtime_allows(loaded, source: str) -> bool:
+    """The Python runtime's own allow-list (runtime/rapid_runtime/access.py) asked about every
+    command of the asset but the always-allowed stopAllMotion: does it let `source` run any?"""
+    from rapid_runtime.access import allowed, always_allowed
+    from rapid_runtime.tables import AccessRule, AccessSpec
+    acc = loaded.access
+    spec = None if acc is None else AccessSpec(acc.default, tuple(AccessRule(r.source, r.allow) for r in acc.rules))
+    return any(allowed(spec, source, s.name, c.name) for s in loaded.subsystems
+               for c in loaded.types[s.type].commands if not always_allowed(s.type, c.name))
+
+
+def test_command_grants_agree_with_every_seeds_access_control(tmp_path):
+    """Every source any seed names (and one none does), each asking to command every asset:
+    the keystore grants rapid_command in an asset's partition exactly when the runtime's
+    allow-list would run one of its commands from that source."""
+    from rapidgen.asset.load import load_asset
+    from rapidgen.diagnostics import DiagnosticSink
+    assets = {s: load_asset(str(ROOT / "specs" / "assets" / f"{s}.yaml"), DiagnosticSink()) for s in SEEDS}
+    sources = sorted({r.source for a in assets.values() if a.access for r in a.access.rules} | {"Nobody"})
+    dep = tmp_path / "deploy.yaml"
+    dep.write_text("version: 1\nassets: [" + ", ".join(str(ROOT / "specs" / "assets" / f"{s}.yaml") for s in SEEDS) +
+                   "]\nground:\n" + "".join(f'  - {{source: {s}, command: ["*"]}}\n' for s in sources))
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert res.returncode == 0, res.stderr
+    checked = 0
+    for source, (seed, loaded) in itertools.product(sources, assets.items()):
+        granted = xmldocs.read_grants((tmp_path / "ks" / "enclaves" / source / "permissions.xml").read_bytes())
+        partition = loaded.spec.partition or loaded.spec.name
+        has = any(t == "rapid_command" and p == partition for _, t, p in granted["publish"])
+        assert has == (bool(loaded.command_topic) and _runtime_allows(loaded, source)), (source, seed)
+        checked += has
+    assert checked >= 8  # the seeds do grant (RapidWorkbench on most; each seed's own tools)
+
+
+def test_second_run_keeps_everything_and_check_passes(tmp_path):
+    dep = write_deployment(tmp_path)
+    ks = tmp_path / "ks"
+    first = secure_process(str(dep), "-k", str(ks))  # the real command, once
+    assert first.returncode == 0 and "created: identity_ca" in first.stdout
+    before = {p: p.read_bytes() for p in ks.rglob("*") if p.is_file()}
+    again = secure(str(dep), "-k", str(ks))
+    assert again.returncode == 0 and "0 created, 0 updated" in again.stdout
+    assert {p: p.read_bytes() for p in ks.rglob("*") if p.is_file()} == before
+    check = secure(str(dep), "-k", str(ks), "--check")
+    assert check.returncode == 0 and "0 error(s), 0 warning(s)" in check.stdout
+    for out in (first, again, check):  # keys are never printed
+        assert "PRIVATE KEY" not in out.stdout + out.stderr
+    # rotation: new keys and certificates, re-signed permissions, the CAs kept
+    rot = secure(str(dep), "-k", str(ks), "--rotate")
+    assert rot.returncode == 0 and "updated: RapidWorkbench/cert.pem" in rot.stdout
+    assert (ks / "enclaves" / "K10Red" / "key.pem").read_bytes() != before[ks / "enclaves" / "K10Red" / "key.pem"]
+    assert (ks / "private" / "identity_ca.key.pem").read_bytes() == before[ks / "private" / "identity_ca.key.pem"]
+
+
+def test_check_warns_before_expiry_and_fails_when_stale(tmp_path):
+    dep = write_deployment(tmp_path, DEPLOYMENT.replace("version: 1\n", "version: 1\nvalidity_days: 20\n"))
+    ks = tmp_path / "ks"
+    assert secure(str(dep), "-k", str(ks)).returncode == 0
+    soon = secure(str(dep), "-k", str(ks), "--check")  # 20 days < the 30-day warning
+    assert soon.returncode == 0, soon.stderr
+    assert "enclaves/K10Red/cert.pem: warning: expires on" in soon.stderr
+    assert "0 error(s), 6 warning(s)" in soon.stdout
+    assert "warning" not in secure(str(dep), "-k", str(ks), "--check", "--warn-days", "5").stderr
+    # the deployment grows: the grants on disk no longer say what it says
+    write_deployment(tmp_path, DEPLOYMENT.replace("{source: Outsider, watch: [K10Red]}",
+                                                  "{source: Outsider, watch: [K10Red, Chariot]}"))
+    stale = secure(str(dep), "-k", str(ks), "--check", "--warn-days", "5")
+    assert stale.returncode == 1
+    assert "enclaves/Outsider/permissions.xml: error: not what the deployment and descriptors grant" in stale.stderr
+
+
+def test_check_reports_an_expired_certificate(keystores, tmp_path):
+    ks = tmp_path / "ks"
+    shutil.copytree(keystores["main"], ks)
+    shutil.copy(keystores["variants"] / "expired" / "cert.pem", ks / "enclaves" / "RapidWorkbench" / "cert.pem")
+    shutil.copy(keystores["variants"] / "expired" / "key.pem", ks / "enclaves" / "RapidWorkbench" / "key.pem")
+    res = secure(str(keystores["deployment"]), "-k", str(ks), "--check")
+    assert res.returncode == 1
+    assert "enclaves/RapidWorkbench/cert.pem: error: expired on" in res.stderr
+    # the next run replaces it
+    assert "updated: RapidWorkbench/cert.pem" in secure(str(keystores["deployment"]), "-k", str(ks)).stdout
+
+
+@pytest.mark.parametrize("edit, at, message", [
+    (("version: 1", "version: 2"), ("version: 2", 9), "version must be 1"),
+    (("command: [K10Red]", "command: [K10Reed]"), "K10Reed", "no asset 'K10Reed' in this deployment"),
+    (("{source: Outsider, watch: [K10Red]}", "{source: Outsider, command: [K10Red]}"), ("Outsider, command: [", 20),
+     "K10Red's access_control does not admit source 'Outsider'"),
+    (("{source: Outsider, watch: [K10Red]}", "{source: Outsider, wach: [K10Red]}"), "wach", "unknown key 'wach'"),
+    (("{source: Outsider,", "{source: RapidWorkbench,"), "RapidWorkbench, watch",
+     "'RapidWorkbench' names two participants"),
+    (("{source: Outsider,", "{source: ../evil,"), "../evil", "a ground tool needs a source"),
+    (("domains: [124]", "domains: [999]"), "[999]", "domains must be a non-empty list"),
+])
+def test_deployment_errors_are_located(tmp_path, edit, at, message):
+    """Each error at the line and column of what is wrong (`at`: the text there, or the text
+    before it and how far)."""
+    text = DEPLOYMENT.replace("domains: [{domain}]", f"domains: [{DOMAIN}]").replace(*edit)
+    assert text != DEPLOYMENT
+    dep = write_deployment(tmp_path, text)
+    text = dep.read_text()
+    needle, offset = at if isinstance(at, tuple) else (at, 0)
+    where = text.index(needle) + offset
+    line, col = text.count("\n", 0, where) + 1, where - text.rfind("\n", 0, where)
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert res.returncode == 1
+    assert f"deploy.yaml:{line}:{col}: error[SEC01]: {message}" in res.stderr, res.stderr
+    assert "Traceback" not in res.stderr
+    assert "^" in res.stderr  # the line shown, the place marked
+    assert not (tmp_path / "ks").exists()  # nothing written
+
+
+def test_hint_says_how_to_admit_a_source(tmp_path):
+    dep = write_deployment(tmp_path, DEPLOYMENT.replace("{source: Outsider, watch: [K10Red]}",
+                                                        "{source: Outsider, command: [K10Red]}"))
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert "add {source: Outsider, allow: [...]} to" in res.stderr and "k10.yaml's access_control" in res.stderr
+
+
+def test_descriptor_errors_are_reported_at_the_descriptor(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("version: 1\nasset: {name: X, kind: rover}\nsubsystems: [{name: Nope}]\n")
+    dep = tmp_path / "deploy.yaml"
+    dep.write_text(f"version: 1\nassets: [{bad}]\n")
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert res.returncode == 1 and "bad.yaml:3:" in res.stderr and "deploy.yaml:2:10: error[SEC01]" in res.stderr
+
+
+def test_an_unusable_ca_is_an_error_not_a_traceback(tmp_path):
+    dep = write_deployment(tmp_path)
+    ks = tmp_path / "ks"
+    assert secure(str(dep), "-k", str(ks)).returncode == 0
+    other = tmp_path / "other"
+    assert secure(str(dep), "-k", str(other)).returncode == 0
+    shutil.copy(other / "private" / "identity_ca.key.pem", ks / "private" / "identity_ca.key.pem")
+    os.chmod(ks / "private" / "identity_ca.key.pem", 0o600)
+    res = secure(str(dep), "-k", str(ks))
+    assert res.returncode == 1 and "identity_ca: identity_ca.key.pem is not the key of identity_ca.cert.pem" in res.stderr
+    assert "Traceback" not in res.stderr
+
+
+def test_the_teams_own_ca_is_used(tmp_path):
+    """A team that has its own CAs puts them in public/ and private/ first: they are kept."""
+    dep = write_deployment(tmp_path)
+    theirs = tmp_path / "theirs"
+    assert secure(str(dep), "-k", str(theirs)).returncode == 0
+    ks = tmp_path / "ks"
+    for sub in ("public", "private"):
+        shutil.copytree(theirs / sub, ks / sub)
+    res = secure(str(dep), "-k", str(ks))
+    assert res.returncode == 0 and "created: identity_ca" not in res.stdout
+    assert (ks / "public" / "identity_ca.cert.pem").read_bytes() == (theirs / "public" / "identity_ca.cert.pem").read_bytes()
+    assert Path(ks / "enclaves" / "K10Red" / "identity_ca.cert.pem").read_bytes() == \
+        (theirs / "public" / "identity_ca.cert.pem").read_bytes()
