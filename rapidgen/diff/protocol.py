@@ -35,7 +35,34 @@ class ProtocolDiff:
         self.subsystems()
         self.telemetry()
         self.topics()
+        self.access()
         return self.out
+
+    # -- who may command ----------------------------------------------------------------
+    def access(self) -> None:
+        """PROTO-ACCESS-01 per source that may now send a command (present on both sides)
+        that OLD refused it; "any other source" stands for the sources no rule names."""
+        oa, na = self.old.access, self.new.access
+        if oa is None:  # OLD let every source send everything: nothing can widen
+            return
+        if na is None:
+            self.add("PROTO-ACCESS-01", "*", "access_control removed: any source may now send every command",
+                     oa.loc, self.n.loc)
+            return
+        commands = sorted(_commands(self.old) & _commands(self.new))
+        sources = sorted({r.source for r in oa.rules} | {r.source for r in na.rules})
+        for source in [*sources, None]:
+            gained = [f"{sub}/{cmd}" for sub, typ, cmd in commands
+                      if _allowed(na, source, sub, cmd) and not _allowed(oa, source, sub, cmd)]
+            if not gained:
+                continue
+            who = f"source '{source}'" if source is not None else "any source no rule names"
+            shown = ", ".join(gained[:6]) + (f" and {len(gained) - 6} more" if len(gained) > 6 else "")
+            rules = [r for r in na.rules if r.source == source]
+            where = rules[0].at("allow") if rules else na.at("default")
+            old_rules = [r for r in oa.rules if r.source == source]
+            self.add("PROTO-ACCESS-01", source or "*", f"{who} may now send {shown}",
+                     old_rules[0].at("allow") if old_rules else oa.loc, where)
 
     # -- commands -----------------------------------------------------------------------
     def subsystems(self) -> None:
@@ -182,6 +209,29 @@ def _durable_ok(writer, reader) -> bool:
 def _narrower(old, new, tighter) -> bool:
     """A limit added, or moved inward."""
     return new is not None and (old is None or tighter(old, new))
+
+
+def _commands(asset: LoadedAsset) -> set[tuple[str, str, str]]:
+    """(subsystem, type, command) of every command the asset takes."""
+    return {(s.name, s.type, c.name) for s in asset.subsystems for c in asset.types[s.type].commands}
+
+
+def _matches(pattern: str, subsystem: str, command: str) -> bool:
+    if pattern == "*":
+        return True
+    sub, _, cmd = pattern.partition("/")
+    return sub in ("*", subsystem) and cmd in ("*", command)
+
+
+def _allowed(spec, source: str | None, subsystem: str, command: str) -> bool:
+    """The access list's answer (docs/asset-descriptor.md; the runtimes' rule); source None:
+    a source no rule names. No section: every source may send everything."""
+    if spec is None:
+        return True
+    rules = [r for r in spec.rules if r.source == source]
+    if not rules:
+        return spec.default == "allow"
+    return any(_matches(p, subsystem, command) for r in rules for p in r.allow)
 
 
 def _num(x) -> str:

@@ -179,6 +179,9 @@ _RULES = (
          "participants in different domains never discover each other"),
     Rule("PROTO-PART-01", "PROTOCOL", "partition changed",
          "readers and writers match only within a common partition"),
+    Rule("PROTO-ACCESS-01", "PROTOCOL", "access widened: a source may now send a command it could not",
+         "a source the OLD access_control refused is obeyed; under DDS Security the keystore's permissions "
+         "must be regenerated (rapidgen secure) for the wider grant to take effect, and reviewed"),
 )
 
 RULES: dict[str, Rule] = {r.id: r for r in _RULES}

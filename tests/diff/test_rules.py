@@ -106,6 +106,10 @@ def _topic_type(old_type, new_type):
 
 ASSET_PAIRS = {rid: (base(), _asset(change)) for rid, change in ASSET_CHANGES.items()}
 ASSET_PAIRS["PROTO-TOPIC-02"] = _topic_type("rapid::PositionSample", "rapid::JointSample")
+ASSET_PAIRS["PROTO-ACCESS-01"] = (  # a new source may command (tests/diff/test_access_rule.py: the others)
+    _asset(lambda d: d.update(access_control={"default": "deny", "sources": [{"source": "A", "allow": ["Admin/*"]}]})),
+    _asset(lambda d: d.update(access_control={"default": "deny", "sources": [{"source": "A", "allow": ["Admin/*"]},
+                                                                             {"source": "B", "allow": ["*"]}]})))
 
 
 def _ids(findings):
