@@ -78,7 +78,8 @@ class Replayer:
             else:
                 got = self._writer(Out(channel.topic, type_name, partition, cls), meta)
                 if got is None:
-                    self.plan.not_replayed[where] = "cannot write it (the topic is used with another type)"
+                    self.plan.not_replayed[where] = "DDS refused its topic or writer (a name it cannot use, or a topic " \
+                        "of another type)"
         self.plan.outs[key] = got
         return got
 
