@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 from rapidgen.asset.spec import (CustomTelemetry, ImageTelemetry, JointTelemetry, PositionTelemetry, TextTelemetry,
                                  TypedValue)
 from rapidgen.backends.cpp import asset as asset_tables
-from rapidgen.backends.cpp import namer
+from rapidgen.backends.cpp import namer, streams
 from rapidgen.backends.escape import cpp_comment, cpp_str
 from rapidgen.model import ir
 
@@ -115,6 +115,7 @@ class BridgeView:
     custom: list[CustomView]
     on_start: str  # HandlerSet hook names
     on_stop: str
+    streams: streams.StreamsView | None = None  # setpoint streams (streams.py)
 
 
 # ---- literals ---------------------------------------------------------------------------------
@@ -239,7 +240,7 @@ def build(loaded: "LoadedAsset", b: "Builder", package: str, assets: asset_table
     configs = [ConfigCall(cpp_str(topic), config_fn[cpp_str(topic)], cpp_str(qos_of.get(topic, "RapidConfigQos")))
                for topic in loaded.configs]
     return BridgeView(package, ns, cpp_comment(spec.name), _tables(loaded, qos_of), handlers, configs,
-                      _custom(loaded, b, qos_of), on_start, on_stop)
+                      _custom(loaded, b, qos_of), on_start, on_stop, streams.build(loaded, b, top, members))
 
 
 def _param_doc(name: str, p: TypedValue) -> str:

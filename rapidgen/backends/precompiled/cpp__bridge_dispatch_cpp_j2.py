@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/cpp/bridge/dispatch.cpp.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "1a100328a0c0c2a06dcf5c8a2b6e4efeb6b34a18f9370a6e2b9b27209f9d3ca6"
+KEY = "3c5a93409265ad5c4961a1c8e9f7ddfb1caa4b334babeab6a2bc12fb0e5d9399"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/dispatch.cpp.j2'
 
@@ -13,6 +13,7 @@ def root(context, missing=missing, environment=environment):
     if 0: yield None
     l_0_p = resolve('p')
     l_0_v = resolve('v')
+    l_0_st = resolve('st')
     try:
         t_1 = environment.filters['cpp_comment']
     except KeyError:
@@ -24,7 +25,11 @@ def root(context, missing=missing, environment=environment):
     yield str(t_1(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'header')))
     yield '\n// The glue between the runtime and the handlers of asset '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'asset'))
-    yield ': a command\'s type\n// and name pick the method, its arguments (validated against the tables before) become\n// the method\'s typed parameters.\n#include "handlers.hpp"\n\nnamespace '
+    yield ': a command\'s type\n// and name pick the method, its arguments (validated against the tables before) become\n// the method\'s typed parameters.\n#include "handlers.hpp"\n'
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        yield '\n#include <atomic>\n#include <vector>\n\n#include <rapid_runtime/dds/stream.hpp>\n'
+    yield '\nnamespace '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
     yield ' {\n\n::rapid_runtime::Result Dispatch::execute(::rapid_runtime::CommandContext& ctx) {\n'
     if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'handlers'):
@@ -67,17 +72,101 @@ def root(context, missing=missing, environment=environment):
     else:
         pass
         yield '    (void)ctx;\n'
-    yield '    return ::rapid_runtime::Result::failed("not implemented");\n}\n\nvoid Dispatch::on_start(::rapid_runtime::dds::Bridge& bridge) {\n    if (set_.'
-    yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_start'))
-    yield ') set_.'
-    yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_start'))
-    yield '(bridge);\n}\n\nvoid Dispatch::on_stop() {\n    if (set_.'
-    yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
-    yield ') set_.'
-    yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
-    yield '();\n}\n\n}  // namespace '
+    yield '    return ::rapid_runtime::Result::failed("not implemented");\n}\n\n'
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        l_0_st = environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams')
+        context.vars['st'] = l_0_st
+        context.exported_vars.add('st')
+        yield "namespace {\n\n// The running bridge's streams, for the output streams' free functions.\n::std::atomic<::rapid_runtime::dds::StreamSet*> running{nullptr};\n\n::std::vector<::rapid_runtime::StreamSpec> stream_specs() {\n    return {\n"
+        for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'streams'):
+            _loop_vars = {}
+            pass
+            yield '        '
+            yield str(environment.getattr(l_1_s, 'spec'))
+            yield ',\n'
+        l_1_s = missing
+        yield '    };\n}\n\n}  // namespace\n\nDispatch::~Dispatch() = default;\n\nvoid Dispatch::on_start(::rapid_runtime::dds::Bridge& bridge) {\n    ::rapid_runtime::dds::StreamHooks hooks;\n    hooks.on_state = [this](const ::rapid_runtime::StreamSpec& s, ::rapid_runtime::StreamState state) {\n        if (set_.'
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'member'))
+        yield ') set_.'
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'member'))
+        yield '->'
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'state_hook'))
+        yield '(s, state);\n    };\n    if (set_.'
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'values'))
+        yield ') hooks.agent_values = set_.'
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'values'))
+        yield ';\n    streams_ = ::std::make_shared<::rapid_runtime::dds::StreamSet>(bridge, stream_specs(), ::std::move(hooks));\n'
+        for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'inputs'):
+            _loop_vars = {}
+            pass
+            yield '    streams_->read<'
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '>('
+            yield str(environment.getattr(l_1_s, 'index'))
+            yield 'u, [this](const '
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '& sample) {\n        if (set_.'
+            yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'member'))
+            yield ') set_.'
+            yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'member'))
+            yield '->'
+            yield str(environment.getattr(l_1_s, 'method'))
+            yield '(sample);\n    });\n'
+        l_1_s = missing
+        for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'outputs'):
+            _loop_vars = {}
+            pass
+            yield '    streams_->writer<'
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '>('
+            yield str(environment.getattr(l_1_s, 'index'))
+            yield 'u);\n'
+        l_1_s = missing
+        yield '    streams_->start();\n    running = streams_.get();\n    if (set_.'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_start'))
+        yield ') set_.'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_start'))
+        yield '(bridge);\n}\n\nvoid Dispatch::on_stop() {\n    if (set_.'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
+        yield ') set_.'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
+        yield '();\n    running = nullptr;\n    if (streams_) streams_->stop();\n}\n'
+        for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'outputs'):
+            _loop_vars = {}
+            pass
+            yield '\n'
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '& '
+            yield str(environment.getattr(l_1_s, 'sample_fn'))
+            yield '() {\n    static '
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield ' unused{};  // before start and after stop: written nowhere\n    auto* set = running.load();\n    return set != nullptr ? set->writer<'
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '>('
+            yield str(environment.getattr(l_1_s, 'index'))
+            yield 'u).sample() : unused;\n}\n\nbool '
+            yield str(environment.getattr(l_1_s, 'send_fn'))
+            yield '() {\n    auto* set = running.load();\n    return set != nullptr && set->writer<'
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '>('
+            yield str(environment.getattr(l_1_s, 'index'))
+            yield 'u).write();\n}\n'
+        l_1_s = missing
+    else:
+        pass
+        yield 'void Dispatch::on_start(::rapid_runtime::dds::Bridge& bridge) {\n    if (set_.'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_start'))
+        yield ') set_.'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_start'))
+        yield '(bridge);\n}\n\nvoid Dispatch::on_stop() {\n    if (set_.'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
+        yield ') set_.'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
+        yield '();\n}\n'
+    yield '\n}  // namespace '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
     yield '\n'
 
 blocks = {}
-debug_info = '1=20&2=22&7=24&10=26&13=30&14=34&15=36&16=39&17=43&18=45&29=67&33=71&36=75'
+debug_info = '1=21&2=23&6=25&14=29&17=31&20=35&21=39&22=41&23=44&24=48&25=50&35=72&36=74&44=78&45=82&57=86&59=92&61=96&62=100&63=106&66=113&67=117&71=123&75=127&79=131&81=135&82=139&84=141&87=145&89=147&94=155&98=159&102=164'

@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/cpp/bridge/handlers.hpp.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "c73940c934695fa8a8cba02e5848e5c36a4318f3a9d88e176ceaf555e5ab88e9"
+KEY = "3daabfc2f66b81c359706e5d73979482b73040eb7a2c8f4265b15734dedc680e"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/handlers.hpp.j2'
 
@@ -13,6 +13,7 @@ def root(context, missing=missing, environment=environment):
     if 0: yield None
     l_0_p = resolve('p')
     l_0_v = resolve('v')
+    l_0_st = resolve('st')
     try:
         t_1 = environment.filters['cpp_comment']
     except KeyError:
@@ -28,7 +29,17 @@ def root(context, missing=missing, environment=environment):
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'guard'))
     yield '_BRIDGE_HANDLERS_HPP\n#define '
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'guard'))
-    yield '_BRIDGE_HANDLERS_HPP\n\n#include <array>\n#include <cstdint>\n#include <functional>\n#include <memory>\n#include <string>\n#include <string_view>\n\n#include <rapid_runtime/dds/bridge_handlers.hpp>\n#include <rapid_runtime/handlers.hpp>\n#include <rapid_runtime/tables.hpp>\n\nnamespace '
+    yield '_BRIDGE_HANDLERS_HPP\n\n#include <array>\n#include <cstdint>\n#include <functional>\n#include <memory>\n#include <string>\n#include <string_view>\n\n'
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        yield '#include <map>\n\n'
+    yield '#include <rapid_runtime/dds/bridge_handlers.hpp>\n#include <rapid_runtime/handlers.hpp>\n#include <rapid_runtime/tables.hpp>\n'
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        yield '#include <rapid_runtime/stream.hpp>\n#include <rapid_runtime/value.hpp>\n#include <'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'package'))
+        yield '/types.hpp>\n\nnamespace rapid_runtime { namespace dds { class StreamSet; } }\n'
+    yield '\nnamespace '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
     yield " {\n\n// The asset as the runtime's tables (tables.cpp).\nconst ::rapid_runtime::Tables& tables();\n// The asset's Fast DDS profiles, built in (profiles.cpp).\nextern const ::std::string_view PROFILES_XML;\n"
     for l_1_h in environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'handlers'):
@@ -74,6 +85,66 @@ def root(context, missing=missing, environment=environment):
         l_2_m = missing
         yield '};\n'
     l_1_h = missing
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        l_0_st = environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams')
+        context.vars['st'] = l_0_st
+        context.exported_vars.add('st')
+        yield "\n// The asset's setpoint streams (docs/realtime.md), read outside the command queue with\n// DEADLINE and LIVELINESS QoS (profiles RapidStream_<name>). Each input stream's method is\n// called for every sample on Fast DDS's receive thread: keep it short, lock-free and\n// allocation-free (copy the setpoint where the control loop reads it). The runtime watches\n// the deadline: on a loss it runs the declared action (stop: "
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'state_hook'))
+        yield '() is your\n// cue to bring the driven joints to rest, and Mobility/stopAllMotion goes through the\n// command manager when the asset has Mobility; hold: keep the last setpoint), sends a\n// TextMessage and reports the state in AgentState. Streams run without --simulate only.\nclass '
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'cls'))
+        yield ' {\npublic:\n    virtual ~'
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'cls'))
+        yield '() = default;\n'
+        for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'inputs'):
+            _loop_vars = {}
+            pass
+            yield '\n'
+            for l_2_d in environment.getattr(l_1_s, 'doc'):
+                _loop_vars = {}
+                pass
+                yield '    // '
+                yield str(l_2_d)
+                yield '\n'
+            l_2_d = missing
+            yield '    virtual void '
+            yield str(environment.getattr(l_1_s, 'method'))
+            yield '(const '
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '& sample) { (void)sample; }\n'
+        l_1_s = missing
+        yield "\n    // A stream changed state: lost (the declared action is being taken) or active (first\n    // sample, recovered). Runs on the runtime's reporting thread.\n    virtual void "
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'state_hook'))
+        yield '(const ::rapid_runtime::StreamSpec& stream, ::rapid_runtime::StreamState state) {\n        (void)stream;\n        (void)state;\n    }\n};\n'
+        l_1_loop = missing
+        for l_1_s, l_1_loop in LoopContext(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'outputs'), undefined):
+            _loop_vars = {}
+            pass
+            yield '\n'
+            l_2_loop = missing
+            for l_2_d, l_2_loop in LoopContext(environment.getattr(l_1_s, 'doc'), undefined):
+                _loop_vars = {}
+                pass
+                yield '// '
+                if environment.getattr(l_2_loop, 'first'):
+                    pass
+                    yield 'Output stream '
+                yield str(l_2_d)
+                yield '\n'
+            l_2_loop = l_2_d = missing
+            yield '// Fill '
+            yield str(environment.getattr(l_1_s, 'sample_fn'))
+            yield '() in place (one sample kept for the whole run: nothing allocates once\n// its sequences have their size), then '
+            yield str(environment.getattr(l_1_s, 'send_fn'))
+            yield '() stamps and writes it (false before the\n// bridge started or after it stopped, or when Fast DDS refused it).\n'
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '& '
+            yield str(environment.getattr(l_1_s, 'sample_fn'))
+            yield '();\nbool '
+            yield str(environment.getattr(l_1_s, 'send_fn'))
+            yield '();\n'
+        l_1_loop = l_1_s = missing
     yield '\n// What the bridge runs: one handler per subsystem type (one left empty answers its\n// commands EXEC_FAILED "not implemented"), and hooks called when the bridge has started\n// (publish telemetry of your own: rapid_runtime::dds::Telemetry of\n// <rapid_runtime/dds/telemetry.hpp>) and before it stops.\nstruct HandlerSet {\n'
     for l_1_h in environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'handlers'):
         _loop_vars = {}
@@ -88,11 +159,29 @@ def root(context, missing=missing, environment=environment):
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_start'))
     yield ';\n    ::std::function<void()> '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
-    yield ";\n};\n\n// Yours, in handlers.cpp.\nHandlerSet make_handlers();\n\n// The glue (dispatch.cpp): each command's arguments unpacked into its typed method.\nclass Dispatch final : public ::rapid_runtime::dds::BridgeHandlers {\npublic:\n    explicit Dispatch(HandlerSet set) : set_(::std::move(set)) {}\n    ::rapid_runtime::Result execute(::rapid_runtime::CommandContext& ctx) override;\n    void on_start(::rapid_runtime::dds::Bridge& bridge) override;\n    void on_stop() override;\n\nprivate:\n    HandlerSet set_;\n};\n\n}  // namespace "
+    yield ';\n'
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        yield "    // The input streams' callbacks (none: samples are counted and watched only).\n    ::std::unique_ptr<"
+        yield str(environment.getattr(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'), 'cls'))
+        yield '> '
+        yield str(environment.getattr(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'), 'member'))
+        yield ";\n    // Your agent values: the runtime publishes AgentState with the streams' state keys and\n    // these (unset: the declared defaults) at the agent telemetry's rate.\n    ::std::function<::std::map<::std::string, ::rapid_runtime::Value>()> "
+        yield str(environment.getattr(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'), 'values'))
+        yield ';\n'
+    yield "};\n\n// Yours, in handlers.cpp.\nHandlerSet make_handlers();\n\n// The glue (dispatch.cpp): each command's arguments unpacked into its typed method.\nclass Dispatch final : public ::rapid_runtime::dds::BridgeHandlers {\npublic:\n    explicit Dispatch(HandlerSet set) : set_(::std::move(set)) {}\n"
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        yield '    ~Dispatch() override;\n'
+    yield '    ::rapid_runtime::Result execute(::rapid_runtime::CommandContext& ctx) override;\n    void on_start(::rapid_runtime::dds::Bridge& bridge) override;\n    void on_stop() override;\n\nprivate:\n    HandlerSet set_;\n'
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        yield '    ::std::shared_ptr<::rapid_runtime::dds::StreamSet> streams_;  // shared: its type is incomplete here\n'
+    yield '};\n\n}  // namespace '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
     yield '\n\n#endif  // '
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'guard'))
     yield '_BRIDGE_HANDLERS_HPP\n'
 
 blocks = {}
-debug_info = '1=20&2=22&13=24&14=26&27=28&33=30&35=34&36=36&38=38&39=40&41=44&42=48&44=51&45=55&47=59&57=74&58=78&60=84&61=86&79=88&81=90'
+debug_info = '1=21&2=23&13=25&14=27&23=29&30=33&33=36&38=39&44=41&46=45&47=47&49=49&50=51&52=55&53=59&55=62&56=66&58=70&62=84&63=86&69=90&73=92&75=94&76=96&78=100&79=104&81=108&86=114&91=117&93=122&94=126&96=133&97=135&99=137&100=141&109=145&110=149&112=155&113=157&114=159&116=162&119=166&130=169&139=173&144=177&146=179'

@@ -4,6 +4,11 @@
 // the method's typed parameters.
 #include "handlers.hpp"
 
+#include <atomic>
+#include <vector>
+
+#include <rapid_runtime/dds/stream.hpp>
+
 namespace rapid_robonaut2::bridge {
 
 ::rapid_runtime::Result Dispatch::execute(::rapid_runtime::CommandContext& ctx) {
@@ -31,12 +36,40 @@ namespace rapid_robonaut2::bridge {
     return ::rapid_runtime::Result::failed("not implemented");
 }
 
+namespace {
+
+// The running bridge's streams, for the output streams' free functions.
+::std::atomic<::rapid_runtime::dds::StreamSet*> running{nullptr};
+
+::std::vector<::rapid_runtime::StreamSpec> stream_specs() {
+    return {
+        ::rapid_runtime::StreamSpec{"handPose", true, "rapid::PositionSample", "rapid_position_sample-handPose", "XArm2", "RapidStream_handPose", 500.0, 10.0, 100.0, ::rapid_runtime::LossAction::Stop, "RightArm", "handPoseStream", "handPoseMissed"},
+    };
+}
+
+}  // namespace
+
+Dispatch::~Dispatch() = default;
+
 void Dispatch::on_start(::rapid_runtime::dds::Bridge& bridge) {
+    ::rapid_runtime::dds::StreamHooks hooks;
+    hooks.on_state = [this](const ::rapid_runtime::StreamSpec& s, ::rapid_runtime::StreamState state) {
+        if (set_.streams) set_.streams->on_state(s, state);
+    };
+    if (set_.agent_values) hooks.agent_values = set_.agent_values;
+    streams_ = ::std::make_shared<::rapid_runtime::dds::StreamSet>(bridge, stream_specs(), ::std::move(hooks));
+    streams_->read<::rapid::PositionSample>(0u, [this](const ::rapid::PositionSample& sample) {
+        if (set_.streams) set_.streams->handPose(sample);
+    });
+    streams_->start();
+    running = streams_.get();
     if (set_.on_start) set_.on_start(bridge);
 }
 
 void Dispatch::on_stop() {
     if (set_.on_stop) set_.on_stop();
+    running = nullptr;
+    if (streams_) streams_->stop();
 }
 
 }  // namespace rapid_robonaut2::bridge

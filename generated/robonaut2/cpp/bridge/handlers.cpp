@@ -60,6 +60,19 @@ public:
     }
 };
 
+class SetpointStreams final : public Streams {
+public:
+    // handPose: rapid::PositionSample on 'rapid_position_sample-handPose' from XArm2, 500 Hz, deadline 10 ms, lease 100 ms, on loss: stop
+    void handPose([[maybe_unused]] const ::rapid::PositionSample& sample) override {
+        // the new setpoint: hand it to your control loop (no locks, no allocation here)
+    }
+
+    void on_state([[maybe_unused]] const ::rapid_runtime::StreamSpec& stream,
+                  [[maybe_unused]] ::rapid_runtime::StreamState state) override {
+        // lost with on_loss stop: bring the joints the stream drives to rest
+    }
+};
+
 }  // namespace
 
 HandlerSet make_handlers() {
@@ -67,6 +80,7 @@ HandlerSet make_handlers() {
     set.arm = ::std::make_unique<Arm>();
     set.neck = ::std::make_unique<Neck>();
     set.hand = ::std::make_unique<Hand>();
+    set.streams = ::std::make_unique<SetpointStreams>();
     return set;
 }
 

@@ -20,9 +20,16 @@
 #include <string>
 #include <string_view>
 
+#include <map>
+
 #include <rapid_runtime/dds/bridge_handlers.hpp>
 #include <rapid_runtime/handlers.hpp>
 #include <rapid_runtime/tables.hpp>
+#include <rapid_runtime/stream.hpp>
+#include <rapid_runtime/value.hpp>
+#include <rapid_robonaut2/types.hpp>
+
+namespace rapid_runtime { namespace dds { class StreamSet; } }
 
 namespace rapid_robonaut2::bridge {
 
@@ -82,6 +89,31 @@ public:
     virtual ::rapid_runtime::Result Close_the_Hand(::rapid_runtime::CommandContext& ctx) = 0;
 };
 
+// The asset's setpoint streams (docs/realtime.md), read outside the command queue with
+// DEADLINE and LIVELINESS QoS (profiles RapidStream_<name>). Each input stream's method is
+// called for every sample on Fast DDS's receive thread: keep it short, lock-free and
+// allocation-free (copy the setpoint where the control loop reads it). The runtime watches
+// the deadline: on a loss it runs the declared action (stop: on_state() is your
+// cue to bring the driven joints to rest, and Mobility/stopAllMotion goes through the
+// command manager when the asset has Mobility; hold: keep the last setpoint), sends a
+// TextMessage and reports the state in AgentState. Streams run without --simulate only.
+class Streams {
+public:
+    virtual ~Streams() = default;
+
+    // handPose: rapid::PositionSample on 'rapid_position_sample-handPose' from XArm2, 500 Hz, deadline 10 ms, lease 100 ms, on loss: stop
+    // Drives subsystem RightArm.
+    // the operator's hand pose from the X-Arm-2, setpoint of the right tool
+    virtual void handPose(const ::rapid::PositionSample& sample) { (void)sample; }
+
+    // A stream changed state: lost (the declared action is being taken) or active (first
+    // sample, recovered). Runs on the runtime's reporting thread.
+    virtual void on_state(const ::rapid_runtime::StreamSpec& stream, ::rapid_runtime::StreamState state) {
+        (void)stream;
+        (void)state;
+    }
+};
+
 // What the bridge runs: one handler per subsystem type (one left empty answers its
 // commands EXEC_FAILED "not implemented"), and hooks called when the bridge has started
 // (publish telemetry of your own: rapid_runtime::dds::Telemetry of
@@ -92,6 +124,11 @@ struct HandlerSet {
     ::std::unique_ptr<HandHandler> hand;
     ::std::function<void(::rapid_runtime::dds::Bridge&)> on_start;
     ::std::function<void()> on_stop;
+    // The input streams' callbacks (none: samples are counted and watched only).
+    ::std::unique_ptr<Streams> streams;
+    // Your agent values: the runtime publishes AgentState with the streams' state keys and
+    // these (unset: the declared defaults) at the agent telemetry's rate.
+    ::std::function<::std::map<::std::string, ::rapid_runtime::Value>()> agent_values;
 };
 
 // Yours, in handlers.cpp.
@@ -101,12 +138,14 @@ HandlerSet make_handlers();
 class Dispatch final : public ::rapid_runtime::dds::BridgeHandlers {
 public:
     explicit Dispatch(HandlerSet set) : set_(::std::move(set)) {}
+    ~Dispatch() override;
     ::rapid_runtime::Result execute(::rapid_runtime::CommandContext& ctx) override;
     void on_start(::rapid_runtime::dds::Bridge& bridge) override;
     void on_stop() override;
 
 private:
     HandlerSet set_;
+    ::std::shared_ptr<::rapid_runtime::dds::StreamSet> streams_;  // shared: its type is incomplete here
 };
 
 }  // namespace rapid_robonaut2::bridge

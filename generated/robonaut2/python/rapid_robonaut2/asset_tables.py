@@ -327,6 +327,7 @@ CONFIGS = {
                 "rapid_position_sample-leftArm",
                 "rapid_position_config-rightArm",
                 "rapid_position_sample-rightArm",
+                "rapid_textmessage",
             ],
             "valueKeys": [
                 {
@@ -358,6 +359,16 @@ CONFIGS = {
                     "key": "rightForceMagnitude",
                     "padding": 0,
                     "value": {"discriminator": "RAPID_FLOAT", "value": 0.0},
+                },
+                {
+                    "key": "handPoseStream",
+                    "padding": 0,
+                    "value": {"discriminator": "RAPID_STRING", "value": "waiting"},
+                },
+                {
+                    "key": "handPoseMissed",
+                    "padding": 0,
+                    "value": {"discriminator": "RAPID_INT", "value": 0},
                 },
             ],
         },
@@ -479,6 +490,13 @@ PUBLICATIONS = [
         "qos": "RapidSampleQos",
         "rate": 10,
     },
+    {
+        "role": "sample",
+        "type": "rapid::TextMessage",
+        "topic": "rapid_textmessage",
+        "qos": "RapidReliableDurableQos",
+        "rate": None,
+    },
 ]
 
 TELEMETRY = [
@@ -553,6 +571,28 @@ TELEMETRY = [
                 "default": None,
                 "has_default": False,
                 "description": "",
+            },
+            {
+                "name": "handPoseStream",
+                "type": "RAPID_STRING",
+                "unit": None,
+                "min": None,
+                "max": None,
+                "allowed": [],
+                "default": "waiting",
+                "has_default": True,
+                "description": "state of the X-Arm-2 hand pose stream: waiting, active, lost",
+            },
+            {
+                "name": "handPoseMissed",
+                "type": "RAPID_INT",
+                "unit": None,
+                "min": None,
+                "max": None,
+                "allowed": [],
+                "default": 0,
+                "has_default": True,
+                "description": "deadlines the hand pose stream missed",
             },
         ],
     },
@@ -676,5 +716,13 @@ TELEMETRY = [
         "frame": "R2OriginFrame",
         "pose_encoding": "RAPID_ROT_M33",
         "velocity_encoding": "RAPID_ROT_NONE",
+    },
+    {
+        "kind": "text",
+        "topics": {"sample": "rapid_textmessage"},
+        "rate": None,
+        "subsystem": None,
+        "values": [],
+        "categories": [],
     },
 ]

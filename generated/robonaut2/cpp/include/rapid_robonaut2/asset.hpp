@@ -24,7 +24,7 @@ struct Publication {
     std::string_view qos;
 };
 
-inline constexpr std::array<Publication, 10> PUBLICATIONS = {{
+inline constexpr std::array<Publication, 11> PUBLICATIONS = {{
     {"config", "rapid::CommandConfig", "rapid_command_config", "RapidConfigQos"},
     {"ack", "rapid::Ack", "rapid_ack", "RapidReliableDurableQos"},
     {"config", "rapid::AgentConfig", "rapid_agent_config", "RapidConfigQos"},
@@ -35,6 +35,7 @@ inline constexpr std::array<Publication, 10> PUBLICATIONS = {{
     {"sample", "rapid::PositionSample", "rapid_position_sample-leftArm", "RapidSampleQos"},
     {"config", "rapid::PositionConfig", "rapid_position_config-rightArm", "RapidConfigQos"},
     {"sample", "rapid::PositionSample", "rapid_position_sample-rightArm", "RapidSampleQos"},
+    {"sample", "rapid::TextMessage", "rapid_textmessage", "RapidReliableDurableQos"},
 }};
 
 // The config published on "rapid_command_config".
@@ -192,7 +193,7 @@ inline ::rapid::AgentConfig config_rapid_agent_config() {
     return [] {
         ::rapid::AgentConfig v;
         v.agentTags = std::vector<::rapid::String16>{std::string("humanoid", 8u), std::string("iss", 3u), std::string("r2", 2u)};
-        v.topics = std::vector<::rapid::String128>{std::string("rapid_command_config", 20u), std::string("rapid_ack", 9u), std::string("rapid_agent_config", 18u), std::string("rapid_agent_state", 17u), std::string("rapid_joint_config", 18u), std::string("rapid_joint_sample", 18u), std::string("rapid_position_config-leftArm", 29u), std::string("rapid_position_sample-leftArm", 29u), std::string("rapid_position_config-rightArm", 30u), std::string("rapid_position_sample-rightArm", 30u)};
+        v.topics = std::vector<::rapid::String128>{std::string("rapid_command_config", 20u), std::string("rapid_ack", 9u), std::string("rapid_agent_config", 18u), std::string("rapid_agent_state", 17u), std::string("rapid_joint_config", 18u), std::string("rapid_joint_sample", 18u), std::string("rapid_position_config-leftArm", 29u), std::string("rapid_position_sample-leftArm", 29u), std::string("rapid_position_config-rightArm", 30u), std::string("rapid_position_sample-rightArm", 30u), std::string("rapid_textmessage", 17u)};
         v.valueKeys = std::vector<::rapid::KeyTypeValueTriple>{[] {
                 ::rapid::KeyTypeValueTriple v;
                 v.key = std::string("leftWristForce", 14u);
@@ -250,6 +251,26 @@ inline ::rapid::AgentConfig config_rapid_agent_config() {
                 v.value = [] {
                     ::rapid::ParameterUnion v;
                     v.f(static_cast<float>(0x0.0p+0));
+                    return v;
+                }();
+                return v;
+            }(), [] {
+                ::rapid::KeyTypeValueTriple v;
+                v.key = std::string("handPoseStream", 14u);
+                v.padding = static_cast<std::int32_t>(0LL);
+                v.value = [] {
+                    ::rapid::ParameterUnion v;
+                    v.s(std::string("waiting", 7u));
+                    return v;
+                }();
+                return v;
+            }(), [] {
+                ::rapid::KeyTypeValueTriple v;
+                v.key = std::string("handPoseMissed", 14u);
+                v.padding = static_cast<std::int32_t>(0LL);
+                v.value = [] {
+                    ::rapid::ParameterUnion v;
+                    v.i(static_cast<std::int32_t>(0LL));
                     return v;
                 }();
                 return v;

@@ -1,0 +1,94 @@
+// Setpoint streams (docs/realtime.md): what one stream is (the descriptor's `streams:`
+// entry as the generated code states it) and its state machine, without DDS, so the
+// rules are tested without a network. Header-only: the DDS layer and the logic tests
+// include it, no build file lists it.
+//
+//   waiting --sample--> active --deadline missed / writer lost--> lost --sample--> active
+//
+// Counters are atomics: samples arrive on the middleware's receive thread, deadlines on its
+// event thread, and the reporting thread reads them; nothing here allocates or locks.
+#ifndef RAPID_RUNTIME_STREAM_HPP
+#define RAPID_RUNTIME_STREAM_HPP
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+namespace rapid_runtime {
+
+enum class LossAction { Stop, Hold, None };
+enum class StreamState : int { Waiting = 0, Active = 1, Lost = 2 };
+
+inline const char* state_name(StreamState s) {
+    switch (s) {
+    case StreamState::Active: return "active";
+    case StreamState::Lost: return "lost";
+    default: return "waiting";
+    }
+}
+
+inline const char* action_name(LossAction a) {
+    switch (a) {
+    case LossAction::Stop: return "stop";
+    case LossAction::Hold: return "hold";
+    default: return "none";
+    }
+}
+
+struct StreamSpec {
+    std::string name;
+    bool input = true;
+    std::string type;  // DDS type name (rapid::PositionSample)
+    std::string topic;
+    std::string partition;  // the writer's
+    std::string profile;  // RapidStream_<name> of the asset's Fast DDS profiles
+    double rate_hz = 0;
+    double deadline_ms = 0;
+    double liveliness_ms = 0;
+    LossAction on_loss = LossAction::Stop;
+    std::string subsystem;
+    std::string state_key;  // agent value keys the runtime fills ("" none)
+    std::string missed_key;
+};
+
+class StreamMonitor {
+public:
+    // A valid sample arrived; true when the stream became active (first sample, recovery).
+    bool sample() {
+        samples_.fetch_add(1, std::memory_order_relaxed);
+        return set(StreamState::Active);
+    }
+    // The reader's DEADLINE passed without a sample (total_count_change of them); true when
+    // the stream was active and is now lost.
+    bool deadline_missed(std::uint64_t count = 1) {
+        missed_.fetch_add(count, std::memory_order_relaxed);
+        return state() == StreamState::Active && set(StreamState::Lost);
+    }
+    // LIVELINESS: no writer alive any more; true when the stream was active.
+    bool writers_alive(int alive) {
+        if (alive > 0 || state() != StreamState::Active) return false;
+        return set(StreamState::Lost);
+    }
+
+    StreamState state() const { return static_cast<StreamState>(state_.load(std::memory_order_acquire)); }
+    std::uint64_t samples() const { return samples_.load(std::memory_order_relaxed); }
+    std::uint64_t missed() const { return missed_.load(std::memory_order_relaxed); }
+    std::uint64_t losses() const { return losses_.load(std::memory_order_relaxed); }
+
+private:
+    bool set(StreamState s) {
+        int old = state_.exchange(static_cast<int>(s), std::memory_order_acq_rel);
+        if (old == static_cast<int>(s)) return false;
+        if (s == StreamState::Lost) losses_.fetch_add(1, std::memory_order_relaxed);
+        return true;
+    }
+
+    std::atomic<int> state_{static_cast<int>(StreamState::Waiting)};
+    std::atomic<std::uint64_t> samples_{0};
+    std::atomic<std::uint64_t> missed_{0};
+    std::atomic<std::uint64_t> losses_{0};
+};
+
+}  // namespace rapid_runtime
+
+#endif

@@ -1,0 +1,46 @@
+"""Watches an asset's AgentState and TextMessage over DDS (Cyclone, loopback only) and
+prints one JSON line per sample: {"agent": {key: value}} or {"text": message}.
+
+    python -m tests.streams.watch PACKAGE_DIR PACKAGE DOMAIN
+
+Run as its own process (CYCLONEDDS_URI is read when cyclonedds loads): the test sets it
+to the package's qos_files/cyclonedds/local.xml."""
+from __future__ import annotations
+
+import importlib
+import json
+import sys
+import time
+
+
+def main() -> None:
+    pydir, package, domain = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    sys.path.insert(0, pydir)
+    from cyclonedds.domain import DomainParticipant
+    from cyclonedds.sub import DataReader, Subscriber
+    from cyclonedds.topic import Topic
+    rapid = importlib.import_module(f"{package}.rapid")
+    qos = importlib.import_module(f"{package}.qos").RapidQos()
+    dp = DomainParticipant(domain)
+    sub = Subscriber(dp, qos=qos.subscriber("rapid_agent_state"))
+    config = DataReader(sub, Topic(dp, "rapid_agent_config", rapid.AgentConfig), qos=qos.reader("rapid_agent_config"))
+    agent = DataReader(sub, Topic(dp, "rapid_agent_state", rapid.AgentState), qos=qos.reader("rapid_agent_state"))
+    text = DataReader(sub, Topic(dp, "rapid_textmessage", rapid.TextMessage), qos=qos.reader("rapid_textmessage"))
+    keys: list[str] = []
+    print(json.dumps({"ready": True}), flush=True)
+    while True:
+        for c in config.take(N=8):
+            keys = [k.key for k in c.valueKeys]
+        for s in agent.take(N=64):
+            if keys:
+                values = {}
+                for k, v in zip(keys, s.values):
+                    values[k] = getattr(v, "value", None)
+                print(json.dumps({"agent": values}, default=str), flush=True)
+        for t in text.take(N=64):
+            print(json.dumps({"text": t.message, "level": str(t.level)}), flush=True)
+        time.sleep(0.02)
+
+
+if __name__ == "__main__":
+    main()
