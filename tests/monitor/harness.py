@@ -172,6 +172,7 @@ def screenshots(driver, folder: Path, k10: str = "K10Red", r2: str = "Robonaut2"
     for partition, tab, name in ((k10, "telemetry", "telemetry"), (k10, "map", "map"), (k10, "commands", "commands"),
                                  (k10, "images", "images"), (k10, "log", "log"), (r2, "telemetry", "robonaut2")):
         select(driver, partition, tab)
+        driver.execute_script("window.scrollTo(0, 0)")
         time.sleep(1.0)  # two page updates: the view drawn with its latest data
         path = folder / f"monitor-{name}.png"
         driver.save_screenshot(str(path))

@@ -112,9 +112,11 @@ function drawTelemetry(view, a, rebuild) {
       el("div", { class: "card" }, el("h3", { text: "values" }), el("table", { id: "values" })),
       el("div", { class: "card" }, el("h3", { text: "last " + WINDOW / 60 + " minutes" }), el("div", { id: "plots" }))));
   }
+  const order = { agent: 0, position: 1, joint: 3 };
+  const values = a.values.slice().sort((x, y) => (order[x.group] ?? 2) - (order[y.group] ?? 2));
   const rows = [el("tr", {}, el("th", { text: "group" }), el("th", { text: "key" }), el("th", { text: "value" }),
     el("th", { text: "unit" }), el("th", { text: "thresholds" }))];
-  for (const r of a.values) {
+  for (const r of values) {
     rows.push(el("tr", { "data-key": r.group + "/" + r.key },
       el("td", { class: "sub", text: r.group }), el("td", { text: r.key }),
       el("td", { class: "value level-" + r.level, "data-level": r.level, text: fmtValue(r.value) }),
@@ -122,12 +124,14 @@ function drawTelemetry(view, a, rebuild) {
   }
   document.getElementById("values").replaceChildren(...rows);
   const plots = document.getElementById("plots");
-  const wanted = a.values.filter(r => r.group !== "joint" && typeof r.value === "number").slice(0, 8);
-  const joints = a.values.filter(r => r.group === "joint").slice(0, 4);
+  const wanted = values.filter(r => r.group !== "joint" && typeof r.value === "number").slice(0, 8);
+  const joints = values.filter(r => r.group === "joint").slice(0, 4);
+  const width = Math.max(240, Math.min(640, plots.clientWidth - 4));
   for (const r of wanted.concat(joints)) {
     const vid = r.group + "/" + r.key;
     let c = [...plots.children].find(x => x.dataset.series === vid);
-    if (!c) { c = el("canvas", { class: "plot", width: 440, height: 110, "data-series": vid }); plots.append(c); }
+    if (!c) { c = el("canvas", { class: "plot", width, height: 110, "data-series": vid }); plots.append(c); }
+    if (c.width !== width) c.width = width;
     Plot.series(c, a.points.get(vid) || [], { now, window: WINDOW, title: r.key, unit: r.unit,
       warning: r.warning, critical: r.critical });
   }
