@@ -129,6 +129,11 @@ def load_deployment(path: str, sink: DiagnosticSink, load_asset) -> Deployment |
             r.err(p, f"the descriptor '{name}' has errors (above)", "rapidgen validate it")
             continue
         asset_name = loaded.spec.name
+        if any(ch in partition_of(loaded) for ch in "*?[]\\"):
+            r.err(p, f"{asset_name}'s partition '{partition_of(loaded)}' holds a DDS wildcard (* ? [ ] \\)",
+                  "DDS Security reads partitions in permissions as patterns: a grant for it would cover other "
+                  "partitions; name the partition without them (dds.partition)")
+            continue
         if asset_name in dep.assets:
             r.err(p, f"asset '{asset_name}' is listed twice", "each asset once")
             continue

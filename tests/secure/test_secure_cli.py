@@ -221,3 +221,21 @@ def test_the_teams_own_ca_is_used(tmp_path):
     assert (ks / "public" / "identity_ca.cert.pem").read_bytes() == (theirs / "public" / "identity_ca.cert.pem").read_bytes()
     assert Path(ks / "enclaves" / "K10Red" / "identity_ca.cert.pem").read_bytes() == \
         (theirs / "public" / "identity_ca.cert.pem").read_bytes()
+
+
+
+def test_a_partition_that_is_a_pattern_is_refused(tmp_path):
+    """DDS Security matches permission partitions as patterns: 'K*' would grant K10Red's too."""
+    import yaml
+    k10 = ROOT / "specs" / "assets" / "k10.yaml"
+    data = yaml.safe_load(k10.read_text(encoding="utf-8"))
+    data["idl"] = {"rapid": str(k10.parent / data["idl"]["rapid"]), "files": [str(k10.parent / f) for f in data["idl"]["files"]]}
+    data["asset"]["name"] = "Wild"
+    data["dds"]["partition"] = "K*"
+    bad = tmp_path / "wild.yaml"
+    bad.write_text(yaml.safe_dump(data), encoding="utf-8")
+    dep = tmp_path / "deploy.yaml"
+    dep.write_text(f"version: 1\nassets: [{bad}]\n")
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert res.returncode == 1 and "deploy.yaml:2:10: error[SEC01]: Wild's partition 'K*' holds a DDS wildcard" \
+        in res.stderr, res.stderr
