@@ -21,6 +21,7 @@ function(rapid_runtime_cpp_add_dds target)
     target_sources(${target} PRIVATE
         ${RAPID_RUNTIME_CPP_DDS_DIR}/src/messages.cpp
         ${RAPID_RUNTIME_CPP_DDS_DIR}/src/node.cpp
+        ${RAPID_RUNTIME_CPP_DDS_DIR}/src/security.cpp
         ${RAPID_RUNTIME_CPP_DDS_DIR}/src/bridge.cpp
         ${RAPID_RUNTIME_CPP_DDS_DIR}/src/telemetry.cpp
         ${RAPID_RUNTIME_CPP_DDS_DIR}/src/simulate.cpp

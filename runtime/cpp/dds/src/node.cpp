@@ -1,4 +1,5 @@
 #include "rapid_runtime/dds/node.hpp"
+#include "rapid_runtime/dds/security.hpp"
 
 #include <cstdlib>
 
@@ -26,10 +27,16 @@ Node::Node(const NodeOptions& options) : partition_(options.partition) {
                    ReturnCode_t::RETCODE_OK) {
         throw DdsError("cannot load the built-in QoS profiles");
     }
-    participant_ = factory->create_participant_with_profile(options.domain, "rapid_" + options.transport);
+    DomainParticipantQos pqos;
+    if (factory->get_participant_qos_from_profile("rapid_" + options.transport, pqos) != ReturnCode_t::RETCODE_OK)
+        throw DdsError("no participant profile rapid_" + options.transport + " in the loaded QoS profiles");
+    const std::string enclave = security_enclave(partition_);  // DDS Security hook (security.hpp)
+    if (!enclave.empty()) apply_security(pqos, enclave);
+    participant_ = factory->create_participant(options.domain, pqos);
     if (participant_ == nullptr)
-        throw DdsError("no participant from profile rapid_" + options.transport + " on domain " +
-                       std::to_string(options.domain));
+        throw DdsError(!enclave.empty() ? security_refusal(enclave)
+                                        : "no participant from profile rapid_" + options.transport + " on domain " +
+                                              std::to_string(options.domain));
     // One publisher and one subscriber in the asset's partition: the partition is theirs in
     // DDS, and every RAPID endpoint of the asset shares it.
     PublisherQos pq = participant_->get_default_publisher_qos();
