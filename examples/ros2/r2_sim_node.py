@@ -1,11 +1,13 @@
 """A stand-in for Robonaut 2's ROS 2 simulation side (seed 001's outlook), plain rclpy.
 
-Subscribes /r2_controller/right/pose_command (geometry_msgs/PoseStamped) and
+Subscribes /r2_controller/right/pose_command (geometry_msgs/PoseStamped),
 /r2_controller/right/joint_command (sensor_msgs/JointState, positions in joint order) and
+/r2_controller/right/stop (std_msgs/String), serves /r2_controller/right/home
+(std_srvs/Trigger: fails while disabled) and /r2_controller/right/enable (std_srvs/SetBool),
 drives the right arm's seven joints toward the target at --speed rad/s; publishes
 /joint_states (both arms' and the waist's joints, the right arm's in reverse order: a
 subscriber must match by name), the tool pose, the wrist wrench and force magnitude, and
-/r2_controller/right/status ("moving" on a new target, "reached" on arrival).
+/r2_controller/right/status ("moving" on a new target, "reached" on arrival, "stopped").
 
 Its kinematics are a toy, chosen so a test can check values end to end: the tool pose's
 position is joints 0-2 and its roll, pitch, yaw are joints 3-5 (joint 6 turns nothing), so
@@ -24,6 +26,7 @@ from geometry_msgs.msg import PoseStamped, WrenchStamped
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64, String
+from std_srvs.srv import SetBool, Trigger
 
 RIGHT = [f"r2/right_arm/joint{i}" for i in range(7)]
 OTHERS = [f"r2/left_arm/joint{i}" for i in range(7)] + ["r2/waist/joint0"]
@@ -57,6 +60,10 @@ class R2Sim(Node):
         self.pub_status = self.create_publisher(String, "/r2_controller/right/status", 10)
         self.create_subscription(PoseStamped, "/r2_controller/right/pose_command", self.on_pose, 10)
         self.create_subscription(JointState, "/r2_controller/right/joint_command", self.on_joints, 10)
+        self.create_subscription(String, "/r2_controller/right/stop", self.on_stop, 10)
+        self.create_service(Trigger, "/r2_controller/right/home", self.on_home)
+        self.create_service(SetBool, "/r2_controller/right/enable", self.on_enable)
+        self.enabled = True
         self.create_timer(self.dt, self.step)
 
     def status(self, text: str) -> None:
@@ -64,12 +71,32 @@ class R2Sim(Node):
         print(f"r2_sim: {text} {[round(j, 4) for j in self.joints]}", flush=True)
 
     def on_pose(self, msg: PoseStamped) -> None:
+        if not self.enabled:
+            return
         p, q = msg.pose.position, msg.pose.orientation
         self.frame = msg.header.frame_id or self.frame
         print(f"r2_sim: pose_command frame={msg.header.frame_id} xyz=({p.x}, {p.y}, {p.z}) "
               f"quat=({q.x:.6f}, {q.y:.6f}, {q.z:.6f}, {q.w:.6f})", flush=True)
         self.target = [p.x, p.y, p.z, *rpy_from_quat(q.x, q.y, q.z, q.w), self.joints[6]]
         self.status("moving")
+
+    def on_stop(self, msg: String) -> None:
+        print(f"r2_sim: stop {msg.data!r}", flush=True)
+        self.target = None
+        self.status("stopped")
+
+    def on_home(self, request: Trigger.Request, response: Trigger.Response) -> Trigger.Response:
+        response.success = self.enabled
+        response.message = "homing" if self.enabled else "arm disabled: enable it first"
+        if self.enabled:
+            self.target = [0.0] * 7
+        return response
+
+    def on_enable(self, request: SetBool.Request, response: SetBool.Response) -> SetBool.Response:
+        self.enabled = bool(request.data)
+        response.success, response.message = True, "enabled" if self.enabled else "disabled"
+        print(f"r2_sim: {response.message}", flush=True)
+        return response
 
     def on_joints(self, msg: JointState) -> None:
         print(f"r2_sim: joint_command {list(msg.position)}", flush=True)

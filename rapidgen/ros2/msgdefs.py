@@ -56,7 +56,15 @@ BUILTIN: dict[str, str] = {
     "diagnostic_msgs/msg/DiagnosticArray": "std_msgs/Header header\nDiagnosticStatus[] status",
 }
 
+# Services: request and response fields, split by '---' as in a .srv file.
+BUILTIN_SRV: dict[str, str] = {
+    "std_srvs/srv/Empty": "---",
+    "std_srvs/srv/Trigger": "---\nbool success\nstring message",
+    "std_srvs/srv/SetBool": "bool data\n---\nbool success\nstring message",
+}
+
 _TYPE_NAME = re.compile(r"^([a-z][a-z0-9_]*)/(?:msg/)?([A-Z][A-Za-z0-9]*)$")
+_SRV_NAME = re.compile(r"^([a-z][a-z0-9_]*)/(?:srv/)?([A-Z][A-Za-z0-9]*)$")
 _FIELD = re.compile(r"^([A-Za-z][A-Za-z0-9_/]*)(?:<=\d+)?(\[(?:<=)?(\d*)\])?\s+([a-z][a-z0-9_]*)(?:\s+.*)?$")
 
 
@@ -86,6 +94,12 @@ def full_name(text: str) -> str | None:
     """'sensor_msgs/JointState' or 'sensor_msgs/msg/JointState' -> 'sensor_msgs/msg/JointState'."""
     m = _TYPE_NAME.match(text)
     return f"{m.group(1)}/msg/{m.group(2)}" if m else None
+
+
+def full_srv_name(text: str) -> str | None:
+    """'std_srvs/Trigger' or 'std_srvs/srv/Trigger' -> 'std_srvs/srv/Trigger'."""
+    m = _SRV_NAME.match(text)
+    return f"{m.group(1)}/srv/{m.group(2)}" if m else None
 
 
 def _share_dirs() -> tuple[str, ...]:
@@ -132,6 +146,28 @@ def lookup(name: str) -> MsgDef | None:
                 break
     text = BUILTIN.get(name)
     return None if text is None else parse(name, text, "built-in")
+
+
+@lru_cache(maxsize=64)
+def lookup_srv(name: str) -> tuple[MsgDef, MsgDef] | None:
+    """(request, response) of pkg/srv/Type: installed first, else built-in, else None."""
+    pkg, _, typ = name.split("/")
+    text, source = BUILTIN_SRV.get(name), "built-in"
+    for share in _share_dirs():
+        path = os.path.join(share, pkg, "srv", typ + ".srv")
+        if os.path.isfile(path):
+            try:
+                with open(path, encoding="utf-8") as f:
+                    text, source = f.read(), path
+            except (OSError, UnicodeDecodeError):
+                pass
+            break
+    if text is None:
+        return None
+    lines = text.splitlines()
+    cut = next((i for i, ln in enumerate(lines) if ln.strip() == "---"), len(lines))
+    return (parse(f"{name} request", "\n".join(lines[:cut]), source),
+            parse(f"{name} response", "\n".join(lines[cut + 1:]), source))
 
 
 def resolve_path(msg: MsgDef, path: str) -> tuple[Field | None, str | None]:

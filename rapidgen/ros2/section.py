@@ -34,7 +34,8 @@ VELOCITY_ENCODINGS = ("RAPID_ROT_NONE", "RAPID_ROT_VEL")
 _SECTION_KEYS = ("node", "telemetry", "commands", "ground")
 _GROUND_KEYS = ("namespace", "diagnostics", "node")
 _FEED_KEYS = ("topic", "type", "feeds", "index", "joints", "values", "description")
-_COMMAND_KEYS = ("command", "publish", "until", "description")
+_COMMAND_KEYS = ("command", "publish", "call", "until", "cancel", "description")
+_CALL_KEYS = ("service", "type", "fields", "timeout")
 _PUBLISH_KEYS = ("topic", "type", "fields")
 _UNTIL_KEYS = ("topic", "type", "field", "equals", "timeout")
 
@@ -297,20 +298,68 @@ class _Reader:
 
     # -- commands: RAPID command -> ROS 2 message ----------------------------------------
     def command(self, item: object, path: tuple) -> dict | None:
-        if not self.mapping(item, path, _COMMAND_KEYS, ("command", "publish")):
+        if not self.mapping(item, path, _COMMAND_KEYS, ("command",)):
             return None
         assert isinstance(item, dict)
         name = self.text(item["command"], path + ("command",), "a command")
         if name is None:
             return None
+        if ("publish" in item) == ("call" in item):
+            self.error("RG1505", f"'{name}' needs exactly one action: 'publish' or 'call'", path + ("command",),
+                       "publish: {topic, type, fields} or call: {service, type, fields}")
+            return None
+        if "until" in item and "call" in item:
+            self.error("RG1505", "'until' is for 'publish' (a service call ends with its response)",
+                       path + ("until",), "leave it out")
+            return None
         cmd = self.find_command(name, path + ("command",))
         if cmd is None:
             return None
         out: dict[str, Any] = {"command": name}
-        out["publish"] = self.publish(item["publish"], path + ("publish",), cmd)
-        if "until" in item:
-            out["until"] = self.until(item["until"], path + ("until",))
-        return out if out["publish"] is not None and out.get("until", True) is not None else None
+        parts = [("publish", self.publish), ("call", self.call), ("until", self.until_of), ("cancel", self.publish)]
+        for key, read in parts:
+            if key in item:
+                out[key] = read(item[key], path + (key,), cmd)
+        if "cancel" in item and not cmd.abortable:
+            self.error("RG1505", f"'{name}' is not abortable, so it is never cancelled", path + ("cancel",),
+                       "set 'abortable: true' on the command, or leave 'cancel' out")
+            return None
+        return out if all(out[k] is not None for k, _ in parts if k in out) else None
+
+    def until_of(self, value: object, path: tuple, cmd: Any) -> dict | None:
+        return self.until(value, path)
+
+    def call(self, value: object, path: tuple, cmd: Any) -> dict | None:
+        """A service call built from the arguments; its response's `success` (when it has one)
+        decides COMPLETED/OK or EXEC_FAILED, its `message` becomes the ack's."""
+        if not self.mapping(value, path, _CALL_KEYS, ("service", "type")):
+            return None
+        assert isinstance(value, dict)
+        service = self.topic(value["service"], path + ("service",))
+        text = self.text(value["type"], path + ("type",), "a service type")
+        if service is None or text is None:
+            return None
+        name = msgdefs.full_srv_name(text)
+        found = msgdefs.lookup_srv(name) if name else None
+        if found is None:
+            self.error("RG1501", f"unknown ROS 2 service type {name or text}", path + ("type",),
+                       "write package/srv/Type; not installed (no share/<package>/srv/<Type>.srv) and not one of "
+                       f"the built-in {', '.join(sorted(msgdefs.BUILTIN_SRV))}")
+            return None
+        request, response = found
+        timeout = value.get("timeout")
+        if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float))
+                                    or timeout <= 0):
+            self.error("RG1505", "timeout must be a number of seconds above 0", path + ("timeout",),
+                       "leave it out to wait until the command is cancelled")
+            return None
+        fields = self.fields_of(value.get("fields", {}), path, request, cmd)
+        if fields is None:
+            return None
+        success, message = response.field("success"), response.field("message")
+        return {"service": service, "type": name, "fields": fields, "timeout": timeout,
+                "success": success is not None and success.type == "bool" and not success.array,
+                "message": message is not None and message.type == "string" and not message.array}
 
     def find_command(self, name: str, path: tuple) -> Any:
         sub, slash, cname = name.partition("/")
@@ -332,26 +381,33 @@ class _Reader:
         assert isinstance(value, dict)
         topic = self.topic(value["topic"], path + ("topic",))
         msg = self.msg_type(value["type"], path + ("type",))
-        fields = value.get("fields", {})
+        if topic is None or msg is None:
+            return None
+        got = self.fields_of(value.get("fields", {}), path, msg, cmd)
+        if got is None:
+            return None
+        header = msg.field("header")  # stamped with the time of sending
+        return {"topic": topic, "type": msg.name, "fields": got,
+                "stamp": header is not None and header.type == "std_msgs/msg/Header"}
+
+    def fields_of(self, fields: object, path: tuple, msg: msgdefs.MsgDef, cmd: Any) -> list | None:
+        """[field path, conversion, parameter indices or constant] per field to fill."""
         if not isinstance(fields, dict):
             self.error("RG1505", "'fields' must map field paths to parameters", path + ("fields",),
                        "e.g. fields: {pose.position: xyz}")
             return None
-        if topic is None or msg is None:
-            return None
         params = {p.name: (i, p) for i, p in enumerate(cmd.parameters)}
         got = []
+        good = True
         for fpath, source in fields.items():
             where = path + ("fields", fpath)
             f = self.field(msg, fpath, where, key=True)
-            if f is None:
+            conv = self.source(f, fpath, source, where, params, msg.name) if f is not None else None
+            if conv is None:
+                good = False
                 continue
-            conv = self.source(f, fpath, source, where, params, msg.name)
-            if conv is not None:
-                got.append([fpath, *conv])
-        header = msg.field("header")  # stamped with the time of sending
-        return {"topic": topic, "type": msg.name, "fields": got,
-                "stamp": header is not None and header.type == "std_msgs/msg/Header"}
+            got.append([fpath, *conv])
+        return got if good else None
 
     def source(self, f: Field, fpath: str, source: object, where: tuple, params: dict, mname: str) -> list | None:
         """[conversion, parameter indices or a constant]: how the field is filled."""

@@ -1,7 +1,7 @@
 """ROS 2 -> RAPID, live: Robonaut 2's ROS 2 side (examples/ros2/r2_sim_node.py, real rclpy
 from the PyPI ROS wheels) served as the RAPID asset R2Ros by the generated
 `rapid_r2ros.ros2` bridge (examples/ros2/robonaut2-ros2.yaml), driven by `rapidgen cmd`,
-watched by `rapidgen spy` and judged by `rapidgen conform`.
+watched by plain RAPID and rclpy subscribers and judged by `rapidgen conform`.
 
 Everything runs in one private network namespace holding only lo (tests/ros2/netns.py).
 The ROS side's Python is its own venv (tests/ros2/rosenv.py: made once, then cached).
@@ -21,6 +21,7 @@ from tests.ros2 import netns, rosenv
 
 ROOT = Path(__file__).resolve().parents[2]
 DESCRIPTOR = "examples/ros2/robonaut2-ros2.yaml"
+PACKAGE = "rapid_r2ros"  # what rapidgen generates from it
 WAIT = 60.0  # s: a guard against a hang, never what is asserted
 # tf2's setRPY(0.1, 0.2, 0.3) as (x, y, z, w), worked out independently of the bridge
 QUAT_RPY = (0.0342708, 0.1060205, 0.1435722, 0.9833474)
@@ -30,32 +31,35 @@ JOINTS = [f"RightArm/Joint{i}" for i in range(7)]  # the descriptor's joint fram
 pytestmark = pytest.mark.skipif(os.geteuid() != 0, reason="network namespaces need root")
 
 
-def _wait_for(path: Path, text: str, proc: subprocess.Popen) -> None:
+def _wait_for(path: Path, text: str, proc: subprocess.Popen | None = None) -> None:
+    """Until text is in the file proc writes (a guard against a hang: fails at WAIT)."""
     end = time.monotonic() + WAIT
     while time.monotonic() < end:
         if text in path.read_text(errors="replace"):
             return
-        if proc.poll() is not None:
+        if proc is not None and proc.poll() is not None:
             break
         time.sleep(0.1)
-    pytest.fail(f"no '{text}' from {proc.args}:\n{path.read_text(errors='replace')}")
+    pytest.fail(f"no '{text}' in {path.name}:\n{path.read_text(errors='replace')}")
 
 
 class Scene:
     def __init__(self, ns: list[str], tmp: Path) -> None:
         self.ns, self.tmp = ns, tmp
+        self.env = {**os.environ, "PYTHONPATH": str(tmp / "gen" / "python")}
         self.python = rosenv.python()
         self.controlling = False  # whether `rapidgen` (cmd's default source) holds control
 
     def rapidgen(self, *args: str, check: bool = False) -> subprocess.CompletedProcess:
         res = subprocess.run([*self.ns, sys.executable, "-m", "rapidgen", *args], cwd=ROOT, capture_output=True,
-                             text=True, timeout=WAIT)
+                             text=True, timeout=WAIT, env=self.env)
         if check:
             assert res.returncode == 0, res.stdout + res.stderr
         return res
 
     def cmd(self, *args: str) -> subprocess.CompletedProcess:
-        return self.rapidgen("cmd", "--from-descriptor", DESCRIPTOR, *args)
+        """`rapidgen cmd` with the generated package (no bindings to generate each time)."""
+        return self.rapidgen("cmd", "--from-descriptor", PACKAGE, *args)
 
     def take_control(self) -> None:
         """R2Ros has access control: commands come from its controller (conform takes it)."""
@@ -64,10 +68,15 @@ class Scene:
             assert res.returncode == 0, res.stdout + res.stderr
             self.controlling = True
 
-    def sample(self, topic: str) -> dict:
-        """The next sample of an R2Ros topic, as `rapidgen spy` decodes it."""
-        res = self.rapidgen("spy", "--asset", DESCRIPTOR, "--count", "1", "--json", "echo", topic, check=True)
-        return json.loads(res.stdout.splitlines()[0])["sample"]
+    def samples(self, **topics: str) -> dict[str, dict]:
+        """The next sample of each R2Ros topic (topic=rapid::Type), read by a plain RAPID
+        subscriber in another process (tests/ros2/rapid_listener.py)."""
+        env = {**os.environ, "PYTHONPATH": f"{ROOT / 'runtime'}{os.pathsep}{self.tmp / 'gen' / 'python'}"}
+        res = subprocess.run([*self.ns, str(self.python), str(ROOT / "tests/ros2/rapid_listener.py"), PACKAGE,
+                              *(f"{t}={ty}" for t, ty in topics.items())], capture_output=True, text=True,
+                             timeout=WAIT, env=env)
+        assert res.returncode == 0, res.stderr
+        return {m["topic"]: m["sample"] for m in map(json.loads, res.stdout.splitlines())}
 
 
 @pytest.fixture(scope="module")
@@ -130,19 +139,18 @@ def test_pose_command_moves_the_ros2_arm_and_its_joints_come_back(scene):
     assert "quat=({:.6f}, {:.6f}, {:.6f}, {:.6f})".format(*QUAT_RPY) in sim
     # its joint states (published in another order, with other joints) come back as RAPID
     # JointSample in the JointConfig's order: the toy kinematics put x, y, z, r, p, y in joints 0-5
-    joints = scene.sample("rapid_joint_sample")
+    got = scene.samples(**{"rapid_joint_sample": "rapid::JointSample",
+                           "rapid_position_sample-rightArm": "rapid::PositionSample",
+                           "rapid_agent_state": "rapid::AgentState"})
+    joints = got["rapid_joint_sample"]
     assert joints["anglePos"][:6] == pytest.approx([0.3, 0.2, -0.1, 0.1, 0.2, 0.3], abs=1e-6)
     assert joints["torque"] == pytest.approx([2.5] * 7)
     assert len(joints["angleVel"]) == 7
-    pose = scene.sample("rapid_position_sample-rightArm")["pose"]
+    pose = got["rapid_position_sample-rightArm"]
     assert pose["xyz"] == pytest.approx([0.3, 0.2, -0.1], abs=1e-6)
     assert pose["rot"][:4] == pytest.approx(QUAT_RPY, abs=1e-6)  # RAPID_ROT_QUAT: x, y, z, w
-
-
-def test_agent_values_come_from_ros2_fields(scene):
-    state = scene.sample("rapid_agent_state")
-    # valueKeys order: force, torque, magnitude; each a ParameterUnion {discriminator, its member}
-    values = [next(x for k, x in v.items() if k != "discriminator") for v in state["values"]]
+    # AgentState values from two ROS 2 topics, in valueKeys order: force, torque, magnitude
+    values = got["rapid_agent_state"]["values"]
     assert values[0] == pytest.approx([1.0, 2.0, -19.6])
     assert values[1] == pytest.approx([0.1, 0.2, 0.3])
     assert values[2] == pytest.approx(FORCE)
@@ -169,8 +177,9 @@ def test_cancel_reaches_the_waiting_command(scene):
     log = scene.tmp / "long.log"
     with open(log, "w") as out:
         long = subprocess.Popen([*scene.ns, sys.executable, "-m", "rapidgen", "cmd", "--action", "APPEND",
-                                 "--from-descriptor", DESCRIPTOR, "RightArm", "Setpoint for Tool", "xyz=[50,-50,50]", "rpy=[0,0,0]"],
-                                cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, text=True)
+                                 "--from-descriptor", PACKAGE, "RightArm", "Setpoint for Tool", "xyz=[50,-50,50]",
+                                 "rpy=[0,0,0]"],
+                                cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, text=True, env=scene.env)
         _wait_for(log, "waiting for data on /r2_controller/right/status", long)
         cancel = scene.cmd("Queue", "cancelAll")
         assert cancel.returncode == 0, cancel.stdout + cancel.stderr
@@ -178,6 +187,20 @@ def test_cancel_reaches_the_waiting_command(scene):
     acks = [line.split()[:2] for line in log.read_text().splitlines()[1:] if line.strip()]
     assert [a[0] for a in acks] == ["QUEUED", "EXECUTING", "EXECUTING", "COMPLETED"], log.read_text()
     assert acks[-1] == ["COMPLETED", "CANCELED"]
+    # the mapping's cancel message reached the ROS 2 node, which stopped the arm
+    _wait_for(scene.tmp / "sim.log", "r2_sim: stop 'stop'")
+
+
+def test_service_calls_answer_with_their_response(scene):
+    """std_srvs services: SetBool from a RAPID_BOOL argument; the response's success decides
+    COMPLETED/OK or EXEC_FAILED, its message becomes the ack's."""
+    scene.take_control()
+    steps = [(("Enable", "enable=false"), 0, "COMPLETED OK  disabled"),
+             (("Home",), 1, "COMPLETED EXEC_FAILED  /r2_controller/right/home: arm disabled: enable it first"),
+             (("Enable", "enable=true"), 0, "COMPLETED OK  enabled")]
+    for args, code, final in steps:
+        res = scene.cmd("RightArm", *args)
+        assert res.returncode == code and final in res.stdout, res.stdout + res.stderr
 
 
 def test_rapid_telemetry_comes_back_to_ros2_as_standard_messages(scene):
