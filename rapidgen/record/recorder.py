@@ -18,7 +18,7 @@ from typing import Any, Callable
 from rapidgen.record.mcapfile import ChannelInfo
 
 DURABLE = ("TransientLocal", "Transient", "Persistent")
-DEPTH = 1024  # reader history per instance: room between two takes at any RAPID rate
+DEPTH = 4096  # reader history per instance: ~0.4 s of a 10k/s writer between two takes (docs/record.md)
 TAKE = 256  # samples per take
 MAX_READERS = 512
 

@@ -9,6 +9,7 @@ import time
 
 from rapidgen.argtypes import domain_id
 from rapidgen.record.command import positive
+from rapidgen.textsafe import visible
 
 
 def seconds_from_start(text: str) -> float:
@@ -74,13 +75,29 @@ def run(args) -> int:
     if loaded is None:
         return 1
     bindings, _models = loaded
+    find = _type_class(bindings)
+    schemas: dict[str, bytes] = {}  # the recording's own IDL, for the types no bindings know
+    for rec in recs:
+        for ch in rec.channels.values():
+            schema = rec.schemas.get(ch.schema_id)
+            t = ch.metadata.get("dds_type", "")
+            if schema is not None and schema.encoding == "omgidl" and schema.name == t and find(t) is None:
+                schemas.setdefault(t, schema.data)
+    from rapidgen.record.schema_types import classes_from_schemas
+    extra, refused, keep = classes_from_schemas(schemas) if schemas else ({}, {}, None)
+    for type_name, why in sorted(refused.items()):
+        print(f"rapidgen replay: no bindings for {visible(type_name)}: {why}", file=sys.stderr)
     use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None)
     recorded = recs[0].metadata.get("rapidgen", {}).get("domain", "0")
     domain = args.domain if args.domain is not None else (int(recorded) if recorded.isdigit() else 0)
     topics = {t.strip() for t in args.topics.split(",") if t.strip()} if args.topics else None
     plan = Plan(start, start + int(args.start * 1e9), None if args.stop is None else start + int(args.stop * 1e9),
                 topics, args.rate, args.partition)
-    return _replay(args, recs, configs, bindings, domain, plan)
+    try:
+        return _replay(args, recs, configs, lambda t: find(t) or extra.get(t.replace(".", "::")), domain, plan)
+    finally:
+        if keep is not None:
+            keep.cleanup()
 
 
 def _first_pass(files: list[str]):
@@ -128,12 +145,11 @@ def _type_class(bindings):
     return find
 
 
-def _replay(args, recs, configs, bindings, domain: int, plan) -> int:
+def _replay(args, recs, configs, type_class, domain: int, plan) -> int:
     from rapidgen.record.replay import Replayer, in_window, is_config, pace
-    from rapidgen.textsafe import visible
     stop = threading.Event()
     old = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
-    rp = Replayer(domain, _type_class(bindings), plan)
+    rp = Replayer(domain, type_class, plan)
     print(f"rapidgen replay: {visible(', '.join(args.files))} into domain {domain}"
           + (f", partition {visible(plan.partition)}" if plan.partition is not None else "")
           + (f", {args.rate:g}x" if args.rate != 1 else ""), file=sys.stderr)

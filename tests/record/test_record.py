@@ -5,7 +5,8 @@ message's bytes equal to the tap's and to the generated codec's re-encoding, sch
 rapidgen's own IDL front end parses into the recorded type; the recorder rotates files by
 size and each one is complete. A second recorder is killed with SIGKILL: its file is
 readable up to its last chunk. The recording replayed into another domain is seen by `rapidgen spy` with
-the recorded per-topic rates (within 20%)."""
+the recorded per-topic rates (within 20%), its extension types built from the recording's own
+schemas."""
 from __future__ import annotations
 
 import json
@@ -249,8 +250,9 @@ def _rates(paths: list[Path]) -> dict[str, float]:
 
 def test_replay_seen_by_spy_with_the_recorded_rates(job):
     rates = _rates(job["main"])
-    assert {"rapid_agent_state", "rapid_position_sample"} <= set(rates), rates
-    replay = Proc([*RAPIDGEN, "replay", *map(str, job["main"]), "--domain", str(REPLAY_DOMAIN), "--asset", K10])
+    assert {"rapid_agent_state", "rapid_position_sample", "rapid_ext_arc_gps_sample"} <= set(rates), rates
+    # no --asset: K10's extension types (rapid::ext::arc::Gps*) come from the recording's schemas
+    replay = Proc([*RAPIDGEN, "replay", *map(str, job["main"]), "--domain", str(REPLAY_DOMAIN)])
     try:
         spy = subprocess.run([*RAPIDGEN, "spy", "--once", "--json", "--domain", str(REPLAY_DOMAIN), "--seconds", "5",
                               "--asset", K10], cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=120)
@@ -261,10 +263,12 @@ def test_replay_seen_by_spy_with_the_recorded_rates(job):
     assert spy.returncode == 0, spy.stderr[-2000:]
     assert code == 0, "".join(replay.err)[-2000:]
     snap = json.loads(spy.stdout)
+    assert not [f for f in snap["findings"] if f["code"] == "SPY-TYPE-01"], snap["findings"]  # the same types
     view = next(a for a in snap["assets"] if a["partition"] == "K10Red")
     seen = {t["topic"]: t for t in view["topics"]}
     for topic, rate in rates.items():
         assert seen[topic]["rate"] is not None and abs(seen[topic]["rate"] - rate) <= 0.2 * rate, \
             (topic, rate, seen[topic]["rate"])
-    for config in ("rapid_command_config", "rapid_agent_config", "rapid_position_config"):  # configs first
+    for config in ("rapid_command_config", "rapid_agent_config", "rapid_position_config",
+                   "rapid_ext_arc_gps_config"):  # configs first, decoded by spy's own bindings
         assert seen[config]["latest"]["hdr"]["assetName"] == "K10Red", config
