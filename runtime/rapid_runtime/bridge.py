@@ -18,6 +18,7 @@ import time
 from cyclonedds.util import duration
 
 from rapid_runtime import messages as M
+from rapid_runtime.ack_writers import AckWriters
 from rapid_runtime.acks import COMPLETED, NOT
 from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
@@ -36,6 +37,11 @@ ACCESS_STATE_TOPIC = "rapid_accesscontrol_state"
 # discovered yet when EXECUTING goes out still gets the whole sequence (QUEUED, EXECUTING,
 # REQUEUED, EXECUTING, COMPLETED and a few progress acks), not only the last one.
 ACK_HISTORY = 8
+# Ack writer generations (ack_writers.py): a new writer every window/4 commands (at least
+# every 256: each new writer is discovered anew by every ack reader), an old one deleted once
+# all its commands' acks are retired.
+ACK_GENERATIONS = 4
+ACK_GENERATION_MIN = 256
 # Commands the DDS reader holds before the intake thread takes them: past this, DDS holds a
 # reliable writer back (the flood waits in the flooder's own history, not in the bridge).
 COMMAND_CACHE = 4096
@@ -80,10 +86,29 @@ class Bridge:
         self.telemetry = TelemetryPublisher(self)
         self._reader: ReaderThread | None = None
         self.intake = Intake(self.manager, self.log)
+        self.ack_writers: AckWriters | None = None  # made at start(): commanders wait to match it
 
     # ---- Outbox (manager.py) ---------------------------------------------------------------
+    def _acks(self) -> AckWriters:
+        if self.ack_writers is None:
+            self.ack_writers = AckWriters(lambda: self.node.new_writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY),
+                                          max(ACK_GENERATION_MIN, self.manager.window // ACK_GENERATIONS),
+                                          self._delete_writer)
+        return self.ack_writers
+
+    def _delete_writer(self, writer) -> None:
+        """Delete an old generation's writer in a thread of its own: Cyclone lingers in the
+        delete until readers have acknowledged its last unregisters (100-200 ms seen on
+        loopback, round trips over a real link), and the caller holds the manager's lock."""
+        def delete() -> None:
+            try:
+                self.node.delete(writer)
+            except Exception as exc:  # a writer kept is memory, not a failure
+                self.log(f"an old ack writer not deleted: {type(exc).__name__}: {exc}")
+        threading.Thread(target=delete, daemon=True, name="rapid-ack-writer-delete").start()
+
     def ack(self, cmd, status, completed, message) -> None:
-        self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY).write(M.ack(self.rapid, cmd, status, completed, message))
+        self._acks().writer_for(_ack_key(cmd)).write(M.ack(self.rapid, cmd, status, completed, message))
 
     def queue_state(self, code, pending, active, completed) -> None:
         hdr = M.header(self.rapid, self.name, self.name, self.serials.start, status=code)
@@ -99,11 +124,15 @@ class Bridge:
         """Unregister the command's ack instance (its key: the command's header and cmdId):
         the writer drops its history once readers have acknowledged, so a late joiner no
         longer gets these acks and memory stays bounded (manager.py, COMMAND_WINDOW)."""
+        key = _ack_key(cmd)
+        writer = self._acks().retire(key)
         try:
-            self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY).unregister_instance(
-                M.ack(self.rapid, cmd, COMPLETED, NOT, ""))
+            if writer is not None:
+                writer.unregister_instance(M.ack(self.rapid, cmd, COMPLETED, NOT, ""))
         except Exception as exc:  # cyclonedds raises DDSException; a kept instance must not stop intake
             self.log(f"acks of {cmd.cmd_id!r} not unregistered: {type(exc).__name__}: {exc}")
+        finally:
+            self._acks().drop(key)  # its generation's writer goes once all of its commands are retired
 
     def log(self, text: str) -> None:
         self._log(text)
@@ -127,7 +156,7 @@ class Bridge:
             self.publish_config(topic)
         self.manager.publish_states()
         if self.tables.subsystems:
-            self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY)  # now: commanders wait to match it
+            self._acks()  # now: commanders wait to match the ack writer
             reader = self.node.reader(COMMAND_TOPIC, self.rapid.Command, max_samples=COMMAND_CACHE)
             self.intake.start()
             self._reader = ReaderThread(self.node, reader, self.rapid.Command, self._on_command, "rapid-commands",
@@ -152,10 +181,12 @@ class Bridge:
         try:
             self.handlers.on_stop()
             if self.tables.subsystems:  # the last acks (shutdown's own) reach their readers
-                try:
-                    self.node.writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY).wait_for_acks(duration(seconds=2))
-                except Exception:  # a reader that left without acknowledging; cyclonedds 11 raises oddly here
-                    pass
+                for writer in self._acks().writers():
+                    try:
+                        writer.wait_for_acks(duration(seconds=2))
+                    except Exception:  # a reader that left without acknowledging; cyclonedds 11 raises oddly here
+                        pass
+                self._acks().close()
         finally:
             if self._reader is not None and threading.current_thread() is not self._reader.thread:
                 self._reader.stop()
@@ -163,6 +194,11 @@ class Bridge:
 
     def wait(self, seconds: float | None = None) -> None:
         self.stopped.wait(seconds)
+
+
+def _ack_key(cmd) -> tuple:
+    """The Ack instance's key: the command's header names and cmdId."""
+    return cmd.src_name, cmd.asset_name, cmd.cmd_id
 
 
 class TelemetryPublisher:

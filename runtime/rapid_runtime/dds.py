@@ -69,6 +69,19 @@ class Node:
                 self._writers[topic] = w
         return w
 
+    def new_writer(self, topic: str, cls, keep_last: int | None = None) -> DataWriter:
+        """A writer of its own (not the topic's shared one), for the caller to delete()."""
+        q = self.qos.writer(topic)
+        if keep_last is not None:
+            q = q + Qos(Policy.History.KeepLast(keep_last))
+        return DataWriter(self.publisher, self.topic(topic, cls), qos=q)
+
+    @staticmethod
+    def delete(entity) -> None:
+        """Delete a DDS entity now (cyclonedds deletes on __del__, guarded against a second call;
+        waiting for the garbage collector would keep its memory for an unknown while)."""
+        entity.__del__()
+
     def reader(self, topic: str, cls, keep_all: bool = False, max_samples: int | None = None) -> DataReader:
         """keep_all: every sample, not the last per instance (a commander must see each ack).
         max_samples: what the reader's cache holds at most (not request/offered either); a

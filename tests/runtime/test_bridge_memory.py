@@ -1,0 +1,30 @@
+"""The bridge's resident memory stays flat under a stream of commands (docs/runtime.md,
+"Bounded memory"): K10's bridge with a window of 256 commands takes 5,000 Admin/noOp on
+loopback from another process (tests/runtime/memory_load.py), its VmRSS and VmHWM read from
+/proc while it runs. Once the window is full (1,000 commands) the high-water mark may not
+climb by more than GROWTH_KIB over the next 4,000: at the ~1.2 KB a command the bridge used
+to keep (a Cyclone writer's instance state), it climbed by about 4.8 MB.
+bench/bridge_memory.py runs the same for 100,000 commands with the default window."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from tests.runtime.memory_load import ROOT
+
+DOMAIN = 191
+COMMANDS = 5000
+GROWTH_KIB = 1536
+
+
+def test_resident_memory_stays_flat_under_thousands_of_commands():
+    res = subprocess.run([sys.executable, "-m", "tests.runtime.memory_load", str(DOMAIN), str(COMMANDS), "500",
+                          "--", "--command-window", "256"], cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-4000:]
+    got = json.loads(res.stdout.splitlines()[-1])
+    assert got["answered"] == COMMANDS and got["alive"], got
+    samples = got["samples"]
+    full = next(s for s in samples if s[0] >= 1000)  # the window is full and its writers have turned over
+    growth = samples[-1][2] - full[2]  # VmHWM: nothing higher in between, whenever it was reached
+    assert growth < GROWTH_KIB, f"VmHWM grew {growth} KiB from {full[0]} to {COMMANDS} commands: {samples}"
