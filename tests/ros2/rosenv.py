@@ -6,6 +6,7 @@ A stamp file records what was installed; a changed list or a half-made venv is r
 """
 from __future__ import annotations
 
+import fcntl
 import os
 import shutil
 import subprocess
@@ -26,14 +27,17 @@ def python() -> Path:
 def ensure() -> Path:
     """The ROS 2 venv's python, installing it first when missing or stale."""
     wanted = "\n".join(PACKAGES) + "\n"
-    if STAMP.is_file() and STAMP.read_text() == wanted and python().is_file():
-        return python()
-    if VENV.exists():
-        shutil.rmtree(VENV)
-    subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-    subprocess.run([str(python()), "-m", "pip", "install", "-q", "--disable-pip-version-check", *PACKAGES],
-                   check=True, env={**os.environ, "PIP_NO_INPUT": "1"})
-    STAMP.write_text(wanted)
+    VENV.parent.mkdir(parents=True, exist_ok=True)
+    with open(VENV.parent / "ros2.lock", "w") as lock:  # test processes running side by side build it once
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if STAMP.is_file() and STAMP.read_text() == wanted and python().is_file():
+            return python()
+        if VENV.exists():
+            shutil.rmtree(VENV)
+        subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
+        subprocess.run([str(python()), "-m", "pip", "install", "-q", "--disable-pip-version-check", *PACKAGES],
+                       check=True, env={**os.environ, "PIP_NO_INPUT": "1"})
+        STAMP.write_text(wanted)
     return python()
 
 
