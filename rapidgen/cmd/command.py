@@ -10,7 +10,7 @@ from rapidgen.argtypes import domain_id
 from rapidgen.cmd.arguments import complete
 from rapidgen.cmd.dictionary import live_config, merged_tables
 from rapidgen.cmd.line import CMDLINE, CmdLine, did_you_mean, report
-from rapidgen.cmd.timing import allow, round_trip
+from rapidgen.cmd.timing import DISCOVERY_TRIPS, allow, round_trip
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.textsafe import visible
 
@@ -40,7 +40,7 @@ def add_parser(sub) -> None:
                    help="seconds to wait for the live CommandConfig before using the descriptor's (default 2)")
     p.add_argument("--rtt", type=round_trip, default=0.0, metavar="SECONDS",
                    help="the link's round trip (e.g. 2.6 for the Moon): each wait above grows by what the link "
-                        "costs (discovery 4 round trips, an answer 2; docs/field.md). Default 0: a LAN")
+                        "costs (discovery 6 round trips, an answer 2; docs/field.md). Default 0: a LAN")
     p.add_argument("--from-descriptor", action="store_true", help="use the descriptor's dictionary, not the live one")
     p.add_argument("--no-check", action="store_true",
                    help="send values outside their range or allowed values (the asset answers BAD_SYNTAX)")
@@ -138,19 +138,19 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
     try:
         origin = "descriptor"
         if not args.from_descriptor:
-            config = live_config(commander, asset.rapid, tables.name, allow(args.discover, args.rtt, 4))
+            config = live_config(commander, asset.rapid, tables.name, allow(args.discover, args.rtt, DISCOVERY_TRIPS))
             if config is not None:
                 tables, origin = Tables(merged_tables(asset.tables, config)), "live CommandConfig"
             else:
-                print(f"cmd: no CommandConfig from {tables.name} within {allow(args.discover, args.rtt, 4):g} s "
+                print(f"cmd: no CommandConfig from {tables.name} within {allow(args.discover, args.rtt, DISCOVERY_TRIPS):g} s "
                       f"(domain {domain}); using the descriptor's dictionary", file=sys.stderr)
         payload = _checked(tables, action, args, line, sink, origin)
         if payload is None:
             report(sink, line)
             return 1
-        if not commander.wait_for_asset(allow(args.timeout, args.rtt, 4)):
+        if not commander.wait_for_asset(allow(args.timeout, args.rtt, DISCOVERY_TRIPS)):
             sink.error("RG1908", f"no asset {tables.name} reads commands on domain {domain}, partition "
-                       f"'{tables.partition}' (waited {allow(args.timeout, args.rtt, 4):g} s)", SourceLoc(CMDLINE, 0, 0),
+                       f"'{tables.partition}' (waited {allow(args.timeout, args.rtt, DISCOVERY_TRIPS):g} s)", SourceLoc(CMDLINE, 0, 0),
                        "start its bridge (python -m <package>.bridge), or check --domain and --transport")
             report(sink, line)
             return 1

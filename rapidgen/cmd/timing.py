@@ -6,6 +6,10 @@ from __future__ import annotations
 import argparse
 import math
 
+# A late joiner's first durable sample: participants (1 round trip), endpoints (1-2), the
+# reader's request and the writer's history (1); one lost packet on the way costs a
+# heartbeat period and a round trip more (measured on the lunar link, docs/field.md).
+DISCOVERY_TRIPS = 6
 MAX_RTT = 600.0  # s: beyond Mars at its closest (~6 min) a command line is the wrong tool
 
 
@@ -22,6 +26,5 @@ def round_trip(text: str) -> float:
 
 def allow(seconds: float, rtt: float, trips: float = 2.0) -> float:
     """A loopback wait over a link: an answer costs one round trip, a lost packet's repair
-    another (trips=2); discovery (participants, then endpoints, then durable data, one
-    announcement lost) about four."""
+    another (trips=2); discovery DISCOVERY_TRIPS."""
     return seconds + trips * rtt

@@ -98,7 +98,7 @@ class Session:
         the choice is made once the candidates stop changing for `settle` s (at most `most` s
         after the first). Every other participant is a stranger: reported, never judged.
         Over a link (rtt) discovery takes a few round trips, and a lost announcement one more."""
-        timeout, settle, most = self.allow(timeout, 4), self.allow(settle, 1), self.allow(most, 4)
+        timeout, settle, most = self.allow(timeout, 6), self.allow(settle, 1), self.allow(most, 4)
         if not self.discovery.wait_until(lambda d: bool(self.candidates()), timeout):
             self.client.start(self.topics())
             return False

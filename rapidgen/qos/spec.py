@@ -134,6 +134,8 @@ class Transport:
     peers: tuple[str, ...] = ()
     max_participants_per_host: int | None = None
     tcp: Tcp | None = None
+    rtt: float | None = None  # s, the link's round trip: reliability timers follow it (docs/qos.md)
+    lease: float | None = None  # s a silent participant keeps its matches (the longest outage ridden through)
 
 
 # What a profile gets for a policy that no profile in its chain sets (DDS 1.4, 2.2.3).
@@ -356,7 +358,7 @@ def _build(doc: YamlDoc) -> QosSpec:
         transports.append(Transport(name, t.get("description", ""), t.get("default", False),
                                     tuple(t.get("interfaces", ())), t.get("multicast", True),
                                     t.get("multicast_address"), tuple(t.get("peers", ())),
-                                    t.get("max_participants_per_host"), tcp))
+                                    t.get("max_participants_per_host"), tcp, t.get("rtt"), t.get("lease")))
     return QosSpec(doc.file, data["library"], tuple(profiles), topics, data.get("partition"), tuple(transports))
 
 

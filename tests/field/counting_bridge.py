@@ -1,6 +1,6 @@
 """A seed's real bridge (rapid_runtime.bridge.main, the package's tables and QoS) with the
 simulated robot behind it, which also writes a line per handler run to FIELD_EXEC_LOG:
-`run CMDID` as a command starts executing. The tests count those lines: each command must
+`run CMDID MONOTONIC` as a command starts executing. The tests count those lines: each command must
 run exactly once, whatever the link did to its packets.
 
     python -m tests.field.counting_bridge PACKAGE [bridge options]   (FIELD_SIM_SPEED: speed)"""
@@ -10,6 +10,7 @@ import importlib
 import os
 import sys
 import threading
+import time
 
 from rapid_runtime.bridge import main
 from rapid_runtime.simulate import Simulator
@@ -24,7 +25,7 @@ class CountingSimulator(Simulator):
 
     def run(self, ctx, entry, kw: dict):
         with self._log_lock:
-            self._log.write(f"run {ctx.cmd.cmd_id}\n")
+            self._log.write(f"run {ctx.cmd.cmd_id} {time.monotonic():.3f}\n")  # one clock for every namespace
         return super().run(ctx, entry, kw)
 
 

@@ -1,11 +1,13 @@
 """The ground side of the field tests, a process in the ground namespace (CYCLONEDDS_URI
 names the site's Cyclone file). Prints one JSON document on its last line.
 
-  python -m tests.field.ground drive PACKAGE DOMAIN ROUNDS [--wave W] [--hold S] [--speed X] [--source NAME]
+  python -m tests.field.ground drive PACKAGE DOMAIN ROUNDS [--wave W] [--hold S] [--speed X] [--targets N]
       requestControl, then ROUNDS rounds of every queue action, W rounds sent at once behind
       a drive of S s (at the bridge's speed X) that holds the queue; each round: b=APPEND, c=INSERT after b,
-      d=APPEND then e=REPLACE d, f=APPEND then g=DELETE f, h=BYPASS. Waits for every final
+      d=APPEND then e=REPLACE d, f=APPEND then g=DELETE f, h=BYPASS (K10Native). Waits for every final
       ack; reports every command's acks and the seconds from send to its COMPLETED.
+  python -m tests.field.ground outage PACKAGE DOMAIN [--long N] [--hold S] [--during M]
+      a queue of long commands; the test cuts the link while it runs (see outage()).
   python -m tests.field.ground late PACKAGE DOMAIN IDS.json
       a late joiner: the durable acks of the listed cmdIds, every config, the QueueState."""
 from __future__ import annotations
@@ -83,6 +85,14 @@ def drive(args) -> dict:
     cid = c.timed_send("AccessControl", "requestControl", [])
     c.wait_final([cid], WAIT)
     rounds, holds, x = [], [], 0.0
+    gate, targets = None, []
+    if args.targets:  # a drive that holds the queue, and pending commands for other tools to act on
+        gate = c.timed_send("Mobility", "simpleMove", _move(300.0 * args.speed), action="QUEUE_APPEND")
+        targets = [{k: c.timed_send("PanCam", "pointCamera", _point(tables, 0.2), action="QUEUE_APPEND")
+                    for k in ("insert", "replace", "delete")} for _ in range(args.targets)]
+        ids = [gate, *(t for group in targets for t in group.values())]
+        with c.cond:
+            c.cond.wait_for(lambda: all(c.acks.get(i) for i in ids), WAIT)
     for start in range(0, args.rounds, args.wave):
         x = args.hold * 0.5 * args.speed if x == 0.0 else 0.0  # DRIVE_SPEED 0.5 m/s: there and back
         wave = [c.timed_send("Mobility", "simpleMove", _move(x), action="QUEUE_APPEND")]
@@ -96,16 +106,55 @@ def drive(args) -> dict:
             r["e"] = c.timed_send("PanCam", "pointCamera", _point(tables, pan), action="QUEUE_REPLACE", target=r["d"])
             r["f"] = c.timed_send("PanCam", "pointCamera", _point(tables, pan), action="QUEUE_APPEND")
             r["g"] = c.timed_send("Admin", "noOp", [], action="QUEUE_DELETE", target=r["f"])
-            r["h"] = c.timed_send("PanCam", "pointCamera", _point(tables, pan), action="QUEUE_BYPASS")
+            # beside the queue, on a subsystem of its own and not abortable: a BYPASS preempts
+            # an abortable command running on its subsystem (rapid-protocol.md 5b)
+            r["h"] = c.timed_send("K10Native", "nativeCommand", [("RAPID_STRING", f"round {i}")],
+                                  action="QUEUE_BYPASS")
             rounds.append(r)
             wave.extend(r.values())
+        if gate is not None and start == 0:  # the other tools act on the targets, then the queue goes on
+            print(json.dumps({"gate": gate, "targets": targets}), flush=True)
+            sys.stdin.readline()
+            release = c.timed_send("Admin", "noOp", [], action="QUEUE_DELETE", target=gate)
+            wave.extend([gate, release, *(t for group in targets for t in group.values())])
         c.wait_final(wave, WAIT)
     with c.cond:
         acks = {k: list(v) for k, v in c.acks.items()}
-    out = {"rounds": rounds, "holds": holds, "control": cid, "acks": acks,
+    out = {"rounds": rounds, "holds": holds, "control": cid, "acks": acks, "gate": gate, "targets": targets,
            "latency": {k: c.done_at[k] - c.sent_at[k] for k in c.sent_at if k in c.done_at}}
     c.close()
     return out
+
+
+def outage(args) -> dict:
+    """LONG drives of HOLD s each and instant commands between them, all appended; once
+    the first drive executes, prints "executing" and waits for a line on stdin (the test
+    cuts the link), then appends DURING more commands (sent into the outage) and waits
+    for every final ack."""
+    rapid, tables, qos = load(args.package)
+    c = TimedCommander(rapid, qos, tables.name, args.source, args.domain)
+    if not c.wait_for_asset(WAIT):
+        return {"error": "no asset"}
+    control = c.timed_send("AccessControl", "requestControl", [])
+    c.wait_final([control], WAIT)
+    before, x = [], 0.0
+    for i in range(args.long):
+        x = args.hold * 0.5 * args.speed if x == 0.0 else 0.0
+        before.append(c.timed_send("Mobility", "simpleMove", _move(x), action="QUEUE_APPEND"))
+        before.append(c.timed_send("PanCam", "pointCamera", _point(tables, 0.1 * (i % 5)), action="QUEUE_APPEND"))
+    with c.cond:
+        c.cond.wait_for(lambda: any(a[0] == "ACK_EXECUTING" for a in c.acks.get(before[0], ())), WAIT)
+    print("executing", flush=True)
+    sys.stdin.readline()
+    t_cut = time.monotonic()
+    during = [c.timed_send("PanCam", "pointCamera", _point(tables, 0.05 * i), action="QUEUE_APPEND")
+              for i in range(args.during)]
+    c.wait_final(before + during, WAIT)
+    with c.cond:
+        acks = {k: list(v) for k, v in c.acks.items()}
+    c.close()
+    return {"before": before, "during": during, "acks": acks,
+            "done_after_cut": {k: c.done_at[k] - t_cut for k in before + during if k in c.done_at}}
 
 
 def late(args) -> dict:
@@ -145,13 +194,24 @@ def main() -> int:
     d.add_argument("--wave", type=int, default=10)
     d.add_argument("--hold", type=float, default=8.0, help="seconds the wave's drive lasts")
     d.add_argument("--speed", type=float, default=1.0, help="the bridge's simulation speed")
-    d.add_argument("--source", default="FieldGround")
+    d.add_argument("--targets", type=int, default=0,
+                   help="first hold the queue with a drive and queue N x 3 targets, print their ids (JSON) and wait "
+                        "for a line on stdin (other tools INSERT after, REPLACE and DELETE them), then delete the drive")
+    d.add_argument("--source", default="RapidWorkbench")  # K10's allow-list lets it send everything
+    o = sub.add_parser("outage")
+    o.add_argument("package")
+    o.add_argument("domain", type=int)
+    o.add_argument("--long", type=int, default=4, help="drives queued")
+    o.add_argument("--hold", type=float, default=4.0, help="seconds each drive lasts")
+    o.add_argument("--speed", type=float, default=1.0)
+    o.add_argument("--during", type=int, default=3, help="commands sent while the link is down")
+    o.add_argument("--source", default="RapidWorkbench")
     late_p = sub.add_parser("late")
     late_p.add_argument("package")
     late_p.add_argument("domain", type=int)
     late_p.add_argument("ids")
     args = ap.parse_args()
-    out = drive(args) if args.what == "drive" else late(args)
+    out = {"drive": drive, "outage": outage, "late": late}[args.what](args)
     print(json.dumps(out), flush=True)
     os._exit(0)  # DDS threads need not be joined: the answer is printed
 

@@ -35,7 +35,7 @@ def send(address: str, port: int, count: int, interval: float) -> None:
             s.sendto(struct.pack("!I", n) + b"x" * 60, (address, port))
             n, next_at = n + 1, next_at + interval
             if n == count:
-                deadline = now + 6.0  # answers still on their way
+                deadline = now + float(sys.argv[6]) if len(sys.argv) > 6 else now + 3.0  # answers on their way
         if deadline is not None and now > deadline:
             break
         try:

@@ -14,16 +14,48 @@ K10 = str(ROOT / "specs" / "assets" / "k10.yaml")
 RAPIDGEN = [sys.executable, "-m", "rapidgen"]
 
 
-def site_config(folder: Path, asset: str = "k10", transport: str = "wan") -> Path:
-    """The package's generated Cyclone file for `transport`, peers set to the two sites."""
+def site_config(folder: Path, asset: str = "k10", transport: str = "wan", extra: str = "") -> Path:
+    """The package's generated Cyclone file for `transport`, peers set to the two sites
+    (extra: XML put at the end of the Domain element)."""
     src = python_dir(asset) / SEEDS[asset] / "qos_files" / "cyclonedds" / f"{transport}.xml"
     text = src.read_text(encoding="utf-8")
     peers = "".join(f'<Peer Address="{a}"/>' for a in ADDRESS.values())
     text, n = re.subn(r"<Peers>.*?</Peers>", f"<Peers>{peers}</Peers>", text, flags=re.S)
     if n == 0:  # lan: multicast discovery, no peers to set
         assert transport == "lan", src
+    text = text.replace("</Domain>", extra + "</Domain>")
     out = folder / f"{asset}-{transport}.xml"
     out.write_text(text, encoding="utf-8")
+    return out
+
+
+def site_library(folder: Path, rtt: float | None, lease: float | None, transport: str = "wan") -> Path:
+    """The Cyclone file of a site's own QoS library (docs/qos.md: a site copies
+    specs/qos/rapid.yaml, puts its peers in and, for a slow link, its round trip and the
+    longest outage to ride through), rendered by rapidgen's qos back end."""
+    import yaml
+
+    from rapidgen.backends.base import notice
+    from rapidgen.backends.qos import view
+    from rapidgen.backends.templating import render
+    from rapidgen.diagnostics import DiagnosticSink
+    from rapidgen.qos.spec import load_qos
+
+    data = yaml.safe_load((ROOT / "specs" / "qos" / "rapid.yaml").read_text(encoding="utf-8"))
+    t = data["transports"][transport]
+    t["peers"] = list(ADDRESS.values())
+    for key, value in (("rtt", rtt), ("lease", lease)):
+        if value is not None:
+            t[key] = value
+    lib = folder / "site-qos.yaml"
+    lib.write_text(yaml.safe_dump(data, sort_keys=False), encoding="utf-8")
+    sink = DiagnosticSink()
+    spec = load_qos(str(lib), sink)
+    assert spec is not None and not sink.has_errors, sink
+    t_view = next(v for v in view.cyclone_views(spec) if v.name == transport)
+    out = folder / f"site-{transport}.xml"
+    out.write_text(render("qos", "cyclonedds.xml.j2", t=t_view, notice=notice(str(lib)), library=spec.library,
+                          asset=None), encoding="utf-8")
     return out
 
 

@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/qos/cyclonedds.xml.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "20b672aabe2b769991438ebd7ebb6c0bf13c00872e1bbab67ecf59560f8bbe33"
+KEY = "89bf86422898655957820977c25814d96cab90f7df6274c717a95855b80ce7f0"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'cyclonedds.xml.j2'
 
@@ -55,6 +55,16 @@ def root(context, missing=missing, environment=environment):
         yield escape(environment.finalize(environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'fragment_size')))
         yield '</FragmentSize>\n'
     yield '    </General>\n    <Discovery>\n'
+    if environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'lease'):
+        pass
+        yield '      <LeaseDuration>'
+        yield escape(environment.finalize(environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'lease')))
+        yield '</LeaseDuration>\n'
+    if environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'spdp_interval'):
+        pass
+        yield '      <SPDPInterval>'
+        yield escape(environment.finalize(environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'spdp_interval')))
+        yield '</SPDPInterval>\n'
     if environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'participant_index'):
         pass
         yield '      <ParticipantIndex>'
@@ -98,7 +108,17 @@ def root(context, missing=missing, environment=environment):
         yield '</MulticastDataOffset>\n        <UnicastDataOffset>'
         yield escape(environment.finalize(environment.getattr(environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'ports'), 'd3')))
         yield '</UnicastDataOffset>\n      </Ports>\n'
-    yield '    </Discovery>\n  </Domain>\n</CycloneDDS>\n'
+    yield '    </Discovery>\n'
+    if environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'has_internal'):
+        pass
+        yield '    <Internal>\n      <HeartbeatInterval minsched="'
+        yield escape(environment.finalize(environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'heartbeat')))
+        yield '">'
+        yield escape(environment.finalize(environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'heartbeat')))
+        yield '</HeartbeatInterval>\n      <AutoReschedNackDelay>'
+        yield escape(environment.finalize(environment.getattr((undefined(name='t') if l_0_t is missing else l_0_t), 'nack_repeat')))
+        yield '</AutoReschedNackDelay>\n    </Internal>\n'
+    yield '  </Domain>\n</CycloneDDS>\n'
 
 blocks = {}
-debug_info = '2=26&3=28&10=32&12=35&13=39&17=44&18=46&19=49&20=51&24=54&25=57&27=59&28=62&30=64&32=67&33=71&37=75&38=78&40=80&42=83&43=85&44=87&45=89&46=91&47=93&48=95'
+debug_info = '2=26&3=28&10=32&12=35&13=39&17=44&18=46&19=49&20=51&24=54&25=57&27=59&28=62&30=64&31=67&33=69&34=72&36=74&38=77&39=81&43=85&44=88&46=90&48=93&49=95&50=97&51=99&52=101&53=103&54=105&58=108&60=111&61=115'
