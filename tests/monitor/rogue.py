@@ -5,7 +5,7 @@
 In a partition named with markup it publishes a CommandConfig (subsystem, type, command
 and parameter names with markup), an AgentConfig/AgentState (a value key with markup, a
 string value with markup) and TextMessages with markup and script; it also puts one such
-TextMessage into K10Red's partition. Prints "rogue ready" once its writers exist."""
+TextMessage into K10Red's partition, and a "picture" whose MIME type is text/html. Prints "rogue ready" once its writers exist."""
 import importlib
 import sys
 import time
@@ -31,12 +31,14 @@ def main() -> int:
     home = Publisher(dp, qos=Qos(Policy.Partition(["K10Red"])))
     topics: dict = {}
     for name, cls in (("rapid_command_config", rapid.CommandConfig), ("rapid_agent_config", rapid.AgentConfig),
-                      ("rapid_agent_state", rapid.AgentState), ("rapid_textmessage", rapid.TextMessage)):
+                      ("rapid_agent_state", rapid.AgentState), ("rapid_textmessage", rapid.TextMessage),
+                      ("rapid_imagesensor_sample-rogue", rapid.ImageSensorSample)):
         topics[name] = Topic(dp, name, cls)
     cc = DataWriter(pub, topics["rapid_command_config"], qos=qos.writer("rapid_command_config"))
     ac = DataWriter(pub, topics["rapid_agent_config"], qos=qos.writer("rapid_agent_config"))
     st = DataWriter(pub, topics["rapid_agent_state"], qos=qos.writer("rapid_agent_state"))
     tx = DataWriter(pub, topics["rapid_textmessage"], qos=qos.writer("rapid_textmessage"))
+    img = DataWriter(pub, topics["rapid_imagesensor_sample-rogue"], qos=qos.writer("rapid_imagesensor_sample-hazCam"))
     tx_home = DataWriter(home, topics["rapid_textmessage"], qos=qos.writer("rapid_textmessage"))
 
     def hdr(asset=ASSET):
@@ -57,6 +59,9 @@ def main() -> int:
         st.write(rapid.AgentState(hdr=hdr(), values=[union(TEXT)]))
         msg = rapid.TextMessage(hdr=hdr(), level=rapid.MessageLevel.MSG_WARN, category=NAME, message=TEXT)
         tx.write(msg)
+        img.write(rapid.ImageSensorSample(hdr=hdr(), meta=rapid.ImageMetadata(sensorName="RogueCam", sensorType=NAME,
+                                                                             width=1, height=1),
+                                          mimeType="text/html", data=list(TEXT.encode())))
         if n % 4 == 0:
             tx_home.write(rapid.TextMessage(hdr=hdr("K10Red"), level=rapid.MessageLevel.MSG_WARN, category=NAME,
                                             message=TEXT))

@@ -7,6 +7,7 @@ cross-origin WebSocket, a picture whose MIME type is not a picture's) and usage 
 from __future__ import annotations
 
 import json
+from urllib.parse import quote
 import subprocess
 import sys
 
@@ -218,6 +219,15 @@ def test_server_refuses_cross_origin_sockets_and_foreign_picture_types(live):
                 assert "script-src 'self'" in r.headers["Content-Security-Policy"]
             async with s.get(url + "picture/K10Red/NoSuchCamera") as r:
                 assert r.status == 404
+            rogue_cam = url + "picture/" + quote(ROGUE_PARTITION, safe="") + "/RogueCam"
+            for _ in range(100):  # the rogue's text/html "picture" is never served as a page
+                async with s.get(rogue_cam) as r:
+                    if r.status != 404:
+                        assert r.status == 415 and "html" not in r.headers.get("Content-Type", ""), r.status
+                        break
+                await asyncio.sleep(0.1)
+            else:
+                raise AssertionError("the rogue's picture never arrived")
     asyncio.run(probe())
 
 
