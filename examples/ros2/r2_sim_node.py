@@ -4,6 +4,8 @@ Subscribes /r2_controller/right/pose_command (geometry_msgs/PoseStamped),
 /r2_controller/right/joint_command (sensor_msgs/JointState, positions in joint order) and
 /r2_controller/right/stop (std_msgs/String), serves /r2_controller/right/home
 (std_srvs/Trigger: fails while disabled) and /r2_controller/right/enable (std_srvs/SetBool),
+runs /r2_controller/right/wave goals (test_msgs/action/Fibonacci: `order` waves of 0.1 s,
+feedback after each, cancellable),
 drives the right arm's seven joints toward the target at --speed rad/s; publishes
 /joint_states (both arms' and the waist's joints, the right arm's in reverse order: a
 subscriber must match by name), the tool pose, the wrist wrench and force magnitude, and
@@ -20,13 +22,18 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import time
 
 import rclpy
 from geometry_msgs.msg import PoseStamped, WrenchStamped
+from rclpy.action import ActionServer, CancelResponse
+from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.executors import MultiThreadedExecutor
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64, String
 from std_srvs.srv import SetBool, Trigger
+from test_msgs.action import Fibonacci
 
 RIGHT = [f"r2/right_arm/joint{i}" for i in range(7)]
 OTHERS = [f"r2/left_arm/joint{i}" for i in range(7)] + ["r2/waist/joint0"]
@@ -64,6 +71,9 @@ class R2Sim(Node):
         self.create_service(Trigger, "/r2_controller/right/home", self.on_home)
         self.create_service(SetBool, "/r2_controller/right/enable", self.on_enable)
         self.enabled = True
+        # the goal runs in its own thread while the timer keeps publishing
+        ActionServer(self, Fibonacci, "/r2_controller/right/wave", self.on_wave,
+                     cancel_callback=lambda _goal: CancelResponse.ACCEPT, callback_group=ReentrantCallbackGroup())
         self.create_timer(self.dt, self.step)
 
     def status(self, text: str) -> None:
@@ -97,6 +107,22 @@ class R2Sim(Node):
         response.success, response.message = True, "enabled" if self.enabled else "disabled"
         print(f"r2_sim: {response.message}", flush=True)
         return response
+
+    def on_wave(self, goal):
+        """Wave `order` times, 0.1 s each; feedback: the Fibonacci numbers so far."""
+        seq = [0, 1][:max(goal.request.order, 0)]
+        print(f"r2_sim: wave goal order={goal.request.order}", flush=True)
+        for i in range(goal.request.order):
+            if goal.is_cancel_requested:
+                goal.canceled()
+                print(f"r2_sim: wave canceled after {i}", flush=True)
+                return Fibonacci.Result(sequence=seq)
+            while len(seq) <= i:
+                seq.append(seq[-1] + seq[-2])
+            goal.publish_feedback(Fibonacci.Feedback(sequence=seq[:i + 1]))
+            time.sleep(0.1)
+        goal.succeed()
+        return Fibonacci.Result(sequence=seq[:goal.request.order])
 
     def on_joints(self, msg: JointState) -> None:
         print(f"r2_sim: joint_command {list(msg.position)}", flush=True)
@@ -147,8 +173,10 @@ def main(argv: list[str] | None = None) -> int:
     rclpy.init()
     node = R2Sim(args.speed, args.rate, args.force)
     print("r2_sim ready", flush=True)
+    executor = MultiThreadedExecutor()
+    executor.add_node(node)
     try:
-        rclpy.spin(node)
+        executor.spin()
     except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
         pass
     finally:

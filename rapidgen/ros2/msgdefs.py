@@ -63,8 +63,15 @@ BUILTIN_SRV: dict[str, str] = {
     "std_srvs/srv/SetBool": "bool data\n---\nbool success\nstring message",
 }
 
+# Actions: goal, result and feedback, split by '---' as in a .action file. No standard
+# package ships actions as a wheel; test_msgs' Fibonacci (ros-test-msgs) is the example one.
+BUILTIN_ACTION: dict[str, str] = {
+    "test_msgs/action/Fibonacci": "int32 order\n---\nint32[] sequence\n---\nint32[] sequence",
+}
+
 _TYPE_NAME = re.compile(r"^([a-z][a-z0-9_]*)/(?:msg/)?([A-Z][A-Za-z0-9]*)$")
 _SRV_NAME = re.compile(r"^([a-z][a-z0-9_]*)/(?:srv/)?([A-Z][A-Za-z0-9]*)$")
+_ACTION_NAME = re.compile(r"^([a-z][a-z0-9_]*)/(?:action/)?([A-Z][A-Za-z0-9]*)$")
 _FIELD = re.compile(r"^([A-Za-z][A-Za-z0-9_/]*)(?:<=\d+)?(\[(?:<=)?(\d*)\])?\s+([a-z][a-z0-9_]*)(?:\s+.*)?$")
 
 
@@ -148,13 +155,18 @@ def lookup(name: str) -> MsgDef | None:
     return None if text is None else parse(name, text, "built-in")
 
 
-@lru_cache(maxsize=64)
-def lookup_srv(name: str) -> tuple[MsgDef, MsgDef] | None:
-    """(request, response) of pkg/srv/Type: installed first, else built-in, else None."""
+def full_action_name(text: str) -> str | None:
+    """'test_msgs/Fibonacci' or 'test_msgs/action/Fibonacci' -> 'test_msgs/action/Fibonacci'."""
+    m = _ACTION_NAME.match(text)
+    return f"{m.group(1)}/action/{m.group(2)}" if m else None
+
+
+def _parts(name: str, kind: str, builtin: dict[str, str], roles: tuple[str, ...]) -> tuple[MsgDef, ...] | None:
+    """The '---'-separated parts of a .srv or .action file: installed first, else built-in."""
     pkg, _, typ = name.split("/")
-    text, source = BUILTIN_SRV.get(name), "built-in"
+    text, source = builtin.get(name), "built-in"
     for share in _share_dirs():
-        path = os.path.join(share, pkg, "srv", typ + ".srv")
+        path = os.path.join(share, pkg, kind, f"{typ}.{kind}")
         if os.path.isfile(path):
             try:
                 with open(path, encoding="utf-8") as f:
@@ -164,10 +176,28 @@ def lookup_srv(name: str) -> tuple[MsgDef, MsgDef] | None:
             break
     if text is None:
         return None
-    lines = text.splitlines()
-    cut = next((i for i, ln in enumerate(lines) if ln.strip() == "---"), len(lines))
-    return (parse(f"{name} request", "\n".join(lines[:cut]), source),
-            parse(f"{name} response", "\n".join(lines[cut + 1:]), source))
+    chunks: list[list[str]] = [[]]
+    for line in text.splitlines():
+        if line.strip() == "---":
+            chunks.append([])
+        else:
+            chunks[-1].append(line)
+    chunks += [[] for _ in range(len(roles) - len(chunks))]
+    return tuple(parse(f"{name} {role}", "\n".join(chunk), source) for role, chunk in zip(roles, chunks))
+
+
+@lru_cache(maxsize=64)
+def lookup_srv(name: str) -> tuple[MsgDef, MsgDef] | None:
+    """(request, response) of pkg/srv/Type."""
+    found = _parts(name, "srv", BUILTIN_SRV, ("request", "response"))
+    return None if found is None else (found[0], found[1])
+
+
+@lru_cache(maxsize=64)
+def lookup_action(name: str) -> tuple[MsgDef, MsgDef, MsgDef] | None:
+    """(goal, result, feedback) of pkg/action/Type."""
+    found = _parts(name, "action", BUILTIN_ACTION, ("goal", "result", "feedback"))
+    return None if found is None else (found[0], found[1], found[2])
 
 
 def resolve_path(msg: MsgDef, path: str) -> tuple[Field | None, str | None]:

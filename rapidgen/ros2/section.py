@@ -34,8 +34,10 @@ VELOCITY_ENCODINGS = ("RAPID_ROT_NONE", "RAPID_ROT_VEL")
 _SECTION_KEYS = ("node", "telemetry", "commands", "ground")
 _GROUND_KEYS = ("namespace", "diagnostics", "node")
 _FEED_KEYS = ("topic", "type", "feeds", "index", "joints", "values", "description")
-_COMMAND_KEYS = ("command", "publish", "call", "until", "cancel", "description")
+_COMMAND_KEYS = ("command", "publish", "call", "action", "until", "cancel", "description")
 _CALL_KEYS = ("service", "type", "fields", "timeout")
+_ACTION_KEYS = ("action", "type", "fields", "timeout")
+_DOINGS = ("publish", "call", "action")  # what a command does; exactly one
 _PUBLISH_KEYS = ("topic", "type", "fields")
 _UNTIL_KEYS = ("topic", "type", "field", "equals", "timeout")
 
@@ -304,19 +306,20 @@ class _Reader:
         name = self.text(item["command"], path + ("command",), "a command")
         if name is None:
             return None
-        if ("publish" in item) == ("call" in item):
-            self.error("RG1505", f"'{name}' needs exactly one action: 'publish' or 'call'", path + ("command",),
-                       "publish: {topic, type, fields} or call: {service, type, fields}")
+        if sum(k in item for k in _DOINGS) != 1:
+            self.error("RG1505", f"'{name}' needs exactly one of 'publish', 'call' and 'action'", path + ("command",),
+                       "publish: {topic, type, fields}, call: {service, type, fields} or action: {action, type, fields}")
             return None
-        if "until" in item and "call" in item:
-            self.error("RG1505", "'until' is for 'publish' (a service call ends with its response)",
+        if "until" in item and "publish" not in item:
+            self.error("RG1505", "'until' is for 'publish' (a service call or an action goal ends with its result)",
                        path + ("until",), "leave it out")
             return None
         cmd = self.find_command(name, path + ("command",))
         if cmd is None:
             return None
         out: dict[str, Any] = {"command": name}
-        parts = [("publish", self.publish), ("call", self.call), ("until", self.until_of), ("cancel", self.publish)]
+        parts = [("publish", self.publish), ("call", self.call), ("action", self.action), ("until", self.until_of),
+                 ("cancel", self.publish)]
         for key, read in parts:
             if key in item:
                 out[key] = read(item[key], path + (key,), cmd)
@@ -328,6 +331,38 @@ class _Reader:
 
     def until_of(self, value: object, path: tuple, cmd: Any) -> dict | None:
         return self.until(value, path)
+
+    def action(self, value: object, path: tuple, cmd: Any) -> dict | None:
+        """An action goal built from the arguments: feedback as EXECUTING acks, the result's
+        status as COMPLETED (OK, EXEC_FAILED when aborted or rejected, CANCELED)."""
+        if not self.mapping(value, path, _ACTION_KEYS, ("action", "type")):
+            return None
+        assert isinstance(value, dict)
+        name = self.topic(value["action"], path + ("action",))
+        text = self.text(value["type"], path + ("type",), "an action type")
+        if name is None or text is None:
+            return None
+        full = msgdefs.full_action_name(text)
+        found = msgdefs.lookup_action(full) if full else None
+        if found is None:
+            self.error("RG1501", f"unknown ROS 2 action type {full or text}", path + ("type",),
+                       "write package/action/Type; not installed (no share/<package>/action/<Type>.action) and not "
+                       f"the built-in {', '.join(sorted(msgdefs.BUILTIN_ACTION))}")
+            return None
+        timeout = self.timeout(value, path)
+        fields = self.fields_of(value.get("fields", {}), path, found[0], cmd)
+        if fields is None or timeout is False:
+            return None
+        return {"action": name, "type": full, "fields": fields, "timeout": timeout}
+
+    def timeout(self, value: dict, path: tuple) -> float | None | bool:
+        """The timeout in seconds, None when not given, False (reported) when not above 0."""
+        t = value.get("timeout")
+        if t is not None and (isinstance(t, bool) or not isinstance(t, (int, float)) or t <= 0):
+            self.error("RG1505", "timeout must be a number of seconds above 0", path + ("timeout",),
+                       "leave it out to wait until the command is cancelled")
+            return False
+        return t
 
     def call(self, value: object, path: tuple, cmd: Any) -> dict | None:
         """A service call built from the arguments; its response's `success` (when it has one)

@@ -16,7 +16,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 VENV = ROOT / ".venv" / "ros2"
 PACKAGES = ("ros-rclpy", "ros-rmw-fastrtps-cpp", "ros-std-msgs", "ros-sensor-msgs", "ros-geometry-msgs",
-            "ros-nav-msgs", "ros-diagnostic-msgs", "ros-std-srvs", "cyclonedds==11.0.1")
+            "ros-nav-msgs", "ros-diagnostic-msgs", "ros-std-srvs", "ros-test-msgs", "cyclonedds==11.0.1")
 STAMP = VENV / "rapidgen-ros2.stamp"
 
 

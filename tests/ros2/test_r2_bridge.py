@@ -228,3 +228,30 @@ def test_rapid_telemetry_comes_back_to_ros2_as_standard_messages(scene):
     assert float(force["values"]["value"]) == pytest.approx(FORCE) and force["values"]["unit"] == "N"
     assert status["R2Ros/rightWristForce"]["level"] == 0  # no thresholds: OK
     assert all(s["hardware_id"] == "R2Ros" for s in status.values())
+
+
+def test_action_goal_feedback_result_and_delete(scene):
+    """An action goal (test_msgs/Fibonacci on the ROS 2 side): its feedback comes back as
+    EXECUTING acks, its result as COMPLETED/OK; DELETE of a running goal cancels it on the
+    ROS 2 side and answers CANCELED."""
+    scene.take_control()
+    res = scene.cmd("RightArm", "Wave", "count=3")
+    assert res.returncode == 0, res.stdout + res.stderr
+    acks = [line.strip() for line in res.stdout.splitlines()[1:] if line.strip()]
+    assert [a.split()[0] for a in acks] == ["EXECUTING"] * 4 + ["COMPLETED"], res.stdout
+    assert acks[1:4] == ["EXECUTING  sequence=[0]", "EXECUTING  sequence=[0, 1]", "EXECUTING  sequence=[0, 1, 1]"]
+    assert acks[-1] == "COMPLETED OK  /r2_controller/right/wave succeeded: sequence=[0, 1, 1]"
+
+    log = scene.tmp / "wave.log"
+    with open(log, "w") as out:
+        long = subprocess.Popen([*scene.ns, sys.executable, "-m", "rapidgen", "cmd", "--action", "APPEND",
+                                 "--id", "wave-long", "--from-descriptor", PACKAGE, "RightArm", "Wave", "count=1000"],
+                                cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, text=True, env=scene.env)
+        _wait_for(log, "sequence=[0, 1, 1]", long)  # the goal is running on the ROS 2 side
+        delete = scene.cmd("--action", "DELETE", "--target", "wave-long", "RightArm", "Wave", "count=1")
+        assert delete.returncode == 0, delete.stdout + delete.stderr
+        assert long.wait(WAIT) == 1
+    lines = [line.split()[:2] for line in log.read_text().splitlines()[1:] if line.strip()]
+    assert lines[0] == ["QUEUED"] and lines[-1] == ["COMPLETED", "CANCELED"], log.read_text()
+    assert all(kind == ["EXECUTING"] or kind[0] == "EXECUTING" for kind in lines[1:-1])
+    _wait_for(scene.tmp / "sim.log", "r2_sim: wave canceled after")
