@@ -1,0 +1,109 @@
+"""The monitor's state and checks without a network or a browser: threshold levels, the
+command dictionary merged with the descriptor's hints, a page's command request checked
+(source, dictionary, types, ranges, defaults), deltas by cursor, bounded streams."""
+from __future__ import annotations
+
+from types import SimpleNamespace as NS
+
+import pytest
+
+from rapidgen.monitor.commanding import Refused, check
+from rapidgen.monitor.hints import AssetHints, Hints, level_of
+from rapidgen.monitor.state import LOG_LINES, Hub
+
+pytest.importorskip("rapid_runtime")  # values are checked by the runtime's rules, as `rapidgen cmd` does
+
+BATTERY = {"unit": "%", "warning": {"below": 30, "above": None}, "critical": {"below": 15, "above": None}}
+VOLTAGE = {"warning": {"below": 44, "above": 56}, "critical": {"below": 40, "above": 58}}
+
+
+@pytest.mark.parametrize("value,hint,level", [
+    (50, BATTERY, "ok"), (30, BATTERY, "ok"), (29.9, BATTERY, "warning"), (15, BATTERY, "warning"),
+    (14.9, BATTERY, "critical"), (50, VOLTAGE, "ok"), (57, VOLTAGE, "warning"), (59, VOLTAGE, "critical"),
+    (43, VOLTAGE, "warning"), (39, VOLTAGE, "critical"), (float("nan"), VOLTAGE, "critical"), (1e9, None, "ok"),
+])
+def test_levels(value, hint, level):
+    assert level_of(value, hint) == level
+
+
+COMMANDS = {"PanTiltCamera": {"pointCamera": {"abortable": True, "suspendable": False, "description": "point",
+                                              "parameters": [
+    {"name": "pan", "type": "RAPID_FLOAT", "unit": "rad", "min": -3.05, "max": 3.05, "allowed": [], "default": 0,
+     "has_default": True, "description": ""},
+    {"name": "mode", "type": "RAPID_STRING", "unit": None, "min": None, "max": None, "allowed": ["a", "b"],
+     "default": "a", "has_default": True, "description": ""},
+    {"name": "tiles", "type": "RAPID_INT", "unit": None, "min": 1, "max": 64, "allowed": [], "default": None,
+     "has_default": False, "description": ""}]}}}
+LIVE = {"availableSubsystemTypes": [{"name": "PanTiltCamera", "commands": [
+    {"name": "pointCamera", "abortable": True, "suspendable": False,
+     "parameters": [{"key": "pan", "type": "RAPID_FLOAT"}, {"key": "mode", "type": "RAPID_STRING"},
+                    {"key": "tiles", "type": "RAPID_INT"}]}]}],
+    "availableSubsystems": [{"name": "PanCam", "subsystemTypeName": "PanTiltCamera"}]}
+
+
+def _hints() -> Hints:
+    return Hints([AssetHints("K10Red", "K10Red", COMMANDS, {"PanCam": "PanTiltCamera"}, {"batteryCharge": BATTERY},
+                             ["RapidWorkbench"])])
+
+
+def test_live_dictionary_gets_the_descriptors_hints():
+    got = _hints().commands_for("K10Red", LIVE)
+    assert got["origin"] == "live" and got["sources"] == ["RapidWorkbench"]
+    pan = got["subsystems"][0]["commands"][0]["parameters"][0]
+    assert (pan["unit"], pan["min"], pan["max"], pan["default"]) == ("rad", -3.05, 3.05, 0)
+    bare = Hints().commands_for("Other", LIVE)["subsystems"][0]["commands"][0]["parameters"][0]
+    assert (bare["unit"], bare["min"], bare["has_default"]) == (None, None, False)
+    assert Hints().commands_for("Other", None) == {"origin": None, "subsystems": [], "sources": []}
+
+
+def _request(**kw):
+    msg = {"partition": "K10Red", "subsystem": "PanCam", "command": "pointCamera", "source": "RapidWorkbench",
+           "args": {"pan": "1.5", "mode": "b", "tiles": "8"}}
+    msg.update(kw)
+    return check(msg, _hints().commands_for("K10Red", LIVE), "K10Red")
+
+
+def test_a_good_request_is_typed_and_defaults_fill_the_rest():
+    req = _request()
+    assert req.args == (("RAPID_FLOAT", 1.5), ("RAPID_STRING", "b"), ("RAPID_INT", 8)) and req.action == "QUEUE_BYPASS"
+    assert _request(args={"tiles": "2"}).args == (("RAPID_FLOAT", 0.0), ("RAPID_STRING", "a"), ("RAPID_INT", 2))
+
+
+@pytest.mark.parametrize("kw,why", [
+    ({"source": ""}, "choose a command source"), ({"source": "x" * 40}, "at most 31 bytes"),
+    ({"source": "bad\x1bsource"}, "printable"), ({"command": "nope"}, "not in the asset's command dictionary"),
+    ({"args": {"pan": "4"}}, "pan: 4 not in [-3.05, 3.05]"), ({"args": {"pan": "x", "tiles": "1"}}, "not a RAPID_FLOAT"),
+    ({"args": {"mode": "c", "tiles": "1"}}, "not one of a|b"), ({"args": {}}, "tiles: a value is needed"),
+    ({"action": "DELETE"}, "unknown queue action"), ({"args": ["x"]}, "arguments must be an object"),
+])
+def test_bad_requests_are_refused_with_the_reason(kw, why):
+    with pytest.raises(Refused) as exc:
+        _request(**kw)
+    assert why in str(exc.value)
+
+
+def _agent_state(value: float, assetName: str = "K10Red"):
+    union = NS(discriminator=NS(name="RAPID_FLOAT"), value=value)
+    return NS(hdr=NS(assetName=assetName, statusCode=0), values=[union])
+
+
+def test_deltas_by_cursor_and_bounded_log():
+    hub = Hub(_hints(), clock=lambda: 1000.0)
+    hub.sample("K10Red", "rapid_agent_config", "rapid::AgentConfig",
+               NS(hdr=NS(assetName="K10Red"), valueKeys=[NS(key="batteryCharge", value=NS(discriminator=NS(
+                   name="RAPID_FLOAT"), value=0.0))]), 1.0)
+    hub.sample("K10Red", "rapid_agent_state", "rapid::AgentState", _agent_state(20.0), 2.0)
+    cursor, msgs = hub.delta(0)
+    (k10,) = msgs
+    assert k10["values"][0]["key"] == "batteryCharge" and k10["values"][0]["level"] == "warning"
+    assert k10["points"] == [("agent/batteryCharge", 2.0, 20.0)] and k10["status"]["name"] == "K10Red"
+    assert hub.delta(cursor) == (cursor, [])  # nothing new
+    hub.sample("K10Red", "rapid_agent_state", "rapid::AgentState", _agent_state(10.0), 3.0)
+    cursor2, (k10,) = hub.delta(cursor)
+    assert k10["values"][0]["level"] == "critical" and k10["points"] == [("agent/batteryCharge", 3.0, 10.0)]
+    assert "commands" not in k10  # unchanged sections are not sent again
+    for i in range(LOG_LINES + 50):
+        hub.sample("K10Red", "rapid_textmessage", "rapid::TextMessage",
+                   NS(hdr=NS(assetName="K10Red"), level=NS(name="MSG_INFO"), category="c", message=f"line {i}"), 4.0)
+    _, (k10,) = hub.delta(0)
+    assert len(k10["log"]) == LOG_LINES and k10["log"][-1][3] == f"line {LOG_LINES + 49}"
