@@ -24,6 +24,7 @@ from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
 from rapid_runtime.images import describe as describe_image
 from rapid_runtime.intake import Intake
+from rapid_runtime.journal import Journal, Recovered, default_dir
 from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapid_runtime.tables import Tables
 from rapid_runtime.telemetry import TelemetryError, ordered_values, typed_values
@@ -75,14 +76,27 @@ class Log:
 
 class Bridge:
     def __init__(self, tables: Tables, rapid, handlers, qos, domain: int | None = None,
-                 log=None, serial: int | None = None, command_window: int = COMMAND_WINDOW) -> None:
+                 log=None, serial: int | None = None, command_window: int = COMMAND_WINDOW,
+                 journal: str | None = None) -> None:
+        """journal: the restart journal's folder (journal.py; None: no journal, nothing in
+        flight survives a crash)."""
         self.tables, self.rapid, self.handlers = tables, rapid, handlers
         self.name = tables.name
-        self.serials = Serials(serial)
-        self.node = Node(rapid, qos, tables.domain if domain is None else domain)
+        domain = tables.domain if domain is None else domain
         self._log = Log(log or (lambda text: print(f"[{visible(self.name)}] {text}", file=sys.stderr, flush=True)))
+        self.journal: Journal | None = None
+        self.recovered = Recovered()
+        if journal is not None:
+            self.journal, self.recovered = Journal.open(journal, self.name, domain, command_window, self.log)
+        if serial is None and self.recovered.last_serial:
+            serial = max(int(time.time()), self.recovered.last_serial + 1)  # configs come back with a new serial
+        self.serials = Serials(serial, issued=self.journal.serial if self.journal is not None else None)
+        if self.journal is not None:
+            self.journal.start(self.serials.start)
+        self.node = Node(rapid, qos, domain)
         self.stopped = threading.Event()
-        self.manager = CommandManager(tables, handlers, self, on_shutdown=self.stop, window=command_window)
+        self.manager = CommandManager(tables, handlers, self, on_shutdown=self.stop, window=command_window,
+                                      journal=self.journal)
         self.telemetry = TelemetryPublisher(self)
         self._reader: ReaderThread | None = None
         self.intake = Intake(self.manager, self.log)
@@ -157,6 +171,10 @@ class Bridge:
         self.manager.publish_states()
         if self.tables.subsystems:
             self._acks()  # now: commanders wait to match the ack writer
+            if self.recovered.crashed:  # before any new command: a retried cmdId is known
+                answered, again = self.manager.restore(self.recovered)
+                self.log(f"journal: restarted after a crash; {answered} unfinished command(s) answered, "
+                         f"{again} final ack(s) written again")
             reader = self.node.reader(COMMAND_TOPIC, self.rapid.Command, max_samples=COMMAND_CACHE)
             self.intake.start()
             self._reader = ReaderThread(self.node, reader, self.rapid.Command, self._on_command, "rapid-commands",
@@ -180,7 +198,13 @@ class Bridge:
         self.stopped.set()
         try:
             self.handlers.on_stop()
-            if self.tables.subsystems:  # the last acks (shutdown's own) reach their readers
+            if self.tables.subsystems:  # no new command; the unfinished answered, then their acks delivered
+                if self._reader is not None and threading.current_thread() is not self._reader.thread:
+                    self._reader.stop()
+                self.intake.stop()
+                abandoned = self.manager.abandon()
+                if abandoned:
+                    self.log(f"stopping: {abandoned} unfinished command(s) answered")
                 for writer in self._acks().writers():
                     try:
                         writer.wait_for_acks(duration(seconds=2))
@@ -191,6 +215,18 @@ class Bridge:
             if self._reader is not None and threading.current_thread() is not self._reader.thread:
                 self._reader.stop()
             self.intake.stop()
+            self._close_journal()
+
+    def _close_journal(self) -> None:
+        """A clean stop: every command answered, the next start begins afresh."""
+        with self.manager.lock:
+            j, self.manager.journal = self.journal, None
+        if j is None:
+            return
+        try:
+            j.close(clean=True)
+        except OSError as exc:
+            self.log(f"journal {j.path}: not closed ({exc.strerror or exc}); the next start answers again")
 
     def wait(self, seconds: float | None = None) -> None:
         self.stopped.wait(seconds)
@@ -375,6 +411,10 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
     p.add_argument("--command-window", type=_positive, default=COMMAND_WINDOW, metavar="N",
                    help=f"commands remembered: repeated cmdIds detected among the last N, acks of the last N "
                         f"completed kept for late joiners (default {COMMAND_WINDOW})")
+    p.add_argument("--journal", metavar="DIR", default=None,
+                   help=f"the restart journal's folder: commands accepted and not finished are answered after a "
+                        f"crash (default {default_dir()}, or $RAPID_STATE_DIR)")
+    p.add_argument("--no-journal", action="store_true", help="no restart journal (a crash leaves commands unanswered)")
     args = p.parse_args(argv)
     qos_mod = __import__(f"{package}.qos", fromlist=["RapidQos"])
     try:
@@ -388,7 +428,9 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
         handlers = Simulator(tables, speed=args.sim_speed)
     else:
         handlers = make_handlers()
-    bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain, command_window=args.command_window).start()
+    journal = None if args.no_journal else (args.journal or str(default_dir()))
+    bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain, command_window=args.command_window,
+                    journal=journal).start()
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: bridge.stop())
     print(f"bridge ready: asset {tables.name}, domain {tables.domain if args.domain is None else args.domain}, "

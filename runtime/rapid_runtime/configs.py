@@ -4,14 +4,20 @@ larger than the last. Samples copy their config's serial."""
 from __future__ import annotations
 
 import time
+from typing import Callable
 
 
 class Serials:
-    def __init__(self, start: int | None = None) -> None:
+    def __init__(self, start: int | None = None, issued: Callable[[int], None] | None = None) -> None:
+        """issued(serial): told of every serial given out (the journal records the highest,
+        so a restarted bridge's serials are larger than any it used before)."""
         self.start = int(time.time()) if start is None else int(start)
         self._content: dict[str, object] = {}
         self._serial: dict[str, int] = {}
         self._last = self.start
+        self._issued = issued
+        if issued is not None:
+            issued(self.start)
 
     def of(self, topic: str) -> int:
         """The serial of the topic's config (the start serial before it was set)."""
@@ -25,4 +31,6 @@ class Serials:
             self._last = max(self._last + 1, int(time.time()))
         self._content[topic] = content
         self._serial[topic] = self._last
+        if self._issued is not None:
+            self._issued(self._last)
         return self._serial[topic], True

@@ -25,6 +25,7 @@ from rapid_runtime.command import Cmd
 PER_WRITER = 256  # commands of one writer waiting for the manager
 MAX_WRITERS = 256  # writers with a FIFO of their own; past that they share one
 SHED_ANSWERS = 4096  # "busy" answers waiting to be written
+BATCH = 32  # commands handed to the manager at once (journal.py: one sync per batch)
 CONTROL = {("Mobility", "stopAllMotion"), ("Queue", "cancelAll")}
 BUSY = "bridge busy: {n} commands from this writer already waiting; retry later"
 
@@ -108,16 +109,23 @@ class Intake:
         while True:
             with self.cond:
                 got = self._next()
-            if got is None:
-                return
-            cmd, shed = got
-            try:
-                if shed:
-                    self.manager.refuse(cmd, BUSY.format(n=self.per_writer))
-                else:
-                    self.manager.receive(cmd)
-            except Exception as exc:  # a bad command must not stop intake
-                self.log(f"command {cmd.cmd_id!r} not handled: {type(exc).__name__}: {exc}")
+                if got is None:
+                    return
+                batch = [got]  # what is waiting already goes in one manager batch: one journal sync
+                while len(batch) < BATCH and (self.fifos or self.shed):
+                    more = self._next()
+                    if more is None:
+                        break
+                    batch.append(more)
+            with self.manager.batch():
+                for cmd, shed in batch:
+                    try:
+                        if shed:
+                            self.manager.refuse(cmd, BUSY.format(n=self.per_writer))
+                        else:
+                            self.manager.receive(cmd)
+                    except Exception as exc:  # a bad command must not stop intake
+                        self.log(f"command {cmd.cmd_id!r} not handled: {type(exc).__name__}: {exc}")
 
 
 def is_control(tables, cmd: Cmd) -> bool:

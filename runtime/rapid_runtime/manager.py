@@ -12,10 +12,17 @@ Memory stays bounded on a robot that runs for months: only the last `window` com
 remembered (duplicates detected among them and among those still pending or running), and
 once more than `window` commands have completed, the oldest one's acks are retired
 (outbox.retire: the ack writer unregisters the instance, so DDS frees its history).
+
+With a journal (journal.py), every step that an ack promises is on disk before that ack:
+acks, queue and access states are held back within a locked operation (batch()) and
+written, in order, once the journal is synced; the intake hands over up to 32 commands
+in one batch, so a flood costs one sync per batch.
 """
 from __future__ import annotations
 
 import collections
+import contextlib
+import functools
 import threading
 import time
 from dataclasses import dataclass, field
@@ -44,6 +51,12 @@ BYPASS_LIMIT = 64
 COMPLETED_KEEP_S = 20.0  # finished commands stay in QueueState this long (soraCore)
 RECORDS = 64  # QueueState's SingleQueue holds at most 64 records
 VIOLATION = "RAPID access violation: "
+# What a command left unfinished by a restart or a stop is answered (docs/runtime.md,
+# "Restarts": a command never re-run, since a half-done motion run again is not safe).
+RESTARTED_QUEUED = "asset restarted before it ran"
+RESTARTED_RUNNING = "asset restarted while it ran; outcome unknown"
+STOPPED_QUEUED = "asset stopped before it ran"
+STOPPED_RUNNING = "asset stopped while it ran; outcome unknown"
 
 
 class Outbox(Protocol):
@@ -70,7 +83,7 @@ class CommandManager:
     def __init__(self, tables: Tables, handlers: object, outbox: Outbox,
                  on_shutdown: Callable[[], None] | None = None, clock: Callable[[], float] = time.monotonic,
                  window: int = COMMAND_WINDOW, queue_limit: int = QUEUE_LIMIT,
-                 bypass_limit: int = BYPASS_LIMIT) -> None:
+                 bypass_limit: int = BYPASS_LIMIT, journal=None) -> None:
         if window < 1:
             raise ValueError(f"command window {window}: at least 1")
         if queue_limit < 1 or bypass_limit < 1:
@@ -93,10 +106,48 @@ class CommandManager:
         self.has_control = tables.has_type("AccessControl")
         self.idle = threading.Condition(self.lock)
         self.shutdown_after: Run | None = None
+        self.journal = journal  # journal.Journal, or None: nothing survives a crash
+        self._outgoing: list[Callable[[], None]] = []  # writes held until the journal is synced
+        self._depth = 0
+        self._sync_failed = False
+
+    # ---- batches: the journal synced before the acks that promise what it holds --------------
+    @contextlib.contextmanager
+    def batch(self):
+        """Hold the lock; acks and states written at the end of the outermost batch, after the
+        journal's sync (one sync for everything the batch promised)."""
+        with self.lock:
+            self._depth += 1
+            try:
+                yield
+            finally:
+                self._depth -= 1
+                if self._depth == 0:
+                    self._flush()
+
+    def _flush(self) -> None:
+        if self.journal is not None:
+            try:
+                self.journal.sync()
+                self._sync_failed = False
+            except OSError as exc:  # a full or failing disk: answer anyway, say so once
+                if not self._sync_failed:
+                    self.out.log(f"journal not written ({exc.strerror or exc}): a crash now would leave "
+                                 f"commands without an outcome")
+                self._sync_failed = True
+        out, self._outgoing = self._outgoing, []
+        for write in out:
+            write()
+
+    def _emit(self, write: Callable[[], None]) -> None:
+        if self._depth:
+            self._outgoing.append(write)
+        else:
+            write()
 
     # ---- intake ---------------------------------------------------------------------------
     def receive(self, cmd: Cmd) -> None:
-        with self.lock:
+        with self.batch():
             if cmd.asset_name != self.tables.name:
                 self.out.log(f"ignored {cmd.cmd_id!r}: addressed to asset {cmd.asset_name!r}")
                 return
@@ -116,12 +167,12 @@ class CommandManager:
         """Answer a command shed at the door (intake.py) COMPLETED/EXEC_FAILED without running
         it or remembering its id (it may be sent again). Not answered: another asset's, an
         empty id, or the id of a command seen or live (its acks are that command's)."""
-        with self.lock:
+        with self.batch():
             if cmd.asset_name != self.tables.name or not cmd.cmd_id:
                 return
             if cmd.cmd_id in self.seen or self._live(cmd.cmd_id):
                 return
-            self._ack(cmd, COMPLETED, EXEC_FAILED, why)
+            self._ack(cmd, COMPLETED, EXEC_FAILED, why, journal=False)  # not remembered: may come again
 
     def _intake(self, cmd: Cmd) -> tuple[str, str] | None:
         """Checks then dispatch; (completion, message) when the command ends here."""
@@ -245,7 +296,10 @@ class CommandManager:
         if not run.queued:
             self.bypass.append(run)
         run.ctx = CommandContext(run.cmd, e, lambda text, r=run: self._progress(r, text))
-        threading.Thread(target=self._execute, args=(run,), daemon=True, name=f"cmd-{run.cmd.cmd_id[:20]}").start()
+        # started with the acks, after the journal's sync: a handler never moves hardware for a
+        # command whose "running" step a power cut could still erase
+        self._emit(threading.Thread(target=self._execute, args=(run,), daemon=True,
+                                    name=f"cmd-{run.cmd.cmd_id[:20]}").start)
 
     def _preempt(self, run: Run) -> None:
         """A BYPASS command takes its subsystem over: a suspendable command running there from
@@ -276,9 +330,11 @@ class CommandManager:
             outcome = EXEC_FAILED, str(exc) or "failed"
         except Exception as exc:  # a handler's bug must not stop the bridge; the commander hears of it
             outcome = EXEC_FAILED, f"handler error: {type(exc).__name__}: {exc}"
-        with self.lock:
+        with self.batch():
             if run in self.bypass:
                 self.bypass.remove(run)
+            if run.done:  # answered already (the bridge stopping): nothing follows a COMPLETED
+                return
             if run.requeue and outcome[0] == CANCELED:
                 run.requeue, run.done, run.ctx = False, False, None
                 self._ack(run.cmd, REQUEUED, NOT, "preempted; back in the queue")
@@ -290,7 +346,7 @@ class CommandManager:
             self._service()
 
     def _progress(self, run: Run, text: str) -> None:
-        with self.lock:
+        with self.batch():
             if not run.done:
                 self._ack(run.cmd, EXECUTING, NOT, text)
 
@@ -329,21 +385,33 @@ class CommandManager:
             run.ctx.cancelled.set()
 
     # ---- state topics ------------------------------------------------------------------------
-    def _ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None:
+    def _ack(self, cmd: Cmd, status: str, completed: str, message: str, journal: bool = True) -> None:
         """Every ack goes out here, its message clipped (acks.clip: at most 127 UTF-8 bytes,
         nothing cyclonedds cannot encode), whoever wrote it: the runtime's reasons, handler
         results, progress texts. A write that still fails is logged: the command's state
-        moves on all the same (a lost ack must not leave the queue stuck)."""
+        moves on all the same (a lost ack must not leave the queue stuck). With a journal, the
+        step the ack promises is recorded first (written out after the batch's sync)."""
+        message = clip(message)
+        if self.journal is not None and journal:
+            step = {QUEUED: "q", EXECUTING: "x", COMPLETED: "c"}.get(status)
+            if step is not None:
+                self.journal.note(cmd, step, completed, message)
+        self._emit(lambda: self._write_ack(cmd, status, completed, message))
+        if status == COMPLETED:  # each command's last ack: keep the last `window` commands' acks
+            self._keep(_key_of(cmd))
+
+    def _write_ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None:
         try:
-            self.out.ack(cmd, status, completed, clip(message))
+            self.out.ack(cmd, status, completed, message)
         except Exception as exc:  # DDS refusing a write: the commander hears nothing of this one
             self.out.log(f"{status} ack of {cmd.cmd_id!r} not written: {type(exc).__name__}: {str(exc)[:120]}")
-        if status == COMPLETED:  # each command's last ack: keep the last `window` commands' acks
-            self.acked.append(_key_of(cmd))
-            while len(self.acked) > self.window:
-                old = self.acked.popleft()
-                if not self._live(old.cmd_id):  # its id sent again (after the window) and still running
-                    self.out.retire(old)
+
+    def _keep(self, key: Cmd) -> None:
+        self.acked.append(key)
+        while len(self.acked) > self.window:
+            old = self.acked.popleft()
+            if not self._live(old.cmd_id):  # its id sent again (after the window) and still running
+                self._emit(functools.partial(self.out.retire, old))
 
     def _publish_queue(self) -> None:
         if not self.has_queue:
@@ -355,14 +423,59 @@ class CommandManager:
         active = [(self.active.cmd, "Q_RESULT_INIT", "Q_STATUS_INPROCESS")] if self.active else []
         done = [(r.cmd, RESULT_OF_COMPLETION[c], STATUS_OF_COMPLETION[c]) for _, r, c in self.completed]
         code = -1 if self.suspended else (1 if self.active else 0)
-        self.out.queue_state(code, pending, active, done)
+        self._emit(lambda: self.out.queue_state(code, pending, active, done))
 
     def publish_states(self) -> None:
         """Publish QueueState and AccessControlState as they are (at start-up)."""
-        with self.lock:
+        with self.batch():
             self._publish_queue()
             if self.has_control:
-                self.out.access_state(self.control.controller, list(self.control.requestors))
+                self._access_state()
+
+    def _access_state(self) -> None:
+        controller, requestors = self.control.controller, list(self.control.requestors)
+        self._emit(lambda: self.out.access_state(controller, requestors))
+
+    def restore(self, recovered) -> tuple[int, int]:
+        """After a crash (journal.Recovered): answer what was accepted and not finished (never
+        run again), write the last outcomes' final acks again, remember their cmdIds. Returns
+        (commands answered now, final acks written again)."""
+        with self.batch():
+            for e in recovered.finished:
+                key = _entry_cmd(e)
+                self._remember(e.cmd_id)
+                self._emit(functools.partial(self._write_ack, key, COMPLETED, e.completion, e.message))
+                self._keep(key)
+            for e in recovered.unfinished:
+                self._remember(e.cmd_id)
+                completion, why = (CANCELED, RESTARTED_QUEUED) if e.state == "q" else (EXEC_FAILED, RESTARTED_RUNNING)
+                self._ack(_entry_cmd(e), COMPLETED, completion, why)
+        return len(recovered.unfinished), len(recovered.finished)
+
+    def abandon(self) -> int:
+        """The bridge stops: answer every pending and running command now (their handlers' threads
+        end with the process). Returns how many."""
+        with self.batch():
+            runs = [*self.pending, *([self.active] if self.active else []), *self.bypass]
+            for r in list(self.pending):
+                self.pending.remove(r)
+                r.done = True
+                self._ack(r.cmd, COMPLETED, CANCELED, STOPPED_QUEUED)
+            for r in runs:
+                if not r.done:
+                    r.done = True
+                    if r.ctx is not None:
+                        r.ctx.cancelled.set()
+                    self._ack(r.cmd, COMPLETED, EXEC_FAILED, STOPPED_RUNNING)
+            self.active = None
+            self.bypass.clear()
+            self.idle.notify_all()
+            return len(runs)
+
+    def _remember(self, cmd_id: str) -> None:
+        self.seen[cmd_id] = None
+        while len(self.seen) > self.window:
+            self.seen.popitem(last=False)
 
     def wait_idle(self, timeout: float) -> bool:
         """True once no queued or bypass command runs (tests, shutdown)."""
@@ -381,6 +494,11 @@ def _key_of(cmd: Cmd) -> Cmd:
     the received sample and arguments, which the window would otherwise keep alive."""
     return Cmd(cmd.cmd_id, cmd.cmd_src, cmd.subsystem, cmd.name, src_name=cmd.src_name, asset_name=cmd.asset_name,
                serial=cmd.serial)
+
+
+def _entry_cmd(e) -> Cmd:
+    """A journal entry as the Cmd its acks need (header names, serial, cmdId)."""
+    return Cmd(e.cmd_id, "", "", "", src_name=e.src_name, asset_name=e.asset_name, serial=e.serial)
 
 
 def _as_sender(delete: Cmd, target: Cmd) -> Cmd:
@@ -443,7 +561,7 @@ def _control(op: str):
         else:
             err, note = getattr(m.control, op)(src)
         if err is None:
-            m.out.access_state(m.control.controller, list(m.control.requestors))
+            m._access_state()
         return (EXEC_FAILED, err) if err else (OK, note)
     return run_op
 

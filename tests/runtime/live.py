@@ -6,6 +6,7 @@ import os
 import queue
 import subprocess
 import sys
+import tempfile
 import threading
 from pathlib import Path
 
@@ -19,9 +20,14 @@ def python_dir(asset: str) -> Path:
 
 
 def env_for(pydir: Path, package: str) -> dict:
+    """Loopback only; the bridge's restart journal in a folder of this test run's own (a
+    journal left by an earlier run would answer its commands again)."""
     local = pydir / package / "qos_files" / "cyclonedds" / "local.xml"
     return dict(os.environ, CYCLONEDDS_URI=f"file://{local}", PYTHONPATH=f"{pydir}{os.pathsep}{ROOT}",
-                PYTHONDONTWRITEBYTECODE="1")
+                PYTHONDONTWRITEBYTECODE="1", RAPID_STATE_DIR=_STATE)
+
+
+_STATE = tempfile.mkdtemp(prefix="rapid-state-")
 
 
 class BridgeProcess:

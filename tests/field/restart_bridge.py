@@ -1,0 +1,34 @@
+"""The restart tests' bridge: the generated Restarter package served by rapid_runtime, its
+Worker/work handler appending the cmdId to EXECFILE as it starts (one O_APPEND write: a
+kill -9 loses nothing written), so the test counts how often each command ran.
+
+    python -m tests.field.restart_bridge PYDIR EXECFILE [BRIDGE ARGS...]
+"""
+from __future__ import annotations
+
+import importlib
+import os
+import sys
+
+
+def main(argv: list[str]) -> int:
+    pydir, exec_file, rest = argv[0], argv[1], argv[2:]
+    sys.path.insert(0, pydir)
+    from rapid_runtime.bridge import main as bridge_main
+    from rapid_runtime.handlers import Handlers
+    tables = importlib.import_module("rapid_restarter.asset_tables")
+    rapid = importlib.import_module("rapid_restarter.rapid")
+    fd = os.open(exec_file, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
+
+    class Worker(Handlers):
+        def worker_work(self, ctx, ms: int) -> str:
+            os.write(fd, f"{ctx.cmd.cmd_id}\n".encode())
+            if not ctx.sleep(ms / 1000):
+                return "interrupted"
+            return "worked"
+
+    return bridge_main(tables, rapid, Worker, package="rapid_restarter", argv=rest)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

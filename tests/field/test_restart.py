@@ -1,0 +1,166 @@
+"""A bridge that restarts never leaves a command without an outcome (issue 23; docs/runtime.md,
+"Restarts: the journal").
+
+Live: the Restarter asset's bridge (tests/field/restart_asset.py) takes a stream of commands
+from a ground process (tests/field/restart_ground.py) on loopback and is killed with SIGKILL
+at random moments (KILLS; 20 with RAPIDGEN_FIELD_FULL=1), then started again on the same
+journal; before the second restart the journal gets a torn record and a garbage line.
+Every command sent gets a final ack, at its sender and at a late-joining ground tool (the
+same one); no command runs twice (the handler appends each cmdId it runs to a file); a
+command answered "restarted before it ran" never ran, one that completed OK ran once; the
+damaged journal is reported in one log line and set aside; no traceback.
+
+Without DDS: damaged journals (torn tail, a bad line in the middle, binary junk, an empty
+file, a folder that cannot be written) are survived; compaction keeps the file bounded.
+"""
+from __future__ import annotations
+
+import json
+import os
+import random
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from rapid_runtime.command import Cmd
+from rapid_runtime.journal import COMPACT_FACTOR, Journal, file_name
+from tests.field.restart_asset import ROOT, generate
+
+DOMAIN = 195
+FULL = os.environ.get("RAPIDGEN_FIELD_FULL") == "1"
+KILLS = 20 if FULL else 5
+COMMANDS = 200 if FULL else 60
+RESTARTED = ("asset restarted before it ran", "asset restarted while it ran; outcome unknown")
+
+
+def test_kill_9_at_random_moments_leaves_no_command_without_an_outcome(tmp_path):
+    pydir = generate(tmp_path / "gen")
+    seed = random.SystemRandom().randrange(1_000_000)
+    res = subprocess.run([sys.executable, "-m", "tests.field.restart_ground", str(pydir), str(tmp_path), str(DOMAIN),
+                          str(COMMANDS), str(KILLS), str(seed)], cwd=ROOT, capture_output=True, text=True,
+                         timeout=600)
+    assert res.returncode == 0, f"seed {seed}: {res.stdout[-2000:]} {res.stderr[-4000:]}"
+    got = json.loads(res.stdout.splitlines()[-1])
+    why = f"seed {seed}: {json.dumps({k: v for k, v in got.items() if k != 'plan'})[-6000:]}"
+    assert got["starts"] == KILLS + 1 and got["stop_code"] == 0 and got["tracebacks"] == 0, why
+
+    finals, late, runs = got["finals"], got["late"], got["runs"]
+    assert [cid for cid, f in finals.items() if f is None] == [], why  # every command: a final ack
+    assert {cid: late[cid] for cid in finals if late[cid] != finals[cid]} == {}, why  # the late joiner: the same
+    assert {cid: n for cid, n in runs.items() if n > 1} == {}, why  # nothing ran twice
+    assert set(runs) <= set(finals), why
+    for cid, (sub, _name, _action) in got["plan"].items():
+        _status, completion, message = finals[cid]
+        if message == RESTARTED[0]:
+            assert completion == "ACK_COMPLETED_CANCELED" and cid not in runs, f"{cid} {finals[cid]} {why}"
+        elif message == RESTARTED[1]:
+            assert completion == "ACK_COMPLETED_EXEC_FAILED", f"{cid} {finals[cid]} {why}"
+        elif sub != "Admin":
+            assert (completion, message, runs.get(cid)) == ("ACK_COMPLETED_OK", "worked", 1), f"{cid} {why}"
+    # the damaged journal: one line, set aside, the bridge went on
+    damaged = [ln for ln in got["journal_logs"] if "damaged line" in ln]
+    assert len(damaged) == 1 and len(got["aside"]) == 1 and got["aside"][0] in damaged[0], why
+    assert sum(1 for ln in got["journal_logs"] if "restarted after a crash" in ln) == KILLS, why
+
+
+# ---- the journal alone --------------------------------------------------------------------------
+
+def _cmd(i: int) -> Cmd:
+    return Cmd(f"c{i}", "Ground", "Belt", "work", src_name="Ground", asset_name="Restarter", serial=7)
+
+
+def _journal(folder: Path, window: int = 64) -> tuple[Journal, object, list[str]]:
+    logs: list[str] = []
+    j, rec = Journal.open(folder, "Restarter", 1, window, logs.append)
+    assert j is not None, logs
+    return j, rec, logs
+
+
+def _crash(j: Journal) -> None:
+    os.close(j.fd)  # no stop record: what a kill leaves
+
+
+def test_a_crash_is_recovered_and_a_clean_stop_starts_afresh(tmp_path):
+    j, rec, _ = _journal(tmp_path)
+    assert not rec.crashed
+    j.start(100)
+    j.note(_cmd(1), "q")
+    j.note(_cmd(2), "q")
+    j.note(_cmd(2), "x")
+    j.note(_cmd(3), "x")
+    j.note(_cmd(3), "c", "ACK_COMPLETED_OK", "done")
+    j.serial(105)
+    j.sync()
+    _crash(j)
+    j, rec, logs = _journal(tmp_path)
+    assert rec.crashed and rec.last_serial == 105 and logs == []
+    assert [(e.cmd_id, e.state) for e in rec.unfinished] == [("c1", "q"), ("c2", "x")]
+    assert [(e.cmd_id, e.completion, e.message) for e in rec.finished] == [("c3", "ACK_COMPLETED_OK", "done")]
+    assert rec.unfinished[0].src_name == "Ground" and rec.unfinished[0].serial == 7
+    j.close(clean=True)
+    j, rec, _ = _journal(tmp_path)
+    assert not rec.crashed and rec.unfinished == [] and rec.finished == [] and rec.last_serial == 105
+
+
+@pytest.mark.parametrize("damage", ["torn tail", "bad middle line", "binary junk", "empty"])
+def test_a_damaged_journal_is_reported_once_and_set_aside(tmp_path, damage):
+    j, _, _ = _journal(tmp_path)
+    for i in range(5):
+        j.note(_cmd(i), "q")
+    j.sync()
+    _crash(j)
+    path = tmp_path / file_name("Restarter", 1)
+    data = path.read_bytes()
+    lines = data.splitlines(keepends=True)
+    if damage == "torn tail":
+        data = data[:-7]  # the last record cut short (never synced: its ack never went out)
+    elif damage == "bad middle line":
+        data = b"".join([*lines[:2], lines[2].replace(b"c2", b"c9"), *lines[3:]])  # CRC no longer matches
+    elif damage == "binary junk":
+        data = bytes(random.Random(1).randrange(256) for _ in range(3000))
+    else:
+        data = b""
+    path.write_bytes(data)
+    j, rec, logs = _journal(tmp_path)
+    aside = sorted(p.name for p in tmp_path.glob("*.damaged-*"))
+    if damage == "empty":
+        assert logs == [] and aside == [] and not rec.crashed
+        return
+    assert len(logs) == 1 and "damaged line" in logs[0] and len(aside) == 1 and aside[0] in logs[0], logs
+    want = {"torn tail": ["c0", "c1", "c2", "c3"], "bad middle line": ["c0", "c1", "c3", "c4"], "binary junk": []}
+    assert [e.cmd_id for e in rec.unfinished] == want[damage]
+    j.note(_cmd(9), "q")  # the new journal works
+    j.sync()
+    _crash(j)
+    _j, rec, logs = _journal(tmp_path)
+    assert logs == [] and rec.unfinished[-1].cmd_id == "c9"
+
+
+def test_the_journal_stays_bounded(tmp_path):
+    window = 16
+    j, _, _ = _journal(tmp_path, window)
+    for i in range(2000):
+        j.note(_cmd(i), "q")
+        j.note(_cmd(i), "x")
+        j.note(_cmd(i), "c", "ACK_COMPLETED_OK", "")
+        j.sync()
+        assert j.lines <= COMPACT_FACTOR * window + 16 + 3
+    _crash(j)
+    size = (tmp_path / file_name("Restarter", 1)).stat().st_size
+    assert size < (COMPACT_FACTOR * window + 20) * 120
+    _j, rec, _ = _journal(tmp_path, window)
+    assert [e.cmd_id for e in rec.finished] == [f"c{i}" for i in range(2000 - window, 2000)]
+
+
+def test_a_folder_that_cannot_be_used_means_no_journal_not_a_crash(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    logs: list[str] = []
+    j, rec = Journal.open(blocker / "journal", "Restarter", 1, 16, logs.append)
+    assert j is None and not rec.crashed and len(logs) == 1 and "running without one" in logs[0]
+    j1, _, _ = _journal(tmp_path)
+    j2, rec, = Journal.open(tmp_path, "Restarter", 1, 16, logs.append)  # the same file: another bridge holds it
+    assert j2 is None and "in use" in logs[-1]
+    j1.close(clean=True)
