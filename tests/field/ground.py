@@ -6,6 +6,8 @@ names the site's Cyclone file). Prints one JSON document on its last line.
       a drive of S s (at the bridge's speed X) that holds the queue; each round: b=APPEND, c=INSERT after b,
       d=APPEND then e=REPLACE d, f=APPEND then g=DELETE f, h=BYPASS (K10Native). Waits for every final
       ack; reports every command's acks and the seconds from send to its COMPLETED.
+  python -m tests.field.ground sequential PACKAGE DOMAIN COUNT
+      COUNT instant BYPASS commands, each sent once the one before is answered (latency).
   python -m tests.field.ground outage PACKAGE DOMAIN [--long N] [--hold S] [--during M]
       a queue of long commands; the test cuts the link while it runs (see outage()).
   python -m tests.field.ground late PACKAGE DOMAIN IDS.json
@@ -126,6 +128,25 @@ def drive(args) -> dict:
     return out
 
 
+def sequential(args) -> dict:
+    """COUNT BYPASS commands one at a time (K10Native, instant): each sent once the one
+    before is answered; seconds from send to its COMPLETED, and every ack."""
+    rapid, tables, qos = load(args.package)
+    c = TimedCommander(rapid, qos, tables.name, args.source, args.domain)
+    if not c.wait_for_asset(WAIT):
+        return {"error": "no asset"}
+    control = c.timed_send("AccessControl", "requestControl", [])
+    c.wait_final([control], WAIT)
+    ids = []
+    for i in range(args.count):
+        ids.append(c.timed_send("K10Native", "nativeCommand", [("RAPID_STRING", f"seq {i}")]))
+        c.wait_final(ids[-1:], WAIT)
+    with c.cond:
+        acks = {k: list(v) for k, v in c.acks.items() if k in ids}
+    c.close()
+    return {"ids": ids, "acks": acks, "latency": [c.done_at[k] - c.sent_at[k] for k in ids if k in c.done_at]}
+
+
 def outage(args) -> dict:
     """LONG drives of HOLD s each and instant commands between them, all appended; once
     the first drive executes, prints "executing" and waits for a line on stdin (the test
@@ -198,6 +219,11 @@ def main() -> int:
                    help="first hold the queue with a drive and queue N x 3 targets, print their ids (JSON) and wait "
                         "for a line on stdin (other tools INSERT after, REPLACE and DELETE them), then delete the drive")
     d.add_argument("--source", default="RapidWorkbench")  # K10's allow-list lets it send everything
+    q = sub.add_parser("sequential")
+    q.add_argument("package")
+    q.add_argument("domain", type=int)
+    q.add_argument("count", type=int)
+    q.add_argument("--source", default="RapidWorkbench")
     o = sub.add_parser("outage")
     o.add_argument("package")
     o.add_argument("domain", type=int)
@@ -211,7 +237,7 @@ def main() -> int:
     late_p.add_argument("domain", type=int)
     late_p.add_argument("ids")
     args = ap.parse_args()
-    out = {"drive": drive, "outage": outage, "late": late}[args.what](args)
+    out = {"drive": drive, "sequential": sequential, "outage": outage, "late": late}[args.what](args)
     print(json.dumps(out), flush=True)
     os._exit(0)  # DDS threads need not be joined: the answer is printed
 

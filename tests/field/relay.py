@@ -56,8 +56,10 @@ def rtps_keys(packet: bytes) -> list[tuple]:
     rtps = packet[ihl + 8:]
     if len(rtps) < 20 or rtps[:4] != b"RTPS":
         return []
-    dest = packet[16:20] + packet[ihl + 2:ihl + 4]  # address and port: one copy per reader locator
-    prefix, pos, keys = rtps[8:20], 20, []
+    # address, port and (INFO_DST) participant: one copy per reader locator is no resend,
+    # nor a durable writer's history sent to a new participant on a port an old one had
+    locator = packet[16:20] + packet[ihl + 2:ihl + 4]
+    dest, prefix, pos, keys = locator, rtps[8:20], 20, []
     while pos + 4 <= len(rtps):
         kind, flags = rtps[pos], rtps[pos + 1]
         size = int.from_bytes(rtps[pos + 2:pos + 4], "little" if flags & 1 else "big")
@@ -68,6 +70,8 @@ def rtps_keys(packet: bytes) -> list[tuple]:
             sn = (int.from_bytes(body[12:16], end, signed=True) << 32) | int.from_bytes(body[16:20], end)
             frag = int.from_bytes(body[20:24], end) if kind == 0x16 and len(body) >= 24 else None
             keys.append((dest, writer, sn, frag))
+        if kind == 0x0E and len(body) >= 12:  # INFO_DST: later submessages go to this participant
+            dest = locator + body[:12]
         if kind == 0x0C and len(body) >= 12:  # INFO_SRC: later submessages are another participant's
             prefix = body[-12:]
         if size == 0:
