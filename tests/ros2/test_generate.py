@@ -10,6 +10,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from rapidgen.asset.load import load_asset
 from rapidgen.diagnostics import DiagnosticSink
 from rapidgen.ros2 import msgdefs
@@ -133,3 +135,24 @@ def test_the_example_maps_what_the_seed_scenario_needs(monkeypatch):
     assert ("joint", "/joint_states") in feeds and ("position", "/r2_controller/right/tool_pose") in feeds
     pose = loaded.ros2["commands"]["RightArm/Setpoint for Tool"]["publish"]
     assert pose["topic"] == "/r2_controller/right/pose_command" and pose["stamp"] is True
+
+
+def test_generated_rotations_agree(tmp_path, monkeypatch):
+    """The generated bridge's rotation helpers (no rclpy needed to import them): tf2's
+    setRPY quaternion, and matrix <-> quaternion round trips."""
+    import importlib
+    import math
+    res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(EXAMPLE), "--lang", "python", "-o",
+                          str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    monkeypatch.syspath_prepend(str(tmp_path / "python"))
+    ros2 = importlib.import_module("rapid_r2ros.ros2")
+    assert ros2.quat_from_rpy(0.1, 0.2, 0.3) == pytest.approx((0.0342708, 0.1060205, 0.1435722, 0.9833474), abs=1e-7)
+    assert ros2.quat_from_rpy(0, 0, math.pi / 2) == pytest.approx((0, 0, math.sqrt(0.5), math.sqrt(0.5)))
+    for q in [(0, 0, 0, 1), (1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), ros2.quat_from_rpy(2.5, -1.1, 3.0),
+              ros2.quat_from_rpy(-3.0, 0.4, -2.9)]:
+        back = ros2.quat_from_m33(ros2.m33_from_quat(*q))
+        sign = 1 if sum(a * b for a, b in zip(back, q)) >= 0 else -1  # q and -q are one rotation
+        assert [sign * b for b in back] == pytest.approx(list(q), abs=1e-9)
+    m = ros2.m33_from_quat(*ros2.quat_from_rpy(0, 0, math.pi / 2))  # yaw 90 degrees: x -> y
+    assert m == pytest.approx([0, -1, 0, 1, 0, 0, 0, 0, 1], abs=1e-12)
