@@ -119,13 +119,19 @@ def latency(samples: int, ticks: list[float]) -> None:
 
 
 def screenshots(folder: Path) -> list[Path]:
-    """K10 driving three legs with a picture taken and its battery in warning, and R2."""
+    """K10 driving three legs with a picture taken and its battery in warning, and R2;
+    the same traffic recorded by `rapidgen record` and played back (`--replay`)."""
     with tempfile.TemporaryDirectory(prefix="bench-monitor-") as tmp:
         pydirs = H.generate(Path(tmp))
+        recording = Path(tmp) / "k10-drive.mcap"
         procs: list = []
         driver = None
+        recorder = None
         try:
             procs += H.bridges(pydirs, DOMAIN + 1, k10_speed=60)  # battery below 30 % after ~60 s
+            recorder = subprocess.Popen([sys.executable, "-m", "rapidgen", "record", "--domain", str(DOMAIN + 1),
+                                         "--asset", H.ASSETS["k10"][0], "-o", str(recording), "--quiet"], cwd=ROOT,
+                                        env=H.env(pydirs), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
             mon = H.Monitor(pydirs, DOMAIN + 1)
             procs.append(mon)
             driver = browser.chromium()
@@ -140,8 +146,27 @@ def screenshots(folder: Path) -> list[Path]:
             H.select(driver, "K10Red", "telemetry")
             H.until(lambda: (H.value_cell(driver, "agent/batteryCharge") or {}).get("level") == "warning", 120,
                     what="K10's battery in warning")
-            return H.screenshots(driver, folder)
+            shots = H.screenshots(driver, folder)
+            recorder.terminate()  # SIGTERM: the file is closed with its index
+            recorder.communicate(timeout=30)
+            driver.quit()
+            driver = None
+            H.stop_all(procs)
+            procs = [replay := H.Monitor(pydirs, DOMAIN + 1, "--replay", str(recording))]
+            driver = browser.chromium()
+            driver.get(replay.url)
+            H.until(lambda: "replay of" in driver.find_element("id", "mode").text, 30, what="replay mode")
+            driver.execute_script("""const s = document.getElementById('replay-slider'); s.value = '450';
+                                     s.dispatchEvent(new Event('change'));
+                                     if (document.getElementById('replay-play').textContent === 'pause')
+                                       document.getElementById('replay-play').click();""")
+            H.select(driver, "K10Red", "map")
+            time.sleep(2.0)
+            driver.save_screenshot(str(folder / "monitor-replay.png"))
+            return shots + [folder / "monitor-replay.png"]
         finally:
+            if recorder is not None:
+                H.kill(recorder)
             if driver is not None:
                 driver.quit()
             H.stop_all(procs)
