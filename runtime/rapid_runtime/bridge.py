@@ -46,6 +46,8 @@ ACK_GENERATION_MIN = 256
 # Commands the DDS reader holds before the intake thread takes them: past this, DDS holds a
 # reliable writer back (the flood waits in the flooder's own history, not in the bridge).
 COMMAND_CACHE = 4096
+# How long a second stop() waits for the first to finish (its acks delivered, journal closed).
+STOP_WAIT = 15.0
 # Log lines per second; past that they are counted and the count logged (a flood of bad
 # commands would otherwise become a flood of log lines).
 LOG_RATE = 50
@@ -95,6 +97,7 @@ class Bridge:
             self.journal.start(self.serials.start)
         self.node = Node(rapid, qos, domain)
         self.stopped = threading.Event()
+        self._stop_done = threading.Event()
         self.manager = CommandManager(tables, handlers, self, on_shutdown=self.stop, window=command_window,
                                       journal=self.journal)
         self.telemetry = TelemetryPublisher(self)
@@ -193,7 +196,10 @@ class Bridge:
         self.intake.offer(cmd, sample.sample_info.publication_handle)
 
     def stop(self) -> None:
+        """Stop taking commands, answer the unfinished, deliver the last acks, close the journal.
+        A second caller (main() after Admin/shutdown's thread began) waits for the first."""
         if self.stopped.is_set():
+            self._stop_done.wait(STOP_WAIT)
             return
         self.stopped.set()
         try:
@@ -216,6 +222,7 @@ class Bridge:
                 self._reader.stop()
             self.intake.stop()
             self._close_journal()
+            self._stop_done.set()
 
     def _close_journal(self) -> None:
         """A clean stop: every command answered, the next start begins afresh."""

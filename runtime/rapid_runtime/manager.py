@@ -353,8 +353,8 @@ class CommandManager:
     def _complete(self, run: Run, completion: str, message: str) -> None:
         run.done = True
         self._ack(run.cmd, COMPLETED, completion, message)
-        if self.shutdown_after is run and self.on_shutdown is not None:
-            threading.Thread(target=self.on_shutdown, daemon=True, name="shutdown").start()
+        if self.shutdown_after is run and self.on_shutdown is not None:  # once its COMPLETED ack is written
+            self._emit(threading.Thread(target=self.on_shutdown, daemon=True, name="shutdown").start)
         if run.queued:
             if self.active is run:
                 self.active = None

@@ -16,6 +16,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -44,7 +45,8 @@ def status_kib(pid: int) -> tuple[int, int]:
 def local_env() -> dict:
     local = PYDIR / PACKAGE / "qos_files" / "cyclonedds" / "local.xml"
     return dict(os.environ, CYCLONEDDS_URI=f"file://{local}", PYTHONDONTWRITEBYTECODE="1",
-                PYTHONPATH=os.pathsep.join([str(PYDIR), str(ROOT / "runtime"), str(ROOT)]))
+                PYTHONPATH=os.pathsep.join([str(PYDIR), str(ROOT / "runtime"), str(ROOT)]),
+                RAPID_STATE_DIR=tempfile.mkdtemp(prefix="rapid-state-"))  # the bridge's journal: on, as by default
 
 
 def drive(domain: int, commands: int, every: int, bridge_args: list[str]) -> dict:
