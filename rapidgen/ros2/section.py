@@ -121,6 +121,8 @@ class _Reader:
         feeds = self.items(section.get("telemetry", []), root + ("telemetry",), self.feed)
         commands = self.items(section.get("commands", []), root + ("commands",), self.command)
         self.duplicates(feeds, commands)
+        if self.ok and ("telemetry" in section or "commands" in section):  # errors first
+            self.unfed({(f["feeds"], f["index"]) for f, _ in feeds})
         ground = self.ground(section["ground"], root + ("ground",), node) if "ground" in section else None
         if not self.ok:
             return None
@@ -164,6 +166,22 @@ class _Reader:
                                 "values": [[v.name, v.type, v.unit or "", _levels(v.warning), _levels(v.critical)]
                                            for v in t.values]})
         return {"node": gnode, "entries": entries}
+
+    def unfed(self, fed: set[tuple[str, int]]) -> None:
+        """Warn of telemetry the ROS 2 bridge will never publish (conform's TEL-01 would fail)."""
+        counts: dict[str, int] = {}
+        for t in self.loaded.spec.telemetry:
+            index = counts.get(t.kind, 0)
+            counts[t.kind] = index + 1
+            if (t.kind, index) in fed:
+                continue
+            if t.kind in ("joint", "position", "agent"):
+                hint = f"feed it: add '- {{topic: ..., type: ..., feeds: {t.kind}" + \
+                    (f", index: {index}" if index else "") + "}' under ros2.telemetry"
+            else:
+                hint = "the ROS 2 bridge feeds joint, position and agent entries only"
+            self.sink.warning("RG1507", f"no ROS 2 topic feeds {t.kind} telemetry entry {index}: the ROS 2 bridge "
+                              "never publishes it", t.loc, hint)
 
     def items(self, value: object, path: tuple, read) -> list[tuple[dict, tuple]]:
         if not isinstance(value, list):
