@@ -9,6 +9,8 @@ ground tools exist, by source name, and which assets each may command or watch.
       - source: RapidWorkbench             # Command.cmdSrc; its participant's name in the keystore
         command: [K10Red]                  # asset names, or "*": every asset whose access_control admits it
         watch: ["*"]                       # assets whose configs, telemetry and acks it may read
+        audit: [K10Red]                    # assets whose commands (anyone's) it may read too:
+                                           # rapidgen conform, a recorder
 
 Every problem is a located error (file:line:col, a hint). Commanding is granted only when
 the asset's own access_control admits the source: the descriptor and the permissions agree
@@ -27,16 +29,17 @@ from rapidgen.idl.preprocess import display_path
 
 NAME = re.compile(r"[A-Za-z0-9_.-]{1,64}\Z")  # a file name and a certificate CN, never a path
 TOP_KEYS = ("version", "assets", "domains", "validity_days", "ground")
-TOOL_KEYS = ("source", "command", "watch", "description")
-MAX_DOMAIN = 232
+TOOL_KEYS = ("source", "command", "watch", "audit", "description")
+MAX_DOMAIN = 230  # what both DDS Security implementations parse in governance and permissions
 
 
 @dataclass(frozen=True)
 class Tool:
     source: str
     command: tuple[str, ...]  # asset names granted (after "*" and the access lists)
-    watch: tuple[str, ...]  # asset names it may read (commanded ones included)
+    watch: tuple[str, ...]  # asset names it may read (commanded and audited ones included)
     loc: SourceLoc
+    audit: tuple[str, ...] = ()  # asset names whose command topic it may read
 
 
 @dataclass
@@ -134,6 +137,10 @@ def load_deployment(path: str, sink: DiagnosticSink, load_asset) -> Deployment |
                   "DDS Security reads partitions in permissions as patterns: a grant for it would cover other "
                   "partitions; name the partition without them (dds.partition)")
             continue
+        if dep.domains is None and loaded.spec.domain > MAX_DOMAIN:
+            r.err(p, f"{asset_name}'s DDS domain {loaded.spec.domain} is above {MAX_DOMAIN}",
+                  f"Cyclone's security plugins take domain ids 0..{MAX_DOMAIN}; grant others with domains: [...]")
+            continue
         if asset_name in dep.assets:
             r.err(p, f"asset '{asset_name}' is listed twice", "each asset once")
             continue
@@ -187,13 +194,15 @@ def _read_tools(r: _Reader, tools: object, dep: Deployment) -> None:
         seen.add(source)
         command = _targets(r, dep, source, entry.get("command"), (*path, "command"), commanding=True)
         watch = _targets(r, dep, source, entry.get("watch"), (*path, "watch"), commanding=False)
-        watch = [a for a in dep.assets if a in watch or a in command]
-        dep.tools.append(Tool(source, tuple(command), tuple(watch), r.doc.loc(path)))
+        audit = [a for a in _targets(r, dep, source, entry.get("audit"), (*path, "audit"), commanding=False)
+                 if dep.assets[a].command_topic]
+        watch = [a for a in dep.assets if a in watch or a in command or a in audit]
+        dep.tools.append(Tool(source, tuple(command), tuple(watch), r.doc.loc(path), tuple(audit)))
 
 
 def _targets(r: _Reader, dep: Deployment, source: str, value: object, path: tuple, commanding: bool) -> list[str]:
     out: list[str] = []
-    for name, p in r.names(value, path, "command" if commanding else "watch"):
+    for name, p in r.names(value, path, path[-1]):
         if name == "*":
             pool = [a for a, loaded in dep.assets.items() if not commanding or
                     (loaded.command_topic and admits(loaded, source))]

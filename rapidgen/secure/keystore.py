@@ -111,8 +111,9 @@ def grants(dep: Deployment, name: str) -> tuple[xmldocs.Rule, ...]:
             if asset in tool.command and a.command_topic:
                 commands.setdefault(a.command_topic, []).append(partition_of(a))
         pub = tuple(C((topic,), tuple(sorted(parts))) for topic, parts in sorted(commands.items()))
-        sub = tuple(C(tuple(sorted({p.topic for p in dep.assets[a].publications})), (partition_of(dep.assets[a]),))
-                    for a in assets)
+        sub = tuple(C(tuple(sorted({p.topic for p in dep.assets[a].publications} |
+                                   ({dep.assets[a].command_topic or ""} if a in tool.audit else set()))),
+                      (partition_of(dep.assets[a]),)) for a in assets)
         rules.append(xmldocs.Rule(domains, pub, sub))
     return tuple(rules)
 

@@ -8,7 +8,8 @@ The rules (docs/security.md, "DDS Security"):
 - an asset publishes its publications (configs, telemetry, acks, states) and subscribes to
   its command topic, in its own partition only;
 - a ground tool publishes commands only in the partitions of the assets it may command and
-  reads the publications of those it commands or watches, each in its partition.
+  reads the publications of those it commands or watches, each in its partition; one that
+  audits an asset (rapidgen conform, a recorder) also reads its command topic.
 Anything not granted is denied (<default>DENY</default>).
 """
 from __future__ import annotations
@@ -20,7 +21,7 @@ from dataclasses import dataclass
 GOV_XSD = "http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_governance.xsd"
 PERM_XSD = "http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_permissions.xsd"
 XSI = "http://www.w3.org/2001/XMLSchema-instance"
-MAX_DOMAIN = 232
+MAX_DOMAIN = 230  # Cyclone's Access-Permissions parser refuses larger ids (Fast DDS takes 232)
 
 
 @dataclass(frozen=True)

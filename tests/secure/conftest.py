@@ -25,6 +25,7 @@ ground:
   - {{source: ChariotCrewDisplay, command: [Chariot]}}
   - {{source: ScienceBackroom, command: ["*"]}}
   - {{source: Outsider, watch: [K10Red]}}
+  - {{source: Conformance, audit: [K10Red]}}
 """
 DOMAIN = 124  # one of this suite's domains (the live tests run in a private namespace anyway)
 

@@ -24,7 +24,7 @@ def test_layout_is_sroslike_and_owner_only(keystores):
     ks = keystores["main"]
     assert {p.name for p in (ks / "public").iterdir()} == {"identity_ca.cert.pem", "permissions_ca.cert.pem"}
     assert {p.name for p in (ks / "private").iterdir()} == {"identity_ca.key.pem", "permissions_ca.key.pem"}
-    names = {"K10Red", "Chariot", "RapidWorkbench", "ChariotCrewDisplay", "ScienceBackroom", "Outsider"}
+    names = {"K10Red", "Chariot", "RapidWorkbench", "ChariotCrewDisplay", "ScienceBackroom", "Outsider", "Conformance"}
     assert {p.name for p in (ks / "enclaves").iterdir() if p.is_dir()} == names
     for name in names:
         assert {p.name for p in (ks / "enclaves" / name).iterdir()} == ENCLAVE_FILES
@@ -63,6 +63,8 @@ def test_grants_by_topic_and_partition(keystores):
     assert {(t, p) for _, t, p in wb["publish"]} == {("rapid_command", "K10Red")}
     assert (d, "rapid_ack", "Chariot") in wb["subscribe"]  # watches every asset
     assert grants("Outsider")["publish"] == set()
+    assert (d, "rapid_command", "K10Red") not in wb["subscribe"]  # others' commands: only for auditors
+    assert (d, "rapid_command", "K10Red") in grants("Conformance")["subscribe"]
     # ScienceBackroom asked for every asset: K10's list admits it, Chariot's does not
     assert {(t, p) for _, t, p in grants("ScienceBackroom")["publish"]} == {("rapid_command", "K10Red")}
 
@@ -128,7 +130,7 @@ def test_check_warns_before_expiry_and_fails_when_stale(tmp_path):
     soon = secure(str(dep), "-k", str(ks), "--check")  # 20 days < the 30-day warning
     assert soon.returncode == 0, soon.stderr
     assert "enclaves/K10Red/cert.pem: warning: expires on" in soon.stderr
-    assert "0 error(s), 6 warning(s)" in soon.stdout
+    assert "0 error(s), 7 warning(s)" in soon.stdout
     assert "warning" not in secure(str(dep), "-k", str(ks), "--check", "--warn-days", "5").stderr
     # the deployment grows: the grants on disk no longer say what it says
     write_deployment(tmp_path, DEPLOYMENT.replace("{source: Outsider, watch: [K10Red]}",
