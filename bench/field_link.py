@@ -48,7 +48,8 @@ def campaign(name: str, count: int, rounds: int, out: dict) -> None:
         config = site_library(folder, rtt=rtt(LUNAR), lease=120.0) if name == "tuned" else site_config(folder)
         env = dict(site_env(config), FIELD_EXEC_LOG=str(folder / "exec.log"), FIELD_SIM_SPEED=str(SPEED))
         bridge = BridgeProcess.of_command(link.argv("asset", [sys.executable, "-m", "tests.field.counting_bridge",
-                                                              PACKAGE, "--domain", str(DOMAIN)]), ROOT, env)
+                                                              PACKAGE, "--domain", str(DOMAIN), "--journal",
+                                                              str(folder / "journal")]), ROOT, env)
         link.children.append(bridge.proc)
         try:
             bridge.wait_ready(60)

@@ -1,5 +1,6 @@
 """UDP probes for the emulator's own test: `echo PORT` answers every datagram (inside the
-asset namespace); `send ADDRESS PORT COUNT INTERVAL` sends numbered datagrams, then prints
+asset namespace); `send ADDRESS PORT COUNT INTERVAL [LINGER]` sends numbered datagrams, waits LINGER s
+(default 3) for the last answers, then prints
 one JSON line: the round trip of each answered one and how often each number came back."""
 from __future__ import annotations
 
