@@ -9,6 +9,7 @@
       enclaves/<name>/                   one per asset (its name) and ground tool (its source)
         cert.pem key.pem identity_ca.cert.pem permissions_ca.cert.pem
         governance.p7s permissions.xml permissions.p7s
+        cyclonedds-security.xml        the same for Cyclone DDS (its <Security> section)
 
 A participant needs only its enclave folder. Everything is owner-only (0600/0700). A run
 keeps what is still right: the CAs, a participant's key and certificate while they are
@@ -135,6 +136,7 @@ def build(dep: Deployment, root: Path, rotate: bool = False) -> Outcome:
         pki.write_private(folder / "identity_ca.cert.pem", pki.cert_pem(identity_ca.cert))
         pki.write_private(folder / "permissions_ca.cert.pem", pki.cert_pem(permissions_ca.cert))
         pki.write_private(folder / "governance.p7s", gov_p7s)
+        pki.write_private(folder / "cyclonedds-security.xml", xmldocs.cyclone_security(str(folder.resolve())))
         grant = xmldocs.Grant(name, grants(dep, name), pair.cert.not_valid_before_utc, pair.cert.not_valid_after_utc)
         _signed(folder / "permissions.xml", xmldocs.permissions(grant), permissions_ca, new_permissions, out,
                 f"{name}/permissions")

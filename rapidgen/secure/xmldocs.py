@@ -133,3 +133,25 @@ def read_grants(data: bytes) -> dict[str, set[tuple[str, str, str]]]:
                         for p in c.iter("partition"):
                             out[kind].add((d, t.text or "", p.text or ""))
     return out
+
+
+def cyclone_security(enclave: str) -> bytes:
+    """Cyclone DDS's <Security> section for an enclave (absolute folder): a Python tool or
+    bridge on a Cyclone built with security adds it to CYCLONEDDS_URI (docs/secure.md)."""
+    root = ET.Element("CycloneDDS", {"xmlns": "https://cdds.io/config"})
+    sec = _sub(_sub(root, "Domain", None), "Security")
+    root[0].set("Id", "any")
+    for part, lib, init, items in (
+            ("Authentication", "dds_security_auth", "authentication",
+             (("IdentityCA", "identity_ca.cert.pem"), ("IdentityCertificate", "cert.pem"), ("PrivateKey", "key.pem"))),
+            ("AccessControl", "dds_security_ac", "access_control",
+             (("PermissionsCA", "permissions_ca.cert.pem"), ("Governance", "governance.p7s"),
+              ("Permissions", "permissions.p7s"))),
+            ("Cryptographic", "dds_security_crypto", "crypto", ())):
+        el = _sub(sec, part)
+        _sub(el, "Library").attrib.update({"path": lib, "initFunction": f"init_{init}",
+                                           "finalizeFunction": f"finalize_{init}"})
+        for tag, name in items:
+            _sub(el, tag, f"file:{enclave}/{name}")
+    ET.indent(root, "  ")
+    return b'<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="utf-8") + b"\n"

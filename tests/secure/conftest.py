@@ -21,7 +21,7 @@ version: 1
 assets: [{k10}, {chariot}]
 domains: [{domain}]
 ground:
-  - {{source: RapidWorkbench, command: [K10Red], watch: ["*"]}}
+  - {{source: RapidWorkbench, command: [K10Red], watch: ["*"], audit: [K10Red]}}
   - {{source: ChariotCrewDisplay, command: [Chariot]}}
   - {{source: ScienceBackroom, command: ["*"]}}
   - {{source: Outsider, watch: [K10Red]}}

@@ -17,7 +17,7 @@ from tests.secure.conftest import DEPLOYMENT, DOMAIN, ROOT, secure, secure_proce
 
 SEEDS = ["k10", "chariot", "athlete", "xarm2", "robonaut2", "eva-suit"]
 ENCLAVE_FILES = {"cert.pem", "key.pem", "identity_ca.cert.pem", "permissions_ca.cert.pem", "governance.p7s",
-                 "permissions.xml", "permissions.p7s"}
+                 "permissions.xml", "permissions.p7s", "cyclonedds-security.xml"}
 
 
 def test_layout_is_sroslike_and_owner_only(keystores):
@@ -63,7 +63,8 @@ def test_grants_by_topic_and_partition(keystores):
     assert {(t, p) for _, t, p in wb["publish"]} == {("rapid_command", "K10Red")}
     assert (d, "rapid_ack", "Chariot") in wb["subscribe"]  # watches every asset
     assert grants("Outsider")["publish"] == set()
-    assert (d, "rapid_command", "K10Red") not in wb["subscribe"]  # others' commands: only for auditors
+    assert (d, "rapid_command", "K10Red") in wb["subscribe"]  # it audits K10: reads every commander's
+    assert (d, "rapid_command", "K10Red") not in grants("ScienceBackroom")["subscribe"]  # others' commands: auditors
     assert (d, "rapid_command", "K10Red") in grants("Conformance")["subscribe"]
     # ScienceBackroom asked for every asset: K10's list admits it, Chariot's does not
     assert {(t, p) for _, t, p in grants("ScienceBackroom")["publish"]} == {("rapid_command", "K10Red")}
