@@ -164,3 +164,46 @@ def test_a_folder_that_cannot_be_used_means_no_journal_not_a_crash(tmp_path):
     j2, rec, = Journal.open(tmp_path, "Restarter", 1, 16, logs.append)  # the same file: another bridge holds it
     assert j2 is None and "in use" in logs[-1]
     j1.close(clean=True)
+
+
+def test_rapidgen_cmd_waiting_across_a_kill_learns_the_outcome(tmp_path):
+    """rapidgen cmd (the generated package, importable) sends a long queued command and waits;
+    the bridge is killed (SIGKILL) while the command runs and started again: cmd gets the
+    restart's answer from the new bridge's ack history and exits 1 with it."""
+    import time
+
+    from tests.field.restart_asset import PACKAGE, env_for
+    pydir = generate(tmp_path / "gen")
+    env = env_for(pydir)
+    executions = tmp_path / "executions"
+    argv = [sys.executable, "-m", "tests.field.restart_bridge", str(pydir), str(executions), "--domain",
+            str(DOMAIN + 1), "--journal", str(tmp_path / "journal")]
+
+    def start() -> subprocess.Popen:
+        proc = subprocess.Popen(argv, cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        line = proc.stdout.readline() if proc.stdout else ""
+        assert line.startswith("bridge ready"), line
+        return proc
+
+    bridge = start()
+    cmd = subprocess.Popen([sys.executable, "-m", "rapidgen", "cmd", PACKAGE, "Belt",
+                            "work", "ms=8000", "--action", "APPEND", "--id", "long-1", "--domain", str(DOMAIN + 1),
+                            "--timeout", "60"], cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                           text=True)
+    try:
+        end = time.monotonic() + 60
+        while not (executions.exists() and "long-1" in executions.read_text()):
+            assert time.monotonic() < end and cmd.poll() is None, cmd.communicate()
+            time.sleep(0.05)
+        bridge.kill()
+        bridge.wait()
+        bridge = start()
+        out, err = cmd.communicate(timeout=90)
+    finally:
+        for p in (cmd, bridge):
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+    assert cmd.returncode == 1, out + err
+    assert "asset restarted while it ran" in out + err and "EXEC_FAILED" in out + err, out + err
+    assert executions.read_text().split() == ["long-1"]
