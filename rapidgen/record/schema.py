@@ -71,9 +71,8 @@ def _declarator(t: ir.Type, name: str) -> str:
 
 
 def _label(label: ir.Label, scope: str) -> str:
-    if isinstance(label, ir.EnumValue):  # enumerators live in the enum's enclosing scope
-        module = label.enum.rpartition("::")[0]
-        return f"{module}::{label.name}" if module else label.name
+    if isinstance(label, ir.EnumValue):  # scoped by the enum: Foxglove looks labels up in it
+        return f"{label.enum}::{label.name}"
     if isinstance(label, bool):
         return "TRUE" if label else "FALSE"
     if isinstance(label, str):
