@@ -9,7 +9,8 @@ feedback after each, cancellable),
 drives the right arm's seven joints toward the target at --speed rad/s; publishes
 /joint_states (both arms' and the waist's joints, the right arm's in reverse order: a
 subscriber must match by name), the tool pose, the wrist wrench and force magnitude, and
-/r2_controller/right/status ("moving" on a new target, "reached" on arrival, "stopped").
+/r2_controller/right/status ("moving" on a new target, "reached" on arrival, "stopped")
+and a head camera's PNG on /r2/head/image/compressed (sensor_msgs/CompressedImage).
 
 Its kinematics are a toy, chosen so a test can check values end to end: the tool pose's
 position is joints 0-2 and its roll, pitch, yaw are joints 3-5 (joint 6 turns nothing), so
@@ -20,9 +21,12 @@ a pose command's x, y, z, roll, pitch, yaw come back as the first six joint angl
 from __future__ import annotations
 
 import argparse
+import hashlib
 import math
+import struct
 import sys
 import time
+import zlib
 
 import rclpy
 from geometry_msgs.msg import PoseStamped, WrenchStamped
@@ -30,13 +34,27 @@ from rclpy.action import ActionServer, CancelResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.executors import MultiThreadedExecutor
 from rclpy.node import Node
-from sensor_msgs.msg import JointState
+from sensor_msgs.msg import CompressedImage, JointState
 from std_msgs.msg import Float64, String
 from std_srvs.srv import SetBool, Trigger
 from test_msgs.action import Fibonacci
 
 RIGHT = [f"r2/right_arm/joint{i}" for i in range(7)]
 OTHERS = [f"r2/left_arm/joint{i}" for i in range(7)] + ["r2/waist/joint0"]
+
+
+def png(width: int, height: int) -> bytes:
+    """A small RGB gradient as PNG (what a head camera's compressed stream would carry)."""
+    def chunk(kind: bytes, body: bytes) -> bytes:
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    rows = b"".join(b"\0" + bytes(c for x in range(width) for c in (x * 255 // max(width - 1, 1),
+                                                                      y * 255 // max(height - 1, 1), 128))
+                    for y in range(height))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+
+
+HEAD_IMAGE = png(8, 4)
 
 
 def rpy_from_quat(x: float, y: float, z: float, w: float) -> tuple[float, float, float]:
@@ -65,6 +83,8 @@ class R2Sim(Node):
         self.pub_wrench = self.create_publisher(WrenchStamped, "/r2_controller/right/wrench", 10)
         self.pub_force = self.create_publisher(Float64, "/r2_controller/right/force_magnitude", 10)
         self.pub_status = self.create_publisher(String, "/r2_controller/right/status", 10)
+        self.pub_image = self.create_publisher(CompressedImage, "/r2/head/image/compressed", 10)
+        self.steps = 0
         self.create_subscription(PoseStamped, "/r2_controller/right/pose_command", self.on_pose, 10)
         self.create_subscription(JointState, "/r2_controller/right/joint_command", self.on_joints, 10)
         self.create_subscription(String, "/r2_controller/right/stop", self.on_stop, 10)
@@ -161,6 +181,11 @@ class R2Sim(Node):
         w.wrench.torque.x, w.wrench.torque.y, w.wrench.torque.z = 0.1, 0.2, 0.3
         self.pub_wrench.publish(w)
         self.pub_force.publish(Float64(data=self.force))
+        self.steps += 1
+        if self.steps % 10 == 1:  # the head camera at a fifth of the rate
+            image = CompressedImage(format="png", data=HEAD_IMAGE)
+            image.header.stamp, image.header.frame_id = now, "r2/head/camera_left"
+            self.pub_image.publish(image)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -172,6 +197,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     rclpy.init()
     node = R2Sim(args.speed, args.rate, args.force)
+    print(f"r2_sim: head image sha256={hashlib.sha256(HEAD_IMAGE).hexdigest()}", flush=True)
     print("r2_sim ready", flush=True)
     executor = MultiThreadedExecutor()
     executor.add_node(node)

@@ -50,6 +50,9 @@ BUILTIN: dict[str, str] = {
                                     "float32 percentage\nuint8 power_supply_status\nuint8 power_supply_health\n"
                                     "uint8 power_supply_technology\nbool present\nfloat32[] cell_voltage\n"
                                     "float32[] cell_temperature\nstring location\nstring serial_number",
+    "sensor_msgs/msg/Image": "std_msgs/Header header\nuint32 height\nuint32 width\nstring encoding\n"
+                             "uint8 is_bigendian\nuint32 step\nuint8[] data",
+    "sensor_msgs/msg/CompressedImage": "std_msgs/Header header\nstring format\nuint8[] data",
     "diagnostic_msgs/msg/KeyValue": "string key\nstring value",
     "diagnostic_msgs/msg/DiagnosticStatus": "byte level\nstring name\nstring message\nstring hardware_id\n"
                                             "KeyValue[] values",

@@ -28,6 +28,10 @@ POSE_SOURCES = {
     "geometry_msgs/msg/PoseWithCovariance": ("pose", None),
 }
 JOINT_SOURCE = "sensor_msgs/msg/JointState"
+# What an image entry's declared MIME type must be for each image message: a compressed
+# image is passed on as it is; a raw one is wrapped as PNM (rgb8/bgr8 -> PPM, mono8 -> PGM).
+IMAGE_SOURCES = {"sensor_msgs/msg/CompressedImage": ("image/jpeg", "image/png"),
+                 "sensor_msgs/msg/Image": ("image/x-portable-pixmap", "image/x-portable-graymap")}
 ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33", "RAPID_ROT_NONE")
 VELOCITY_ENCODINGS = ("RAPID_ROT_NONE", "RAPID_ROT_VEL")
 
@@ -175,11 +179,11 @@ class _Reader:
             counts[t.kind] = index + 1
             if (t.kind, index) in fed:
                 continue
-            if t.kind in ("joint", "position", "agent"):
+            if t.kind in ("joint", "position", "agent", "image"):
                 hint = f"feed it: add '- {{topic: ..., type: ..., feeds: {t.kind}" + \
                     (f", index: {index}" if index else "") + "}' under ros2.telemetry"
             else:
-                hint = "the ROS 2 bridge feeds joint, position and agent entries only"
+                hint = "the ROS 2 bridge feeds joint, position, agent and image entries only"
             self.sink.warning("RG1507", f"no ROS 2 topic feeds {t.kind} telemetry entry {index}: the ROS 2 bridge "
                               "never publishes it", t.loc, hint)
 
@@ -219,9 +223,10 @@ class _Reader:
         topic = self.topic(item["topic"], path + ("topic",))
         msg = self.msg_type(item["type"], path + ("type",))
         kind = item["feeds"]
-        if kind not in ("joint", "position", "agent"):
+        if kind not in ("joint", "position", "agent", "image"):
             self.error("RG1505", f"'{kind}' is not a telemetry kind a ROS 2 topic can feed", path + ("feeds",),
-                       "joint (from sensor_msgs/msg/JointState), position (PoseStamped, Pose, Odometry) or agent")
+                       "joint (from sensor_msgs/msg/JointState), position (PoseStamped, Pose, Odometry), agent "
+                       "or image (Image, CompressedImage)")
             return None
         index = item.get("index", 0)
         if not isinstance(index, int) or isinstance(index, bool) or index < 0:
@@ -245,6 +250,8 @@ class _Reader:
             return self.joint_feed(item, path, msg, entry, out)
         if kind == "position":
             return self.position_feed(path, msg, entry, out)
+        if kind == "image":
+            return self.image_feed(path, msg, entry, out)
         return self.agent_feed(item, path, msg, entry, out)
 
     def joint_feed(self, item: dict, path: tuple, msg: msgdefs.MsgDef, entry: Any, out: dict) -> dict | None:
@@ -287,6 +294,19 @@ class _Reader:
             return None
         out.update(pose=source[0], twist=source[1], encoding=entry.pose_encoding,
                    velocity_encoding=entry.velocity_encoding)
+        return out
+
+    def image_feed(self, path: tuple, msg: msgdefs.MsgDef, entry: Any, out: dict) -> dict | None:
+        mimes = IMAGE_SOURCES.get(msg.name)
+        if mimes is None:
+            self.error("RG1503", f"{msg.name} cannot feed image telemetry", path + ("type",),
+                       "image telemetry comes from " + " or ".join(sorted(IMAGE_SOURCES)))
+            return None
+        if entry.mime not in mimes:
+            self.error("RG1503", f"{msg.name} cannot carry the image entry's MIME type {entry.mime}",
+                       path + ("type",), f"declare mime: {' or '.join(mimes)} on the entry"
+                       + (" (a raw image is passed on as PNM)" if msg.name.endswith("/Image") else ""))
+            return None
         return out
 
     def agent_feed(self, item: dict, path: tuple, msg: msgdefs.MsgDef, entry: Any, out: dict) -> dict | None:

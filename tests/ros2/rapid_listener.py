@@ -3,6 +3,7 @@ transport): prints one JSON line per topic (its first sample), then exits.
 usage: rapid_listener.py PACKAGE TOPIC=rapid::Type ..."""
 from __future__ import annotations
 
+import hashlib
 import importlib
 import json
 import sys
@@ -19,6 +20,9 @@ def plain(s) -> dict:
         return {"xyz": list(s.pose.xyz), "rot": list(s.pose.rot)}
     if kind == "AgentState":
         return {"values": [list(u.value) if isinstance(u.value, (list, tuple)) else u.value for u in s.values]}
+    if kind == "ImageSensorSample":
+        return {"mime": s.mimeType, "sensor": s.meta.sensorName, "width": s.meta.width, "height": s.meta.height,
+                "sha256": hashlib.sha256(bytes(s.data)).hexdigest()}
     raise TypeError(kind)
 
 

@@ -123,6 +123,8 @@ def test_conform_passes_every_required_check(scene):
     passed = {c["id"] for c in required if c["outcome"] == "PASS"}
     # the telemetry fed from ROS 2 and the command path are judged, not skipped
     assert {"TEL-01", "TEL-03", "TEL-04", "TEL-06", "CMD-02", "CMD-03", "QUE-02", "ACC-02"} <= passed
+    camera = next(c for c in checks if c["id"] == "TEL-08")  # recommended: the camera fed from ROS 2
+    assert camera["outcome"] == "PASS", camera
 
 
 def test_pose_command_moves_the_ros2_arm_and_its_joints_come_back(scene):
@@ -141,7 +143,8 @@ def test_pose_command_moves_the_ros2_arm_and_its_joints_come_back(scene):
     # JointSample in the JointConfig's order: the toy kinematics put x, y, z, r, p, y in joints 0-5
     got = scene.samples(**{"rapid_joint_sample": "rapid::JointSample",
                            "rapid_position_sample-rightArm": "rapid::PositionSample",
-                           "rapid_agent_state": "rapid::AgentState"})
+                           "rapid_agent_state": "rapid::AgentState",
+                           "rapid_imagesensor_sample-headCam": "rapid::ImageSensorSample"})
     joints = got["rapid_joint_sample"]
     assert joints["anglePos"][:6] == pytest.approx([0.3, 0.2, -0.1, 0.1, 0.2, 0.3], abs=1e-6)
     assert joints["torque"] == pytest.approx([2.5] * 7)
@@ -154,6 +157,11 @@ def test_pose_command_moves_the_ros2_arm_and_its_joints_come_back(scene):
     assert values[0] == pytest.approx([1.0, 2.0, -19.6])
     assert values[1] == pytest.approx([0.1, 0.2, 0.3])
     assert values[2] == pytest.approx(FORCE)
+    # the head camera's CompressedImage arrives as ImageSensorSample, bytes unchanged
+    image = got["rapid_imagesensor_sample-headCam"]
+    sim = (scene.tmp / "sim.log").read_text()
+    assert f"head image sha256={image['sha256']}" in sim
+    assert (image["mime"], image["sensor"], image["width"], image["height"]) == ("image/png", "HeadCamLeft", 8, 4)
 
 
 def test_joint_command_publishes_the_arguments_in_order(scene):
