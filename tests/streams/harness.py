@@ -91,15 +91,16 @@ def package_of(cpp: Path) -> str:
 
 
 def build(descriptors: dict[Path, tuple[str, str, str]], alloc_count: Path | None = None,
-          build_type: str = "Release") -> dict[str, Path]:
-    """Each descriptor's bridge with its test code; stem -> program."""
+          quick: bool = False) -> dict[str, Path]:
+    """Each descriptor's bridge with its test code; stem -> program. quick: unity builds
+    without optimization (tests); else optimized (the bench)."""
     work = workdir()
     rt = runtime(work)
     dirs = {d.stem: generate(work, d, code) for d, code in descriptors.items()}
-    out = work / ("bridges-alloc" if alloc_count else "bridges")
+    out = work / ("bridges-quick" if quick else "bridges-alloc" if alloc_count else "bridges")
     defs = [f"-Drapid_runtime_cpp_DIR={rt}", "-DPACKAGE_DIRS=" + ";".join(str(d) for d in dirs.values()),
-            f"-DALLOC_COUNT={alloc_count or ''}"]
-    run(["cmake", "-S", HERE, "-B", out, f"-DCMAKE_BUILD_TYPE={build_type}", f"-DCMAKE_CXX_FLAGS={FLAGS}", *defs])
+            f"-DALLOC_COUNT={alloc_count or ''}", f"-DQUICK={'ON' if quick else 'OFF'}"]
+    run(["cmake", "-S", HERE, "-B", out, "-DCMAKE_BUILD_TYPE=Release", f"-DCMAKE_CXX_FLAGS={FLAGS}", *defs])
     run(["cmake", "--build", out, "-j", "2", *[a for d in dirs.values() for a in ("--target", f"{package_of(d)}_bridge")]])
     return {s: out / d.parent.name / f"{package_of(d)}_bridge" for s, d in dirs.items()}
 

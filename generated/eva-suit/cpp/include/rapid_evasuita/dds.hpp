@@ -83,22 +83,32 @@ public:
             const T& value = *static_cast<const T*>(data);
             cdr::Counter c;
             Traits<T>::key(c, value);
-            std::vector<std::uint8_t> key(c.size());
+            // Fast DDS asks for the key of every sample written and received: a key that fits
+            // (RAPID's header names: 72 bytes) is built on the stack, so a steady stream
+            // allocates nothing here (docs/realtime.md).
+            std::uint8_t small[256];
+            std::vector<std::uint8_t> large;
+            std::uint8_t* key = small;
+            const std::size_t size = c.size();
+            if (size > sizeof small) {
+                large.resize(size);
+                key = large.data();
+            }
             if (cdr::host == cdr::Endianness::big) {
-                cdr::Writer w(key.data(), key.size());
+                cdr::Writer w(key, size);
                 Traits<T>::key(w, value);
             } else {
-                cdr::SwappedWriter w(key.data(), key.size());
+                cdr::SwappedWriter w(key, size);
                 Traits<T>::key(w, value);
             }
             if (force_md5 || Traits<T>::key_max > 16) {
                 ::MD5 md5;  // Fast DDS 2.9 declares it at global scope
                 md5.init();
-                md5.update(reinterpret_cast<const unsigned char*>(key.data()), static_cast<unsigned int>(key.size()));
+                md5.update(key, static_cast<unsigned int>(size));
                 md5.finalize();
                 for (std::size_t i = 0; i < 16; ++i) handle->value[i] = md5.digest[i];
             } else {
-                for (std::size_t i = 0; i < 16; ++i) handle->value[i] = i < key.size() ? key[i] : 0;
+                for (std::size_t i = 0; i < 16; ++i) handle->value[i] = i < size ? key[i] : 0;
             }
             return true;
         }
