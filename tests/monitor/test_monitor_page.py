@@ -168,6 +168,21 @@ def test_map_shows_the_traverse(live, driven):
     assert H.traverse_pixels(d) > 100
 
 
+def test_plots_and_the_latest_picture_of_each_sensor(live):
+    d = live["driver"]
+    H.select(d, "K10Red", "telemetry")
+    drawn = """const c = [...document.querySelectorAll('canvas.plot')].find(e => e.dataset.series === arguments[0]);
+        if (!c) return 0; const x = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; let n = 0;
+        for (let i = 0; i < x.length; i += 4) if (x[i+3] > 100 && x[i+2] - x[i] > 80) n++; return n;  // the blue line"""
+    H.until(lambda: d.execute_script(drawn, "agent/batteryCharge") > 20, 20, what="batteryCharge's plot drawn")
+    H.select(d, "K10Red", "images")
+    shown = """const f = [...document.querySelectorAll('figure')].find(e => e.dataset.sensor === arguments[0]);
+        const i = f && f.querySelector('img'); return i && i.complete ? [i.naturalWidth, i.naturalHeight] : null;"""
+    assert H.until(lambda: d.execute_script(shown, "HazCamFront"), 30, what="HazCam's picture") == [640, 480]
+    caption = H.texts(d, "figcaption")
+    assert any("HazCamFront (stereo-left) 640x480, image/png" in c for c in caption), caption
+
+
 def test_hostile_strings_appear_as_text(live):
     d = live["driver"]
     H.select(d, ROGUE_PARTITION, "log")
