@@ -156,3 +156,28 @@ def test_generated_rotations_agree(tmp_path, monkeypatch):
         assert [sign * b for b in back] == pytest.approx(list(q), abs=1e-9)
     m = ros2.m33_from_quat(*ros2.quat_from_rpy(0, 0, math.pi / 2))  # yaw 90 degrees: x -> y
     assert m == pytest.approx([0, -1, 0, 1, 0, 0, 0, 0, 1], abs=1e-12)
+
+
+def test_raw_images_become_pnm(tmp_path, monkeypatch):
+    """The bridge's raw Image -> PNM: rows cut at `step` (padding dropped), BGR swapped to RGB,
+    mono8 as PGM; the runtime reads the size back from the PNM header."""
+    import importlib
+    from types import SimpleNamespace
+    res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(EXAMPLE), "--lang", "python", "-o",
+                          str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    monkeypatch.syspath_prepend(str(tmp_path / "python"))
+    ros2 = importlib.import_module("rapid_r2ros.ros2")
+    read = ros2.Ros2Handlers._read_image
+    bgr = SimpleNamespace(encoding="bgr8", width=2, height=2, step=8,
+                          data=bytes([1, 2, 3, 4, 5, 6, 0, 0, 7, 8, 9, 10, 11, 12, 0, 0]))
+    assert read(None, None, bgr, None) == b"P6\n2 2\n255\n" + bytes([3, 2, 1, 6, 5, 4, 9, 8, 7, 12, 11, 10])
+    mono = SimpleNamespace(encoding="mono8", width=3, height=1, step=3, data=b"abc")
+    assert read(None, None, mono, None) == b"P5\n3 1\n255\nabc"
+    compressed = SimpleNamespace(format="png", data=b"\x89PNG...")
+    assert read(None, None, compressed, None) == b"\x89PNG..."
+    from rapid_runtime.images import describe
+    info = describe(read(None, None, bgr, None))
+    assert (info.mime, info.width, info.height) == ("image/x-portable-pixmap", 2, 2)
+    with pytest.raises(ValueError, match="rgb8, bgr8 and mono8"):
+        read(None, None, SimpleNamespace(encoding="16UC1", width=1, height=1, step=2, data=b"\0\0"), None)
