@@ -137,16 +137,28 @@ def test_the_example_maps_what_the_seed_scenario_needs(monkeypatch):
     assert pose["topic"] == "/r2_controller/right/pose_command" and pose["stamp"] is True
 
 
-def test_generated_rotations_agree(tmp_path, monkeypatch):
-    """The generated bridge's rotation helpers (no rclpy needed to import them): tf2's
-    setRPY quaternion, and matrix <-> quaternion round trips."""
+@pytest.fixture(scope="module")
+def example_bridge(tmp_path_factory):
+    """The example's generated rapid_r2ros.ros2, imported (it needs no rclpy to import)."""
     import importlib
-    import math
+    out = tmp_path_factory.mktemp("r2ros")
     res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(EXAMPLE), "--lang", "python", "-o",
-                          str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
+                          str(out)], cwd=ROOT, capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
-    monkeypatch.syspath_prepend(str(tmp_path / "python"))
-    ros2 = importlib.import_module("rapid_r2ros.ros2")
+    sys.path.insert(0, str(out / "python"))
+    try:
+        yield importlib.import_module("rapid_r2ros.ros2")
+    finally:
+        sys.path.remove(str(out / "python"))
+        for name in [n for n in sys.modules if n == "rapid_r2ros" or n.startswith("rapid_r2ros.")]:
+            del sys.modules[name]
+
+
+def test_generated_rotations_agree(example_bridge):
+    """The generated bridge's rotation helpers: tf2's setRPY quaternion, and matrix <->
+    quaternion round trips."""
+    import math
+    ros2 = example_bridge
     assert ros2.quat_from_rpy(0.1, 0.2, 0.3) == pytest.approx((0.0342708, 0.1060205, 0.1435722, 0.9833474), abs=1e-7)
     assert ros2.quat_from_rpy(0, 0, math.pi / 2) == pytest.approx((0, 0, math.sqrt(0.5), math.sqrt(0.5)))
     for q in [(0, 0, 0, 1), (1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), ros2.quat_from_rpy(2.5, -1.1, 3.0),
@@ -158,16 +170,11 @@ def test_generated_rotations_agree(tmp_path, monkeypatch):
     assert m == pytest.approx([0, -1, 0, 1, 0, 0, 0, 0, 1], abs=1e-12)
 
 
-def test_raw_images_become_pnm(tmp_path, monkeypatch):
+def test_raw_images_become_pnm(example_bridge):
     """The bridge's raw Image -> PNM: rows cut at `step` (padding dropped), BGR swapped to RGB,
     mono8 as PGM; the runtime reads the size back from the PNM header."""
-    import importlib
     from types import SimpleNamespace
-    res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(EXAMPLE), "--lang", "python", "-o",
-                          str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
-    assert res.returncode == 0, res.stderr
-    monkeypatch.syspath_prepend(str(tmp_path / "python"))
-    ros2 = importlib.import_module("rapid_r2ros.ros2")
+    ros2 = example_bridge
     read = ros2.Ros2Handlers._read_image
     bgr = SimpleNamespace(encoding="bgr8", width=2, height=2, step=8,
                           data=bytes([1, 2, 3, 4, 5, 6, 0, 0, 7, 8, 9, 10, 11, 12, 0, 0]))
