@@ -119,7 +119,8 @@ def driven(live):
     H.until(lambda: d.find_elements(By.CSS_SELECTOR, "#access [data-controller='RapidWorkbench']"), 15,
             what="controller shown")
     drive = H.wait_completed(d, H.send(d, "Mobility/simpleMove", {"frame": "site", "xyt": "300,150,0"}))
-    return {"disabled before a source": disabled, "control": control, "drive": drive}
+    queued = H.wait_completed(d, H.send(d, "Admin/echo", {"text": "through the queue", "queue-action": "APPEND"}))
+    return {"disabled before a source": disabled, "control": control, "drive": drive, "queued": queued}
 
 
 def test_command_from_the_page_completes(live, driven):
@@ -128,8 +129,10 @@ def test_command_from_the_page_completes(live, driven):
     assert driven["disabled before a source"], "commands must wait for a chosen source"
     assert driven["control"] == ["EXECUTING", "COMPLETED OK: control granted to RapidWorkbench"], driven
     assert driven["drive"][0] == "EXECUTING" and driven["drive"][-1].startswith("COMPLETED OK: arrived at 300"), driven
+    assert driven["queued"] == ["QUEUED", "EXECUTING", "COMPLETED OK: through the queue"], driven
     # refused before sending: a value outside its range
     H.select(d, "K10Red", "commands")
+    H.until(lambda: H.texts(d, "#queue [data-queue]") == ["state: idle"], 10, what="the queue idle again")
     form = d.find_element(By.CSS_SELECTOR, "form[data-command='PanCam/pointCamera']")
     H.fill(form, {"pan": "4"})
     form.find_element(By.CSS_SELECTOR, "button.send").click()
