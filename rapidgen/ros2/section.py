@@ -154,7 +154,7 @@ class _Reader:
         entries = []
         counts: dict[str, int] = {}
         for t in self.loaded.spec.telemetry:
-            if t.kind not in ("joint", "position", "agent"):
+            if t.kind not in ("joint", "position", "agent", "text"):
                 continue
             index = counts.get(t.kind, 0)
             counts[t.kind] = index + 1
@@ -165,6 +165,8 @@ class _Reader:
             elif t.kind == "position":
                 entries.append({"kind": "position", "index": index, "topic": f"{ns}{sub}/pose", "frame": t.frame,
                                 "encoding": t.pose_encoding})
+            elif t.kind == "text":
+                entries.append({"kind": "text", "index": index, "topic": "/rosout"})
             else:
                 entries.append({"kind": "agent", "index": index, "topic": diagnostics,
                                 "values": [[v.name, v.type, v.unit or "", _levels(v.warning), _levels(v.critical)]
@@ -177,13 +179,13 @@ class _Reader:
         for t in self.loaded.spec.telemetry:
             index = counts.get(t.kind, 0)
             counts[t.kind] = index + 1
-            if (t.kind, index) in fed:
+            if (t.kind, index) in fed or t.kind == "text":  # text: the bridge's start-up line
                 continue
             if t.kind in ("joint", "position", "agent", "image"):
                 hint = f"feed it: add '- {{topic: ..., type: ..., feeds: {t.kind}" + \
                     (f", index: {index}" if index else "") + "}' under ros2.telemetry"
             else:
-                hint = "the ROS 2 bridge feeds joint, position, agent and image entries only"
+                hint = "the ROS 2 bridge feeds joint, position, agent and image entries (and writes one text line)"
             self.sink.warning("RG1507", f"no ROS 2 topic feeds {t.kind} telemetry entry {index}: the ROS 2 bridge "
                               "never publishes it", t.loc, hint)
 

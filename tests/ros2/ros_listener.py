@@ -1,12 +1,16 @@
 """A plain rclpy subscriber for the tests: prints one JSON line per topic (its first
-message), then exits. usage: ros_listener.py TOPIC=pkg/msg/Type ..."""
+message), then exits. usage: ros_listener.py TOPIC=pkg/msg/Type ...
+/rosout is read as rqt_console does (transient local), keeping the first Log whose name
+starts with ROSOUT_NAME (environment)."""
 from __future__ import annotations
 
 import importlib
 import json
+import os
 import sys
 
 import rclpy
+from rclpy.qos import DurabilityPolicy, QoSProfile
 
 
 def plain(msg) -> dict:
@@ -21,6 +25,8 @@ def plain(msg) -> dict:
     if kind == "DiagnosticArray":
         return {"status": [{"name": s.name, "level": s.level[0], "message": s.message, "hardware_id": s.hardware_id,
                             "values": {kv.key: kv.value for kv in s.values}} for s in msg.status]}
+    if kind == "Log":
+        return {"name": msg.name, "level": msg.level, "msg": msg.msg, "stamp": msg.stamp.sec}
     raise TypeError(kind)
 
 
@@ -33,6 +39,12 @@ def main() -> int:
         package, sub, name = type_name.split("/")
         cls = getattr(importlib.import_module(f"{package}.{sub}"), name)
         wanted[topic] = None
+        if topic == "/rosout":
+            prefix = os.environ.get("ROSOUT_NAME", "")
+            node.create_subscription(cls, topic, lambda m, t=topic: wanted.__setitem__(
+                t, wanted[t] or (plain(m) if m.name.startswith(prefix) else None)),
+                QoSProfile(depth=1000, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+            continue
         node.create_subscription(cls, topic, lambda m, t=topic: wanted.__setitem__(t, wanted[t] or plain(m)), 10)
     while any(v is None for v in wanted.values()):
         rclpy.spin_once(node, timeout_sec=0.5)

@@ -213,13 +213,13 @@ def test_service_calls_answer_with_their_response(scene):
 
 def test_rapid_telemetry_comes_back_to_ros2_as_standard_messages(scene):
     """RAPID -> ROS 2: the ground node republishes R2Ros's RAPID telemetry; a plain rclpy
-    subscriber sees joint states named as the JointConfig, the pose and diagnostics whose
-    levels follow the descriptor's thresholds."""
+    subscriber sees joint states named as the JointConfig, the pose, diagnostics whose
+    levels follow the descriptor's thresholds and the asset's text on /rosout."""
     res = subprocess.run([*scene.ns, str(scene.python), str(ROOT / "tests/ros2/ros_listener.py"),
                           "/r2ros/joint_states=sensor_msgs/msg/JointState",
                           "/r2ros/rightArm/pose=geometry_msgs/msg/PoseStamped",
-                          "/diagnostics=diagnostic_msgs/msg/DiagnosticArray"],
-                         capture_output=True, text=True, timeout=WAIT)
+                          "/diagnostics=diagnostic_msgs/msg/DiagnosticArray", "/rosout=rcl_interfaces/msg/Log"],
+                         capture_output=True, text=True, timeout=WAIT, env={**os.environ, "ROSOUT_NAME": "R2Ros"})
     assert res.returncode == 0, res.stderr
     got = {m["topic"]: m["msg"] for m in map(json.loads, res.stdout.splitlines())}
     joints = got["/r2ros/joint_states"]
@@ -236,6 +236,10 @@ def test_rapid_telemetry_comes_back_to_ros2_as_standard_messages(scene):
     assert float(force["values"]["value"]) == pytest.approx(FORCE) and force["values"]["unit"] == "N"
     assert status["R2Ros/rightWristForce"]["level"] == 0  # no thresholds: OK
     assert all(s["hardware_id"] == "R2Ros" for s in status.values())
+    # the asset's TextMessage (durable, written at the bridge's start) on /rosout, as rqt_console reads it
+    log = got["/rosout"]
+    assert log == {"name": "R2Ros/system", "level": 20, "msg": "R2Ros served from ROS 2 node r2_rapid_bridge",
+                   "stamp": log["stamp"]} and log["stamp"] > 1_700_000_000
 
 
 def test_action_goal_feedback_result_and_delete(scene):
