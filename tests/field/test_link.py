@@ -27,11 +27,11 @@ pytestmark = pytest.mark.skipif(os.geteuid() != 0 or not Path("/dev/net/tun").ex
 
 FULL = os.environ.get("RAPIDGEN_FIELD_FULL") == "1"
 ROUNDS, WAVE = (200, 20) if FULL else (4, 4)  # script rounds: one command of every queue action each
-CLI_ROUNDS = 8 if FULL else 1  # rapidgen cmd rounds (5 processes each, all at once)
+CLI_ROUNDS = 4 if FULL else 1  # rapidgen cmd rounds (5 processes each, all at once)
 OUTAGE = 60.0 if FULL else 12.0  # s the link is down in the middle of a queue of long commands
 LONG, HOLD = (12, 10.0) if FULL else (3, 6.0)  # drives queued, seconds each
 LEASE = 120.0  # s: the site library's participant lease, longer than the outage
-SPEED = 4.0  # the bridge's simulation speed
+SPEED = 20.0  # the bridge's simulation speed (drives are given in seconds of this time)
 DOMAIN = 7  # inside the namespaces: any
 PACKAGE = SEEDS["k10"]
 RTT = rtt(LUNAR)
@@ -233,7 +233,7 @@ def _final(acks: list) -> list:
 def test_lunar_every_queue_action_from_cmd_and_a_script_runs_once_and_is_answered(lunar):
     link, config, log, tmp = lunar
     before = link.stats()
-    script = _ground(link, config, "drive", PACKAGE, str(DOMAIN), str(ROUNDS), "--wave", str(WAVE), "--hold", "2",
+    script = _ground(link, config, "drive", PACKAGE, str(DOMAIN), str(ROUNDS), "--wave", str(WAVE), "--hold", "1",
                      "--speed", str(SPEED), "--targets", str(CLI_ROUNDS), stdin=subprocess.PIPE)
     line = script.stdout.readline()
     assert line.startswith("{"), script.stderr.read()[-3000:] if script.poll() is not None else line
@@ -265,8 +265,9 @@ def test_lunar_every_queue_action_from_cmd_and_a_script_runs_once_and_is_answere
         for k in ("append", "insert", "replace", "bypass"):
             assert res[r[k]][0] == 0 and "COMPLETED OK" in res[r[k]][1], (k, res[r[k]])
             assert runs[r[k]] == 1, (k, runs[r[k]])
-        assert res[r["delete"]][0] == 0 and "COMPLETED OK" in res[r["delete"]][1], res[r["delete"]]
-        assert res[r["delete"]][1].rstrip().endswith(" canceled"), res[r["delete"]]
+        lines = res[r["delete"]][1].splitlines()  # its own acks, then (when they came in time) the target's
+        assert res[r["delete"]][0] == 0 and any(x.startswith("  COMPLETED OK") and x.endswith(" canceled")
+                                                for x in lines), res[r["delete"]]
         for k, why in (("replace", "replaced by"), ("delete", "deleted by")):  # the script's targets
             final = _final(drive["acks"][t[k]])
             assert final[1] == "ACK_COMPLETED_CANCELED" and final[2].startswith(why), final
