@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from tests.field.link import ASSET, LUNAR, Link, direction, rtt
-from tests.field.site import K10, RAPIDGEN, ROOT, site_env, site_library
+from tests.field.site import K10, RAPIDGEN, ROOT, site_config, site_env, site_library
 from tests.runtime.live import SEEDS, BridgeProcess
 
 pytestmark = pytest.mark.skipif(os.geteuid() != 0 or not Path("/dev/net/tun").exists(),
@@ -319,3 +319,28 @@ def test_lunar_conform_passes_every_required_check(lunar):
     data = json.loads(report.read_text())
     required = [c for c in data["checks"] if c["level"] == "required"]
     assert required and data["passed"] and res.returncode == 0, res.stdout[-4000:]
+
+
+@pytest.mark.skipif(not FULL, reason="RAPIDGEN_FIELD_FULL=1: the lan transport across the link (about 35 s)")
+def test_lan_multicast_discovery_crosses_the_link_too(tmp_path):
+    """The generated `lan` file as shipped (SPDP multicast on 239.255.0.1, no peers): the
+    package's own bridge (`python -m rapid_k10red.bridge`) and `rapidgen cmd` find each
+    other through the relay, which carries the multicast like any packet."""
+    with Link({"up": direction(delay=0.1, jitter=0.01, loss=0.05), "down": direction(delay=0.1, loss=0.05)},
+              seed=31) as link:
+        config = site_config(tmp_path, transport="lan")
+        bridge = BridgeProcess.of_command(link.argv("asset", [
+            sys.executable, "-m", f"{PACKAGE}.bridge", "--simulate", "--domain", str(DOMAIN), "--journal",
+            str(tmp_path / "journal")]), ROOT, site_env(config))
+        link.children.append(bridge.proc)
+        try:
+            bridge.wait_ready(60)
+            res = link.run("ground", [*RAPIDGEN, "cmd", PACKAGE, "AccessControl", "requestControl", "--source",
+                                      "RapidWorkbench", "--domain", str(DOMAIN), "--rtt", "0.2", "--timeout", "60"],
+                           cwd=ROOT, env=site_env(config), capture_output=True, text=True, timeout=300)
+            stats = link.stats()
+        finally:
+            bridge.stop()
+    assert res.returncode == 0 and "COMPLETED OK  control granted to RapidWorkbench" in res.stdout, res
+    assert "no CommandConfig" not in res.stderr, res.stderr  # the live dictionary came across too
+    assert stats["up"]["forwarded"] > 0 and stats["down"]["forwarded"] > 0
