@@ -10,7 +10,7 @@
 //
 // Per sample, nothing allocates once the first samples have sized the reused one: the
 // reader's history is preallocated (profile RapidStream_<name>: PREALLOCATED_WITH_REALLOC,
-// every sample allocated up front), the listener takes into one sample kept for the whole
+// every sample allocated up front), the listener reads into one sample kept for the whole
 // run (its strings and sequences keep their capacity), the callback is a std::function
 // called by reference. The callback runs on Fast DDS's receive thread: keep it short.
 //
@@ -92,8 +92,11 @@ public:
     Reader(StreamSet& set, std::size_t index, std::function<void(const T&)> callback)
         : ReaderBase(set, index), callback_(std::move(callback)) {}
 
+    // read, not take: the history (keep last 1 per writer) replaces the read sample with the
+    // next one, so the writer's instance stays among Fast DDS 2.9's instances with data; a
+    // take emptied it and the next sample put it back, a std::map node allocated per sample.
     void on_data_available(eprosima::fastdds::dds::DataReader* r) override {
-        while (r->take_next_sample(&sample_, &info_) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+        while (r->read_next_sample(&sample_, &info_) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
             if (!info_.valid_data) continue;
             arrived();
             if (callback_) callback_(sample_);
