@@ -35,7 +35,8 @@ def ensure() -> Path:
         if VENV.exists():
             shutil.rmtree(VENV)
         subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-        subprocess.run([str(python()), "-m", "pip", "install", "-q", "--disable-pip-version-check", *PACKAGES],
+        subprocess.run([str(python()), "-m", "pip", "install", "-q", "--disable-pip-version-check", "--no-compile",
+                        *PACKAGES],
                        check=True, env={**os.environ, "PIP_NO_INPUT": "1"})
         STAMP.write_text(wanted)
     return python()
