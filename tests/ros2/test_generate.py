@@ -188,3 +188,29 @@ def test_raw_images_become_pnm(example_bridge):
     assert (info.mime, info.width, info.height) == ("image/x-portable-pixmap", 2, 2)
     with pytest.raises(ValueError, match="rgb8, bgr8 and mono8"):
         read(None, None, SimpleNamespace(encoding="16UC1", width=1, height=1, step=2, data=b"\0\0"), None)
+
+
+def test_feeds_read_odometry_split_joint_states_and_fields(example_bridge):
+    """The bridge's readers on message-shaped objects: Odometry's pose and twist (RAPID_ROT_M33,
+    RAPID_ROT_VEL), JointState split over messages (a joint not in one keeps its value), agent
+    fields through paths."""
+    from types import SimpleNamespace as NS
+    ros2 = example_bridge
+    h = ros2.Ros2Handlers.__new__(ros2.Ros2Handlers)  # the readers use no ROS 2 state
+    v3 = lambda x, y, z: NS(x=x, y=y, z=z)  # noqa: E731
+    odom = NS(pose=NS(pose=NS(position=v3(1.0, 2.0, 3.0), orientation=NS(x=0.0, y=0.0, z=1.0, w=0.0))),
+              twist=NS(twist=NS(linear=v3(0.5, 0.0, 0.0), angular=v3(0.0, 0.0, 0.25))))
+    feed = {"pose": "pose.pose", "twist": "twist.twist", "encoding": "RAPID_ROT_M33",
+            "velocity_encoding": "RAPID_ROT_VEL"}
+    xyz, rot, vxyz, vrot = h._read_position(feed, odom, None)
+    assert xyz == [1.0, 2.0, 3.0] and vxyz == [0.5, 0.0, 0.0]
+    assert rot == pytest.approx([-1, 0, 0, 0, -1, 0, 0, 0, 1])  # half a turn about z
+    assert vrot == [0.0, 0.0, 0.25] + [0.0] * 6
+    joints = {"joints": ["a", "b", "c"]}
+    first = h._read_joint(joints, NS(name=["c", "x", "a"], position=[3.0, 9.0, 1.0], velocity=[], effort=[]), None)
+    assert first[0] == [1.0, 0.0, 3.0]
+    second = h._read_joint(joints, NS(name=["b"], position=[2.0], velocity=[0.5], effort=[7.0]), first)
+    assert second == ([1.0, 2.0, 3.0], [0.0, 0.5, 0.0], [0.0, 7.0, 0.0])
+    agent = {"values": [["force", "wrench.force", "vec3"], ["ok", "status[1]", "bool"], ["n", "count", "int"]]}
+    msg = NS(wrench=NS(force=v3(1.0, 2.0, 3.0)), status=[False, True], count=7)
+    assert h._read_agent(agent, msg, {"other": 1.5}) == {"other": 1.5, "force": [1.0, 2.0, 3.0], "ok": True, "n": 7}
