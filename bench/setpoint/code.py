@@ -114,7 +114,7 @@ void write_setpoints() {
 }
 
 }  // namespace
-""", """    records.resize(samples_wanted() + 1000);
+""", """    records.resize(samples_wanted() + 5000);  // the reader's window starts after discovery
     set.on_start = [](::rapid_runtime::dds::Bridge&) {
         writing = true;
         writer = ::std::thread(write_setpoints);
