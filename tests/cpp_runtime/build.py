@@ -177,3 +177,18 @@ def hostile_descriptor() -> dict:
     data["asset"]["description"] = 'a "robot" */ with ??/ trigraphs \\'
     data["dds"] = {"domain": 7, "partition": 'Hostile "1" part'}  # (no ? or *: DDS partition wildcards)
     return data
+
+
+def client_programs(factory) -> dict[str, Path]:
+    """On K10's package, in the seeds' build (seeds/CMakeLists.txt): `cmd`, the ground-side
+    client program with K10's tables (rapid_runtime_cpp_add_cmd), and `bridge_test`, K10's
+    generated bridge with the runtime and the codec under ASan/UBSan and --break KIND
+    (RAPID_RUNTIME_TEST_BREAKS). Fails when K10 is not among RAPIDGEN_CPP_SEEDS."""
+    def make() -> dict[str, Path]:
+        bridges = seed_bridges(factory)
+        if "k10" not in bridges:
+            pytest.fail("the C++ client tests need K10 among RAPIDGEN_CPP_SEEDS")
+        out = bridges["k10"].parent.parent
+        build(out, "rapid_k10red_cmd", "rapid_k10red_bridge_test")
+        return {"cmd": out / "rapid_k10red_cmd", "bridge_test": out / "rapid_k10red_bridge_test"}
+    return _once(factory, "clients", make)  # type: ignore[no-any-return]

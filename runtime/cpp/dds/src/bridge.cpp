@@ -7,6 +7,8 @@
 
 #include <rapid_runtime/text.hpp>
 
+#include "rapid_runtime/dds/breaks.hpp"
+
 namespace rapid_runtime {
 namespace dds {
 
@@ -28,7 +30,9 @@ std::string writer_id(const InstanceHandle_t& handle) {
 }  // namespace
 
 Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
-    : tables_(tables), serials_(options.serial) {
+    : tables_(tables),
+      breaks_(std::make_unique<Breaks>(options.breaks, tables)),
+      serials_(breaks_->on("zero-serial") ? 0 : options.serial) {
     auto write = options.log;
     if (!write) {
         std::string prefix = "[" + visible(tables.name) + "] ";
@@ -45,7 +49,7 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
     ManagerOptions m;
     m.window = options.command_window;
     m.on_shutdown = [this] { request_stop(); };
-    manager_ = std::make_unique<CommandManager>(tables, handlers, *this, m);
+    manager_ = std::make_unique<CommandManager>(breaks_->any() ? breaks_->tables() : tables, handlers, *this, m);
     intake_ = std::make_unique<Intake>(*manager_, [this](const std::string& text) { log(text); });
 }
 
@@ -59,7 +63,10 @@ std::int32_t Bridge::serial_of(const std::string& config_topic) const {
 void Bridge::start() {
     if (!tables_.subsystems.empty()) {
         // The ack writer exists before the command reader: commanders wait to match both.
-        acks_ = node_->writer<::rapid::Ack>(ACK_TOPIC, "RapidReliableDurableQos", [](DataWriterQos& q) {
+        const std::string topic = breaks_->on("ack-topic-suffixed") ? "rapid_ack-" + tables_.name : ACK_TOPIC;
+        const bool durable = !breaks_->on("volatile-acks");
+        acks_ = node_->writer<::rapid::Ack>(topic, "RapidReliableDurableQos", [durable](DataWriterQos& q) {
+            if (!durable) q.durability().kind = VOLATILE_DURABILITY_QOS;
             q.history().kind = KEEP_LAST_HISTORY_QOS;
             q.history().depth = ACK_HISTORY;
             q.resource_limits().max_samples_per_instance = ACK_HISTORY;
@@ -86,7 +93,11 @@ void Bridge::read_commands() {
         while (reading_ && commands_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
             if (!info.valid_data) continue;  // (samples that do not decode are dropped by the topic type)
             try {
-                intake_->offer(command_in(sample), writer_id(info.publication_handle));
+                if (!breaks_->any()) {
+                    intake_->offer(command_in(sample), writer_id(info.publication_handle));
+                } else if (auto cmd = breaks_->intake(command_in(sample), *this)) {
+                    intake_->offer(std::move(*cmd), writer_id(info.publication_handle));
+                }
             } catch (const std::exception& e) {  // a bad sample must not stop command intake
                 log("command '" + sample.cmdId + "' not read: " + e.what());
             }
@@ -126,8 +137,12 @@ void Bridge::stop() {
 void Bridge::ack(const Cmd& cmd, AckStatus status, Completion completed, const std::string& message) {
     std::lock_guard<std::mutex> lock(ack_mutex_);
     if (acks_ == nullptr) return;
-    fill_ack(ack_, cmd, status, completed, message);
-    if (!acks_->write(&ack_)) log("ack of '" + cmd.cmd_id + "' not written");
+    auto write = [this](const Cmd& c, AckStatus s, Completion done, const std::string& text) {
+        fill_ack(ack_, c, s, done, text);
+        if (!acks_->write(&ack_)) log("ack of '" + c.cmd_id + "' not written");
+    };
+    if (breaks_->any()) breaks_->ack(cmd, status, completed, message, write);
+    else write(cmd, status, completed, message);
 }
 
 void Bridge::retire(const Cmd& cmd) {
@@ -143,16 +158,22 @@ void Bridge::retire(const Cmd& cmd) {
 
 void Bridge::queue_state(int code, const std::vector<Record>& pending, const std::vector<Record>& active,
                          const std::vector<Record>& completed) {
-    auto q = dds::queue_state(header(tables_.name, tables_.name, serials_.start(), code), pending, active, completed);
+    auto q = breaks_->any() ? dds::queue_state(header(tables_.name, tables_.name, serials_.start(),
+                                                      breaks_->queue_code(code)),
+                                               breaks_->pending(pending), active, completed)
+                            : dds::queue_state(header(tables_.name, tables_.name, serials_.start(), code), pending,
+                                               active, completed);
     node_->writer<::rapid::QueueState>(QUEUE_STATE_TOPIC, "RapidStateQos")->write(&q);
 }
 
 void Bridge::access_state(const std::string& controller, const std::vector<std::string>& requestors) {
+    auto* writer = node_->writer<::rapid::AccessControlState>(ACCESS_STATE_TOPIC, "RapidStateQos");
+    if (breaks_->on("access-state-unwritten")) return;  // (the writer exists)
     ::rapid::AccessControlState s;
     s.hdr = header(tables_.name, tables_.name, serials_.start());
     s.controller = controller;
     s.requestors = requestors;
-    node_->writer<::rapid::AccessControlState>(ACCESS_STATE_TOPIC, "RapidStateQos")->write(&s);
+    writer->write(&s);
 }
 
 }  // namespace dds

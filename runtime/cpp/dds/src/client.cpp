@@ -107,7 +107,11 @@ Client::Client(ClientOptions options, const Tables* tables) : options_(std::move
     acks_reader_ = node_->reader<::rapid::Ack>(ACK_TOPIC, "RapidReliableDurableQos", [](DataReaderQos& q) {
         q.history().kind = KEEP_ALL_HISTORY_QOS;  // every intermediate ack
     });
-    commands_ = node_->writer<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos");
+    // A command written while the asset's reader has not yet matched this writer is dropped
+    // there and sent again on the next heartbeat: every 100 ms, not Fast DDS's 3 s.
+    commands_ = node_->writer<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos", [](DataWriterQos& q) {
+        q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
+    });
     reader_ = std::thread([this] { read_acks(); });
 }
 

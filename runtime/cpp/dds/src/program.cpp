@@ -9,6 +9,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <rapid_runtime/simulator.hpp>
 #include <rapid_runtime/text.hpp>
@@ -30,6 +31,7 @@ struct Args {
     std::string qos;
     double seconds = -1;
     std::size_t command_window = COMMAND_WINDOW;
+    std::vector<std::string> breaks;  // --break KIND: test builds only (breaks.hpp)
 };
 
 void usage(std::ostream& out, const char* prog, const Tables& t) {
@@ -102,6 +104,9 @@ bool parse(int argc, char** argv, Args& a, bool& help) {
         } else if (key == "--seconds") {
             ok = number(value, x) && x >= 0;
             a.seconds = x;
+        } else if (key == "--break") {
+            ok = !value.empty();
+            a.breaks.push_back(value);
         } else if (key == "--command-window") {
             ok = integer(value, n) && n >= 1;
             a.command_window = static_cast<std::size_t>(n);
@@ -136,6 +141,7 @@ int run_bridge(int argc, char** argv, const Program& program) {
     options.domain = args.domain.value_or(tables.domain);
     options.transport = args.transport;
     options.command_window = args.command_window;
+    options.breaks = args.breaks;
     if (args.qos.empty()) options.profiles_xml = std::string(program.profiles_xml);
     else options.profiles_file = args.qos;
 

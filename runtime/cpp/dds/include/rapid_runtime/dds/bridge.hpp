@@ -18,6 +18,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <rapid_runtime/intake.hpp>
 #include <rapid_runtime/log.hpp>
@@ -46,7 +47,10 @@ struct BridgeOptions {
     std::size_t command_window = COMMAND_WINDOW;
     std::int64_t serial = -1;  // the configs' first serial (-1: start time in seconds)
     std::function<void(const std::string&)> log;  // default: stderr, "[asset] text"
+    std::vector<std::string> breaks;  // test builds only: rules broken on purpose (breaks.hpp)
 };
+
+class Breaks;
 
 class Bridge : public Outbox {
 public:
@@ -102,6 +106,7 @@ private:
     void read_commands();
 
     const Tables& tables_;
+    std::unique_ptr<Breaks> breaks_;  // (before the manager: it may hold the manager's tables)
     std::unique_ptr<Log> log_;
     Serials serials_;
     mutable std::mutex config_mutex_;
