@@ -114,7 +114,7 @@ def latency(samples: int, ticks: list[float]) -> None:
                 print(f"{tick:>9g} {statistics.median(lat):>9.1f} {q[8]:>9.1f} {max(lat):>9.1f} {min(lat):>9.1f} "
                       f"{len(lat):>3}/{samples}", flush=True)
             finally:
-                driver.quit()
+                H.quietly(driver.quit)
                 mon.stop()
 
 
@@ -166,9 +166,9 @@ def screenshots(folder: Path) -> list[Path]:
             return shots + [folder / "monitor-replay.png"]
         finally:
             if recorder is not None:
-                H.kill(recorder)
+                H.quietly(lambda: H.kill(recorder))
             if driver is not None:
-                driver.quit()
+                H.quietly(driver.quit)
             H.stop_all(procs)
 
 

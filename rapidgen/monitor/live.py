@@ -8,6 +8,7 @@ from __future__ import annotations
 import itertools
 import os
 import queue
+import sys
 import threading
 import time
 
@@ -26,7 +27,7 @@ class LiveFeed:
         self.requests: queue.Queue = queue.Queue()
         self._stop = threading.Event()
         self._ids = itertools.count(1)
-        self._writers: dict[str, object] = {}
+        self._writers: dict[str, tuple] = {}
         self._pending: list[tuple[float, Request, str]] = []
         self.error: BaseException | None = None
         self.ready = threading.Event()
@@ -58,14 +59,21 @@ class LiveFeed:
         w.tap = self._tap
         self.ready.set()
         notes_at = 0.0
+        failed: set[str] = set()
         try:
             while not self._stop.is_set():
-                w.step()
-                self._commands(w)
-                now = time.monotonic()
-                if now - notes_at >= NOTES_EVERY:
-                    notes_at = now
-                    self._notes(w)
+                try:
+                    w.step()
+                    self._commands(w)
+                    now = time.monotonic()
+                    if now - notes_at >= NOTES_EVERY:
+                        notes_at = now
+                        self._notes(w)
+                except Exception as exc:  # one bad step must not stop the page: said once, go on
+                    what = f"{type(exc).__name__}: {exc}"[:300]
+                    if what not in failed and len(failed) < 16:
+                        failed.add(what)
+                        print(f"monitor: error in the DDS thread (going on): {what}", file=sys.stderr, flush=True)
                 time.sleep(STEP)
         finally:
             w.close()
@@ -78,6 +86,7 @@ class LiveFeed:
         from rapidgen.textsafe import visible
         lines = [f"{d['count']} undecodable {visible(d['topic'])} sample(s) in [{visible(d['partition'])}] from "
                  f"{d['writer']}: {d['error']}" for d in w.dropped()] + w.limits()
+        self.hub.presence({p for e in w.discovery.endpoints.values() if e.kind == "writer" for p in e.partitions})
         with self.hub.lock:
             self.hub.notes = lines[:32]
             for part, a in self.hub.assets.items():  # a writer ready before the operator's first command
@@ -86,6 +95,7 @@ class LiveFeed:
                     self._writer(w, part)
 
     def _writer(self, w, partition: str):
+        """(the command writer in `partition`, the generated `rapid` module of its topic's type)."""
         if partition not in self._writers:
             from cyclonedds.pub import DataWriter, Publisher
             from cyclonedds.qos import Policy, Qos
@@ -94,8 +104,10 @@ class LiveFeed:
             topic = w._topics.get("rapid_command")
             if topic is None:
                 topic = w._topics["rapid_command"] = Topic(dp, "rapid_command", self.base.rapid.Command)
+            # the watcher may have made the topic first, with an asset's own Command class
+            rapid = next((b.rapid for b in self.bindings if b.rapid.Command is topic.data_type), self.base.rapid)
             pub = Publisher(dp, qos=Qos(Policy.Partition([partition])))
-            self._writers[partition] = DataWriter(pub, topic, qos=self.base.qos.writer("rapid_command"))
+            self._writers[partition] = (DataWriter(pub, topic, qos=self.base.qos.writer("rapid_command")), rapid)
         return self._writers[partition]
 
     def _commands(self, w) -> None:
@@ -109,11 +121,11 @@ class LiveFeed:
             self._pending.append((time.monotonic() + MATCH_WAIT, req, cmd_id))
         keep = []
         for deadline, req, cmd_id in self._pending:
-            writer = self._writer(w, req.partition)
+            writer, rapid = self._writer(w, req.partition)
             if not writer.get_matched_subscriptions() and time.monotonic() < deadline:
                 keep.append((deadline, req, cmd_id))  # the asset's reader not matched yet
                 continue
             cmd = Cmd(cmd_id=cmd_id, cmd_src=req.source, subsystem=req.subsystem, name=req.command, args=req.args,
                       action=req.action, src_name=req.source, asset_name=req.asset)
-            writer.write(M.command_out(self.base.rapid, cmd))
+            writer.write(M.command_out(rapid, cmd))
         self._pending = keep

@@ -64,6 +64,7 @@ class Asset:
     name: str = ""
     last: float = 0.0  # wall time of the newest sample
     status_code: int | None = None
+    present: bool | None = None  # a writer of it is on the network (None: not known, a replay)
     sections: dict[str, tuple[int, object]] = field(default_factory=dict)  # name -> (seq, data)
     values: dict[str, dict] = field(default_factory=dict)  # value id -> row
     value_keys: dict[str, list[tuple[str, str]]] = field(default_factory=dict)  # topic -> [(key, type)]
@@ -130,7 +131,7 @@ class Hub:
 
     def _status(self, a: Asset) -> None:
         data = {"name": a.name or a.partition, "partition": a.partition, "last": a.last,
-                "statusCode": a.status_code}
+                "statusCode": a.status_code, "present": a.present}
         if a.sections.get("status", (0, None))[1] != data:
             self._set(a, "status", data)
 
@@ -265,6 +266,14 @@ class Hub:
         _flatten(plain(s), "", flat)
         for key, v in flat[:CUSTOM_FIELDS]:
             self._value(a, topic, key, "", v, t)
+
+    def presence(self, partitions: set[str]) -> None:
+        """The partitions that have a writer now (from discovery): the others are gone."""
+        with self.lock:
+            for p, a in self.assets.items():
+                if a.present != (p in partitions):
+                    a.present = p in partitions
+                    self._status(a)
 
     # ---- reading (the server) ------------------------------------------------------------------
     def delta(self, cursor: int, now: float | None = None) -> tuple[int, list[dict]]:

@@ -180,6 +180,14 @@ def screenshots(driver, folder: Path, k10: str = "K10Red", r2: str = "Robonaut2"
     return shots
 
 
+def quietly(step) -> None:
+    """A cleanup step whose failure must not skip the next ones."""
+    try:
+        step()
+    except Exception as exc:  # said, then the cleanup goes on
+        print(f"cleanup: {type(exc).__name__}: {exc}", file=sys.stderr)
+
+
 def stop_all(procs) -> None:
     for p in procs:
         try:
@@ -191,6 +199,8 @@ def stop_all(procs) -> None:
 def kill(proc: subprocess.Popen) -> None:
     if proc.poll() is None:
         proc.kill()
+    if proc.stdin is not None and proc.stdin.closed:  # a test closed it already
+        proc.stdin = None
     proc.communicate()
 
 

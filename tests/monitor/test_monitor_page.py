@@ -61,12 +61,14 @@ def live(tmp_path_factory):
         driver = browser.chromium()
         driver.get(mon.url)
         yield {"driver": driver, "monitor": mon, "pydirs": pydirs, "levels": levels}
-    finally:
-        if driver is not None:
-            driver.quit()
+    finally:  # each step alone: a failing one must not leave processes behind
+        H.quietly(lambda: driver.quit() if driver is not None else None)
         for p in (rogue, levels):
             if p is not None:
-                H.kill(p)
+                H.quietly(lambda p=p: H.kill(p))
+        for p in procs:
+            if isinstance(p, H.Monitor):
+                H.quietly(lambda p=p: print("monitor's stderr:", p.stop()[2][-3000:]))  # shown when a test failed
         H.stop_all(procs)
 
 
@@ -275,3 +277,17 @@ def test_wide_bind_warns():
                          timeout=120, env=H.env({"k10": H.ROOT / "generated" / "k10" / "python"}))
     assert "warning: the page will be served on 192.0.2.1" in res.stderr, res.stderr
     assert res.returncode == 1 and "cannot listen on 192.0.2.1" in res.stderr and "Traceback" not in res.stderr
+
+
+def test_an_asset_whose_writers_leave_is_shown_gone(live):
+    """Runs last: the test asset's process ends (EOF on its stdin); discovery sees its
+    writers go and the page says so."""
+    d = live["driver"]
+    live["levels"].stdin.close()
+    live["levels"].wait(timeout=30)
+    status = """const b = [...document.querySelectorAll('nav button')].find(e => e.dataset.partition === arguments[0]);
+        return b ? [b.dataset.status, b.textContent] : null;"""
+    got = H.until(lambda: (lambda s: s if s and s[0] == "gone" else None)(d.execute_script(status, "K10Blue")), 30,
+                  what="K10Blue shown gone")
+    assert "gone (no writer left)" in got[1]
+    assert d.execute_script(status, "K10Red")[0] == "live"

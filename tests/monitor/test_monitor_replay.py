@@ -82,10 +82,10 @@ def replay(tmp_path_factory):
         driver.get(m.group(1))
         yield driver
     finally:
-        if driver is not None:
-            driver.quit()
+        H.quietly(lambda: driver.quit() if driver is not None else None)
         proc.terminate()
-        proc.communicate(timeout=20)
+        H.quietly(lambda: proc.communicate(timeout=20))
+        H.kill(proc)
 
 
 def _seek(driver, fraction: float) -> None:

@@ -62,14 +62,14 @@ function drawAssets() {
       b.addEventListener("click", () => { selected = p; drawAll(true); });
       nav.append(b);
     }
-    const quiet = stale[p];
-    const sub = [quiet ? "quiet" : "live"];
+    const gone = a.status.present === false, quiet = stale[p] || gone;
+    const sub = [gone ? "gone (no writer left)" : quiet ? "quiet" : "live"];
     if (a.status.partition && a.status.partition !== a.status.name) sub.push("partition " + a.status.partition);
     if (a.status.statusCode !== null && a.status.statusCode !== undefined) sub.push("status " + a.status.statusCode);
     b.replaceChildren(el("span", { class: "dot" + (quiet ? " quiet" : "") }), el("span", { class: "name", text: a.status.name }),
       el("div", { class: "sub", text: sub.join(" · ") }));
     b.classList.toggle("selected", p === selected);
-    b.dataset.status = quiet ? "quiet" : "live";
+    b.dataset.status = gone ? "gone" : quiet ? "quiet" : "live";
   }
   if (selected === null && assets.size) selected = [...assets.keys()].sort()[0];
 }
@@ -77,7 +77,8 @@ function drawAssets() {
 function drawHead(a) {
   const head = document.getElementById("asset-head");
   const parts = [el("h2", { text: a.status.name })];
-  const bits = ["partition " + a.partition, stale[a.partition] ? "quiet (no data for 5 s)" : "live"];
+  const bits = ["partition " + a.partition, a.status.present === false ? "gone (no writer left)" :
+    stale[a.partition] ? "quiet (no data for 5 s)" : "live"];
   if (a.access) bits.push("controller: " + (a.access.controller || "none"));
   if (a.queue) bits.push("queue " + a.queue.state);
   parts.push(el("div", { class: "sub", text: bits.join(" · ") }));
@@ -145,7 +146,9 @@ function drawMap(view, a, rebuild) {
   }
   const c = document.getElementById("map");
   c.dataset.points = a.traverse.length;
-  Plot.map(c, a.traverse, a.position);
+  const others = [...assets.values()].filter(o => o !== a && (o.position || o.traverse.length))
+    .map(o => ({ name: o.status.name, traverse: o.traverse, pos: o.position }));
+  Plot.map(c, a.traverse, a.position, others);
   const p = a.position;
   const rows = p ? [["x (north)", p.xyz[0], "m"], ["y (east)", p.xyz[1], "m"], ["z (down)", p.xyz[2], "m"],
     ["heading", typeof p.heading === "number" ? p.heading * 180 / Math.PI : p.heading, "deg"],

@@ -52,12 +52,18 @@ const Plot = (() => {
     ctx.stroke(); ctx.lineWidth = 1;
   }
 
-  // traverse: [[x, y, t], ...] in the site frame (x north, y east); pos: {xyz, heading}
-  function map(canvas, traverse, pos) {
+  // traverse: [[x, y, t], ...] in the site frame (x north, y east); pos: {xyz, heading};
+  // others: the other assets ({name, traverse, pos}), drawn in grey with their names
+  function map(canvas, traverse, pos, others) {
     const ctx = canvas.getContext("2d"), w = canvas.width, h = canvas.height;
     ctx.clearRect(0, 0, w, h);
+    const ok = p => p && isFinite(p.xyz[0]) && isFinite(p.xyz[1]);
     const pts = traverse.map(p => [p[0], p[1]]);
-    if (pos && isFinite(pos.xyz[0]) && isFinite(pos.xyz[1])) pts.push([pos.xyz[0], pos.xyz[1]]);
+    if (ok(pos)) pts.push([pos.xyz[0], pos.xyz[1]]);
+    for (const o of others || []) {
+      for (const p of o.traverse) pts.push([p[0], p[1]]);
+      if (ok(o.pos)) pts.push([o.pos.xyz[0], o.pos.xyz[1]]);
+    }
     let minX = -5, maxX = 5, minY = -5, maxY = 5;
     for (const [a, b] of pts) { minX = Math.min(minX, a); maxX = Math.max(maxX, a); minY = Math.min(minY, b); maxY = Math.max(maxY, b); }
     const span = Math.max(maxX - minX, maxY - minY) * 1.15, cx = (minX + maxX) / 2, cy = (minY + maxY) / 2;
@@ -75,6 +81,15 @@ const Plot = (() => {
     ctx.fillText("grid " + step + " m, north up", 6, h - 6);
     ctx.fillStyle = "#444"; ctx.beginPath(); ctx.arc(sx(0), sy(0), 3, 0, 2 * Math.PI); ctx.fill();
     ctx.fillText("site origin", sx(0) + 5, sy(0) - 5);
+    for (const o of others || []) {
+      ctx.strokeStyle = "#a9a9b3"; ctx.lineWidth = 2; ctx.beginPath();
+      o.traverse.forEach((p, i) => i ? ctx.lineTo(sx(p[1]), sy(p[0])) : ctx.moveTo(sx(p[1]), sy(p[0])));
+      ctx.stroke(); ctx.lineWidth = 1;
+      if (ok(o.pos)) {
+        ctx.fillStyle = "#70707a"; ctx.beginPath(); ctx.arc(sx(o.pos.xyz[1]), sy(o.pos.xyz[0]), 5, 0, 2 * Math.PI); ctx.fill();
+        ctx.fillText(String(o.name), sx(o.pos.xyz[1]) + 7, sy(o.pos.xyz[0]) + 4);
+      }
+    }
     if (traverse.length > 1) {
       ctx.strokeStyle = TRAVERSE; ctx.lineWidth = 3; ctx.beginPath();
       traverse.forEach((p, i) => i ? ctx.lineTo(sx(p[1]), sy(p[0])) : ctx.moveTo(sx(p[1]), sy(p[0])));
