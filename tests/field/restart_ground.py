@@ -40,7 +40,11 @@ SETTLE = 90.0  # the whole retry phase at most
 
 
 class Bridge:
+    closing = False  # set when the ground ends: a bridge still starting is killed at once
+    made: list["Bridge"] = []
+
     def __init__(self, pydir: Path, work: Path, domain: int) -> None:
+        Bridge.made.append(self)
         self.argv = [sys.executable, "-m", "tests.field.restart_bridge", str(pydir), str(work / "executions"),
                      "--domain", str(domain), "--journal", str(work / "journal")]
         self.env = env_for(pydir)
@@ -52,6 +56,8 @@ class Bridge:
         self.proc = subprocess.Popen(self.argv, cwd=Path(__file__).parents[2], env=self.env, stdout=subprocess.PIPE,
                                      stderr=subprocess.PIPE, text=True)
         proc = self.proc
+        if Bridge.closing:
+            proc.kill()
         threading.Thread(target=lambda: self.logs.extend(proc.stderr or ()), daemon=True).start()
         line = proc.stdout.readline() if proc.stdout else ""
         if not line.startswith("bridge ready"):
@@ -106,6 +112,19 @@ def run(pydir: Path, work: Path, domain: int, commands: int, kills: int, seed: i
     last_sent: dict[str, float] = {}
     damaged = ""
     restarting: threading.Thread | None = None
+    write_timeouts = 0
+
+    def send(cid: str) -> None:
+        """Send (again); a write DDS refuses counts as not sent: the retry phase sends it later.
+        (A reliable writer blocks, then times out, while a killed bridge's reader is still
+        matched and its history is full of samples that reader never acknowledged.)"""
+        nonlocal write_timeouts
+        sub, name, args, action = plan[cid]
+        last_sent[cid] = time.monotonic()
+        try:
+            c.send(sub, name, args, action=action, cmd_id=cid)
+        except Exception:  # cyclonedds' DDSException (timeout)
+            write_timeouts += 1
     for i in range(commands):
         r = rng.random()
         ms = rng.randint(20, 150)
@@ -117,8 +136,7 @@ def run(pydir: Path, work: Path, domain: int, commands: int, kills: int, seed: i
             kind = ("Admin", "noOp", [], "QUEUE_BYPASS")
         cid = f"r{seed}-{i}"
         plan[cid] = kind
-        c.send(kind[0], kind[1], kind[2], action=kind[3], cmd_id=cid)
-        last_sent[cid] = time.monotonic()
+        send(cid)
         time.sleep(rng.uniform(0.005, 0.04))
         if i in kill_after:
             time.sleep(rng.uniform(0, 0.06))
@@ -146,9 +164,7 @@ def run(pydir: Path, work: Path, domain: int, commands: int, kills: int, seed: i
         now = time.monotonic()
         for cid in missing:
             if now - last_sent[cid] > RETRY_AFTER:
-                sub, name, args, action = plan[cid]
-                c.send(sub, name, args, action=action, cmd_id=cid)
-                last_sent[cid] = now
+                send(cid)
                 retried[cid] += 1
         time.sleep(0.2)
     with c.cond:
@@ -173,7 +189,7 @@ def run(pydir: Path, work: Path, domain: int, commands: int, kills: int, seed: i
     runs = collections.Counter(Path(work / "executions").read_text().split()) if (work / "executions").exists() \
         else collections.Counter()
     return {"plan": {cid: [k[0], k[1], k[3]] for cid, k in plan.items()}, "finals": finals, "late": late_finals,
-            "runs": dict(runs), "retried": dict(retried), "starts": bridge.starts, "stop_code": code,
+            "runs": dict(runs), "retried": dict(retried), "write_timeouts": write_timeouts, "starts": bridge.starts, "stop_code": code,
             "damaged": damaged, "aside": sorted(p.name for p in (work / "journal").glob("*.damaged-*")),
             "journal_logs": [ln.rstrip() for ln in bridge.logs if "journal" in ln or "Traceback" in ln],
             "tracebacks": sum("Traceback" in ln for ln in bridge.logs)}
@@ -182,7 +198,14 @@ def run(pydir: Path, work: Path, domain: int, commands: int, kills: int, seed: i
 def main(argv: list[str]) -> int:
     pydir, work = Path(argv[0]), Path(argv[1])
     domain, commands, kills, seed = (int(a) for a in argv[2:6])
-    print(json.dumps(run(pydir, work, domain, commands, kills, seed)), flush=True)
+    try:
+        print(json.dumps(run(pydir, work, domain, commands, kills, seed)), flush=True)
+    finally:  # never leave a bridge behind: it would answer the next run's commands on this domain
+        Bridge.closing = True
+        for b in Bridge.made:
+            if b.proc is not None and b.proc.poll() is None:
+                b.proc.kill()
+                b.proc.wait()
     return 0
 
 

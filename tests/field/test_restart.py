@@ -18,6 +18,7 @@ from __future__ import annotations
 import json
 import os
 import random
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -38,11 +39,19 @@ RESTARTED = ("asset restarted before it ran", "asset restarted while it ran; out
 def test_kill_9_at_random_moments_leaves_no_command_without_an_outcome(tmp_path):
     pydir = generate(tmp_path / "gen")
     seed = random.SystemRandom().randrange(1_000_000)
-    res = subprocess.run([sys.executable, "-m", "tests.field.restart_ground", str(pydir), str(tmp_path), str(DOMAIN),
-                          str(COMMANDS), str(KILLS), str(seed)], cwd=ROOT, capture_output=True, text=True,
-                         timeout=600)
-    assert res.returncode == 0, f"seed {seed}: {res.stdout[-2000:]} {res.stderr[-4000:]}"
-    got = json.loads(res.stdout.splitlines()[-1])
+    # its own process group: if it has to be killed, its bridges go with it (a bridge left
+    # running would answer the next run's commands on this domain)
+    proc = subprocess.Popen([sys.executable, "-m", "tests.field.restart_ground", str(pydir), str(tmp_path), str(DOMAIN),
+                             str(COMMANDS), str(KILLS), str(seed)], cwd=ROOT, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        out, err = proc.communicate(timeout=600)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.communicate()
+    assert proc.returncode == 0, f"seed {seed}: {out[-2000:]} {err[-4000:]}"
+    got = json.loads(out.splitlines()[-1])
     why = f"seed {seed}: {json.dumps({k: v for k, v in got.items() if k != 'plan'})[-6000:]}"
     assert got["starts"] == KILLS + 1 and got["stop_code"] == 0 and got["tracebacks"] == 0, why
 
