@@ -156,7 +156,7 @@ def screenshots(folder: Path) -> list[Path]:
             driver = browser.chromium()
             driver.get(replay.url)
             H.until(lambda: "replay of" in driver.find_element("id", "mode").text, 30, what="replay mode")
-            driver.execute_script("""const s = document.getElementById('replay-slider'); s.value = '450';
+            driver.execute_script("""const s = document.getElementById('replay-slider'); s.value = '250';
                                      s.dispatchEvent(new Event('change'));
                                      if (document.getElementById('replay-play').textContent === 'pause')
                                        document.getElementById('replay-play').click();""")
