@@ -56,7 +56,7 @@ def campaign(name: str, count: int, rounds: int, out: dict) -> None:
             s0 = link.stats()
             seq = _ground(link, config, "sequential", PACKAGE, str(DOMAIN), str(count))
             s1 = link.stats()
-            drive = _ground(link, config, "drive", PACKAGE, str(DOMAIN), str(rounds), "--wave", "10", "--hold", "2",
+            drive = _ground(link, config, "drive", PACKAGE, str(DOMAIN), str(rounds), "--wave", "10",
                             "--speed", str(SPEED))
             s2 = link.stats()
         finally:

@@ -146,7 +146,7 @@ def late_acks(s):
     cid = s.memo.get("valid")
     reader = s.client.guard(s.client.profile_reader("rapid_ack", "rapid::Ack"), "rapid_ack")  # the asset's acks only
     s.client.extra_guards.append(reader)
-    end = time.monotonic() + s.allow(3.0)
+    end = time.monotonic() + s.allow(3.0, trips=4)  # a new reader: found, asked, history sent, a loss repaired
     seen = 0
     found = False
     while time.monotonic() < end and not found:

@@ -1,9 +1,9 @@
 """The ground side of the field tests, a process in the ground namespace (CYCLONEDDS_URI
 names the site's Cyclone file). Prints one JSON document on its last line.
 
-  python -m tests.field.ground drive PACKAGE DOMAIN ROUNDS [--wave W] [--hold S] [--speed X] [--targets N]
+  python -m tests.field.ground drive PACKAGE DOMAIN ROUNDS [--wave W] [--speed X] [--targets N]
       requestControl, then ROUNDS rounds of every queue action, W rounds sent at once behind
-      a drive of S s (at the bridge's speed X) that holds the queue; each round: b=APPEND, c=INSERT after b,
+      a drive that holds the queue until each is answered once (then deleted); each round: b=APPEND, c=INSERT after b,
       d=APPEND then e=REPLACE d, f=APPEND then g=DELETE f, h=BYPASS (K10Native). Waits for every final
       ack; reports every command's acks and the seconds from send to its COMPLETED.
   python -m tests.field.ground sequential PACKAGE DOMAIN COUNT
@@ -86,19 +86,18 @@ def drive(args) -> dict:
         return {"error": "no asset"}
     cid = c.timed_send("AccessControl", "requestControl", [])
     c.wait_final([cid], WAIT)
-    rounds, holds, x = [], [], 0.0
-    gate, targets = None, []
-    if args.targets:  # a drive that holds the queue, and pending commands for other tools to act on
-        gate = c.timed_send("Mobility", "simpleMove", _move(300.0 * args.speed), action="QUEUE_APPEND")
-        targets = [{k: c.timed_send("PanCam", "pointCamera", _point(tables, 0.2), action="QUEUE_APPEND")
-                    for k in ("insert", "replace", "delete")} for _ in range(args.targets)]
-        ids = [gate, *(t for group in targets for t in group.values())]
-        with c.cond:
-            c.cond.wait_for(lambda: all(c.acks.get(i) for i in ids), WAIT)
+    rounds, holds, releases, targets = [], [], [], []
     for start in range(0, args.rounds, args.wave):
-        x = args.hold * 0.5 * args.speed if x == 0.0 else 0.0  # DRIVE_SPEED 0.5 m/s: there and back
-        wave = [c.timed_send("Mobility", "simpleMove", _move(x), action="QUEUE_APPEND")]
-        holds.append(wave[0])
+        # Each wave queues behind a drive (the hold) that runs until every command of the
+        # wave has been answered once: the targets of INSERT, REPLACE and DELETE are still
+        # pending when those arrive, whatever the link delayed. Then a DELETE ends the drive.
+        hold = c.timed_send("Mobility", "simpleMove", _move(300.0 * args.speed), action="QUEUE_APPEND")
+        holds.append(hold)
+        wave = []
+        if start == 0 and args.targets:  # pending commands for other tools to act on
+            targets = [{k: c.timed_send("PanCam", "pointCamera", _point(tables, 0.2), action="QUEUE_APPEND")
+                        for k in ("insert", "replace", "delete")} for _ in range(args.targets)]
+            wave.extend(t for group in targets for t in group.values())
         for i in range(start, min(start + args.wave, args.rounds)):
             pan = 0.1 + (i % 20) * 0.05
             r = {}
@@ -114,15 +113,17 @@ def drive(args) -> dict:
                                   action="QUEUE_BYPASS")
             rounds.append(r)
             wave.extend(r.values())
-        if gate is not None and start == 0:  # the other tools act on the targets, then the queue goes on
-            print(json.dumps({"gate": gate, "targets": targets}), flush=True)
+        with c.cond:
+            c.cond.wait_for(lambda: all(c.acks.get(x) for x in [hold, *wave]), WAIT)
+        if start == 0 and args.targets:  # the other tools act on the targets, then the queue goes on
+            print(json.dumps({"gate": hold, "targets": targets}), flush=True)
             sys.stdin.readline()
-            release = c.timed_send("Admin", "noOp", [], action="QUEUE_DELETE", target=gate)
-            wave.extend([gate, release, *(t for group in targets for t in group.values())])
-        c.wait_final(wave, WAIT)
+        releases.append(c.timed_send("Admin", "noOp", [], action="QUEUE_DELETE", target=hold))
+        c.wait_final([hold, releases[-1], *wave], WAIT)
     with c.cond:
         acks = {k: list(v) for k, v in c.acks.items()}
-    out = {"rounds": rounds, "holds": holds, "control": cid, "acks": acks, "gate": gate, "targets": targets,
+    out = {"rounds": rounds, "holds": holds, "releases": releases, "control": cid, "acks": acks,
+           "gate": holds[0] if args.targets else None, "targets": targets,
            "latency": {k: c.done_at[k] - c.sent_at[k] for k in c.sent_at if k in c.done_at}}
     c.close()
     return out
@@ -213,11 +214,10 @@ def main() -> int:
     d.add_argument("domain", type=int)
     d.add_argument("rounds", type=int)
     d.add_argument("--wave", type=int, default=10)
-    d.add_argument("--hold", type=float, default=8.0, help="seconds the wave's drive lasts")
     d.add_argument("--speed", type=float, default=1.0, help="the bridge's simulation speed")
     d.add_argument("--targets", type=int, default=0,
-                   help="first hold the queue with a drive and queue N x 3 targets, print their ids (JSON) and wait "
-                        "for a line on stdin (other tools INSERT after, REPLACE and DELETE them), then delete the drive")
+                   help="in the first wave, also queue N x 3 targets, print their ids and the wave's drive (JSON) and "
+                        "wait for a line on stdin (other tools INSERT after, REPLACE and DELETE them) before deleting it")
     d.add_argument("--source", default="RapidWorkbench")  # K10's allow-list lets it send everything
     q = sub.add_parser("sequential")
     q.add_argument("package")
