@@ -14,13 +14,14 @@ import pytest
 from tests.secure.conftest import DOMAIN, run_scenario
 
 N = 5  # commands each tool sends
-WAIT_S = "8"  # a tool's wait for the asset and its acks (refused tools wait it all)
+WAIT_S = "8"  # a refused tool's wait for the asset and its acks (it waits it all)
+AUTHORISED_WAIT_S = "40"  # an authorised one ends when its commands completed: a loaded machine's margin
 MARK = "authorisedCMD"  # the authorised tool's cmdId prefix
 
 
-def _ground(programs: dict, source: str, prefix: str, env: dict, partition: str = "K10Red") -> dict:
-    return {"argv": [str(programs["ground"]), "command", str(programs["profiles"]), str(DOMAIN), partition, source,
-                     prefix, str(N), WAIT_S], "env": env}
+def _ground(programs: dict, source: str, prefix: str, env: dict, wait: str = WAIT_S) -> dict:
+    return {"argv": [str(programs["ground"]), "command", str(programs["profiles"]), str(DOMAIN), "K10Red", source,
+                     prefix, str(N), wait], "env": env}
 
 
 def _bridge(programs: dict) -> list[str]:
@@ -52,7 +53,7 @@ def secured(keystores, programs, tmp_path_factory) -> dict:
     ks, var = str(keystores["main"]), keystores["variants"]
     secured_env = {"RAPID_SECURITY_KEYSTORE": ks}
     cases = {
-        "authorised": _ground(programs, "RapidWorkbench", MARK, secured_env),
+        "authorised": _ground(programs, "RapidWorkbench", MARK, secured_env, AUTHORISED_WAIT_S),
         "no_certificate": _ground(programs, "RapidWorkbench", "nocert", {}),
         "other_ca": _ground(programs, "RapidWorkbench", "otherca", {"RAPID_SECURITY_KEYSTORE": str(keystores["other"])}),
         "expired": _ground(programs, "RapidWorkbench", "expired",
@@ -116,7 +117,7 @@ def test_encrypted_topics_carry_no_plaintext(secured):
 def test_without_security_the_same_capture_shows_the_command(programs, tmp_path):
     """The capture's control: the same command unsecured is readable on the wire."""
     result = run_scenario(tmp_path, {"bridge": _bridge(programs), "capture": True, "cases": {
-        "plain": _ground(programs, "RapidWorkbench", MARK, {})}})
+        "plain": _ground(programs, "RapidWorkbench", MARK, {}, AUTHORISED_WAIT_S)}})
     assert f"completed: {N} of {N}" in result["cases"]["plain"]["stdout"], result["cases"]
     assert sorted(_in_clear(bytes.fromhex(result["wire"]))) == ["argument", "cmdId", "cmdId text", "cmdName echo"]
 
