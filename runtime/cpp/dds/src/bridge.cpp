@@ -67,6 +67,8 @@ void Bridge::start() {
         const bool durable = !breaks_->on("volatile-acks");
         acks_ = node_->writer<::rapid::Ack>(topic, "RapidReliableDurableQos", [durable](DataWriterQos& q) {
             if (!durable) q.durability().kind = VOLATILE_DURABILITY_QOS;
+            // an ack a commander missed is sent again within 100 ms (Fast DDS's heartbeat: 3 s)
+            q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
             q.history().kind = KEEP_LAST_HISTORY_QOS;
             q.history().depth = ACK_HISTORY;
             q.resource_limits().max_samples_per_instance = ACK_HISTORY;

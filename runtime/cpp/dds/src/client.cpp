@@ -111,6 +111,7 @@ Client::Client(ClientOptions options, const Tables* tables) : options_(std::move
     // there and sent again on the next heartbeat: every 100 ms, not Fast DDS's 3 s.
     commands_ = node_->writer<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos", [](DataWriterQos& q) {
         q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
+        q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(10, 0);  // a flood waits for room
     });
     reader_ = std::thread([this] { read_acks(); });
 }
