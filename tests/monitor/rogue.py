@@ -5,7 +5,10 @@
 In a partition named with markup it publishes a CommandConfig (subsystem, type, command
 and parameter names with markup), an AgentConfig/AgentState (a value key with markup, a
 string value with markup) and TextMessages with markup and script; it also puts one such
-TextMessage into K10Red's partition, and a "picture" whose MIME type is text/html. Prints "rogue ready" once its writers exist."""
+TextMessage into K10Red's partition, and a "picture" whose MIME type is text/html. It
+also writes a few commands to K10Red (cmdId with markup) from a writer that exists before
+the monitor starts: the monitor's watcher then opens rapid_command first, with its own
+class, and the monitor's command writer must share that topic. Prints "rogue ready" once its writers exist."""
 import importlib
 import sys
 import time
@@ -39,6 +42,7 @@ def main() -> int:
     st = DataWriter(pub, topics["rapid_agent_state"], qos=qos.writer("rapid_agent_state"))
     tx = DataWriter(pub, topics["rapid_textmessage"], qos=qos.writer("rapid_textmessage"))
     img = DataWriter(pub, topics["rapid_imagesensor_sample-rogue"], qos=qos.writer("rapid_imagesensor_sample-hazCam"))
+    commands = DataWriter(home, Topic(dp, "rapid_command", rapid.Command), qos=qos.writer("rapid_command"))
     tx_home = DataWriter(home, topics["rapid_textmessage"], qos=qos.writer("rapid_textmessage"))
 
     def hdr(asset=ASSET):
@@ -62,6 +66,10 @@ def main() -> int:
         img.write(rapid.ImageSensorSample(hdr=hdr(), meta=rapid.ImageMetadata(sensorName="RogueCam", sensorType=NAME,
                                                                              width=1, height=1),
                                           mimeType="text/html", data=list(TEXT.encode())))
+        if n <= 3:
+            commands.write(rapid.Command(hdr=hdr("K10Red"), cmdName="noOp", cmdId=NAME + str(n), cmdSrc=NAME,
+                                         subsysName="Admin", arguments=[],
+                                         cmdAction=rapid.QueueAction.QUEUE_BYPASS, targetCmdId=""))
         if n % 4 == 0:
             tx_home.write(rapid.TextMessage(hdr=hdr("K10Red"), level=rapid.MessageLevel.MSG_WARN, category=NAME,
                                             message=TEXT))

@@ -199,6 +199,9 @@ def test_hostile_strings_appear_as_text(live):
     H.until(lambda: ROGUE_TEXT in H.texts(d, "#values td.value"), 20, what="the rogue's value")
     H.select(d, "K10Red", "log")
     H.until(lambda: ROGUE_TEXT in H.texts(d, "#log .text"), 20, what="the rogue's line in K10's log")
+    H.select(d, "K10Red", "commands")  # the rogue's commands to K10 (cmdId with markup) and K10's refusals
+    acks = H.until(lambda: [t for t in H.texts(d, "#acks li") if ROGUE_NAME in t], 20, what="the rogue's commands")
+    assert any("access violation" in t for t in acks), acks
     for made in ("#pwn", "#pwn-asset", "#pwn-name", "script:not([src])", "img[src='x']", "img[onerror]"):
         assert H.texts(d, made) == [], made
     assert d.title == "rapidgen monitor"
