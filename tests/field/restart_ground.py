@@ -35,7 +35,7 @@ from tests.field.restart_asset import ASSET, PACKAGE, env_for
 
 SOURCE = "RapidGround"
 READY = 30.0
-RETRY_AFTER = 3.0  # seconds without a final ack before a command is sent again
+RETRY_AFTER = 2.0  # seconds without a final ack before a command is sent again
 SETTLE = 90.0  # the whole retry phase at most
 
 
