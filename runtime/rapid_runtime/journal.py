@@ -42,6 +42,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 COMPACT_FACTOR = 4  # compact once the file holds this many times window lines (plus live ones)
+# A journal never grows past a few MB (compaction); a bigger file is not ours to read whole:
+# it is set aside unread.
+MAX_READ = 64 * 1024 * 1024
 STATE_ENV = "RAPID_STATE_DIR"  # the journal's default folder, before XDG_STATE_HOME
 
 
@@ -146,8 +149,10 @@ class Journal:
 
     def _recover(self) -> Recovered:
         with open(self.path, "rb") as fh:
-            raw = fh.read()
+            raw = fh.read(MAX_READ + 1)
         records, bad, first_bad = [], 0, 0
+        if len(raw) > MAX_READ:  # not a journal this runtime wrote: nothing in it is trusted
+            raw, bad, first_bad = b"", 1, 1
         for n, line in enumerate(raw.splitlines(keepends=True), 1):
             rec = _parse(line)
             if rec is None:

@@ -147,6 +147,16 @@ def test_a_damaged_journal_is_reported_once_and_set_aside(tmp_path, damage):
     assert logs == [] and rec.unfinished[-1].cmd_id == "c9"
 
 
+def test_an_oversized_journal_is_set_aside_unread(tmp_path, monkeypatch):
+    import rapid_runtime.journal as journal
+    monkeypatch.setattr(journal, "MAX_READ", 4096)
+    (tmp_path / file_name("Restarter", 1)).write_bytes(b"x" * 5000)
+    j, rec, logs = _journal(tmp_path)
+    assert len(logs) == 1 and "damaged" in logs[0] and rec.unfinished == [] and rec.crashed
+    assert len(list(tmp_path.glob("*.damaged-*"))) == 1
+    j.close(clean=True)
+
+
 def test_the_journal_stays_bounded(tmp_path):
     window = 16
     j, _, _ = _journal(tmp_path, window)
