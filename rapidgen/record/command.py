@@ -166,9 +166,16 @@ def _record(args, bindings, models, domain: int, partitions: set[str] | None, ou
     stop = threading.Event()
     old = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
     sink = Sink(output, metadata, f"rapidgen {__version__}", args.split_size, args.split_seconds)
-    rec = Recorder(domain, bindings, partitions, _schema_finder(models), sink, roles)
-    for b in bindings[1:]:
-        rec.declared(b.qos, b.tables["ASSET"].get("partition", b.tables["ASSET"]["name"]))
+    try:
+        rec = Recorder(domain, bindings, partitions, _schema_finder(models), sink, roles)
+        for b in bindings[1:]:
+            rec.declared(b.qos, b.tables["ASSET"].get("partition", b.tables["ASSET"]["name"]))
+    except Exception as exc:  # Cyclone refused to start (a bad CYCLONEDDS_URI, no interface)
+        sink.close()
+        for s, h in old.items():
+            signal.signal(s, h)
+        print(f"rapidgen record: cannot join domain {domain}: {visible(str(exc))[:300]}", file=sys.stderr)
+        return 1
     where = ", ".join(sorted(partitions)) if partitions else "every partition"
     print(f"rapidgen record: recording domain {domain} ({visible(where)}) -> {visible(sink.files[0])}",
           file=sys.stderr, flush=True)

@@ -149,7 +149,13 @@ def _replay(args, recs, configs, type_class, domain: int, plan) -> int:
     from rapidgen.record.replay import Replayer, in_window, is_config, pace
     stop = threading.Event()
     old = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
-    rp = Replayer(domain, type_class, plan)
+    try:
+        rp = Replayer(domain, type_class, plan)
+    except Exception as exc:  # Cyclone refused to start (a bad CYCLONEDDS_URI, no interface)
+        for s, h in old.items():
+            signal.signal(s, h)
+        print(f"rapidgen replay: cannot join domain {domain}: {visible(str(exc))[:300]}", file=sys.stderr)
+        return 1
     print(f"rapidgen replay: {visible(', '.join(args.files))} into domain {domain}"
           + (f", partition {visible(plan.partition)}" if plan.partition is not None else "")
           + (f", {args.rate:g}x" if args.rate != 1 else ""), file=sys.stderr)
