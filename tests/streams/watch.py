@@ -1,7 +1,10 @@
 """Watches an asset's AgentState and TextMessage over DDS (Cyclone, loopback only) and
 prints one JSON line per sample: {"agent": {key: value}} or {"text": message}.
 
-    python -m tests.streams.watch PACKAGE_DIR PACKAGE DOMAIN
+    python -m tests.streams.watch PACKAGE_DIR PACKAGE DOMAIN [PARTITION]
+
+Acks too: {"ack": cmdId, "status": ..., "completed": ...}. PARTITION: another asset's (any
+package holds the RAPID types); default the package's own.
 
 Run as its own process (CYCLONEDDS_URI is read when cyclonedds loads): the test sets it
 to the package's qos_files/cyclonedds/local.xml."""
@@ -15,17 +18,20 @@ import time
 
 def main() -> None:
     pydir, package, domain = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    partition = sys.argv[4] if len(sys.argv) > 4 else None
     sys.path.insert(0, pydir)
+    from cyclonedds.core import Policy, Qos
     from cyclonedds.domain import DomainParticipant
     from cyclonedds.sub import DataReader, Subscriber
     from cyclonedds.topic import Topic
     rapid = importlib.import_module(f"{package}.rapid")
     qos = importlib.import_module(f"{package}.qos").RapidQos()
     dp = DomainParticipant(domain)
-    sub = Subscriber(dp, qos=qos.subscriber("rapid_agent_state"))
+    sub = Subscriber(dp, qos=Qos(Policy.Partition([partition])) if partition else qos.subscriber("rapid_agent_state"))
     config = DataReader(sub, Topic(dp, "rapid_agent_config", rapid.AgentConfig), qos=qos.reader("rapid_agent_config"))
     agent = DataReader(sub, Topic(dp, "rapid_agent_state", rapid.AgentState), qos=qos.reader("rapid_agent_state"))
     text = DataReader(sub, Topic(dp, "rapid_textmessage", rapid.TextMessage), qos=qos.reader("rapid_textmessage"))
+    acks = DataReader(sub, Topic(dp, "rapid_ack", rapid.Ack), qos=qos.reader("rapid_ack"))
     keys: list[str] = []
     print(json.dumps({"ready": True}), flush=True)
     while True:
@@ -37,6 +43,9 @@ def main() -> None:
                 for k, v in zip(keys, s.values):
                     values[k] = getattr(v, "value", None)
                 print(json.dumps({"agent": values}, default=str), flush=True)
+        for a in acks.take(N=64):
+            print(json.dumps({"ack": a.cmdId, "status": str(a.status), "completed": str(a.completedStatus),
+                              "message": a.message}), flush=True)
         for t in text.take(N=64):
             print(json.dumps({"text": t.message, "level": str(t.level)}), flush=True)
         time.sleep(0.02)

@@ -98,8 +98,8 @@ public:
     void on_data_available(eprosima::fastdds::dds::DataReader* r) override {
         while (r->read_next_sample(&sample_, &info_) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
             if (!info_.valid_data) continue;
-            arrived();
             if (callback_) callback_(sample_);
+            arrived();  // after the callback: a state hook never sees "active" before its sample
         }
     }
 
