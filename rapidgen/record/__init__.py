@@ -2,5 +2,6 @@
 
 `schema` (a type as one self-contained OMG IDL text), `mcapfile` (writing with rotation,
 reading a complete or a cut file), `recorder` (the DDS side of recording), `info`,
-`replay`; `command` and `replay_command` hold the command lines.
+`replay`, `schema_types` (classes from a recording's own schemas); `command` and
+`replay_command` hold the command lines.
 """

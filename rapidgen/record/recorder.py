@@ -57,7 +57,6 @@ class Recorder:
             bindings, partitions, schema_of, sink, roles
         self.streams: dict[tuple[str, str, bool, bool], Stream] = {}
         self.skipped: dict[tuple[str, str], str] = {}  # (topic, type) -> why not recorded
-        self.assets: dict[str, str] = {}  # partition -> asset name (from configs' partitions)
         self._topics: dict[str, Any] = {}
         self._subscribers: dict[str, Any] = {}
         self._done: dict[str, object] = {}
