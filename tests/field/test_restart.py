@@ -227,3 +227,59 @@ def test_rapidgen_cmd_waiting_across_a_kill_learns_the_outcome(tmp_path):
     assert cmd.returncode == 1, out + err
     assert "asset restarted while it ran" in out + err and "EXEC_FAILED" in out + err, out + err
     assert executions.read_text().split() == ["long-1"]
+
+
+# ---- the C++ runtime's journal: the same file format ------------------------------------------------
+
+def _probe(tmp_path: Path) -> Path:
+    import shutil
+    if shutil.which("g++") is None:
+        pytest.skip("g++ not installed")
+    exe = tmp_path / "probe"
+    res = subprocess.run(["g++", "-std=c++17", "-O0", "-Wall", "-Wextra", "-Werror",
+                          f"-I{ROOT / 'runtime' / 'cpp' / 'include'}", str(ROOT / "tests" / "field" /
+                                                                           "restart_journal_probe.cpp"),
+                          str(ROOT / "runtime" / "cpp" / "src" / "journal.cpp"), "-o", str(exe)],
+                         capture_output=True, text=True, timeout=300)
+    assert res.returncode == 0, res.stderr[-3000:]
+    return exe
+
+
+def test_the_cpp_journal_reads_and_writes_the_python_format(tmp_path):
+    from rapid_runtime.journal import _parse
+    probe = _probe(tmp_path)
+    folder = tmp_path / "journal"
+    # Python writes, C++ reads
+    j, _, _ = _journal(folder)
+    j.start(300)
+    j.note(_cmd(1), "q")
+    j.note(_cmd(2), "x")
+    j.note(Cmd("c3", "Ground", "Belt", "work", src_name="Ground", asset_name="Restarter", serial=7), "c",
+           "ACK_COMPLETED_EXEC_FAILED", 'said "\u00e9\u2603\U0001f680"')
+    j.sync()
+    _crash(j)
+    res = subprocess.run([str(probe), "read", str(folder)], capture_output=True, text=True, timeout=60)
+    assert res.returncode == 0, res.stdout + res.stderr
+    lines = res.stdout.splitlines()
+    head = json.loads(lines[0][9:])  # the probe's own summary record (kind "r")
+    recs = [head, *(_parse((ln + "\n").encode()) for ln in lines[1:])]  # the journal's records: CRC and shape
+    assert None not in recs, res.stdout
+    assert head["crashed"] == 1 and head["serial"] == 300
+    assert [(r["k"], r["id"]) for r in recs[1:]] == [("q", "c1"), ("x", "c2"), ("c", "c3")]
+    assert recs[3]["m"] == 'said "\u00e9\u2603\U0001f680"' and recs[3]["c"] == "ACK_COMPLETED_EXEC_FAILED"
+    # C++ writes (after the read above, which left no stop record), Python reads
+    res = subprocess.run([str(probe), "write", str(folder)], capture_output=True, text=True, timeout=60)
+    assert res.returncode == 0, res.stdout + res.stderr
+    _j, rec, logs = _journal(folder)
+    assert logs == [] and rec.crashed and rec.last_serial == 300
+    assert [(e.cmd_id, e.state) for e in rec.unfinished] == [("c1", "q"), ("c2", "x"), ("cpp-1", "q"), ("cpp-2", "x")]
+    assert [(e.cmd_id, e.message) for e in rec.finished] == [("c3", 'said "\u00e9\u2603\U0001f680"'),
+                                                             ("cpp-3", 'done "\u00e9\u2603"')]
+    _crash(_j)
+    # a torn tail: C++ reports it once and sets the file aside
+    with open(folder / file_name("Restarter", 1), "ab") as fh:
+        fh.write(b'0badc0de {"k":"q","id":"torn')
+    res = subprocess.run([str(probe), "read", str(folder)], capture_output=True, text=True, timeout=60)
+    logs = [ln for ln in res.stdout.splitlines() if ln.startswith("log ")]
+    assert res.returncode == 0 and len(logs) == 1 and "damaged line" in logs[0], res.stdout
+    assert len(list(folder.glob("*.damaged-*"))) == 1
