@@ -29,7 +29,8 @@ def site_config(folder: Path, asset: str = "k10", transport: str = "wan", extra:
     return out
 
 
-def site_library(folder: Path, rtt: float | None, lease: float | None, transport: str = "wan") -> Path:
+def site_library(folder: Path, rtt: float | None, lease: float | None, transport: str = "wan",
+                 participants: int | None = None) -> Path:
     """The Cyclone file of a site's own QoS library (docs/qos.md: a site copies
     specs/qos/rapid.yaml, puts its peers in and, for a slow link, its round trip and the
     longest outage to ride through), rendered by rapidgen's qos back end."""
@@ -44,7 +45,7 @@ def site_library(folder: Path, rtt: float | None, lease: float | None, transport
     data = yaml.safe_load((ROOT / "specs" / "qos" / "rapid.yaml").read_text(encoding="utf-8"))
     t = data["transports"][transport]
     t["peers"] = list(ADDRESS.values())
-    for key, value in (("rtt", rtt), ("lease", lease)):
+    for key, value in (("rtt", rtt), ("lease", lease), ("max_participants_per_host", participants)):
         if value is not None:
             t[key] = value
     lib = folder / "site-qos.yaml"
