@@ -10,6 +10,13 @@ from tests.rust.conftest import build_rust_peer
 # tests start) is checked against rapidgen/codes.py: code registered, severity allowed.
 os.environ["RAPIDGEN_CHECK_CODES"] = "1"
 
+# Every bridge the tests start keeps its restart journal (docs/runtime.md) in this run's own
+# folder: a journal left by an earlier run (a killed bridge) would otherwise answer its old
+# commands again in this one. Tests that need their own folder pass --journal.
+if "RAPID_STATE_DIR" not in os.environ:
+    import tempfile
+    os.environ["RAPID_STATE_DIR"] = tempfile.mkdtemp(prefix="rapidgen-tests-state-")
+
 
 def pytest_addoption(parser):
     parser.addoption("--update-golden", action="store_true", default=False,
