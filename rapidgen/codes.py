@@ -16,7 +16,7 @@ from typing import Literal, NamedTuple
 
 Severity = Literal["error", "warning", "note", "error or warning"]
 Stage = Literal["input", "preprocess", "parse", "resolve", "driver", "project", "writer", "generate",
-                "vectors", "descriptor", "qos", "python", "cpp", "rust", "diff", "cmd", "init"]
+                "vectors", "descriptor", "qos", "python", "cpp", "rust", "diff", "cmd", "init", "secure"]
 
 
 class Code(NamedTuple):
@@ -222,6 +222,7 @@ _CODES = (
     Code("RG1908", "error", "cmd", '`rapidgen cmd`: no asset reads commands on that domain and partition, or its QoS files cannot be used'),
     Code("RG1909", "error", "cmd", '`rapidgen cmd`: cyclonedds or the runtime (rapid_runtime) is not installed'),
     Code("RG1910", "error", "init", '`rapidgen init`: not an asset name, the file exists (never overwritten), or it cannot be written'),
+    Code("RG2001", "error", "secure", '`rapidgen secure`: a deployment file that is malformed or names an unknown asset, a duplicate name, a grant the asset\'s access_control refuses, or a partition with a DDS wildcard'),
 )
 
 REGISTRY: dict[str, Code] = {c.code: c for c in _CODES}

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 from rapidgen.asset.resolved import LoadedAsset
 from rapidgen.asset.yamlread import YamlDoc, load_yaml
-from rapidgen.diagnostics import Diagnostic, DiagnosticSink, Severity, SourceLoc, did_you_mean
+from rapidgen.diagnostics import DiagnosticSink, Severity, SourceLoc, did_you_mean
 from rapidgen.idl.preprocess import display_path
 
 NAME = re.compile(r"[A-Za-z0-9_.-]{1,64}\Z")  # a file name and a certificate CN, never a path
@@ -76,8 +76,7 @@ def admits(asset: LoadedAsset, source: str) -> bool:
 
 
 def _err(sink: DiagnosticSink, code: str, message: str, loc: SourceLoc, hint: str | None = None) -> None:
-    # Codes of this tool are its own (SECnn, docs/secure.md), outside the compiler's registry.
-    sink.diagnostics.append(Diagnostic(Severity.ERROR, code, message, loc, hint))
+    sink.error(code, message, loc, hint)
 
 
 class _Reader:
@@ -85,7 +84,7 @@ class _Reader:
         self.doc, self.sink = doc, sink
 
     def err(self, path: tuple, message: str, hint: str | None = None, key: bool = False) -> None:
-        _err(self.sink, "SEC01", message, self.doc.key_loc(path) if key else self.doc.loc(path), hint)
+        _err(self.sink, "RG2001", message, self.doc.key_loc(path) if key else self.doc.loc(path), hint)
 
     def keys(self, value: object, path: tuple, allowed: tuple[str, ...]) -> bool:
         if not isinstance(value, dict):

@@ -176,7 +176,7 @@ def test_deployment_errors_are_located(tmp_path, edit, at, message):
     line, col = text.count("\n", 0, where) + 1, where - text.rfind("\n", 0, where)
     res = secure(str(dep), "-k", str(tmp_path / "ks"))
     assert res.returncode == 1
-    assert f"deploy.yaml:{line}:{col}: error[SEC01]: {message}" in res.stderr, res.stderr
+    assert f"deploy.yaml:{line}:{col}: error[RG2001]: {message}" in res.stderr, res.stderr
     assert "Traceback" not in res.stderr
     assert "^" in res.stderr  # the line shown, the place marked
     assert not (tmp_path / "ks").exists()  # nothing written
@@ -195,7 +195,7 @@ def test_descriptor_errors_are_reported_at_the_descriptor(tmp_path):
     dep = tmp_path / "deploy.yaml"
     dep.write_text(f"version: 1\nassets: [{bad}]\n")
     res = secure(str(dep), "-k", str(tmp_path / "ks"))
-    assert res.returncode == 1 and "bad.yaml:3:" in res.stderr and "deploy.yaml:2:10: error[SEC01]" in res.stderr
+    assert res.returncode == 1 and "bad.yaml:3:" in res.stderr and "deploy.yaml:2:10: error[RG2001]" in res.stderr
 
 
 def test_an_unusable_ca_is_an_error_not_a_traceback(tmp_path):
@@ -240,5 +240,5 @@ def test_a_partition_that_is_a_pattern_is_refused(tmp_path):
     dep = tmp_path / "deploy.yaml"
     dep.write_text(f"version: 1\nassets: [{bad}]\n")
     res = secure(str(dep), "-k", str(tmp_path / "ks"))
-    assert res.returncode == 1 and "deploy.yaml:2:10: error[SEC01]: Wild's partition 'K*' holds a DDS wildcard" \
+    assert res.returncode == 1 and "deploy.yaml:2:10: error[RG2001]: Wild's partition 'K*' holds a DDS wildcard" \
         in res.stderr, res.stderr

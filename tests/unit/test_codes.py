@@ -16,7 +16,7 @@ from tests.helpers import rapidgen
 
 ROOT = Path(__file__).resolve().parents[2]
 SOURCE = sorted(p for p in (ROOT / "rapidgen").rglob("*.py") if p.name != "codes.py")
-DOCS = ["idl-frontend.md", "asset-descriptor.md", "qos.md", "python-backend.md", "cpp-backend.md", "rust-backend.md", "diff.md", "runtime.md"]
+DOCS = ["idl-frontend.md", "asset-descriptor.md", "qos.md", "python-backend.md", "cpp-backend.md", "rust-backend.md", "diff.md", "runtime.md", "secure.md"]
 ROW = re.compile(r"^\|\s*(RG\d{4}\S*)\s*\|\s*(.*?)\s*\|\s*$", re.M)
 LOC = SourceLoc("t.idl", 1, 1)
 
