@@ -35,7 +35,7 @@ IMAGE_SOURCES = {"sensor_msgs/msg/CompressedImage": ("image/jpeg", "image/png"),
 ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33", "RAPID_ROT_NONE")
 VELOCITY_ENCODINGS = ("RAPID_ROT_NONE", "RAPID_ROT_VEL")
 
-_SECTION_KEYS = ("node", "telemetry", "commands", "ground")
+_SECTION_KEYS = ("node", "telemetry", "commands", "streams", "ground")
 _GROUND_KEYS = ("namespace", "diagnostics", "node")
 _FEED_KEYS = ("topic", "type", "feeds", "index", "joints", "values", "description")
 _COMMAND_KEYS = ("command", "publish", "call", "action", "until", "cancel", "description")
@@ -44,6 +44,17 @@ _ACTION_KEYS = ("action", "type", "fields", "timeout")
 _DOINGS = ("publish", "call", "action")  # what a command does; exactly one
 _PUBLISH_KEYS = ("topic", "type", "fields")
 _UNTIL_KEYS = ("topic", "type", "field", "equals", "timeout")
+_STREAM_KEYS = ("stream", "topic", "type", "frame", "pose_encoding", "joints", "stop", "description")
+# What each RAPID stream sample may become in ROS 2: the pose's place in the message, or joints.
+STREAM_TARGETS: dict[str, dict[str, str | None]] = {
+    "rapid::PositionSample": {"geometry_msgs/msg/PoseStamped": "pose", "geometry_msgs/msg/Pose": ""},
+    "rapid::JointSample": {JOINT_SOURCE: None}}
+STREAM_ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33")
+
+
+class _NoParameters:
+    """A stream's stop message has no command arguments: constants only."""
+    parameters: tuple = ()
 
 
 class _Reader:
@@ -125,13 +136,97 @@ class _Reader:
         feeds = self.items(section.get("telemetry", []), root + ("telemetry",), self.feed)
         commands = self.items(section.get("commands", []), root + ("commands",), self.command)
         self.duplicates(feeds, commands)
+        streams = self.items(section.get("streams", []), root + ("streams",), self.stream)
+        seen: dict[str, tuple] = {}
+        for st, p in streams:
+            if st["stream"] in seen:
+                self.error("RG1506", f"stream '{st['stream']}' is mapped twice", p + ("stream",),
+                           f"first mapped at line {self.doc.loc(seen[st['stream']]).line}")
+            seen.setdefault(st["stream"], p + ("stream",))
+        commands_by_name = {c["command"]: c for c, _ in commands}
+        for st, _p in streams:  # on_loss stop without a stop message: a mapped cancel of the stream's subsystem
+            if st["on_loss"] == "stop" and st["stop"] is None and st["subsystem"]:
+                st["stop"] = next((c["cancel"] for name, c in commands_by_name.items()
+                                   if name.startswith(st["subsystem"] + "/") and c.get("cancel") is not None
+                                   and all(f[1] == "const" for f in c["cancel"]["fields"])), None)
         if self.ok and ("telemetry" in section or "commands" in section):  # errors first
             self.unfed({(f["feeds"], f["index"]) for f, _ in feeds})
         ground = self.ground(section["ground"], root + ("ground",), node) if "ground" in section else None
         if not self.ok:
             return None
         return {"node": node, "telemetry": [f for f, _ in feeds],
-                "commands": {c["command"]: c for c, _ in commands}, "ground": ground}
+                "commands": {c["command"]: c for c, _ in commands}, "streams": [st for st, _ in streams],
+                "ground": ground}
+
+    # -- streams: a RAPID input stream (Cyclone, DEADLINE) -> ROS 2 messages --------------
+    def stream(self, item: object, path: tuple) -> dict | None:
+        """An input stream of the descriptor (streams:) whose samples become ROS 2 messages."""
+        if not self.mapping(item, path, _STREAM_KEYS, ("stream", "topic", "type")):
+            return None
+        assert isinstance(item, dict)
+        name = self.text(item["stream"], path + ("stream",), "a stream name")
+        topic = self.topic(item["topic"], path + ("topic",))
+        msg = self.msg_type(item["type"], path + ("type",))
+        if name is None:
+            return None
+        inputs = {s.name: s for s in self.loaded.streams if s.direction == "input"}
+        found = inputs.get(name)
+        if found is None:
+            output = any(s.name == name for s in self.loaded.streams)
+            self.error("RG1504", f"'{name}' is {'an output' if output else 'no input'} stream of the asset",
+                       path + ("stream",), "the bridge reads the descriptor's input streams: "
+                       + (", ".join(inputs) or "it declares none (add one under streams:)"))
+            return None
+        targets = STREAM_TARGETS.get(found.type)
+        if targets is None:
+            self.error("RG1503", f"stream '{name}' carries {found.type}, which the ROS 2 bridge cannot map",
+                       path + ("stream",), "streams of rapid::PositionSample or rapid::JointSample map to ROS 2")
+            return None
+        if topic is None or msg is None:
+            return None
+        if msg.name not in targets:
+            self.error("RG1503", f"{found.type} (stream '{name}') cannot become {msg.name}", path + ("type",),
+                       "map it to " + " or ".join(targets))
+            return None
+        joints = found.type == "rapid::JointSample"
+        for k in ("frame", "pose_encoding") if joints else ("joints",):
+            if k in item:
+                self.error("RG1505", f"'{k}' is for {'PositionSample' if joints else 'JointSample'} streams",
+                           path + (k,), "leave it out")
+        out: dict[str, Any] = {"stream": name, "type": found.type, "topic": found.topic,
+                               "partition": found.partition, "deadline_ms": found.deadline_ms,
+                               "on_loss": found.on_loss, "subsystem": found.subsystem,
+                               "state_key": found.state_key, "missed_key": found.missed_key,
+                               "ros2": {"topic": topic, "type": msg.name, "pose": targets[msg.name],
+                                        "stamp": msg.name.endswith("Stamped") or joints}}
+        if joints:
+            names = item.get("joints", [])
+            if not isinstance(names, list) or not all(isinstance(n, str) and n for n in names):
+                self.error("RG1505", "'joints' must be a list of ROS 2 joint names", path + ("joints",),
+                           "one name per joint of the stream's samples, in their order")
+                return None
+            out["ros2"]["joints"] = list(names)
+        else:
+            frame = item.get("frame", "")
+            if not isinstance(frame, str):
+                self.error("RG1505", "'frame' must be text", path + ("frame",), "the header's frame_id")
+                return None
+            encoding = item.get("pose_encoding", "RAPID_ROT_QUAT")
+            if encoding not in STREAM_ENCODINGS:
+                self.error("RG1503", f"a stream pose in {encoding!r} cannot become a ROS 2 quaternion",
+                           path + ("pose_encoding",), "the writer's rot encoding: " + " or ".join(STREAM_ENCODINGS))
+                return None
+            out["ros2"].update(frame=frame, encoding=encoding)
+        out["stop"] = None
+        if "stop" in item:
+            if found.on_loss != "stop":
+                self.error("RG1505", f"stream '{name}' has on_loss: {found.on_loss}, so nothing is stopped",
+                           path + ("stop",), "set 'on_loss: stop' on the stream, or leave 'stop' out")
+                return None
+            out["stop"] = self.publish(item["stop"], path + ("stop",), _NoParameters())
+            if out["stop"] is None:
+                return None
+        return out
 
     # -- the ground side: RAPID telemetry -> ROS 2 topics --------------------------------
     def ground(self, value: object, path: tuple, node: str) -> dict | None:

@@ -214,3 +214,41 @@ def test_feeds_read_odometry_split_joint_states_and_fields(example_bridge):
     agent = {"values": [["force", "wrench.force", "vec3"], ["ok", "status[1]", "bool"], ["n", "count", "int"]]}
     msg = NS(wrench=NS(force=v3(1.0, 2.0, 3.0)), status=[False, True], count=7)
     assert h._read_agent(agent, msg, {"other": 1.5}) == {"other": 1.5, "force": [1.0, 2.0, 3.0], "ok": True, "n": 7}
+
+
+def _stream_errors(tmp_path, monkeypatch, old: str, new: str):
+    """The example with one text of its ros2.streams mapping replaced: its errors, and the
+    1-based line of the replacement."""
+    text = EXAMPLE.read_text()
+    assert text.count(old) == 1
+    at = text[:text.index(old)].count("\n") + 1
+    path = tmp_path / "r2.yaml"
+    path.write_text(text.replace(old, new).replace("version: 1", f"version: 1\nidl: {{rapid: {ROOT / 'specs/rapid'}}}",
+                                                   1))
+    _, sink = _load(path, monkeypatch, None)
+    return sink.errors, at + 1  # the idl line shifts everything below by one
+
+
+def test_the_example_maps_its_input_stream(monkeypatch):
+    loaded, sink = _load(EXAMPLE, monkeypatch, None)
+    assert not sink.has_errors
+    (stream,) = loaded.ros2["streams"]
+    assert (stream["stream"], stream["topic"], stream["partition"]) == ("handPose", "rapid_position_sample-handPose",
+                                                                        "XArm2")
+    assert stream["deadline_ms"] == 100.0 and stream["on_loss"] == "stop"
+    assert stream["ros2"] == {"topic": "/r2_controller/right/pose_command", "type": "geometry_msgs/msg/PoseStamped",
+                              "pose": "pose", "stamp": True, "frame": "R2OriginFrame", "encoding": "RAPID_ROT_M33"}
+    # on_loss stop without a stop message of its own: RightArm's mapped cancel message
+    assert stream["stop"]["topic"] == "/r2_controller/right/stop"
+
+
+@pytest.mark.parametrize("old, new, code, words", [
+    ("- stream: handPose", "- stream: footPose", "RG1504", "'footPose' is no input stream"),
+    ("      type: geometry_msgs/msg/PoseStamped\n      frame:", "      type: sensor_msgs/msg/JointState\n      frame:",
+     "RG1503", "rapid::PositionSample (stream 'handPose') cannot become sensor_msgs/msg/JointState"),
+    ("pose_encoding: RAPID_ROT_M33 ", "pose_encoding: RAPID_ROT_EULER ", "RG1503", "cannot become a ROS 2 quaternion"),
+])
+def test_a_stream_mapping_error_is_located(tmp_path, monkeypatch, old, new, code, words):
+    errors, line = _stream_errors(tmp_path, monkeypatch, old, new)
+    assert [(e.code, e.loc.line) for e in errors] == [(code, line)], errors  # at the replaced key's line
+    assert words in errors[0].message

@@ -267,3 +267,60 @@ def test_action_goal_feedback_result_and_delete(scene):
     assert lines[0] == ["QUEUED"] and lines[-1] == ["COMPLETED", "CANCELED"], log.read_text()
     assert all(kind == ["EXECUTING"] or kind[0] == "EXECUTING" for kind in lines[1:-1])
     _wait_for(scene.tmp / "sim.log", "r2_sim: wave canceled after")
+
+
+def test_xarm2_pose_stream_drives_the_ros2_arm_beside_a_command(scene):
+    """Seed 001: X-Arm-2's hand pose stream (a stand-in Cyclone writer, tests/ros2/stream_writer.py,
+    100 Hz in partition XArm2) reaches the ROS 2 node as PoseStamped on the arm's pose command
+    topic through the bridge, while a RAPID command still works; the writer's loss (killed: no
+    sample within the 100 ms deadline) runs on_loss stop, the mapped cancel message; its return
+    is reported. Last in the file: the stream moves the simulated arm."""
+    env = {**os.environ, "PYTHONPATH": f"{ROOT / 'runtime'}{os.pathsep}{scene.tmp / 'gen' / 'python'}",
+           "PYTHONUNBUFFERED": "1"}
+    sim_log, bridge_log = scene.tmp / "sim.log", scene.tmp / "bridge.log"
+
+    def writer(name: str) -> subprocess.Popen:
+        log = scene.tmp / f"{name}.log"
+        with open(log, "w") as out:
+            proc = subprocess.Popen([*scene.ns, str(scene.python), str(ROOT / "tests/ros2/stream_writer.py"), PACKAGE,
+                                     "handPose", "100", "0.4", "-0.25", "0.15", "0.1", "0.2", "0.3"],
+                                    stdout=out, stderr=subprocess.STDOUT, env=env)
+        _wait_for(log, "stream_writer ready", proc)
+        return proc
+
+    xarm = writer("xarm")
+    try:
+        _wait_for(bridge_log, "stream handPose active: publishing on /r2_controller/right/pose_command")
+        _wait_for(sim_log, "pose_command frame=R2OriginFrame xyz=(0.4, -0.25, 0.15)")
+        line = next(ln for ln in sim_log.read_text().splitlines()
+                    if "pose_command frame=R2OriginFrame xyz=(0.4, -0.25, 0.15)" in ln)
+        quat = [float(v) for v in line.split("quat=(", 1)[1].rstrip(")").split(",")]
+        assert quat == pytest.approx(QUAT_RPY, abs=2e-6)  # the writer's rotation matrix, as a quaternion
+        # a RAPID command from rapidgen cmd beside the stream
+        scene.take_control()
+        res = scene.cmd("RightArm", "Enable", "enable=true")
+        assert res.returncode == 0 and "COMPLETED OK  enabled" in res.stdout, res.stdout + res.stderr
+        stops = sim_log.read_text().count("r2_sim: stop 'stop'")
+        received = sim_log.read_text().count("xyz=(0.4, -0.25, 0.15)")
+        _wait_for_count(sim_log, "xyz=(0.4, -0.25, 0.15)", received + 20)  # still streaming
+    finally:
+        xarm.kill()  # the link is lost: no unregister, only the deadline tells
+        xarm.wait()
+    _wait_for(bridge_log, "stream handPose lost: no sample within 100 ms; stopped (published on "
+                          "/r2_controller/right/stop)")
+    _wait_for_count(sim_log, "r2_sim: stop 'stop'", stops + 1)  # the mapped cancel message reached the node
+    again = writer("xarm2")
+    try:
+        _wait_for(bridge_log, "stream handPose recovered")
+    finally:
+        again.kill()
+        again.wait()
+
+
+def _wait_for_count(path: Path, text: str, count: int) -> None:
+    end = time.monotonic() + WAIT
+    while time.monotonic() < end:
+        if path.read_text(errors="replace").count(text) >= count:
+            return
+        time.sleep(0.1)
+    pytest.fail(f"fewer than {count} '{text}' in {path.name}")

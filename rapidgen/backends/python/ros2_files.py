@@ -2,7 +2,8 @@
 
     <package>/ros2_map.py   the checked mapping (rapidgen/ros2/section.py) as literals
     <package>/ros2.py       `python -m <package>.ros2`: the runtime's bridge with handlers that
-                            publish ROS 2 messages and telemetry fed from ROS 2 subscriptions
+                            publish ROS 2 messages, telemetry fed from ROS 2 subscriptions, and
+                            the mapped input streams (Cyclone, DEADLINE) published as ROS 2 messages
     <package>/ros2_ground.py  with `ros2: {ground: ...}`: `python -m <package>.ros2_ground`, the
                             asset's RAPID telemetry republished as standard ROS 2 messages
 The two are the only modules of the package that import rclpy.
@@ -27,7 +28,7 @@ def generate(loaded: "LoadedAsset", package: str, header: str) -> list[Generated
     if mapping is None:
         return []
     data = {"NODE": mapping["node"], "TELEMETRY": mapping["telemetry"], "COMMANDS": mapping["commands"],
-            "GROUND": mapping["ground"]}
+            "STREAMS": mapping["streams"], "GROUND": mapping["ground"]}
     body = "\n\n".join(f"{name} = {literal(value)}" for name, value in data.items())
     name = loaded.spec.name
     files = [
