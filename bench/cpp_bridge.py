@@ -1,0 +1,151 @@
+"""Command-to-ack latency, throughput, a flood and memory of K10's generated C++ bridge
+(Fast DDS), driven by the runtime's C++ client (rapid_cmd), beside `ddsperf ping` in the
+same run.
+
+    .venv/bin/python bench/cpp_bridge.py [--latency 2000] [--flood 10000] [--rss 100000]
+                                         [--build /tmp/rapidgen-bench-cpp] [--domain 135]
+
+Builds what it needs once in --build (kept: later runs are incremental): the runtime, K10's
+generated package with its bridge and rapid_cmd (rapid_runtime_cpp_add_cmd), Release.
+Everything stays on loopback: the bridge and rapid_cmd use the built-in rapid_local
+profile (127.0.0.1 only), ddsperf ../shared/dds-local/cyclonedds-loopback.xml (or
+CYCLONEDDS_URI). Prints figures, never passes or fails on time; exit 1 when an ack was lost.
+
+  ddsperf    `ddsperf ping` against `ddsperf pong` (Cyclone C): the floor of a round trip
+  latency    N sequential Admin/echo (BYPASS, from the controller): write() to the final
+             COMPLETED ack read by rapid_cmd; p50/p99 and commands/s one at a time
+  flood      N echoes written back to back (rapid_cmd --flood), then waited for: acks lost
+  rss        the bridge's VmRSS after every tenth of N commands (256 in flight): flat?
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+LOOPBACK = ROOT.parent / "shared" / "dds-local" / "cyclonedds-loopback.xml"
+SOURCE = "RapidWorkbench"  # K10's allow-list lets it send Admin/echo and AccessControl
+ECHO = ["Admin", "echo", "text=bench"]
+
+
+def run(cmd: list[str], **kw) -> subprocess.CompletedProcess:
+    res = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    if res.returncode != 0:
+        raise SystemExit(f"bench: {' '.join(cmd)} failed:\n{res.stdout[-2000:]}\n{res.stderr[-3000:]}")
+    return res
+
+
+def build(out: Path) -> tuple[Path, Path]:
+    """(bridge, rapid_cmd) of K10, built in `out` (incremental)."""
+    gen = out / "gen" / "k10"
+    run([sys.executable, "-m", "rapidgen", "generate", str(ROOT / "specs" / "assets" / "k10.yaml"), "--lang", "cpp",
+         "-o", str(gen)], cwd=ROOT)
+    jobs = str(max(1, min(4, os.cpu_count() or 1)))
+    run(["cmake", "-S", str(ROOT / "runtime" / "cpp"), "-B", str(out / "runtime"), "-DCMAKE_BUILD_TYPE=Release"])
+    run(["cmake", "--build", str(out / "runtime"), "-j", jobs])
+    cpp = gen / "cpp"
+    run(["cmake", "-S", str(ROOT / "tests" / "cpp_runtime" / "seeds"), "-B", str(out / "bridges"),
+         "-DCMAKE_BUILD_TYPE=Release", f"-Drapid_runtime_cpp_DIR={out / 'runtime'}", f"-DSEED_DIRS={cpp}",
+         f"-DPLAIN_DIR={cpp}"])
+    run(["cmake", "--build", str(out / "bridges"), "-j", jobs, "--target", "rapid_k10red_bridge", "--target",
+         "rapid_k10red_cmd"])
+    return out / "bridges" / "k10" / "rapid_k10red_bridge", out / "bridges" / "rapid_k10red_cmd"
+
+
+def ddsperf(seconds: float, domain: int) -> dict | str:
+    """`ddsperf ping` against `ddsperf pong` on loopback: its last latency figures (us)."""
+    exe = shutil.which("ddsperf")
+    if exe is None:
+        return "ddsperf not installed (apt: cyclonedds-tools)"
+    env = dict(os.environ)
+    env.setdefault("CYCLONEDDS_URI", f"file://{LOOPBACK}")
+    pong = subprocess.Popen([exe, "-D", str(seconds + 3), "-i", str(domain), "pong"], env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        res = subprocess.run([exe, "-D", str(seconds), "-i", str(domain), "ping"], env=env, capture_output=True,
+                             text=True, timeout=seconds + 30)
+    finally:
+        pong.terminate()
+        pong.wait(10)
+    lines = [ln for ln in res.stdout.splitlines() if "mean" in ln and "%" in ln]
+    if not lines:
+        return f"no latency line (exit {res.returncode}): {res.stdout[-300:]!r}"
+    figures = dict(re.findall(r"(mean|min|50%|90%|99%|max)\s+([\d.]+)us", lines[-1]))
+    return {k: float(v) for k, v in figures.items()} or lines[-1].strip()
+
+
+def rss_kib(pid: int) -> int:
+    text = Path(f"/proc/{pid}/status").read_text()
+    return int(re.search(r"VmRSS:\s+(\d+) kB", text).group(1))
+
+
+def main() -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--latency", type=int, default=2000, help="sequential commands timed (default 2000)")
+    p.add_argument("--flood", type=int, default=10000, help="commands sent back to back (default 10000)")
+    p.add_argument("--rss", type=int, default=100000, help="commands for the memory figure (default 100000)")
+    p.add_argument("--build", type=Path, default=Path("/tmp/rapidgen-bench-cpp"))
+    p.add_argument("--domain", type=int, default=135)
+    p.add_argument("--ddsperf-seconds", type=float, default=5, help="0 skips ddsperf")
+    args = p.parse_args()
+    bridge_exe, cmd = build(args.build)
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("FASTDDS_", "FASTRTPS_"))}  # built-in rapid_local
+
+    def client(*extra: str, words=ECHO) -> dict:
+        res = subprocess.run([str(cmd), *words, "--domain", str(args.domain), "--source", SOURCE, "--timeout", "120",
+                              *extra], capture_output=True, text=True, env=env, timeout=3600)
+        lines = [ln for ln in res.stdout.splitlines() if ln.startswith("{")]
+        if not lines:
+            raise SystemExit(f"bench: rapid_cmd said {res.stdout[-1000:]} {res.stderr[-2000:]}")
+        return json.loads(lines[-1])
+
+    if args.ddsperf_seconds > 0:
+        perf = ddsperf(args.ddsperf_seconds, args.domain + 1)
+        print(f"ddsperf ping (Cyclone C, loopback, {args.ddsperf_seconds:g} s): {perf}", flush=True)
+    else:
+        perf = None
+    bridge = subprocess.Popen([str(bridge_exe), "--domain", str(args.domain)], env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.DEVNULL, text=True)
+    lost = 0
+    try:
+        if not bridge.stdout.readline().startswith("bridge ready"):
+            raise SystemExit("bench: the bridge did not start")
+        granted = subprocess.run([str(cmd), "AccessControl", "requestControl", "--domain", str(args.domain),
+                                  "--source", SOURCE], capture_output=True, text=True, env=env, timeout=120)
+        if granted.returncode != 0:
+            raise SystemExit(f"bench: control not granted: {granted.stdout} {granted.stderr}")
+        client("--repeat", "50")  # warm-up
+        lat = client("--repeat", str(args.latency))
+        ratio = f", {lat['p50_us'] / perf['50%']:.1f}x ddsperf's p50" if isinstance(perf, dict) and "50%" in perf \
+            else ""
+        print(f"C++ bridge, command -> COMPLETED ack ({lat['answered']} of {lat['count']} sequential echoes, "
+              f"rapid_cmd): p50 {lat['p50_us']:.0f} us, p99 {lat['p99_us']:.0f} us, max {lat['max_us']:.0f} us"
+              f"{ratio}; {lat['per_s']:.0f} commands/s one at a time", flush=True)
+        fl = client("--flood", str(args.flood))
+        lost += fl["lost"]
+        print(f"flood: {fl['sent']} echoes written back to back, {fl['final']} final acks ({fl['ok']} OK), "
+              f"{fl['lost']} lost, {fl['per_s']:.0f} commands/s", flush=True)
+        step = max(1, args.rss // 10)
+        before = rss_kib(bridge.pid)
+        figures = []
+        for i in range(10):
+            got = client("--flood", str(step), "--window", "256")
+            lost += got["lost"]
+            figures.append(rss_kib(bridge.pid))
+        print(f"RSS of the bridge: {before / 1024:.1f} MiB before, after each {step} commands: "
+              + ", ".join(f"{k / 1024:.1f}" for k in figures) + " MiB "
+              f"({(figures[-1] - figures[0]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
+    finally:
+        bridge.terminate()
+        bridge.wait(30)
+    return 1 if lost else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
