@@ -106,6 +106,10 @@ Client::Client(ClientOptions options, const Tables* tables) : options_(std::move
     node_ = std::make_unique<Node>(n);
     acks_reader_ = node_->reader<::rapid::Ack>(ACK_TOPIC, "RapidReliableDurableQos", [](DataReaderQos& q) {
         q.history().kind = KEEP_ALL_HISTORY_QOS;  // every intermediate ack
+        // room for a command's acks before they are taken: with the profile's 1 per
+        // instance, a COMPLETED right behind its EXECUTING was refused and came again
+        // only on the writer's next heartbeat (a third of round trips took 100-200 ms)
+        q.resource_limits().max_samples_per_instance = static_cast<std::int32_t>(ACKS_PER_COMMAND);
     });
     // A command written while the asset's reader has not yet matched this writer is dropped
     // there and sent again on the next heartbeat: every 100 ms, not Fast DDS's 3 s.
