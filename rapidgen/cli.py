@@ -341,15 +341,7 @@ def _tool(module: str):
     return add, run
 
 
-def _present(module: str) -> bool:
-    import importlib.util
-    try:
-        return importlib.util.find_spec(module) is not None
-    except ModuleNotFoundError:  # its package is not there (yet)
-        return False
-
-
-SUBCOMMANDS.update({name: _tool(mod) for name, mod in _TOOL_MODULES.items() if _present(mod)})
+SUBCOMMANDS.update({name: _tool(mod) for name, mod in _TOOL_MODULES.items()})
 
 
 def _command_of(argv: Sequence[str]) -> str | None:
