@@ -5,11 +5,13 @@ the first rebuilds only what changed).
 
     packages = build(["robonaut2", "xarm2"])   # name -> the <package>_bridge program
 
-Folder: $RAPIDGEN_STREAMS_BUILD, else <tmp>/rapidgen-streams-<uid>. Extra descriptors
+Folder: $RAPIDGEN_STREAMS_BUILD, else <tmp>/rapidgen-streams-<uid>-<checkout digest> (one per
+checkout: CMake refuses a build folder made from another source tree). Extra descriptors
 (the bench's) are given as paths.
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 import shutil
@@ -25,7 +27,9 @@ MARK = "// ---- test code (tests/streams/harness.py) ----"
 
 
 def workdir() -> Path:
-    d = os.environ.get("RAPIDGEN_STREAMS_BUILD") or os.path.join(tempfile.gettempdir(), f"rapidgen-streams-{os.getuid()}")
+    tree = hashlib.sha1(str(ROOT).encode()).hexdigest()[:8]
+    d = os.environ.get("RAPIDGEN_STREAMS_BUILD") or os.path.join(tempfile.gettempdir(),
+                                                                 f"rapidgen-streams-{os.getuid()}-{tree}")
     Path(d).mkdir(parents=True, exist_ok=True)
     return Path(d)
 

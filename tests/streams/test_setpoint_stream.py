@@ -37,6 +37,12 @@ ROVER = Path(__file__).resolve().parent / "rover.yaml"
 STATE = re.compile(r"^stream handPose (\w+) after (\d+) samples, last x (-?\d+)")
 
 
+# Its own build of the runtime and three bridges costs ~2-4 min on these 2 cores, which the
+# default run cannot afford; RAPIDGEN_STREAMS_E2E=1 (or the full field campaign) runs it.
+pytestmark = pytest.mark.skipif(not (os.environ.get("RAPIDGEN_STREAMS_E2E") or os.environ.get("RAPIDGEN_FIELD_FULL")),
+                                reason="RAPIDGEN_STREAMS_E2E=1: setpoint streams end to end (its own C++ build, 2-4 min)")
+
+
 @pytest.fixture(scope="module")
 def bridges() -> dict[str, Path]:
     missing = harness.toolchain_missing()
