@@ -37,6 +37,19 @@ class RapidQosLike(Protocol):
     def cyclonedds_config(self, transport: str | None = None) -> str: ...
 
 
+def find_type_class(bindings, type_name: str):
+    """The generated class of a DDS type name ("rapid::Ack" or "rapid.Ack") in the first of
+    `bindings` (AssetBindings) that has it, or None: the live tools read every type they know
+    and skip (and report) the others."""
+    scoped = type_name.replace(".", "::")
+    for b in bindings:
+        try:
+            return b.type_class(scoped)
+        except (KeyError, AttributeError, ImportError):
+            continue
+    return None
+
+
 @dataclass
 class AssetBindings:
     package: str

@@ -86,13 +86,8 @@ class ReplaySource:
         self._thread.start()
 
     def _type_class(self, type_name: str):
-        scoped = type_name.replace(".", "::")
-        for b in self.bindings:
-            try:
-                return b.type_class(scoped)
-            except (KeyError, AttributeError, ImportError):
-                continue
-        return None
+        from rapidgen.live.bindings import find_type_class
+        return find_type_class(self.bindings, type_name)
 
     # ---- feeding ---------------------------------------------------------------------------
     def _feed(self, hub: Hub, i: int) -> None:

@@ -12,7 +12,7 @@ import tempfile
 import threading
 import time
 
-from rapidgen.argtypes import domain_id
+from rapidgen.argtypes import domain_id, positive_seconds
 
 BASE_DESCRIPTOR = """version: 1
 asset: {name: RapidRecord, kind: other}
@@ -33,17 +33,6 @@ def size(text: str) -> int:
     return int(float(m.group(1)) * {"": 1, "k": 1 << 10, "m": 1 << 20, "g": 1 << 30}[m.group(2).lower()])
 
 
-def positive(text: str) -> float:
-    import argparse
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
-    if not value > 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"'{text}' must be a positive number of seconds")
-    return value
-
-
 def add_parser(sub) -> None:
     p = sub.add_parser("record", help="record RAPID traffic into MCAP files (needs cyclonedds and mcap)",
                        description="Discover the RAPID writers on a domain and record every topic they write, "
@@ -60,9 +49,9 @@ def add_parser(sub) -> None:
                    help="Cyclone transport (default: CYCLONEDDS_URI if set, else local: loopback only)")
     p.add_argument("-o", "--output", metavar="FILE.mcap",
                    help="the file (default rapid-YYYYmmdd-HHMMSS.mcap); with rotation FILE-000.mcap, FILE-001.mcap, ...")
-    p.add_argument("--seconds", type=positive, metavar="S", help="stop after S seconds (default: until Ctrl-C/SIGTERM)")
+    p.add_argument("--seconds", type=positive_seconds, metavar="S", help="stop after S seconds (default: until Ctrl-C/SIGTERM)")
     p.add_argument("--split-size", type=size, metavar="SIZE", help="start a new file past SIZE (e.g. 500M)")
-    p.add_argument("--split-seconds", type=positive, metavar="S", help="start a new file every S seconds")
+    p.add_argument("--split-seconds", type=positive_seconds, metavar="S", help="start a new file every S seconds")
     p.add_argument("--quiet", action="store_true", help="no progress line")
 
 

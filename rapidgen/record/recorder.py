@@ -63,13 +63,8 @@ class Recorder:
         self._seq = 0
 
     def type_class(self, type_name: str):
-        scoped = type_name.replace(".", "::")
-        for b in self.bindings:
-            try:
-                return b.type_class(scoped)
-            except (KeyError, AttributeError, ImportError):
-                continue
-        return None
+        from rapidgen.live.bindings import find_type_class
+        return find_type_class(self.bindings, type_name)
 
     def _subscriber(self, partition: str):
         if partition not in self._subscribers:

@@ -2,25 +2,14 @@
 or mcap is missing, the file is not a readable recording or a descriptor has errors; 2 usage."""
 from __future__ import annotations
 
+import functools
 import signal
 import sys
 import threading
 import time
 
-from rapidgen.argtypes import domain_id
-from rapidgen.record.command import positive
+from rapidgen.argtypes import domain_id, positive_factor, seconds_from_start
 from rapidgen.textsafe import visible
-
-
-def seconds_from_start(text: str) -> float:
-    import argparse
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
-    if not 0 <= value < float("inf"):
-        raise argparse.ArgumentTypeError(f"'{text}' must be 0 or more seconds from the recording's start")
-    return value
 
 
 def add_parser(sub) -> None:
@@ -31,7 +20,7 @@ def add_parser(sub) -> None:
     p.add_argument("files", nargs="+", metavar="FILE.mcap", help="a recording, or the files of a rotated one in order")
     p.add_argument("--domain", type=domain_id, metavar="N", help="DDS domain (default: the recording's)")
     p.add_argument("--partition", metavar="P", help="publish every channel in partition P (default: its recorded one)")
-    p.add_argument("--rate", type=positive, default=1.0, metavar="X", help="play X times as fast (default 1)")
+    p.add_argument("--rate", type=positive_factor, default=1.0, metavar="X", help="play X times as fast (default 1)")
     p.add_argument("--topics", metavar="T1,T2", help="replay only these topics (comma-separated)")
     p.add_argument("--from", dest="start", type=seconds_from_start, default=0.0, metavar="S",
                    help="start S seconds after the recording's first message")
@@ -75,7 +64,8 @@ def run(args) -> int:
     if loaded is None:
         return 1
     bindings, _models = loaded
-    find = _type_class(bindings)
+    from rapidgen.live.bindings import find_type_class
+    find = functools.partial(find_type_class, bindings)
     schemas: dict[str, bytes] = {}  # the recording's own IDL, for the types no bindings know
     for rec in recs:
         for ch in rec.channels.values():
@@ -132,17 +122,6 @@ def _messages(files: list[str]):
             print(f"rapidgen replay: {exc}", file=sys.stderr)
             return
         yield from messages
-
-
-def _type_class(bindings):
-    def find(type_name: str):
-        for b in bindings:
-            try:
-                return b.type_class(type_name.replace(".", "::"))
-            except (KeyError, AttributeError, ImportError):
-                continue
-        return None
-    return find
 
 
 def _replay(args, recs, configs, type_class, domain: int, plan) -> int:

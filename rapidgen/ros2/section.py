@@ -470,25 +470,38 @@ class _Reader:
     def action(self, value: object, path: tuple, cmd: Any) -> dict | None:
         """An action goal built from the arguments: feedback as EXECUTING acks, the result's
         status as COMPLETED (OK, EXEC_FAILED when aborted or rejected, CANCELED)."""
-        if not self.mapping(value, path, _ACTION_KEYS, ("action", "type")):
+        head = self.typed(value, path, _ACTION_KEYS, "action", "action", msgdefs.full_action_name,
+                          msgdefs.lookup_action, msgdefs.BUILTIN_ACTION)
+        if head is None:
             return None
-        assert isinstance(value, dict)
-        name = self.topic(value["action"], path + ("action",))
-        text = self.text(value["type"], path + ("type",), "an action type")
-        if name is None or text is None:
-            return None
-        full = msgdefs.full_action_name(text)
-        found = msgdefs.lookup_action(full) if full else None
-        if found is None:
-            self.error("RG1501", f"unknown ROS 2 action type {full or text}", path + ("type",),
-                       "write package/action/Type; not installed (no share/<package>/action/<Type>.action) and not "
-                       f"the built-in {', '.join(sorted(msgdefs.BUILTIN_ACTION))}")
-            return None
+        name, full, found = head
         timeout = self.timeout(value, path)
         fields = self.fields_of(value.get("fields", {}), path, found[0], cmd)
         if fields is None or timeout is False:
             return None
         return {"action": name, "type": full, "fields": fields, "timeout": timeout}
+
+    def typed(self, value: object, path: tuple, keys, key: str, kind: str, full_name, lookup,
+              builtin) -> tuple[str, str, Any] | None:
+        """The head of a service call or an action: its name (under `key`) and its installed
+        or built-in ROS 2 type (`kind`: srv or action) -> (name, full type name, definitions)."""
+        if not self.mapping(value, path, keys, (key, "type")):
+            return None
+        assert isinstance(value, dict)
+        what = "a service type" if kind == "srv" else "an action type"
+        name = self.topic(value[key], path + (key,))
+        text = self.text(value["type"], path + ("type",), what)
+        if name is None or text is None:
+            return None
+        full = full_name(text)
+        found = lookup(full) if full else None
+        if found is None:
+            noun = "service" if kind == "srv" else "action"
+            self.error("RG1501", f"unknown ROS 2 {noun} type {full or text}", path + ("type",),
+                       f"write package/{kind}/Type; not installed (no share/<package>/{kind}/<Type>.{kind}) and not "
+                       f"one of the built-in {', '.join(sorted(builtin))}")
+            return None
+        return name, full, found
 
     def timeout(self, value: dict, path: tuple) -> float | None | bool:
         """The timeout in seconds, None when not given, False (reported) when not above 0."""
@@ -502,26 +515,13 @@ class _Reader:
     def call(self, value: object, path: tuple, cmd: Any) -> dict | None:
         """A service call built from the arguments; its response's `success` (when it has one)
         decides COMPLETED/OK or EXEC_FAILED, its `message` becomes the ack's."""
-        if not self.mapping(value, path, _CALL_KEYS, ("service", "type")):
+        head = self.typed(value, path, _CALL_KEYS, "service", "srv", msgdefs.full_srv_name, msgdefs.lookup_srv,
+                          msgdefs.BUILTIN_SRV)
+        if head is None:
             return None
-        assert isinstance(value, dict)
-        service = self.topic(value["service"], path + ("service",))
-        text = self.text(value["type"], path + ("type",), "a service type")
-        if service is None or text is None:
-            return None
-        name = msgdefs.full_srv_name(text)
-        found = msgdefs.lookup_srv(name) if name else None
-        if found is None:
-            self.error("RG1501", f"unknown ROS 2 service type {name or text}", path + ("type",),
-                       "write package/srv/Type; not installed (no share/<package>/srv/<Type>.srv) and not one of "
-                       f"the built-in {', '.join(sorted(msgdefs.BUILTIN_SRV))}")
-            return None
-        request, response = found
-        timeout = value.get("timeout")
-        if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float))
-                                    or timeout <= 0):
-            self.error("RG1505", "timeout must be a number of seconds above 0", path + ("timeout",),
-                       "leave it out to wait until the command is cancelled")
+        service, name, (request, response) = head
+        timeout = self.timeout(value, path)
+        if timeout is False:
             return None
         fields = self.fields_of(value.get("fields", {}), path, request, cmd)
         if fields is None:

@@ -179,13 +179,8 @@ class Watcher:
 
     # ---- types ---------------------------------------------------------------------------
     def type_class(self, type_name: str):
-        scoped = type_name.replace(".", "::")
-        for b in self.bindings:
-            try:
-                return b.type_class(scoped)
-            except (KeyError, AttributeError, ImportError):
-                continue
-        return None
+        from rapidgen.live.bindings import find_type_class
+        return find_type_class(self.bindings, type_name)
 
     def wanted(self, partitions: tuple[str, ...]) -> bool:
         return not self.partitions or any(p in self.partitions or p == "*" for p in partitions)
