@@ -475,6 +475,7 @@ class _Reader:
         if head is None:
             return None
         name, full, found = head
+        assert isinstance(value, dict)  # (typed() checked it)
         timeout = self.timeout(value, path)
         fields = self.fields_of(value.get("fields", {}), path, found[0], cmd)
         if fields is None or timeout is False:
@@ -520,6 +521,7 @@ class _Reader:
         if head is None:
             return None
         service, name, (request, response) = head
+        assert isinstance(value, dict)  # (typed() checked it)
         timeout = self.timeout(value, path)
         if timeout is False:
             return None
