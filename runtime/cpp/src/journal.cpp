@@ -2,6 +2,7 @@
 #include "rapid_runtime/journal.hpp"
 
 #include <fcntl.h>
+#include <pwd.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,6 +11,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <fstream>
@@ -223,6 +225,21 @@ bool make_dirs(const std::string& folder) {
 }
 
 }  // namespace
+
+std::string Journal::default_dir() {
+    const char* state = std::getenv("RAPID_STATE_DIR");
+    if (state != nullptr && *state) return state;
+    const char* xdg = std::getenv("XDG_STATE_HOME");
+    if (xdg != nullptr && *xdg) return std::string(xdg) + "/rapid_runtime";
+    const char* home = std::getenv("HOME");
+    std::string base;
+    if (home != nullptr && *home) {
+        base = home;
+    } else if (const passwd* pw = ::getpwuid(::getuid())) {  // as Python's expanduser("~")
+        base = pw->pw_dir;
+    }
+    return base + "/.local/state/rapid_runtime";
+}
 
 std::string Journal::file_name(const std::string& asset, int domain) {
     std::string name;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <rapid_runtime/journal.hpp>
 #include <rapid_runtime/simulator.hpp>
 #include <rapid_runtime/text.hpp>
 
@@ -31,13 +32,15 @@ struct Args {
     std::string qos;
     double seconds = -1;
     std::size_t command_window = COMMAND_WINDOW;
+    std::string journal;  // --journal DIR (default: Journal::default_dir())
+    bool no_journal = false;
     std::vector<std::string> breaks;  // --break KIND: test builds only (breaks.hpp)
 };
 
 void usage(std::ostream& out, const char* prog, const Tables& t) {
     out << "usage: " << prog
         << " [--simulate] [--sim-speed X] [--domain N] [--transport local|lan|wan] [--qos PROFILES_XML]\n"
-           "       [--seconds S] [--command-window N]\n\n"
+           "       [--seconds S] [--command-window N] [--journal DIR | --no-journal]\n\n"
            "RAPID bridge of asset "
         << visible(t.name)
         << " (rapid_runtime_cpp on Fast DDS).\n"
@@ -52,7 +55,14 @@ void usage(std::ostream& out, const char* prog, const Tables& t) {
            "                      generated qos/fastdds/rapid_qos_profiles.xml)\n"
            "  --seconds S         stop after S seconds (default: run until stopped)\n"
            "  --command-window N  commands remembered (repeated cmdIds, acks kept; default "
-        << COMMAND_WINDOW << ")\n";
+        << COMMAND_WINDOW
+        << ")\n"
+           "  --journal DIR       the restart journal's folder: commands accepted and not finished are\n"
+           "                      answered after a crash (default "
+        << Journal::default_dir()
+        << ",\n"
+           "                      from $RAPID_STATE_DIR, else $XDG_STATE_HOME/rapid_runtime)\n"
+           "  --no-journal        no restart journal (a crash leaves commands unanswered)\n";
 }
 
 bool number(const std::string& text, double& out) {
@@ -77,6 +87,10 @@ bool parse(int argc, char** argv, Args& a, bool& help) {
         }
         if (key == "--simulate") {
             a.simulate = true;
+            continue;
+        }
+        if (key == "--no-journal") {
+            a.no_journal = true;
             continue;
         }
         if (i + 1 >= argc) {
@@ -107,6 +121,9 @@ bool parse(int argc, char** argv, Args& a, bool& help) {
         } else if (key == "--break") {
             ok = !value.empty();
             a.breaks.push_back(value);
+        } else if (key == "--journal") {
+            ok = !value.empty();
+            a.journal = value;
         } else if (key == "--command-window") {
             ok = integer(value, n) && n >= 1;
             a.command_window = static_cast<std::size_t>(n);
@@ -142,6 +159,7 @@ int run_bridge(int argc, char** argv, const Program& program) {
     options.transport = args.transport;
     options.command_window = args.command_window;
     options.breaks = args.breaks;
+    if (!args.no_journal) options.journal = args.journal.empty() ? Journal::default_dir() : args.journal;
     if (args.qos.empty()) options.profiles_xml = std::string(program.profiles_xml);
     else options.profiles_file = args.qos;
 

@@ -57,6 +57,8 @@ public:
     void close(bool clean);
 
     std::size_t lines() const { return lines_; }
+    // $RAPID_STATE_DIR, else $XDG_STATE_HOME/rapid_runtime, else ~/.local/state/rapid_runtime.
+    static std::string default_dir();
     static std::string file_name(const std::string& asset, int domain);
     // One line of the file, and the record of one (false: damaged). Exposed for tests.
     static std::string line_of(const std::map<std::string, std::string>& strings,

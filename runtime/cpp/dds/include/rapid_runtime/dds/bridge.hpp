@@ -46,6 +46,7 @@ struct BridgeOptions {
     std::string transport = "local";
     std::size_t command_window = COMMAND_WINDOW;
     std::int64_t serial = -1;  // the configs' first serial (-1: start time in seconds)
+    std::string journal;  // the restart journal's folder (journal.hpp); empty: no journal
     std::function<void(const std::string&)> log;  // default: stderr, "[asset] text"
     std::vector<std::string> breaks;  // test builds only: rules broken on purpose (breaks.hpp)
 };

@@ -4,6 +4,7 @@
 //
 //   <package>_bridge [--simulate] [--sim-speed X] [--domain N] [--transport local|lan|wan]
 //                    [--qos PROFILES_XML] [--seconds S] [--command-window N]
+//                    [--journal DIR | --no-journal]
 //
 // Prints "bridge ready: asset A, domain D, partition P[, simulated]" once configs and states
 // are out and commands are read, "bridge stopped" at the end. Exit status: 0, 2 for a
