@@ -12,7 +12,7 @@ import subprocess
 
 import pytest
 
-from tests.qos.conftest import DOMAIN_FASTDDS_EXCHANGE, DOMAIN_FASTDDS_QOS, render, write_tree
+from tests.qos.conftest import DOMAIN_FASTDDS_EXCHANGE, DOMAIN_FASTDDS_QOS, ROVER, render, variant, write_tree
 from tests.qos.test_spec import SECTION_6, expected
 
 PARTICIPANTS = ["rapid_local", "rapid_lan", "rapid_wan", "rapid_wan_tcp", "rapid_wan_tcp_server"]
@@ -98,3 +98,40 @@ def test_local_exchange_between_two_fastdds_programs(probe, rover_dir, procs, pr
     ping = procs.start("ping", [str(probe), "ping", xml, domain, "rapid_local", profile, "15", "3"], timeout=25)
     assert procs.wait(ping, 25) == 0, procs.log(ping) + procs.log(echo)
     assert "received 3" in procs.log(ping)
+
+
+def test_a_slow_link_reaches_fast_dds_timers_and_lease(probe, library, tmp_path):
+    """A transport with rtt/lease (docs/qos.md "Slow links"): its participant carries the lease,
+    the announcement period and `rapid.link`; every RAPID profile has a copy <profile>@wan
+    whose reliable writers heartbeat once per round trip; the plain profiles keep Fast DDS's
+    defaults (heartbeat 3 s, lease 20 s), as do transports without rtt."""
+    spec = variant(rtt=2.6, lease=120)
+    xml = str(write_tree(render(spec, ROVER), tmp_path) / "fastdds" / "rapid_qos_profiles.xml")
+    got = {r["participant"]: r for r in run_probe(probe, "pqos", xml, "-", *PARTICIPANTS)}
+    assert (got["rapid_wan"]["lease"], got["rapid_wan"]["announcement"], got["rapid_wan"]["link"]) == \
+        (120.0, 5.2, "wan")
+    assert got["rapid_wan_tcp"]["link"] == "wan" and got["rapid_wan_tcp"]["lease"] == 120.0
+    assert (got["rapid_local"]["lease"], got["rapid_local"]["announcement"], got["rapid_local"]["link"]) == \
+        (20.0, 3.0, "")
+    names = [p.name for p in library.profiles]
+    rows = run_probe(probe, "qos", xml, str(DOMAIN_FASTDDS_QOS), "rapid_local", *names,
+                     *(f"{n}@wan" for n in names))
+    writers = {r["profile"]: r for r in rows if r.get("side") == "writer"}
+    readers = {(r["profile"]) for r in rows if r.get("side") == "reader"}
+    assert len(writers) == len(readers) == 2 * len(names)
+    for name in names:
+        plain, linked = writers[name], writers[f"{name}@wan"]
+        assert plain["heartbeat"] == 3.0 and plain["nack_suppression"] == 0.0
+        assert (linked["heartbeat"], linked["nack_suppression"]) == (2.6, pytest.approx(2.08))
+        if linked["reliability"] == "reliable":
+            assert linked["max_blocking"] == pytest.approx(5.2) and plain["max_blocking"] == pytest.approx(0.1)
+        # the copy is the same profile otherwise
+        strip = ("profile", "heartbeat", "nack_suppression", "max_blocking")
+        assert {k: v for k, v in plain.items() if k not in strip} == {k: v for k, v in linked.items() if k not in strip}
+
+
+def test_lease_alone_keeps_the_default_timers(probe, tmp_path):
+    xml = str(write_tree(render(variant(lease=2.5), None), tmp_path) / "fastdds" / "rapid_qos_profiles.xml")
+    got = {r["participant"]: r for r in run_probe(probe, "pqos", xml, "-", "rapid_wan")}
+    assert (got["rapid_wan"]["lease"], got["rapid_wan"]["announcement"], got["rapid_wan"]["link"]) == (2.5, 2.0, "")
+    assert "@wan" not in open(xml, encoding="utf-8").read()

@@ -86,7 +86,7 @@ def render(spec: QosSpec, model: Model, asset, options: Options) -> list[Generat
     transports, participants = view.fastdds_view(spec, asset)
     files.append(GeneratedFile(FASTDDS_FILE, render_template(
         NAME, "fastdds.xml.j2", transports=transports, participants=participants, streams=streams.profiles(asset),
-        profiles=view.effective_profiles(spec, asset, view.FASTDDS_NAMES, True), **common)))
+        links=view.fastdds_links(spec), profiles=view.effective_profiles(spec, asset, view.FASTDDS_NAMES, True), **common)))
 
     files.append(GeneratedFile(DDS_XML_FILE, render_template(
         NAME, "dds_xml.xml.j2", profiles=view.effective_profiles(spec, asset, view.OMG_NAMES, False), **common)))

@@ -355,10 +355,63 @@ class FastParticipant:
     default_unicast: tuple[Locator, ...]
     transport: str
     ports: Ports | None
+    lease: Duration | None = None  # builtin/discovery_config/leaseDuration
+    announcement: Duration | None = None  # .../leaseAnnouncement
+    link: str | None = None  # property rapid.link: the endpoint profiles <profile>@<link> carry its timers
 
     @property
     def has_builtin(self) -> bool:
-        return self.discovery != "SIMPLE" or bool(self.meta_unicast or self.initial_peers)
+        return self.discovery != "SIMPLE" or bool(self.meta_unicast or self.initial_peers or self.lease)
+
+
+@dataclass(frozen=True)
+class Duration:
+    """A Fast DDS XML duration (<sec>, <nanosec>)."""
+
+    sec: int
+    nanosec: int
+
+    @classmethod
+    def of(cls, seconds: float) -> "Duration":
+        ns = round(seconds * 1e9)
+        return cls(ns // 1_000_000_000, ns % 1_000_000_000)
+
+
+@dataclass(frozen=True)
+class FastLink:
+    """Reliability timers of the endpoint profiles `<profile>@<transport>` for a transport
+    with `rtt` (docs/qos.md "Slow links"): Fast DDS sets them per writer and reader, so each
+    RAPID profile gets a copy per such transport; the C++ runtime picks the copy named by
+    its participant's `rapid.link` property."""
+
+    transport: str
+    heartbeat: Duration  # writer times/heartbeatPeriod
+    nack_suppression: Duration  # writer times/nackSupressionDuration
+    max_blocking: Duration  # reliability max_blocking_time of writers
+
+
+def _fast_lease(t: Transport) -> tuple[Duration | None, Duration | None]:
+    """(leaseDuration, leaseAnnouncement) for a transport with lease and/or rtt. Fast DDS's
+    defaults are 20 s and 3 s; announcements as Cyclone's SPDP interval (_cyclone_link):
+    every 2 round trips, at least 5 s, at most 30 s and 0.8 x the lease. A lease alone keeps
+    the 3 s announcement unless the lease is too short for it."""
+    if t.rtt is None and t.lease is None:
+        return None, None
+    lease = t.lease or 20.0
+    every = min(max(5.0, 2 * t.rtt), 30.0, 0.8 * lease) if t.rtt is not None else min(3.0, 0.8 * lease)
+    return Duration.of(lease), Duration.of(every)
+
+
+def fastdds_links(spec: QosSpec) -> list[FastLink]:
+    """One per transport with `rtt`. The heartbeat once per round trip (Fast DDS's 3 s
+    default is near the Moon's 2.6 s but 10x too slow for a 0.3 s relay): a reader NACKs only
+    on a heartbeat, so a lost sample is asked for about once per round trip. NACKs for a
+    sample that arrive within 0.8 round trip of its (re)send were sent before it could have
+    arrived (the writer's default, 0, resends for each). A keep-all writer whose history is
+    full waits for acknowledgements, which take a round trip: it blocks up to 2 round trips
+    (default 100 ms) before write() fails."""
+    return [FastLink(t.name, Duration.of(t.rtt), Duration.of(0.8 * t.rtt), Duration.of(2 * t.rtt))
+            for t in spec.transports if t.rtt is not None]
 
 
 def _is_loopback(interface: str) -> bool:
@@ -385,7 +438,8 @@ def _fast_udp(t: Transport, size: int | None) -> tuple[FastTransport, FastPartic
         peers = tuple(Locator("udpv4", a) for a in (t.multicast_address or FASTDDS_DEFAULT_MULTICAST, *t.peers))
     default_uc = tuple(Locator("udpv4", a) for a in t.interfaces)
     return tr, FastParticipant(f"rapid_{t.name}", t.description, t.default, None, None, "SIMPLE", None, (),
-                               meta, peers, default_uc, tr.id, None)
+                               meta, peers, default_uc, tr.id, None, *_fast_lease(t),
+                               t.name if t.rtt is not None else None)
 
 
 def fastdds_view(spec: QosSpec, asset) -> tuple[list[FastTransport], list[FastParticipant]]:
@@ -399,7 +453,8 @@ def fastdds_view(spec: QosSpec, asset) -> tuple[list[FastTransport], list[FastPa
         transports.append(tr)
         participants.append(FastParticipant(pa.name, pa.description, pa.is_default, domain, pname, pa.discovery,
                                             pa.prefix, pa.servers, pa.meta_unicast, pa.initial_peers,
-                                            pa.default_unicast, pa.transport, part.ports))
+                                            pa.default_unicast, pa.transport, part.ports, pa.lease,
+                                            pa.announcement, pa.link))
 
     for t in spec.transports:
         add(*_fast_udp(t, part.max_message_size))
@@ -411,12 +466,13 @@ def fastdds_view(spec: QosSpec, asset) -> tuple[list[FastTransport], list[FastPa
         client = FastTransport(f"rapid_tcp_{t.name}", "TCPv4", None, t.interfaces, None, listen)
         add(client, FastParticipant(f"rapid_{t.name}_tcp", f"{t.name} over TCP: a client of the discovery server",
                                     False, None, None, "CLIENT", None, (RemoteServer(ds.prefix, server_loc),),
-                                    (), (), (), client.id, None))
+                                    (), (), (), client.id, None, *_fast_lease(t),
+                                    t.name if t.rtt is not None else None))
         server = FastTransport(f"rapid_tcp_{t.name}_server", "TCPv4", None, t.interfaces, None, (ds.port,))
         add(server, FastParticipant(f"rapid_{t.name}_tcp_server",
                                     f"the discovery server of {t.name} over TCP (fastdds discovery -x)",
                                     False, None, None, "SERVER", ds.prefix, (), (server_loc,), (), (),
-                                    server.id, None))
+                                    server.id, None, *_fast_lease(t)))
     return transports, participants
 
 

@@ -155,6 +155,14 @@ int open_session(const std::string& xml, int domain, const std::string& profile,
     return (s.ping && s.pong) ? 0 : fail("cannot create topics");
 }
 
+double seconds(const eprosima::fastrtps::Duration_t& d) { return d.seconds + d.nanosec * 1e-9; }
+
+std::string link_of(const DomainParticipantQos& q) {
+    for (const auto& p : q.properties().properties())
+        if (p.name() == "rapid.link") return p.value();
+    return "";
+}
+
 void print_participant(const std::string& profile) {
     DomainParticipantQos q;
     DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(profile, q);
@@ -173,7 +181,11 @@ void print_participant(const std::string& profile) {
               << ",\"discovery\":" << static_cast<int>(q.wire_protocol().builtin.discovery_config.discoveryProtocol)
               << ",\"multicast_locators\":" << q.wire_protocol().builtin.metatrafficMulticastLocatorList.size()
               << ",\"initial_peers\":" << q.wire_protocol().builtin.initialPeersList.size()
-              << ",\"transports\":" << q.transport().user_transports.size() << "}" << std::endl;
+              << ",\"transports\":" << q.transport().user_transports.size()
+              << ",\"lease\":" << seconds(q.wire_protocol().builtin.discovery_config.leaseDuration)
+              << ",\"announcement\":"
+              << seconds(q.wire_protocol().builtin.discovery_config.leaseDuration_announcementperiod)
+              << ",\"link\":\"" << link_of(q) << "\"}" << std::endl;
 }
 
 std::string limits(const ResourceLimitsQosPolicy& l) {
@@ -198,6 +210,9 @@ int run_qos(Session& s, const std::vector<std::string>& profiles) {
                   << ",\"publish_mode\":\""
                   << (wq.publish_mode().kind == ASYNCHRONOUS_PUBLISH_MODE ? "asynchronous" : "synchronous")
                   << "\"," << limits(wq.resource_limits())
+                  << ",\"heartbeat\":" << seconds(wq.reliable_writer_qos().times.heartbeatPeriod)
+                  << ",\"nack_suppression\":" << seconds(wq.reliable_writer_qos().times.nackSupressionDuration)
+                  << ",\"max_blocking\":" << seconds(wq.reliability().max_blocking_time)
                   << ",\"partition\":" << partitions(pub->get_qos().partition()) << "}" << std::endl;
         std::cout << "{\"profile\":\"" << name << "\",\"side\":\"reader\",\"reliability\":\""
                   << name_of(rq.reliability().kind) << "\",\"durability\":\"" << name_of(rq.durability().kind)

@@ -30,6 +30,10 @@ Node::Node(const NodeOptions& options) : partition_(options.partition) {
     DomainParticipantQos pqos;
     if (factory->get_participant_qos_from_profile("rapid_" + options.transport, pqos) != ReturnCode_t::RETCODE_OK)
         throw DdsError("no participant profile rapid_" + options.transport + " in the loaded QoS profiles");
+    // A transport with rtt (docs/qos.md "Slow links") names the copies of the endpoint
+    // profiles that carry its reliability timers: Fast DDS sets those per writer and reader.
+    for (const auto& property : pqos.properties().properties())
+        if (property.name() == "rapid.link") link_ = property.value();
     const std::string enclave = security_enclave(partition_);  // DDS Security hook (security.hpp)
     if (!enclave.empty()) apply_security(pqos, enclave);
     participant_ = factory->create_participant(options.domain, pqos);
@@ -67,7 +71,9 @@ Topic* Node::topic_of(const std::string& name, const std::string& type) {
 
 DataWriter* Node::make_writer(Topic* topic, const std::string& profile, const WriterTweak& tweak) {
     DataWriterQos qos;
-    if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK)
+    if ((link_.empty() || publisher_->get_datawriter_qos_from_profile(profile + "@" + link_, qos) !=
+                              ReturnCode_t::RETCODE_OK) &&
+        publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK)
         throw DdsError("no writer profile " + profile + " in the loaded QoS profiles");
     if (tweak) tweak(qos);
     DataWriter* w = publisher_->create_datawriter(topic, qos);
@@ -77,7 +83,9 @@ DataWriter* Node::make_writer(Topic* topic, const std::string& profile, const Wr
 
 DataReader* Node::make_reader(Topic* topic, const std::string& profile, const ReaderTweak& tweak) {
     DataReaderQos qos;
-    if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK)
+    if ((link_.empty() || subscriber_->get_datareader_qos_from_profile(profile + "@" + link_, qos) !=
+                              ReturnCode_t::RETCODE_OK) &&
+        subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK)
         throw DdsError("no reader profile " + profile + " in the loaded QoS profiles");
     if (tweak) tweak(qos);
     DataReader* r = subscriber_->create_datareader(topic, qos);

@@ -90,6 +90,7 @@ private:
 
     std::recursive_mutex mutex_;
     std::string partition_;
+    std::string link_;  // the participant profile's rapid.link: endpoint profiles <profile>@<link> first
     eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
     eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
     eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
