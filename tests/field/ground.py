@@ -191,11 +191,16 @@ def late(args) -> dict:
     got_configs: dict[str, int] = {}
     state = None
     end = time.monotonic() + WAIT
-    while time.monotonic() < end and not (ids <= set(final) and len(got_configs) == len(configs) and state):
+    # until each listed command's COMPLETED: a writer may keep more than the last ack per
+    # command (the C++ bridge keeps 8), which arrive over a lossy link in any number of takes
+    done: set[str] = set()
+    while time.monotonic() < end and not (ids <= done and len(got_configs) == len(configs) and state):
         for s in acks_reader.take(N=4096):
             cmd_id, status, completed, message = M.ack_fields(s)
             if cmd_id in ids:
                 final.setdefault(cmd_id, []).append([status, completed, message])
+                if status == COMPLETED:
+                    done.add(cmd_id)
         for topic, r in configs.items():
             for s in r.take(N=16):
                 got_configs[topic] = s.hdr.serial
@@ -203,7 +208,23 @@ def late(args) -> dict:
             state = {part: [[rec.cmd.cmdId, str(rec.trStatus).split(".")[-1]] for rec in getattr(s, part).records]
                      for part in ("pending", "active", "completed")}
         time.sleep(0.05)
-    return {"acks": final, "configs": got_configs, "config_topics": sorted(configs), "queue": state}
+    return {"acks": final, "configs": got_configs, "config_topics": sorted(configs), "queue": state,
+            "ack_writers_blocking": _blocking(acks_reader)}
+
+
+def _blocking(reader) -> list:
+    """The max_blocking_time (s) of each writer matched to reader, as discovery announced it:
+    shows which QoS profile a remote writer was made with (docs/qos.md, Fast DDS's @link
+    profiles set it from the link's rtt)."""
+    from cyclonedds.qos import Policy
+    out = []
+    for h in reader.get_matched_publications():
+        try:
+            rel = reader.get_matched_publication_data(h).qos[Policy.Reliability]
+        except Exception:  # left meanwhile, or announced without it
+            continue
+        out.append(getattr(rel, "max_blocking_time", 0) / 1e9)
+    return out
 
 
 def main() -> int:

@@ -72,3 +72,32 @@ def start_bridge(link: Link, config: Path, domain: int, *extra: str, asset: str 
     link.children.append(bridge.proc)
     bridge.wait_ready(60)
     return bridge
+
+
+def site_fastdds(folder: Path, rtt: float | None, lease: float | None, transport: str = "wan",
+                 participants: int | None = None, asset: str = "k10") -> Path:
+    """The Fast DDS profiles of the same site library as site_library(), rendered for the
+    asset by rapidgen's qos back end (the C++ bridge's --qos file; its participant profile is
+    rapid_<transport>)."""
+    import yaml
+
+    from rapidgen.backends import qos as qos_backend
+    from rapidgen.backends.base import Options
+    from rapidgen.diagnostics import DiagnosticSink
+    from rapidgen.generate import load_inputs
+    from rapidgen.qos.spec import parse_qos
+
+    data = yaml.safe_load((ROOT / "specs" / "qos" / "rapid.yaml").read_text(encoding="utf-8"))
+    t = data["transports"][transport]
+    t["peers"] = list(ADDRESS.values())
+    for key, value in (("rtt", rtt), ("lease", lease), ("max_participants_per_host", participants)):
+        if value is not None:
+            t[key] = value
+    sink = DiagnosticSink()
+    spec = parse_qos(yaml.safe_dump(data, sort_keys=False), str(folder / "site-qos.yaml"), sink)
+    inputs = load_inputs([str(ROOT / "specs" / "assets" / f"{asset}.yaml")], [str(ROOT / "specs" / "rapid")], sink)
+    assert spec is not None and inputs is not None and not sink.has_errors, sink
+    files = qos_backend.render(spec, inputs.model, inputs.asset, Options(source="site-qos.yaml"))
+    out = folder / f"site-{transport}-fastdds.xml"
+    out.write_text(next(f.content for f in files if f.path == qos_backend.FASTDDS_FILE), encoding="utf-8")
+    return out
