@@ -10,6 +10,7 @@ from rapidgen.argtypes import domain_id
 from rapidgen.cmd.arguments import complete
 from rapidgen.cmd.dictionary import live_config, merged_tables
 from rapidgen.cmd.line import CMDLINE, CmdLine, did_you_mean, report
+from rapidgen.cmd.recover import MAX_RESENDS, POLL, AssetWatch
 from rapidgen.cmd.timing import DISCOVERY_TRIPS, allow, round_trip
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 from rapidgen.textsafe import visible
@@ -157,12 +158,21 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
         shown = " ".join(f"{p.name}={_shown(v)}" for p, (_t, v) in zip(payload[0].params, payload[1]))
         if args.target:
             commander.follow(args.target)
+        watch = AssetWatch(commander, args.rtt)  # before the send: who the asset is now
         cmd_id = commander.send(args.subsystem, args.command_name, payload[1], action="QUEUE_" + action,
                                 target=args.target or "", cmd_id=args.id)
+
+        def again() -> None:  # the same command, the same cmdId (docs/runtime.md, "The ground's part")
+            print(f"cmd: {tables.name} came back (a new participant) and has not answered {visible(cmd_id)} "
+                  f"within {watch.settle:g} s: the command was lost in the old one; sending it again with the "
+                  f"same cmdId ({watch.resends} of {MAX_RESENDS})", file=sys.stderr, flush=True)
+            commander.send(args.subsystem, args.command_name, payload[1], action="QUEUE_" + action,
+                           target=args.target or "", cmd_id=cmd_id)
         print(f"{tables.name} <- {args.subsystem}/{args.command_name}" + (f" {shown}" if shown else "")
               + f"  [cmdId {cmd_id}, QUEUE_{action}" + (f" {args.target}" if args.target else "")
               + f", from {args.source}]", flush=True)
-        acks = _follow(commander, cmd_id, allow(args.timeout, args.rtt), stop_at_first=args.no_wait)
+        acks = _follow(commander, cmd_id, allow(args.timeout, args.rtt), stop_at_first=args.no_wait,
+                       watch=None if args.no_wait else watch, again=again)
         _warn_strangers(commander, cmd_id)
         if not acks:
             print(f"  no ack within {allow(args.timeout, args.rtt):g} s", flush=True)
@@ -213,8 +223,11 @@ def _warn_strangers(commander, cmd_id: str) -> None:
         print(f"cmd: {line}", file=sys.stderr)
 
 
-def _follow(commander, cmd_id: str, timeout: float, stop_at_first: bool = False) -> list:
-    """Print cmd_id's acks as they come, until COMPLETED (or the first, or timeout)."""
+def _follow(commander, cmd_id: str, timeout: float, stop_at_first: bool = False, watch: AssetWatch | None = None,
+            again=None) -> list:
+    """Print cmd_id's acks as they come, until COMPLETED (or the first, or timeout). With a
+    watch: when the asset comes back without answering, again() sends the command again
+    (recover.py) and the wait starts over."""
     from rapid_runtime.acks import COMPLETED
 
     end, printed = time.monotonic() + timeout, 0
@@ -226,7 +239,11 @@ def _follow(commander, cmd_id: str, timeout: float, stop_at_first: bool = False)
             printed = len(acks)
             if acks and (stop_at_first or any(a[0] == COMPLETED for a in acks)):
                 return list(acks)
-            left = end - time.monotonic()
+            now = time.monotonic()
+            if watch is not None and watch.due(now):
+                again()
+                end = max(end, now + timeout)  # bounded: MAX_RESENDS
+            left = end - now
             if left <= 0:
                 return list(acks)
-            commander.cond.wait(left)
+            commander.cond.wait(left if watch is None else min(left, POLL))

@@ -1,6 +1,9 @@
 """The restart tests' bridge: the generated Restarter package served by rapid_runtime, its
 Worker/work handler appending the cmdId to EXECFILE as it starts (one O_APPEND write: a
 kill -9 loses nothing written), so the test counts how often each command ran.
+With RESTART_STALL=PREFIX a command whose cmdId starts with PREFIX is taken from the DDS
+reader and never reaches the manager (nor the journal): `stalled CMDID` goes to EXECFILE
+and the intake blocks, as a process being killed would leave it.
 
     python -m tests.field.restart_bridge PYDIR EXECFILE [BRIDGE ARGS...]
 """
@@ -9,6 +12,7 @@ from __future__ import annotations
 import importlib
 import os
 import sys
+import threading
 
 
 def main(argv: list[str]) -> int:
@@ -26,6 +30,18 @@ def main(argv: list[str]) -> int:
             if not ctx.sleep(ms / 1000):
                 return "interrupted"
             return "worked"
+
+    stall = os.environ.get("RESTART_STALL")
+    if stall:
+        from rapid_runtime.manager import CommandManager
+        receive = CommandManager.receive
+
+        def stalled(self, cmd) -> None:
+            if cmd.cmd_id.startswith(stall):
+                os.write(fd, f"stalled {cmd.cmd_id}\n".encode())
+                threading.Event().wait()  # until the test kills the process
+            receive(self, cmd)
+        CommandManager.receive = stalled  # type: ignore[method-assign]
 
     return bridge_main(tables, rapid, Worker, package="rapid_restarter", argv=rest)
 

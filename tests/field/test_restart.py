@@ -226,7 +226,55 @@ def test_rapidgen_cmd_waiting_across_a_kill_learns_the_outcome(tmp_path):
                 p.wait()
     assert cmd.returncode == 1, out + err
     assert "asset restarted while it ran" in out + err and "EXEC_FAILED" in out + err, out + err
+    assert "sending it again" not in err, err  # the journal answered it: nothing to send again
     assert executions.read_text().split() == ["long-1"]
+
+
+RESEND_DOMAIN = 84
+
+
+def test_rapidgen_cmd_sends_again_a_command_lost_in_a_killed_bridge(tmp_path):
+    """A command the bridge took from its DDS reader but never journaled (RESTART_STALL holds
+    it there, as a process being killed leaves it) is gone with the process; the restarted
+    bridge knows nothing of it. rapidgen cmd, waiting, sees the asset come back without an
+    answer, sends the command again with the same cmdId and says so; it runs once."""
+    import time
+
+    from tests.field.restart_asset import PACKAGE, env_for
+    pydir = generate(tmp_path / "gen")
+    env = env_for(pydir)
+    executions = tmp_path / "executions"
+    argv = [sys.executable, "-m", "tests.field.restart_bridge", str(pydir), str(executions), "--domain",
+            str(RESEND_DOMAIN), "--journal", str(tmp_path / "journal")]
+
+    def start(extra: dict) -> subprocess.Popen:
+        proc = subprocess.Popen(argv, cwd=ROOT, env=dict(env, **extra), stdout=subprocess.PIPE,
+                                stderr=subprocess.DEVNULL, text=True)
+        line = proc.stdout.readline() if proc.stdout else ""
+        assert line.startswith("bridge ready"), line
+        return proc
+
+    bridge = start({"RESTART_STALL": "lost-"})
+    cmd = subprocess.Popen([sys.executable, "-m", "rapidgen", "cmd", PACKAGE, "Belt", "work", "ms=100", "--action",
+                            "APPEND", "--id", "lost-1", "--domain", str(RESEND_DOMAIN), "--timeout", "60"], cwd=ROOT,
+                           env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        end = time.monotonic() + 60
+        while not (executions.exists() and "stalled lost-1" in executions.read_text()):
+            assert time.monotonic() < end and cmd.poll() is None, cmd.communicate()
+            time.sleep(0.05)
+        bridge.kill()
+        bridge.wait()
+        bridge = start({})
+        out, err = cmd.communicate(timeout=120)
+    finally:
+        for p in (cmd, bridge):
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+    assert cmd.returncode == 0 and "COMPLETED OK" in out, out + err
+    assert "sending it again with the same cmdId (1 of 3)" in err and err.count("sending it again") == 1, err
+    assert executions.read_text().splitlines() == ["stalled lost-1", "lost-1"]  # run once, by the new bridge
 
 
 # ---- the C++ runtime's journal: the same file format ------------------------------------------------
