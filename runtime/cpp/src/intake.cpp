@@ -115,18 +115,28 @@ bool Intake::next(std::unique_lock<std::mutex>& lock, Next& out) {
 }
 
 void Intake::run() {
+    std::vector<Next> batch;
     for (;;) {
-        Next got{Cmd{}, false};
+        batch.clear();
         {
             std::unique_lock<std::mutex> lock(mutex_);
+            Next got{Cmd{}, false};
             if (!next(lock, got)) return;
+            batch.push_back(std::move(got));
+            // what is waiting already goes in one manager batch: one journal sync
+            while (batch.size() < BATCH && (!fifos_.empty() || !shed_.empty()) && next(lock, got))
+                batch.push_back(std::move(got));
         }
-        try {
-            if (got.shed) sink_.refuse(got.cmd, busy_message(per_writer_));
-            else sink_.receive(got.cmd);
-        } catch (const std::exception& e) {  // a bad command must not stop intake
-            log_("command '" + got.cmd.cmd_id + "' not handled: " + e.what());
+        sink_.begin_batch();
+        for (auto& got : batch) {
+            try {
+                if (got.shed) sink_.refuse(got.cmd, busy_message(per_writer_));
+                else sink_.receive(got.cmd);
+            } catch (const std::exception& e) {  // a bad command must not stop intake
+                log_("command '" + got.cmd.cmd_id + "' not handled: " + e.what());
+            }
         }
+        sink_.end_batch();
     }
 }
 

@@ -226,6 +226,11 @@ bool make_dirs(const std::string& folder) {
 
 }  // namespace
 
+std::int64_t restart_serial(std::int64_t requested, const JournalRecovered& recovered, std::int64_t now) {
+    if (requested >= 0 || recovered.last_serial <= 0) return requested;
+    return std::max(now, recovered.last_serial + 1);
+}
+
 std::string Journal::default_dir() {
     const char* state = std::getenv("RAPID_STATE_DIR");
     if (state != nullptr && *state) return state;
@@ -390,18 +395,43 @@ void Journal::apply(const JournalEntry& e) {
     else live_.push_back(e);
 }
 
+std::size_t Journal::lines() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return lines_;
+}
+
+std::size_t Journal::syncs() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return syncs_;
+}
+
+bool Journal::unsynced() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return unsynced_;
+}
+
+void Journal::failed(const std::string& what) {
+    if (failing_) return;
+    failing_ = true;
+    log_("journal " + path_ + ": " + what + " (" + std::strerror(errno) +
+         "): a crash now would leave commands without an outcome");
+}
+
 void Journal::start(std::int64_t serial) {
+    std::lock_guard<std::mutex> lock(mutex_);
     append(line_of({{"k", "start"}}, {{"serial", serial}, {"t", static_cast<std::int64_t>(std::time(nullptr))}}));
     last_serial_ = std::max(last_serial_, serial);
 }
 
 void Journal::serial(std::int64_t serial) {
+    std::lock_guard<std::mutex> lock(mutex_);
     if (serial <= last_serial_) return;
     last_serial_ = serial;
     append(line_of({{"k", "s"}}, {{"serial", serial}}));
 }
 
 void Journal::note(const JournalEntry& entry) {
+    std::lock_guard<std::mutex> lock(mutex_);
     if (entry.state != 'c') {
         auto it = std::find_if(live_.begin(), live_.end(), [&](const JournalEntry& o) { return o.cmd_id == entry.cmd_id; });
         if (it != live_.end() && (it->state == entry.state || it->state == 'x')) return;  // progress, requeue
@@ -411,18 +441,21 @@ void Journal::note(const JournalEntry& entry) {
 }
 
 bool Journal::sync() {
+    std::lock_guard<std::mutex> lock(mutex_);
     if (!unsynced_ || fd_ < 0) return true;
     if (::fdatasync(fd_) != 0) {
-        log_(std::string("journal not written (") + std::strerror(errno) +
-             "): a crash now would leave commands without an outcome");
+        failed("not synced");
         return false;
     }
+    failing_ = false;
     unsynced_ = false;
+    ++syncs_;
     if (lines_ > kCompactFactor * window_ + live_.size() + 16) rewrite();
     return true;
 }
 
 void Journal::close(bool clean) {
+    std::lock_guard<std::mutex> lock(mutex_);
     if (fd_ < 0) return;
     if (clean) append(line_of({{"k", "stop"}}, {}));
     ::fdatasync(fd_);
@@ -433,8 +466,7 @@ void Journal::close(bool clean) {
 void Journal::append(const std::string& line) {
     if (fd_ < 0) return;
     // O_APPEND: a kill -9 loses nothing written; a power cut, what was not synced
-    if (::write(fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
-        log_(std::string("journal: a record not written (") + std::strerror(errno) + ")");
+    if (::write(fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size())) failed("a record not written");
     ++lines_;
     unsynced_ = true;
 }

@@ -60,6 +60,24 @@ constexpr std::pair<std::string_view, std::string_view> BUILTINS[] = {
     {"AccessControl", "transferControl"},
 };
 
+// A journal's completion name back to the enum (an unknown one, from a newer writer: EXEC_FAILED).
+Completion completion_named(const std::string& name) {
+    for (Completion c : {Completion::Not, Completion::Ok, Completion::BadSyntax, Completion::ExecFailed,
+                         Completion::Canceled})
+        if (name_of(c) == name) return c;
+    return Completion::ExecFailed;
+}
+
+// A journal entry as the Cmd its acks need (header names, serial, cmdId).
+Cmd entry_cmd(const JournalEntry& e) {
+    Cmd c;
+    c.cmd_id = e.cmd_id;
+    c.src_name = e.src_name;
+    c.asset_name = e.asset_name;
+    c.serial = static_cast<std::int32_t>(e.serial);
+    return c;
+}
+
 bool builtin_command(const CommandRef& ref) {
     if (!ref.spec->standard) return false;
     for (const auto& [type, name] : BUILTINS)
@@ -70,7 +88,7 @@ bool builtin_command(const CommandRef& ref) {
 }  // namespace
 
 CommandManager::CommandManager(const Tables& tables, Handlers& handlers, Outbox& outbox, ManagerOptions options)
-    : tables_(tables), handlers_(handlers), out_(outbox), options_(std::move(options)) {
+    : tables_(tables), handlers_(handlers), out_(outbox), options_(std::move(options)), journal_(options_.journal) {
     if (options_.window < 1) throw std::invalid_argument("command window 0: at least 1");
     if (options_.queue_limit < 1 || options_.bypass_limit < 1)
         throw std::invalid_argument("queue limit and bypass limit: at least 1 each");
@@ -92,8 +110,40 @@ CommandManager::~CommandManager() {
 
 // ---- intake -------------------------------------------------------------------------------
 
+// ---- batches: the journal synced before the acks that promise what it holds --------------
+
+void CommandManager::begin_batch() {
+    mutex_.lock();
+    ++depth_;
+}
+
+void CommandManager::end_batch() {
+    if (--depth_ == 0) flush();
+    mutex_.unlock();
+}
+
+void CommandManager::emit(std::function<void()> write) {
+    if (journal_ != nullptr && depth_ > 0) outgoing_.push_back(std::move(write));
+    else write();
+}
+
+void CommandManager::flush() {
+    if (journal_ != nullptr) journal_->sync();  // a failure is logged once; the answers go out all the same
+    std::vector<std::function<void()>> out;
+    out.swap(outgoing_);
+    for (auto& write : out) {
+        try {
+            write();
+        } catch (const std::exception& e) {  // (from a batch's end: must not throw)
+            out_.log(std::string("a held-back write failed: ") + e.what());
+        }
+    }
+}
+
+// ---- intake -------------------------------------------------------------------------------
+
 void CommandManager::receive(const Cmd& in) {
-    Lock lock(mutex_);
+    Batch batch(*this);
     if (in.asset_name != tables_.name) {
         out_.log("ignored '" + in.cmd_id + "': addressed to asset '" + in.asset_name + "'");
         return;
@@ -112,10 +162,10 @@ void CommandManager::receive(const Cmd& in) {
 }
 
 void CommandManager::refuse(const Cmd& cmd, const std::string& why) {
-    Lock lock(mutex_);
+    Batch batch(*this);
     if (cmd.asset_name != tables_.name || cmd.cmd_id.empty()) return;
     if (seen_.count(cmd.cmd_id) != 0 || live(cmd.cmd_id)) return;  // its acks belong to that command
-    send_ack(cmd, AckStatus::Completed, Completion::ExecFailed, why);
+    send_ack(cmd, AckStatus::Completed, Completion::ExecFailed, why, false);  // not remembered: may come again
 }
 
 bool CommandManager::is_control(const Cmd& cmd) const {
@@ -271,7 +321,9 @@ void CommandManager::start(const RunPtr& run) {
     run->ctx = std::make_shared<CommandContext>(run->cmd, run->ref, [this, weak](const std::string& text) {
         if (auto r = weak.lock()) progress(r, text);
     });
-    workers_.spawn([this, run, ctx = run->ctx] { execute(run); });
+    // started with the acks, after the journal's sync: a handler never moves hardware for a
+    // command whose "running" step a power cut could still erase
+    emit([this, run] { workers_.spawn([this, run, ctx = run->ctx] { execute(run); }); });
 }
 
 void CommandManager::preempt(const RunPtr& run) {
@@ -335,8 +387,9 @@ void CommandManager::execute(const RunPtr& run) {
         completion = Completion::ExecFailed;
         message = "handler error: unknown exception";
     }
-    Lock lock(mutex_);
+    Batch batch(*this);
     bypass_.erase(std::remove(bypass_.begin(), bypass_.end(), run), bypass_.end());
+    if (run->done) return;  // answered already (the bridge stopping): nothing follows a COMPLETED
     if (run->requeue && completion == Completion::Canceled) {
         run->requeue = false;
         run->done = false;
@@ -352,14 +405,15 @@ void CommandManager::execute(const RunPtr& run) {
 }
 
 void CommandManager::progress(const RunPtr& run, const std::string& text) {
-    Lock lock(mutex_);
+    Batch batch(*this);
     if (!run->done) send_ack(*run->cmd, AckStatus::Executing, Completion::Not, text);
 }
 
 void CommandManager::complete(const RunPtr& run, Completion completion, const std::string& message) {
     run->done = true;
     send_ack(*run->cmd, AckStatus::Completed, completion, message);
-    if (shutdown_after_ == run && options_.on_shutdown) workers_.spawn(options_.on_shutdown);
+    if (shutdown_after_ == run && options_.on_shutdown)  // once its COMPLETED ack is written
+        emit([this] { workers_.spawn(options_.on_shutdown); });
     if (run->queued) {
         if (active_ == run) active_.reset();
         record_done(run, completion);
@@ -388,15 +442,39 @@ void CommandManager::cancel(const RunPtr& run) {
 
 // ---- state topics -------------------------------------------------------------------------
 
-void CommandManager::send_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message) {
-    out_.ack(cmd, status, completion, clip(message));
-    if (status != AckStatus::Completed) return;
-    // each command's last ack: keep the last `window` commands' acks
-    acked_.push_back(key_of(cmd));
+void CommandManager::send_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message,
+                              bool journal) {
+    std::string text = clip(message);
+    if (journal_ != nullptr && journal) {  // the step the ack promises, recorded first
+        char step = status == AckStatus::Queued      ? 'q'
+                    : status == AckStatus::Executing ? 'x'
+                    : status == AckStatus::Completed ? 'c'
+                                                     : '\0';
+        if (step != '\0') {
+            bool c = step == 'c';
+            journal_->note(JournalEntry{cmd.cmd_id, cmd.src_name, cmd.asset_name, cmd.serial, step,
+                                        c ? std::string(name_of(completion)) : std::string(), c ? text : std::string()});
+        }
+    }
+    if (journal_ != nullptr && depth_ > 0)
+        outgoing_.push_back([this, key = key_of(cmd), status, completion, text] { write_ack(key, status, completion, text); });
+    else
+        write_ack(cmd, status, completion, text);
+    if (status == AckStatus::Completed) keep(key_of(cmd));  // each command's last ack
+}
+
+void CommandManager::write_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message) {
+    out_.ack(cmd, status, completion, message);
+}
+
+void CommandManager::keep(Cmd key) {
+    // keep the last `window` commands' acks
+    acked_.push_back(std::move(key));
     while (acked_.size() > options_.window) {
         Cmd old = std::move(acked_.front());
         acked_.pop_front();
-        if (!live(old.cmd_id)) out_.retire(old);  // (its id sent again after the window, and still running)
+        if (live(old.cmd_id)) continue;  // (its id sent again after the window, and still running)
+        emit([this, old = std::move(old)] { out_.retire(old); });
     }
 }
 
@@ -411,13 +489,72 @@ void CommandManager::publish_queue() {
     }
     if (active_) active.push_back({active_->cmd, RecordResult::Init, RecordStatus::InProcess});
     for (const auto& d : completed_) done.push_back({d.run->cmd, result_of(d.completion), status_of(d.completion)});
-    out_.queue_state(suspended_ ? -1 : active_ ? 1 : 0, pending, active, done);
+    int code = suspended_ ? -1 : active_ ? 1 : 0;
+    if (journal_ != nullptr && depth_ > 0)
+        outgoing_.push_back([this, code, pending = std::move(pending), active = std::move(active),
+                             done = std::move(done)] { out_.queue_state(code, pending, active, done); });
+    else
+        out_.queue_state(code, pending, active, done);
 }
 
-void CommandManager::publish_access() { out_.access_state(control_.controller(), control_.requestors()); }
+void CommandManager::publish_access() {
+    emit([this, controller = control_.controller(), requestors = control_.requestors()] {
+        out_.access_state(controller, requestors);
+    });
+}
+
+std::pair<std::size_t, std::size_t> CommandManager::restore(const JournalRecovered& recovered) {
+    Batch batch(*this);
+    for (const auto& e : recovered.finished) {
+        Cmd key = entry_cmd(e);
+        remember(e.cmd_id);
+        emit([this, key, completion = completion_named(e.completion), message = e.message] {
+            write_ack(key, AckStatus::Completed, completion, message);
+        });
+        keep(std::move(key));
+    }
+    for (const auto& e : recovered.unfinished) {
+        remember(e.cmd_id);
+        bool queued = e.state == 'q';
+        send_ack(entry_cmd(e), AckStatus::Completed, queued ? Completion::Canceled : Completion::ExecFailed,
+                 queued ? RESTARTED_QUEUED : RESTARTED_RUNNING);
+    }
+    return {recovered.unfinished.size(), recovered.finished.size()};
+}
+
+std::size_t CommandManager::abandon() {
+    Batch batch(*this);
+    std::vector<RunPtr> runs(pending_.items().begin(), pending_.items().end());
+    if (active_) runs.push_back(active_);
+    runs.insert(runs.end(), bypass_.begin(), bypass_.end());
+    std::vector<RunPtr> waiting(pending_.items().begin(), pending_.items().end());
+    for (const auto& r : waiting) {
+        pending_.remove(r);
+        r->done = true;
+        send_ack(*r->cmd, AckStatus::Completed, Completion::Canceled, STOPPED_QUEUED);
+    }
+    for (const auto& r : runs) {
+        if (r->done) continue;
+        r->done = true;
+        if (r->ctx) r->ctx->cancel();
+        send_ack(*r->cmd, AckStatus::Completed, Completion::ExecFailed, STOPPED_RUNNING);
+    }
+    active_.reset();
+    bypass_.clear();
+    idle_.notify_all();
+    return runs.size();
+}
+
+Journal* CommandManager::release_journal() {
+    Batch batch(*this);  // (what a batch holds back goes out first)
+    flush();
+    Journal* j = journal_;
+    journal_ = nullptr;
+    return j;
+}
 
 void CommandManager::publish_states() {
-    Lock lock(mutex_);
+    Batch batch(*this);
     publish_queue();
     if (has_control_) publish_access();
 }

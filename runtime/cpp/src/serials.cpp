@@ -5,7 +5,8 @@
 
 namespace rapid_runtime {
 
-Serials::Serials(std::int64_t start, std::function<std::int64_t()> now) : now_(std::move(now)) {
+Serials::Serials(std::int64_t start, std::function<std::int64_t()> now, std::function<void(std::int32_t)> issued)
+    : now_(std::move(now)), issued_(std::move(issued)) {
     if (!now_)
         now_ = [] {
             return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
@@ -13,6 +14,7 @@ Serials::Serials(std::int64_t start, std::function<std::int64_t()> now) : now_(s
         };
     start_ = static_cast<std::int32_t>(start < 0 ? now_() : start);  // Header.serial is a long (32 bits)
     last_ = start_;
+    if (issued_) issued_(start_);
 }
 
 std::int32_t Serials::of(const std::string& topic) const {
@@ -27,6 +29,7 @@ std::pair<std::int32_t, bool> Serials::update(const std::string& topic, const st
         last_ = std::max<std::int32_t>(last_ + 1, static_cast<std::int32_t>(now_()));
     }
     topics_[topic] = {content, last_};
+    if (issued_) issued_(last_);
     return {last_, true};
 }
 

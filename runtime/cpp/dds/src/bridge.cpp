@@ -1,6 +1,7 @@
 #include "rapid_runtime/dds/bridge.hpp"
 
 #include <cstdio>
+#include <ctime>
 #include <iostream>
 
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
@@ -30,17 +31,26 @@ std::string writer_id(const InstanceHandle_t& handle) {
 }  // namespace
 
 Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
-    : tables_(tables),
-      breaks_(std::make_unique<Breaks>(options.breaks, tables)),
-      serials_(breaks_->on("zero-serial") ? 0 : options.serial) {
+    : tables_(tables), breaks_(std::make_unique<Breaks>(options.breaks, tables)) {
     auto write = options.log;
     if (!write) {
         std::string prefix = "[" + visible(tables.name) + "] ";
         write = [prefix](const std::string& text) { std::cerr << prefix << text << std::endl; };
     }
     log_ = std::make_unique<Log>(write);
+    const int domain = options.domain < 0 ? tables.domain : options.domain;
+    if (!options.journal.empty())
+        journal_ = Journal::open(options.journal, tables.name, domain, options.command_window,
+                                 [this](const std::string& text) { log(text); }, recovered_);
+    // configs come back with a serial above any used before the crash
+    const std::int64_t serial =
+        restart_serial(breaks_->on("zero-serial") ? 0 : options.serial, recovered_, std::time(nullptr));
+    std::function<void(std::int32_t)> issued;
+    if (journal_) issued = [j = journal_.get()](std::int32_t s) { j->serial(s); };
+    serials_ = Serials(serial, {}, std::move(issued));
+    if (journal_) journal_->start(serials_.start());
     NodeOptions node;
-    node.domain = options.domain < 0 ? tables.domain : options.domain;
+    node.domain = domain;
     node.profiles_file = options.profiles_file;
     node.profiles_xml = options.profiles_xml;
     node.transport = options.transport;
@@ -49,6 +59,7 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
     ManagerOptions m;
     m.window = options.command_window;
     m.on_shutdown = [this] { request_stop(); };
+    m.journal = journal_.get();
     manager_ = std::make_unique<CommandManager>(breaks_->any() ? breaks_->tables() : tables, handlers, *this, m);
     intake_ = std::make_unique<Intake>(*manager_, [this](const std::string& text) { log(text); });
 }
@@ -76,6 +87,12 @@ void Bridge::start() {
     }
     manager_->publish_states();
     if (tables_.subsystems.empty()) return;
+    if (recovered_.crashed) {  // before any new command: a retried cmdId is known
+        auto [answered, again] = manager_->restore(recovered_);
+        log("journal: restarted after a crash; " + std::to_string(answered) + " unfinished command(s) answered, " +
+            std::to_string(again) + " final ack(s) written again");
+        recovered_ = JournalRecovered{};
+    }
     // The profile's resource limits stay: Fast DDS refuses a bounded max_samples while
     // instances are unbounded (one instance per commander, never bounded safely), so the
     // bound is the intake door's (PER_WRITER waiting, then "bridge busy"), which takes
@@ -127,9 +144,15 @@ void Bridge::stop() {
     reading_ = false;
     if (reader_thread_.joinable()) reader_thread_.join();
     if (intake_) intake_->stop();
-    manager_.reset();  // cancels what runs, joins the handlers
-    // the last acks (shutdown's own) reach their readers
+    if (manager_) {
+        std::size_t abandoned = manager_->abandon();
+        if (abandoned) log("stopping: " + std::to_string(abandoned) + " unfinished command(s) answered");
+    }
+    // the last acks (shutdown's own, the unfinished ones') reach their readers
     if (acks_ != nullptr) acks_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(2, 0));
+    if (manager_ && manager_->release_journal() != nullptr)
+        journal_->close(true);  // every command answered: the next start begins afresh
+    manager_.reset();  // cancels what runs, joins the handlers
     intake_.reset();
     node_.reset();
 }

@@ -25,6 +25,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "command.hpp"
 #include "manager.hpp"
@@ -35,6 +36,7 @@ inline constexpr std::size_t PER_WRITER = 256;  // commands of one writer waitin
 inline constexpr std::size_t MAX_WRITERS = 256;  // writers with a FIFO of their own; past that they share one
 inline constexpr std::size_t SHED_ANSWERS = 4096;  // "busy" answers waiting to be written
 inline constexpr const char* SHARED_WRITER = "";  // the FIFO of writers past MAX_WRITERS
+inline constexpr std::size_t BATCH = 32;  // commands handed to the manager at once (one journal sync)
 
 std::string busy_message(std::size_t per_writer);
 

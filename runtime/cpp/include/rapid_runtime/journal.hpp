@@ -9,7 +9,9 @@
 // of a batch, restore what open() recovered before reading commands, close(true) on a clean
 // stop. A damaged line is skipped; the file is then reported in one log line, renamed
 // <name>.damaged-<time>-<pid> and rewritten from the sound lines. Never throws: a journal
-// that cannot be used is reported and open() returns nullptr.
+// that cannot be used is reported and open() returns nullptr. A write or sync that fails
+// (full disk) is logged once until one succeeds again; the bridge goes on answering.
+// Thread-safe: the manager writes under its lock, config serials come from other threads.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -39,6 +42,11 @@ struct JournalRecovered {
     bool crashed = false;  // the journal did not end with a clean stop
 };
 
+// The configs' first serial of a bridge that asked for `requested` (-1: the start time,
+// which stays -1 here): after a crash, above the highest the journal recorded, even one
+// issued less than a second before it (receivers ignore a config whose serial did not change).
+std::int64_t restart_serial(std::int64_t requested, const JournalRecovered& recovered, std::int64_t now);
+
 class Journal {
 public:
     using Log = std::function<void(const std::string&)>;
@@ -56,7 +64,10 @@ public:
     bool sync();  // fdatasync what was written; compacts when due; false (logged) on failure
     void close(bool clean);
 
-    std::size_t lines() const { return lines_; }
+    std::size_t lines() const;
+    std::size_t syncs() const;  // fdatasyncs done by sync() (tests: one per batch)
+    bool unsynced() const;  // records written since the last sync (tests: none when an ack goes out)
+    const std::string& path() const { return path_; }
     // $RAPID_STATE_DIR, else $XDG_STATE_HOME/rapid_runtime, else ~/.local/state/rapid_runtime.
     static std::string default_dir();
     static std::string file_name(const std::string& asset, int domain);
@@ -72,6 +83,7 @@ private:
     void apply(const JournalEntry& e);
     void append(const std::string& line);
     void rewrite();
+    void failed(const std::string& what);  // logged once until the next success
 
     std::string path_;
     int fd_;
@@ -81,7 +93,10 @@ private:
     std::deque<JournalEntry> done_;  // the last `window` outcomes, oldest first
     std::int64_t last_serial_ = 0;
     std::size_t lines_ = 0;
+    std::size_t syncs_ = 0;
     bool unsynced_ = false;
+    bool failing_ = false;
+    mutable std::mutex mutex_;  // the public calls; the private ones run under it
 };
 
 }  // namespace rapid_runtime

@@ -13,6 +13,12 @@
 // among them and among those still pending or running); once more than `window` commands
 // have completed, the oldest one's acks are retired (Outbox::retire: the ack writer
 // unregisters the instance).
+//
+// With a restart journal (journal.hpp, ManagerOptions::journal), every step an ack
+// promises is on disk before that ack: within a locked operation (a Batch) the acks,
+// QueueState, AccessControlState and handler starts are held back, the journal is synced
+// once at its end, then they go out in order. The intake hands over the commands already
+// waiting (up to 32) as one batch: a flood costs one sync per batch.
 #ifndef RAPID_RUNTIME_MANAGER_HPP
 #define RAPID_RUNTIME_MANAGER_HPP
 
@@ -31,6 +37,7 @@
 #include "access.hpp"
 #include "command.hpp"
 #include "handlers.hpp"
+#include "journal.hpp"
 #include "pending.hpp"
 #include "run.hpp"
 #include "tables.hpp"
@@ -46,6 +53,12 @@ inline constexpr std::size_t QUEUE_LIMIT = 1024;
 inline constexpr std::size_t BYPASS_LIMIT = 64;
 inline constexpr double COMPLETED_KEEP_S = 20.0;  // finished commands stay in QueueState this long (soraCore)
 inline constexpr std::size_t RECORDS = 64;  // QueueState's SingleQueue holds at most 64 records
+// What a command left unfinished by a restart or a stop is answered (docs/runtime.md,
+// "Restarts": never run again, since a half-done motion run again is not safe).
+inline constexpr const char* RESTARTED_QUEUED = "asset restarted before it ran";
+inline constexpr const char* RESTARTED_RUNNING = "asset restarted while it ran; outcome unknown";
+inline constexpr const char* STOPPED_QUEUED = "asset stopped before it ran";
+inline constexpr const char* STOPPED_RUNNING = "asset stopped while it ran; outcome unknown";
 
 // One QueueState record: the command and its result and status.
 struct Record {
@@ -78,6 +91,10 @@ public:
     virtual void refuse(const Cmd& cmd, const std::string& why) = 0;
     // A control command (stopAllMotion, Queue cancelAll, any AccessControl command) goes first.
     virtual bool is_control(const Cmd& cmd) const = 0;
+    // The intake's calls between these two are one batch (the manager: one journal sync).
+    // Called in pairs, by one thread.
+    virtual void begin_batch() {}
+    virtual void end_batch() {}
 };
 
 struct ManagerOptions {
@@ -86,6 +103,7 @@ struct ManagerOptions {
     std::size_t bypass_limit = BYPASS_LIMIT;
     std::function<void()> on_shutdown;  // after Admin/shutdown's COMPLETED ack, on a thread of its own
     std::function<double()> clock;  // seconds, monotonic (default: steady_clock)
+    Journal* journal = nullptr;  // the restart journal (outlives the manager); nullptr: none
 };
 
 class CommandManager : public CommandSink {
@@ -100,6 +118,18 @@ public:
     void receive(const Cmd& cmd) override;
     void refuse(const Cmd& cmd, const std::string& why) override;
     bool is_control(const Cmd& cmd) const override;
+    void begin_batch() override;  // takes the lock (held until end_batch)
+    void end_batch() override;
+
+    // After a crash (the journal's recovery): answer what was accepted and not finished
+    // (never run again), write the last outcomes' final acks again, remember their cmdIds.
+    // Before the first command is read. Returns (commands answered now, final acks again).
+    std::pair<std::size_t, std::size_t> restore(const JournalRecovered& recovered);
+    // The bridge stops: answer every pending and running command now (a handler still
+    // running is canceled, its outcome no longer answered). Returns how many.
+    std::size_t abandon();
+    // No journal from now on (the bridge closes it); returns the one there was.
+    Journal* release_journal();
 
     // Publish QueueState and AccessControlState as they are (at start-up).
     void publish_states();
@@ -118,6 +148,19 @@ public:
 
 private:
     using Lock = std::unique_lock<std::recursive_mutex>;
+    // The lock, and with a journal the held-back writes: flushed when the outermost ends.
+    class Batch {
+    public:
+        explicit Batch(CommandManager& m) : m_(m) { m_.begin_batch(); }
+        ~Batch() { m_.end_batch(); }
+        Batch(const Batch&) = delete;
+        Batch& operator=(const Batch&) = delete;
+
+    private:
+        CommandManager& m_;
+    };
+    void emit(std::function<void()> write);  // now, or at the batch's end with a journal
+    void flush();
     struct Refusal {
         Completion completion;
         std::string text;
@@ -141,7 +184,11 @@ private:
     void finish_unstarted(const RunPtr& run, const std::string& why);
     void record_done(const RunPtr& run, Completion completion);
     void cancel(const RunPtr& run);
-    void send_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message);
+    // journal: false for answers not remembered (a refusal at the door)
+    void send_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message,
+                  bool journal = true);
+    void write_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message);
+    void keep(Cmd key);
     void publish_queue();
     void publish_access();
 
@@ -175,6 +222,9 @@ private:
     bool suspended_ = false;
     Control control_;
     RunPtr shutdown_after_;
+    Journal* journal_;
+    int depth_ = 0;  // nested batches
+    std::vector<std::function<void()>> outgoing_;  // held until the journal is synced
     Workers workers_;  // last: joined first when the manager goes
 };
 

@@ -16,7 +16,10 @@ namespace rapid_runtime {
 class Serials {
 public:
     // start: the first serial (default: now, in seconds since the epoch). now: seconds (tests).
-    explicit Serials(std::int64_t start = -1, std::function<std::int64_t()> now = {});
+    // issued(serial): told of every serial given out, the start one first (the restart
+    // journal records the highest, so a restarted bridge's serials are larger).
+    explicit Serials(std::int64_t start = -1, std::function<std::int64_t()> now = {},
+                     std::function<void(std::int32_t)> issued = {});
 
     std::int32_t start() const { return start_; }
     // The serial of the topic's config (the start serial before it was set).
@@ -26,6 +29,7 @@ public:
 
 private:
     std::function<std::int64_t()> now_;
+    std::function<void(std::int32_t)> issued_;
     std::int32_t start_;
     std::int32_t last_;
     std::map<std::string, std::pair<std::string, std::int32_t>> topics_;  // topic -> (content, serial)

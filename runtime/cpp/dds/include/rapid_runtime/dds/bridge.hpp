@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <rapid_runtime/intake.hpp>
+#include <rapid_runtime/journal.hpp>
 #include <rapid_runtime/log.hpp>
 #include <rapid_runtime/manager.hpp>
 #include <rapid_runtime/serials.hpp>
@@ -86,7 +87,9 @@ public:
 
     std::int32_t serial_of(const std::string& config_topic) const;
     void start();  // publishes the states, opens the command path; prints nothing
-    void stop();  // idempotent: the last acks flushed, threads joined
+    // idempotent: no command read any more, the pending and running ones answered, the last
+    // acks delivered (up to 2 s), the journal closed clean, threads joined
+    void stop();
     void request_stop();  // from any thread (Admin/shutdown, a signal handler's flag)
     bool wait(double seconds);  // true once stopping was requested
     bool stopping() const { return stop_requested_.load(); }
@@ -109,6 +112,8 @@ private:
     const Tables& tables_;
     std::unique_ptr<Breaks> breaks_;  // (before the manager: it may hold the manager's tables)
     std::unique_ptr<Log> log_;
+    JournalRecovered recovered_;  // what the journal held after a crash (answered at start())
+    std::unique_ptr<Journal> journal_;  // before the manager, which writes to it
     Serials serials_;
     mutable std::mutex config_mutex_;
     std::unique_ptr<Node> node_;  // before the manager: written to until the manager is gone
