@@ -3,6 +3,12 @@ the retransmissions the relay counted, with the site's Cyclone file tuned for th
 (rtt 2.6, lease 120: docs/qos.md) and, for comparison, as shipped (Cyclone's defaults).
 
     .venv/bin/python bench/field_link.py [--count 50] [--rounds 20] [--only tuned|shipped]
+                                         [--full] [--cpp BRIDGE]
+
+--full: the issue's campaign, 200 sequential commands and 200 rounds (200 commands of every
+queue action). --cpp BRIDGE: K10's generated C++ bridge (Fast DDS) instead of the Python
+one, with the site library's Fast DDS file (tuned: rtt/lease, docs/qos.md; shipped: none);
+"executed twice" then counts commands with more than one EXECUTING ack (no handler log).
 
 Needs root (network namespaces, TUN devices: tests/field/link.py). Two runs, one link
 each, side by side: K10's simulated bridge in the asset namespace; in the ground namespace
@@ -13,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import statistics
 import subprocess
 import sys
@@ -24,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from tests.field.link import LUNAR, Link, rtt  # noqa: E402
-from tests.field.site import site_config, site_env, site_library  # noqa: E402
+from tests.field.site import site_config, site_env, site_fastdds, site_library  # noqa: E402
 from tests.runtime.live import SEEDS, BridgeProcess  # noqa: E402
 
 PACKAGE, DOMAIN, SPEED = SEEDS["k10"], 7, 4.0
@@ -42,14 +49,32 @@ def _delta(after: dict, before: dict) -> dict:
     return {d: {k: after[d][k] - before[d][k] for k in after[d]} for d in ("up", "down")}
 
 
-def campaign(name: str, count: int, rounds: int, out: dict) -> None:
+def _bridge(link: Link, folder: Path, name: str, config: Path, cpp: str | None) -> BridgeProcess:
+    if cpp is None:
+        env = dict(site_env(config), FIELD_EXEC_LOG=str(folder / "exec.log"), FIELD_SIM_SPEED=str(SPEED))
+        return BridgeProcess.of_command(link.argv("asset", [sys.executable, "-m", "tests.field.counting_bridge",
+                                                            PACKAGE, "--domain", str(DOMAIN), "--journal",
+                                                            str(folder / "journal")]), ROOT, env)
+    tuned = name == "tuned"
+    profiles = site_fastdds(folder, rtt=rtt(LUNAR) if tuned else None, lease=120.0 if tuned else None)
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("FASTDDS_", "FASTRTPS_"))}
+    return BridgeProcess.of_command(link.argv("asset", [cpp, "--simulate", "--sim-speed", str(SPEED), "--domain",
+                                                        str(DOMAIN), "--transport", "wan", "--qos", str(profiles),
+                                                        "--journal", str(folder / "journal")]), ROOT, env)
+
+
+def _twice(folder: Path, cpp: str | None, *acks: dict) -> int:
+    if cpp is None:
+        runs = [line.split()[1] for line in (folder / "exec.log").read_text().splitlines()]
+        return len(runs) - len(set(runs))
+    return sum(1 for a in acks for seq in a.values() if sum(1 for x in seq if x[0] == "ACK_EXECUTING") > 1)
+
+
+def campaign(name: str, count: int, rounds: int, out: dict, cpp: str | None = None) -> None:
     with tempfile.TemporaryDirectory(prefix=f"field-{name}-") as tmp, Link(LUNAR, seed=11) as link:
         folder = Path(tmp)
         config = site_library(folder, rtt=rtt(LUNAR), lease=120.0) if name == "tuned" else site_config(folder)
-        env = dict(site_env(config), FIELD_EXEC_LOG=str(folder / "exec.log"), FIELD_SIM_SPEED=str(SPEED))
-        bridge = BridgeProcess.of_command(link.argv("asset", [sys.executable, "-m", "tests.field.counting_bridge",
-                                                              PACKAGE, "--domain", str(DOMAIN), "--journal",
-                                                              str(folder / "journal")]), ROOT, env)
+        bridge = _bridge(link, folder, name, config, cpp)
         link.children.append(bridge.proc)
         try:
             bridge.wait_ready(60)
@@ -61,11 +86,11 @@ def campaign(name: str, count: int, rounds: int, out: dict) -> None:
             s2 = link.stats()
         finally:
             bridge.stop()
-        runs = [line.split()[1] for line in (folder / "exec.log").read_text().splitlines()]
         finals = [a for acks in drive["acks"].values() for a in acks if a[0] == "ACK_COMPLETED"]
         out[name] = {"latency": seq["latency"], "seq": _delta(s1, s0), "drive": _delta(s2, s1),
                      "drive_commands": len(drive["acks"]), "drive_finals": len(finals),
-                     "twice": len(runs) - len(set(runs)), "queued_latency": list(drive["latency"].values())}
+                     "twice": _twice(folder, cpp, seq["acks"], drive["acks"]),
+                     "queued_latency": list(drive["latency"].values())}
 
 
 def pct(values: list[float], q: float) -> float:
@@ -73,8 +98,10 @@ def pct(values: list[float], q: float) -> float:
     return v[min(len(v) - 1, int(q * len(v)))]
 
 
-def report(out: dict, count: int, rounds: int) -> None:
+def report(out: dict, count: int, rounds: int, cpp: str | None = None) -> None:
     trip = rtt(LUNAR)
+    print("bridge: " + ("K10's C++ bridge (Fast DDS 2.9, the site's wan profiles)" if cpp else
+                        "K10's Python bridge (Cyclone DDS)") + "; ground: Python/Cyclone")
     print(f"lunar link: 1.3 s each way, 20 ms jitter, 5% loss each way (round trip {trip:g} s); "
           f"{count} sequential BYPASS commands, then {rounds} rounds of every queue action (7 commands each)\n")
     print("| site file | commands | p50 ack (round trips) | p99 | max | DATA sent | of which resent | packets lost "
@@ -104,14 +131,21 @@ def main() -> int:
     ap.add_argument("--count", type=int, default=50, help="sequential BYPASS commands (latency)")
     ap.add_argument("--rounds", type=int, default=20, help="rounds of every queue action (traffic)")
     ap.add_argument("--only", choices=("tuned", "shipped"))
+    ap.add_argument("--full", action="store_true",
+                    help="the issue's campaign: 200 sequential commands, 200 rounds (overrides --count, --rounds)")
+    ap.add_argument("--cpp", metavar="BRIDGE", help="K10's C++ bridge (the built rapid_k10red_bridge) as the asset")
     args = ap.parse_args()
+    if args.full:
+        args.count, args.rounds = 200, 200
+    if args.cpp and not os.access(args.cpp, os.X_OK):
+        ap.error(f"--cpp {args.cpp}: not an executable (build K10's C++ bridge: runtime/cpp/README.md)")
     out: dict = {}
     names = [args.only] if args.only else ["tuned", "shipped"]
     errors: list[str] = []
 
     def run(name: str) -> None:
         try:
-            campaign(name, args.count, args.rounds, out)
+            campaign(name, args.count, args.rounds, out, args.cpp)
         except Exception as exc:  # printed below; the other campaign still reports
             errors.append(f"{name}: {exc}")
 
@@ -121,7 +155,7 @@ def main() -> int:
     for t in threads:
         t.join()
     if out:
-        report({n: out[n] for n in names if n in out}, args.count, args.rounds)
+        report({n: out[n] for n in names if n in out}, args.count, args.rounds, args.cpp)
     for e in errors:
         print(f"failed: {e}", file=sys.stderr)
     return 1 if errors else 0
