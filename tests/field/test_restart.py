@@ -331,3 +331,39 @@ def test_the_cpp_journal_reads_and_writes_the_python_format(tmp_path):
     logs = [ln for ln in res.stdout.splitlines() if ln.startswith("log ")]
     assert res.returncode == 0 and len(logs) == 1 and "damaged line" in logs[0], res.stdout
     assert len(list(folder.glob("*.damaged-*"))) == 1
+
+
+def test_cmd_sends_again_only_for_a_new_asset_participant_and_at_most_three_times():
+    """rapidgen/cmd/recover.py without DDS: a new participant that only reads commands (a spy)
+    is not the asset; one with a command reader and an ack writer is, and the command is due
+    again once it stayed silent `settle` seconds; a later newcomer restarts that wait; never
+    more than MAX_RESENDS."""
+    from types import SimpleNamespace
+
+    from rapidgen.cmd.recover import MAX_RESENDS, AssetWatch
+
+    readers, writers = {1: "old"}, {1: "old"}  # instance handle -> participant key
+
+    def side(table: dict):
+        return (lambda: list(table)), (lambda h: SimpleNamespace(participant_key=table[h]))
+
+    r_list, r_data = side(readers)
+    w_list, w_data = side(writers)
+    commander = SimpleNamespace(writer=SimpleNamespace(get_matched_subscriptions=r_list,
+                                                       get_matched_subscription_data=r_data),
+                                ack_reader=SimpleNamespace(get_matched_publications=w_list,
+                                                           get_matched_publication_data=w_data))
+    watch = AssetWatch(commander, rtt=1.0)
+    assert watch.known == {"old"} and watch.settle == 5.0  # 3 s + 2 round trips
+    readers[2] = "spy"
+    assert not watch.due(0.0) and not watch.due(100.0)  # reads commands, writes no acks
+    readers[3], writers[3] = "new", "new"
+    assert not watch.due(10.0) and not watch.due(14.9)
+    readers[4], writers[4] = "newer", "newer"  # came back again: its history must arrive too
+    assert not watch.due(15.0) and not watch.due(19.9) and watch.due(20.0) and watch.resends == 1
+    assert not watch.due(40.0)  # nothing new since: once per comeback
+    for n in range(5, 5 + MAX_RESENDS + 1):
+        readers[n], writers[n] = f"p{n}", f"p{n}"
+        watch.due(100.0 * n)
+        watch.due(100.0 * n + 6)
+    assert watch.resends == MAX_RESENDS
