@@ -33,11 +33,12 @@ def parse_langs(text: str | list[str] | tuple[str, ...]) -> tuple[list[str], str
     dropped), and what is wrong with them (None: nothing). The one place targets are checked."""
     items = text.split(",") if isinstance(text, str) else list(text)
     langs = list(dict.fromkeys(x.strip() for x in items if x.strip()))
-    unknown = [lang for lang in langs if lang not in available()]
+    present = available()  # once: each call looks every back end up on the import path
+    unknown = [lang for lang in langs if lang not in present]
     if unknown:
-        return langs, f"unknown or unavailable target '{unknown[0]}'; available: {', '.join(available())}"
+        return langs, f"unknown or unavailable target '{unknown[0]}'; available: {', '.join(present)}"
     if not langs:
-        return langs, f"no target given; available: {', '.join(available())}"
+        return langs, f"no target given; available: {', '.join(present)}"
     return langs, None
 
 

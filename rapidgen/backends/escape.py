@@ -81,6 +81,11 @@ UNENCODABLE = re.compile("[\ud800-\udfff]")
 
 
 # -- C++ and CMake ----------------------------------------------------------------------
+# Printable ASCII but '"', '?' and '\\': text that cpp_str and rust_str print as it is (most
+# names and messages), with no loop over its characters.
+_PLAIN = re.compile(r'[ !#->@-\[\]-~]*\Z')
+
+
 def cpp_str(text: str) -> str:
     """A C++ narrow string literal whose value is exactly the UTF-8 bytes of `text`.
 
@@ -88,6 +93,8 @@ def cpp_str(text: str) -> str:
     other byte is a 3-digit octal escape (fixed length, so a following digit is never
     absorbed as \\x escapes would). A lone surrogate has no UTF-8 form: it is left in the
     text for check_output to refuse (RG0830)."""
+    if _PLAIN.match(text):
+        return f'"{text}"'
     out = ['"']
     for ch in text:
         if " " <= ch < "\x7f":
@@ -126,6 +133,8 @@ def rust_str(text: str) -> str:
     so no bidirectional-override or other invisible character (which rustc refuses in
     literals) is ever written raw. A lone surrogate has no Rust form: it is left in the
     text for check_output to refuse (RG0830)."""
+    if _PLAIN.match(text):
+        return f'"{text}"'
     out = ['"']
     for ch in text:
         if " " <= ch < "\x7f":

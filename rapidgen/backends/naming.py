@@ -49,8 +49,8 @@ class Scope:
     def claim(self, preferred: str, owner: str) -> str:
         """A free name as close to `preferred` as possible, recorded as naming `owner`."""
         name = escape(preferred, self.reserved, self.also_reserved)
-        while self._holder(name) is not None:
-            if self._holder(name) == owner:
+        while (holder := self._holder(name)) is not None:
+            if holder == owner:
                 return name
             name = escape(name + "_", self.reserved, self.also_reserved)
         self._record(name, owner)

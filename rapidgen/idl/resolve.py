@@ -69,12 +69,6 @@ class Resolver:
         self._hints_left = _MAX_NAME_HINTS
         self.evaluator = ConstEvaluator(sink)
         self.annotations = AnnotationChecker(sink, self.evaluator)
-        # What resolves each kind of symbol (enumerators and forward declarations: nothing).
-        self._resolvers: dict[str, Callable[[_Sym], ir.Declaration | None]] = {
-            "struct": self._resolve_struct, "union": self._resolve_union, "enum": self._resolve_enum,
-            "bitmask": self._resolve_bitmask, "bitset": self._resolve_bitset,
-            "typedef": self._resolve_typedef, "const": self._resolve_const, "native": self._resolve_native,
-        }
 
     # == symbol table =====================================================================
     def _add(self, sym: _Sym) -> None:
@@ -320,8 +314,8 @@ class Resolver:
             return None
         self.busy[sym.scoped] = None
         try:
-            resolver = self._resolvers.get(sym.kind)
-            result = resolver(sym) if resolver else None
+            resolver = _RESOLVERS.get(sym.kind)
+            result = resolver(self, sym) if resolver else None
         except RecursionError:
             self.done[sym.scoped] = None  # the whole chain fails, and is reported once
             if len(self.busy) > 1:
@@ -636,6 +630,16 @@ class Resolver:
         check_recursion(decls, self.sink)
         ordered = dependency_order(decls)
         return ir.Model(tuple(self.modules.values()), tuple(ordered), spec.files)
+
+
+# What resolves each kind of symbol (enumerators and forward declarations: nothing). Plain
+# functions, not methods bound in the instance: a resolver referring to itself would be a
+# reference cycle, and the syntax tree it holds would wait for the cyclic collector.
+_RESOLVERS: dict[str, Callable[[Resolver, _Sym], ir.Declaration | None]] = {
+    "struct": Resolver._resolve_struct, "union": Resolver._resolve_union, "enum": Resolver._resolve_enum,
+    "bitmask": Resolver._resolve_bitmask, "bitset": Resolver._resolve_bitset,
+    "typedef": Resolver._resolve_typedef, "const": Resolver._resolve_const, "native": Resolver._resolve_native,
+}
 
 
 def _matches_forward(sym: _Sym, forward_kind: str) -> bool:
