@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/qos/_macros.xml.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "01d8c41ae010b66cf9b6d296847dc926e1ac0dfa0e4bead5f4df001505ce10f9"
+KEY = "81949811b59eb895021efe85bdb7d23b5ae4383fa7b1545c0075f862ab8782eb"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = '_macros.xml.j2'
 
@@ -11,7 +11,7 @@ def root(context, missing=missing, environment=environment):
     concat = environment.concat
     cond_expr_undefined = Undefined
     if 0: yield None
-    l_0_locator = l_0_fastdds_endpoint = l_0_omg_endpoint = l_0_omg_partition = l_0_rti_participant = missing
+    l_0_locator = l_0_duration = l_0_fastdds_endpoint = l_0_omg_endpoint = l_0_omg_partition = l_0_rti_participant = missing
     try:
         t_1 = environment.tests['none']
     except KeyError:
@@ -61,31 +61,49 @@ def root(context, missing=missing, environment=environment):
     context.exported_vars.add('locator')
     context.vars['locator'] = l_0_locator = Macro(environment, macro, 'locator', ('l',), False, False, False, context.eval_ctx.autoescape)
     yield '\n'
-    def macro(l_1_e, l_1_p):
+    def macro(l_1_d):
         t_3 = []
+        if l_1_d is missing:
+            l_1_d = undefined("parameter 'd' was not provided", name='d')
+        pass
+        t_3.extend((
+            '<sec>',
+            escape(environment.finalize(environment.getattr(l_1_d, 'sec'))),
+            '</sec><nanosec>',
+            escape(environment.finalize(environment.getattr(l_1_d, 'nanosec'))),
+            '</nanosec>',
+        ))
+        return concat(t_3)
+    context.exported_vars.add('duration')
+    context.vars['duration'] = l_0_duration = Macro(environment, macro, 'duration', ('d',), False, False, False, context.eval_ctx.autoescape)
+    yield '\n'
+    def macro(l_1_e, l_1_p, l_1_link):
+        t_4 = []
         if l_1_e is missing:
             l_1_e = undefined("parameter 'e' was not provided", name='e')
         if l_1_p is missing:
             l_1_p = undefined("parameter 'p' was not provided", name='p')
+        if l_1_link is missing:
+            l_1_link = None
         pass
-        t_3.extend((
+        t_4.extend((
             '<topic>\n  <historyQos>\n    <kind>',
             escape(environment.finalize(environment.getattr(l_1_e, 'history_kind'))),
             '</kind>\n',
         ))
         if environment.getattr(l_1_e, 'has_depth'):
             pass
-            t_3.extend((
+            t_4.extend((
                 '    <depth>',
                 escape(environment.finalize(environment.getattr(l_1_e, 'history_depth'))),
                 '</depth>\n',
             ))
-        t_3.append(
+        t_4.append(
             '  </historyQos>\n',
         )
         if environment.getattr(l_1_e, 'limits'):
             pass
-            t_3.extend((
+            t_4.extend((
                 '  <resourceLimitsQos>\n    <max_samples>',
                 escape(environment.finalize(environment.getattr(environment.getattr(l_1_e, 'limits'), 'max_samples'))),
                 '</max_samples>\n    <max_instances>',
@@ -94,157 +112,167 @@ def root(context, missing=missing, environment=environment):
                 escape(environment.finalize(environment.getattr(environment.getattr(l_1_e, 'limits'), 'max_samples_per_instance'))),
                 '</max_samples_per_instance>\n  </resourceLimitsQos>\n',
             ))
-        t_3.extend((
+        t_4.extend((
             '</topic>\n<qos>\n  <reliability>\n    <kind>',
             escape(environment.finalize(environment.getattr(l_1_e, 'reliability'))),
-            '</kind>\n  </reliability>\n  <durability>\n    <kind>',
+            '</kind>\n',
+        ))
+        if (l_1_link and (environment.getattr(l_1_e, 'reliability') == 'RELIABLE')):
+            pass
+            t_4.extend((
+                '    <max_blocking_time>',
+                escape(environment.finalize(context.call((undefined(name='duration') if l_0_duration is missing else l_0_duration), environment.getattr(l_1_link, 'max_blocking')))),
+                '</max_blocking_time>\n',
+            ))
+        t_4.extend((
+            '  </reliability>\n  <durability>\n    <kind>',
             escape(environment.finalize(environment.getattr(l_1_e, 'durability'))),
             '</kind>\n  </durability>\n',
         ))
         if environment.getattr(l_1_e, 'publish_mode'):
             pass
-            t_3.extend((
+            t_4.extend((
                 '  <publishMode>\n    <kind>',
                 escape(environment.finalize(environment.getattr(l_1_e, 'publish_mode'))),
                 '</kind>\n  </publishMode>\n',
             ))
         if environment.getattr(l_1_p, 'has_partition'):
             pass
-            t_3.extend((
+            t_4.extend((
                 '  <partition>\n    <names>\n      <name>',
                 escape(environment.finalize(environment.getattr(l_1_p, 'partition'))),
                 '</name>\n    </names>\n  </partition>\n',
             ))
-        t_3.append(
+        t_4.append(
             '</qos>',
         )
-        return concat(t_3)
+        return concat(t_4)
     context.exported_vars.add('fastdds_endpoint')
-    context.vars['fastdds_endpoint'] = l_0_fastdds_endpoint = Macro(environment, macro, 'fastdds_endpoint', ('e', 'p'), False, False, False, context.eval_ctx.autoescape)
+    context.vars['fastdds_endpoint'] = l_0_fastdds_endpoint = Macro(environment, macro, 'fastdds_endpoint', ('e', 'p', 'link'), False, False, False, context.eval_ctx.autoescape)
     yield '\n'
     def macro(l_1_e):
-        t_4 = []
+        t_5 = []
         if l_1_e is missing:
             l_1_e = undefined("parameter 'e' was not provided", name='e')
         pass
         if environment.getattr(l_1_e, 'reliability'):
             pass
-            t_4.extend((
+            t_5.extend((
                 '<reliability>\n  <kind>',
                 escape(environment.finalize(environment.getattr(l_1_e, 'reliability'))),
                 '</kind>\n</reliability>\n',
             ))
         if environment.getattr(l_1_e, 'durability'):
             pass
-            t_4.extend((
+            t_5.extend((
                 '<durability>\n  <kind>',
                 escape(environment.finalize(environment.getattr(l_1_e, 'durability'))),
                 '</kind>\n</durability>\n',
             ))
         if environment.getattr(l_1_e, 'has_history'):
             pass
-            t_4.extend((
+            t_5.extend((
                 '<history>\n  <kind>',
                 escape(environment.finalize(environment.getattr(l_1_e, 'history_kind'))),
                 '</kind>\n',
             ))
             if environment.getattr(l_1_e, 'has_depth'):
                 pass
-                t_4.extend((
+                t_5.extend((
                     '  <depth>',
                     escape(environment.finalize(environment.getattr(l_1_e, 'history_depth'))),
                     '</depth>\n',
                 ))
-            t_4.append(
+            t_5.append(
                 '</history>\n',
             )
         if environment.getattr(l_1_e, 'publish_mode'):
             pass
-            t_4.extend((
+            t_5.extend((
                 '<publish_mode>\n  <kind>',
                 escape(environment.finalize(environment.getattr(l_1_e, 'publish_mode'))),
                 '</kind>\n</publish_mode>\n',
             ))
-        return concat(t_4)
+        return concat(t_5)
     context.exported_vars.add('omg_endpoint')
     context.vars['omg_endpoint'] = l_0_omg_endpoint = Macro(environment, macro, 'omg_endpoint', ('e',), False, False, False, context.eval_ctx.autoescape)
     yield '\n'
     def macro(l_1_name):
-        t_5 = []
+        t_6 = []
         if l_1_name is missing:
             l_1_name = undefined("parameter 'name' was not provided", name='name')
         pass
-        t_5.extend((
+        t_6.extend((
             '<partition>\n  <name>\n    <element>',
             escape(environment.finalize(l_1_name)),
             '</element>\n  </name>\n</partition>',
         ))
-        return concat(t_5)
+        return concat(t_6)
     context.exported_vars.add('omg_partition')
     context.vars['omg_partition'] = l_0_omg_partition = Macro(environment, macro, 'omg_partition', ('name',), False, False, False, context.eval_ctx.autoescape)
     yield '\n'
     def macro(l_1_p):
-        t_6 = []
+        t_7 = []
         if l_1_p is missing:
             l_1_p = undefined("parameter 'p' was not provided", name='p')
         pass
         if environment.getattr(l_1_p, 'has_mask'):
             pass
-            t_6.extend((
+            t_7.extend((
                 '<transport_builtin>\n  <mask>',
                 escape(environment.finalize(environment.getattr(l_1_p, 'builtin_mask'))),
                 '</mask>\n</transport_builtin>\n',
             ))
         if environment.getattr(l_1_p, 'sets_discovery'):
             pass
-            t_6.append(
+            t_7.append(
                 '<discovery>\n  <initial_peers>\n',
             )
             for l_2_peer in environment.getattr(l_1_p, 'initial_peers'):
                 _loop_vars = {}
                 pass
-                t_6.extend((
+                t_7.extend((
                     '    <element>',
                     escape(environment.finalize(l_2_peer)),
                     '</element>\n',
                 ))
             l_2_peer = missing
-            t_6.append(
+            t_7.append(
                 '  </initial_peers>\n',
             )
             if environment.getattr(l_1_p, 'has_multicast_receive'):
                 pass
-                t_6.append(
+                t_7.append(
                     '  <multicast_receive_addresses>\n',
                 )
                 for l_2_a in environment.getattr(l_1_p, 'multicast_receive'):
                     _loop_vars = {}
                     pass
-                    t_6.extend((
+                    t_7.extend((
                         '    <element>',
                         escape(environment.finalize(l_2_a)),
                         '</element>\n',
                     ))
                 l_2_a = missing
-                t_6.append(
+                t_7.append(
                     '  </multicast_receive_addresses>\n',
                 )
             else:
                 pass
-                t_6.append(
+                t_7.append(
                     '  <multicast_receive_addresses/>\n',
                 )
-            t_6.append(
+            t_7.append(
                 '</discovery>\n',
             )
         if environment.getattr(l_1_p, 'type_code_off'):
             pass
-            t_6.append(
+            t_7.append(
                 '<resource_limits>\n  <type_code_max_serialized_length>0</type_code_max_serialized_length>\n  <type_object_max_serialized_length>0</type_object_max_serialized_length>\n</resource_limits>\n',
             )
         if environment.getattr(l_1_p, 'has_ports'):
             pass
-            t_6.extend((
+            t_7.extend((
                 '<wire_protocol>\n  <rtps_well_known_ports>\n    <port_base>',
                 escape(environment.finalize(environment.getattr(environment.getattr(l_1_p, 'ports'), 'base'))),
                 '</port_base>\n    <domain_id_gain>',
@@ -263,13 +291,13 @@ def root(context, missing=missing, environment=environment):
             ))
         if environment.getattr(l_1_p, 'has_properties'):
             pass
-            t_6.append(
+            t_7.append(
                 '<property>\n  <value>\n',
             )
             for l_2_prop in environment.getattr(l_1_p, 'properties'):
                 _loop_vars = {}
                 pass
-                t_6.extend((
+                t_7.extend((
                     '    <element>\n      <name>',
                     escape(environment.finalize(environment.getattr(l_2_prop, 'name'))),
                     '</name>\n      <value>',
@@ -277,12 +305,12 @@ def root(context, missing=missing, environment=environment):
                     '</value>\n    </element>\n',
                 ))
             l_2_prop = missing
-            t_6.append(
+            t_7.append(
                 '  </value>\n</property>\n',
             )
-        return concat(t_6)
+        return concat(t_7)
     context.exported_vars.add('rti_participant')
     context.vars['rti_participant'] = l_0_rti_participant = Macro(environment, macro, 'rti_participant', ('p',), False, False, False, context.eval_ctx.autoescape)
 
 blocks = {}
-debug_info = '3=18&4=23&7=32&17=60&20=69&21=72&22=76&25=82&27=86&28=88&29=90&35=95&38=97&40=100&42=104&45=107&48=111&55=121&56=126&58=130&61=133&63=137&66=140&68=144&69=147&70=151&74=157&76=161&81=168&84=175&89=182&90=187&92=191&95=194&98=199&99=204&102=211&104=216&105=221&113=236&119=241&122=245&123=247&124=249&125=251&126=253&127=255&128=257&132=260&135=265&137=270&138=272'
+debug_info = '3=18&4=23&7=32&17=60&18=67&21=76&24=87&25=90&26=94&29=100&31=104&32=106&33=108&39=113&40=116&41=120&45=125&47=128&49=132&52=135&55=139&62=149&63=154&65=158&68=161&70=165&73=168&75=172&76=175&77=179&81=185&83=189&88=196&91=203&96=210&97=215&99=219&102=222&105=227&106=232&109=239&111=244&112=249&120=264&126=269&129=273&130=275&131=277&132=279&133=281&134=283&135=285&139=288&142=293&144=298&145=300'

@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/qos/fastdds.xml.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "5c0ed371b2252ea252a8d517b8d8c7d07af2319363124e3e653bc9da18140e02"
+KEY = "260b0eeea331b6153a56fb392900ed65b0c14a51e66b5f19db53a74e54c944f0"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'fastdds.xml.j2'
 
@@ -17,6 +17,7 @@ def root(context, missing=missing, environment=environment):
     l_0_transports = resolve('transports')
     l_0_participants = resolve('participants')
     l_0_profiles = resolve('profiles')
+    l_0_links = resolve('links')
     l_0_streams = resolve('streams')
     l_0_m = missing
     try:
@@ -144,6 +145,13 @@ def root(context, missing=missing, environment=environment):
                     yield '\n                </metatrafficUnicastLocatorList>\n              </RemoteServer>\n'
                 l_2_s = missing
                 yield '            </discoveryServersList>\n'
+            if environment.getattr(l_1_p, 'lease'):
+                pass
+                yield '            <leaseDuration>'
+                yield escape(environment.finalize(context.call(environment.getattr((undefined(name='m') if l_0_m is missing else l_0_m), 'duration'), environment.getattr(l_1_p, 'lease'), _loop_vars=_loop_vars)))
+                yield '</leaseDuration>\n            <leaseAnnouncement>'
+                yield escape(environment.finalize(context.call(environment.getattr((undefined(name='m') if l_0_m is missing else l_0_m), 'duration'), environment.getattr(l_1_p, 'announcement'), _loop_vars=_loop_vars)))
+                yield '</leaseAnnouncement>\n'
             yield '          </discovery_config>\n'
             if environment.getattr(l_1_p, 'meta_unicast'):
                 pass
@@ -198,7 +206,15 @@ def root(context, missing=missing, environment=environment):
             yield '        </defaultUnicastLocatorList>\n'
         yield '        <userTransports>\n          <transport_id>'
         yield escape(environment.finalize(environment.getattr(l_1_p, 'transport')))
-        yield '</transport_id>\n        </userTransports>\n        <useBuiltinTransports>false</useBuiltinTransports>\n      </rtps>\n    </participant>\n'
+        yield '</transport_id>\n        </userTransports>\n        <useBuiltinTransports>false</useBuiltinTransports>\n'
+        if environment.getattr(l_1_p, 'link'):
+            pass
+            yield '        <propertiesPolicy>\n          <properties>\n            <!-- the endpoint profiles <profile>@'
+            yield escape(environment.finalize(environment.getattr(l_1_p, 'link')))
+            yield " carry this link's timers (docs/qos.md) -->\n            <property><name>rapid.link</name><value>"
+            yield escape(environment.finalize(environment.getattr(l_1_p, 'link')))
+            yield '</value></property>\n          </properties>\n        </propertiesPolicy>\n'
+        yield '      </rtps>\n    </participant>\n'
     l_1_p = missing
     for l_1_p in (undefined(name='profiles') if l_0_profiles is missing else l_0_profiles):
         _loop_vars = {}
@@ -224,6 +240,36 @@ def root(context, missing=missing, environment=environment):
         yield escape(environment.finalize(t_2(t_1(context.call(environment.getattr((undefined(name='m') if l_0_m is missing else l_0_m), 'fastdds_endpoint'), environment.getattr(l_1_p, 'reader'), l_1_p, _loop_vars=_loop_vars), 6))))
         yield '\n    </data_reader>\n'
     l_1_p = missing
+    for l_1_l in (undefined(name='links') if l_0_links is missing else l_0_links):
+        _loop_vars = {}
+        pass
+        yield '\n    <!-- transport '
+        yield escape(environment.finalize(t_3(environment.getattr(l_1_l, 'transport'))))
+        yield ": every profile again with its link's timers (rtt), named <profile>@"
+        yield escape(environment.finalize(t_3(environment.getattr(l_1_l, 'transport'))))
+        yield ' -->\n'
+        for l_2_p in (undefined(name='profiles') if l_0_profiles is missing else l_0_profiles):
+            _loop_vars = {}
+            pass
+            yield '    <data_writer profile_name="'
+            yield escape(environment.finalize(environment.getattr(l_2_p, 'name')))
+            yield '@'
+            yield escape(environment.finalize(environment.getattr(l_1_l, 'transport')))
+            yield '">\n      '
+            yield escape(environment.finalize(t_2(t_1(context.call(environment.getattr((undefined(name='m') if l_0_m is missing else l_0_m), 'fastdds_endpoint'), environment.getattr(l_2_p, 'writer'), l_2_p, l_1_l, _loop_vars=_loop_vars), 6))))
+            yield '\n      <times>\n        <heartbeatPeriod>'
+            yield escape(environment.finalize(context.call(environment.getattr((undefined(name='m') if l_0_m is missing else l_0_m), 'duration'), environment.getattr(l_1_l, 'heartbeat'), _loop_vars=_loop_vars)))
+            yield '</heartbeatPeriod>\n        <nackSupressionDuration>'
+            yield escape(environment.finalize(context.call(environment.getattr((undefined(name='m') if l_0_m is missing else l_0_m), 'duration'), environment.getattr(l_1_l, 'nack_suppression'), _loop_vars=_loop_vars)))
+            yield '</nackSupressionDuration>\n      </times>\n    </data_writer>\n    <data_reader profile_name="'
+            yield escape(environment.finalize(environment.getattr(l_2_p, 'name')))
+            yield '@'
+            yield escape(environment.finalize(environment.getattr(l_1_l, 'transport')))
+            yield '">\n      '
+            yield escape(environment.finalize(t_2(t_1(context.call(environment.getattr((undefined(name='m') if l_0_m is missing else l_0_m), 'fastdds_endpoint'), environment.getattr(l_2_p, 'reader'), l_2_p, _loop_vars=_loop_vars), 6))))
+            yield '\n    </data_reader>\n'
+        l_2_p = missing
+    l_1_l = missing
     for l_1_s in (undefined(name='streams') if l_0_streams is missing else l_0_streams):
         _loop_vars = {}
         pass
@@ -268,4 +314,4 @@ def root(context, missing=missing, environment=environment):
     yield '  </profiles>\n</dds>\n'
 
 blocks = {}
-debug_info = '1=43&3=46&4=48&22=54&24=58&25=60&26=62&27=65&29=67&30=70&32=72&34=75&35=79&39=83&41=86&42=90&49=97&51=101&52=103&53=109&54=112&57=115&58=118&60=120&61=123&63=125&66=128&67=130&69=133&70=137&72=139&79=144&81=147&82=151&86=155&88=158&89=162&95=167&97=170&98=172&99=174&100=176&101=178&102=180&103=182&106=184&108=187&109=191&114=196&120=199&122=203&123=214&124=216&126=218&127=220&130=223&132=227&133=229&154=231&158=235&159=239&166=243&172=245&179=247&180=249&182=251&193=253&197=257&201=261'
+debug_info = '1=44&3=47&4=49&22=55&24=59&25=61&26=63&27=66&29=68&30=71&32=73&34=76&35=80&39=84&41=87&42=91&49=98&51=102&52=104&53=110&54=113&57=116&58=119&60=121&61=124&63=126&66=129&67=131&69=134&70=138&72=140&78=144&79=147&80=149&83=152&85=155&86=159&90=163&92=166&93=170&99=175&101=178&102=180&103=182&104=184&105=186&106=188&107=190&110=192&112=195&113=199&118=204&121=206&124=209&125=211&132=215&134=219&135=230&136=232&138=234&139=236&142=239&144=243&145=247&146=251&147=255&149=257&150=259&153=261&154=265&158=269&160=273&161=275&182=277&186=281&187=285&194=289&200=291&207=293&208=295&210=297&221=299&225=303&229=307'
