@@ -77,6 +77,8 @@ def runtime_dir(factory) -> Path:
 
 def descriptor(factory, seed: str) -> Path:
     """The seed's descriptor (HOSTILE's written to the session's folder)."""
+    if seed == STREAM_RIG:
+        return ROOT / "tests" / "streams" / "rig.yaml"
     if seed != HOSTILE:
         return ROOT / "specs" / "assets" / f"{seed}.yaml"
 
@@ -114,11 +116,36 @@ def seed_bridges(factory) -> dict[str, Path]:
         seeds = chosen_seeds()
         dirs = {s: generated(factory, s) for s in seeds}
         out = base(factory) / "bridges"
+        rig = generated(factory, STREAM_RIG)  # configured here, built by stream_bridges() only
         configure(HERE / "seeds", out, f"-Drapid_runtime_cpp_DIR={runtime}",
-                  "-DSEED_DIRS=" + ";".join(str(d) for d in dirs.values()), f"-DPLAIN_DIR={dirs.get('k10', '')}")
+                  "-DSEED_DIRS=" + ";".join(str(d) for d in [*dirs.values(), rig]),
+                  f"-DPLAIN_DIR={dirs.get('k10', '')}")
         build(out, *(f"{package_of(d)}_bridge" for d in dirs.values()))
         return {s: out / d.parent.name / f"{package_of(d)}_bridge" for s, d in dirs.items()}
     return _once(factory, "bridges", make)  # type: ignore[no-any-return]
+
+
+STREAM_RIG = "streamrig"  # tests/streams/rig.yaml: one input stream per loss action
+STREAM_SEEDS = ("robonaut2", "xarm2")  # X-Arm-2 writes the hand pose Robonaut 2 reads
+
+
+def stream_bridges(factory) -> dict[str, Path]:
+    """For tests/streams: the seeds' bridges with streams and the streams' test asset's
+    (STREAM_RIG), in the seeds' build (no second runtime build: one more bridge). Skips
+    when RAPIDGEN_CPP_SEEDS leaves out a seed the streams need."""
+    def make() -> dict[str, Path]:
+        bridges = seed_bridges(factory)
+        missing = [s for s in STREAM_SEEDS if s not in bridges]
+        if missing:
+            return {"missing": Path(",".join(missing))}
+        rig = generated(factory, STREAM_RIG)
+        out = base(factory) / "bridges"
+        build(out, f"{package_of(rig)}_bridge")
+        return {**{s: bridges[s] for s in STREAM_SEEDS}, STREAM_RIG: out / rig.parent.name / f"{package_of(rig)}_bridge"}
+    made = _once(factory, "stream-bridges", make)
+    if "missing" in made:
+        pytest.skip(f"the setpoint-stream tests need {made['missing']} among RAPIDGEN_CPP_SEEDS")
+    return made  # type: ignore[no-any-return]
 
 
 def dds_env() -> dict[str, str]:

@@ -95,11 +95,12 @@ def package_of(cpp: Path) -> str:
 
 
 def build(descriptors: dict[Path, tuple[str, str, str]], alloc_count: Path | None = None,
-          quick: bool = False) -> dict[str, Path]:
+          quick: bool = False, runtime_dir: Path | None = None) -> dict[str, Path]:
     """Each descriptor's bridge with its test code; stem -> program. quick: unity builds
-    without optimization (tests); else optimized (the bench)."""
+    without optimization (tests); else optimized (the bench). runtime_dir: a built runtime
+    to use (the test session's, tests/cpp_runtime/build.py); else one built here."""
     work = workdir()
-    rt = runtime(work)
+    rt = runtime_dir or runtime(work)
     dirs = {d.stem: generate(work, d, code) for d, code in descriptors.items()}
     out = work / ("bridges-quick" if quick else "bridges-alloc" if alloc_count else "bridges")
     defs = [f"-Drapid_runtime_cpp_DIR={rt}", "-DPACKAGE_DIRS=" + ";".join(str(d) for d in dirs.values()),

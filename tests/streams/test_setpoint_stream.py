@@ -1,15 +1,20 @@
-"""Setpoint streams end to end, real processes on loopback (domain 140): X-Arm-2's generated
-C++ bridge writes its hand pose stream at 500 Hz, Robonaut 2's generated C++ bridge reads
-it (specs/assets/*.yaml `streams:`), a Cyclone DDS process watches R2's AgentState and
-TextMessage. Each bridge's handlers.cpp carries a few lines of test code (code.py).
+"""Setpoint streams end to end, real processes on loopback. The default tests use the
+session's shared C++ build (tests/cpp_runtime/build.py stream_bridges(): the seeds' bridges
+and tests/streams/rig.yaml's, one more bridge in the seeds' build):
 
-- samples arrive in R2's typed callback (Streams::handPose) with the writer's values;
-- the writer frozen (SIGSTOP): R2's deadline (10 ms) passes, the declared action runs
-  (on_loss stop), a TextMessage says so, AgentState's handPoseStream is "lost" and
-  handPoseMissed counts; the callback gets nothing more;
-- the writer resumed (SIGCONT): "recovered", AgentState "active", samples again;
-- a rover with Mobility reading the same stream (tests/streams/rover.yaml): its loss runs
-  Mobility/stopAllMotion through its command manager (acks from the asset itself).
+- the loss actions (domain 150): tests/streams/pilot.py (Cyclone DDS) writes the rig's three
+  input streams, the rig runs --simulate (its simulated robot consumes them). Setpoints move
+  the simulated body, arm joints and mast; the writer paused (alive, no samples: DEADLINE)
+  and then gone (LIVELINESS): each stream is lost with its cause in a TextMessage and its
+  state in AgentState; stop halts the body (and Mobility/stopAllMotion runs, acked by the
+  simulator), hold keeps the arm moving to its last setpoint, none only reports;
+- the seeds (domain 151): X-Arm-2 --simulate streams its hand pose, Robonaut 2's generated
+  bridge (stub handlers) reads it: active, lost with the writer frozen (SIGSTOP, on_loss
+  stop), recovered (SIGCONT), in AgentState and TextMessages.
+
+RAPIDGEN_STREAMS_E2E=1 adds the long version (domain 140, its own build of three bridges
+whose handlers.cpp carry test code, tests/streams/code.py): R2's typed callback gets the
+writer's values, its on_state hook runs, a rover's loss runs stopAllMotion on its stub.
 """
 from __future__ import annotations
 
@@ -26,44 +31,65 @@ from pathlib import Path
 
 import pytest
 
+from tests.cpp_runtime import build as B
 from tests.runtime.live import BridgeProcess
 from tests.streams import code, harness
 
 ROOT = Path(__file__).resolve().parents[2]
 DOMAIN = 140
+RIG_DOMAIN = 150
+SEED_DOMAIN = 151
+RIG = Path(__file__).resolve().parent / "rig.yaml"
 R2 = ROOT / "specs" / "assets" / "robonaut2.yaml"
 XARM2 = ROOT / "specs" / "assets" / "xarm2.yaml"
 ROVER = Path(__file__).resolve().parent / "rover.yaml"
 STATE = re.compile(r"^stream handPose (\w+) after (\d+) samples, last x (-?\d+)")
 
 
-# Its own build of the runtime and three bridges costs ~2-4 min on these 2 cores, which the
-# default run cannot afford; RAPIDGEN_STREAMS_E2E=1 (or the full field campaign) runs it.
-pytestmark = pytest.mark.skipif(not (os.environ.get("RAPIDGEN_STREAMS_E2E") or os.environ.get("RAPIDGEN_FIELD_FULL")),
-                                reason="RAPIDGEN_STREAMS_E2E=1: setpoint streams end to end (its own C++ build, 2-4 min)")
+# The long version builds three bridges with test code (~1-2 min on these 2 cores on top of
+# the shared runtime): RAPIDGEN_STREAMS_E2E=1 (or the full field campaign) runs it.
+long_run = pytest.mark.skipif(not (os.environ.get("RAPIDGEN_STREAMS_E2E") or os.environ.get("RAPIDGEN_FIELD_FULL")),
+                              reason="RAPIDGEN_STREAMS_E2E=1: the long version (three more bridges with test code)")
 
 
 @pytest.fixture(scope="module")
-def bridges() -> dict[str, Path]:
+def bridges(tmp_path_factory) -> dict[str, Path]:
     missing = harness.toolchain_missing()
     if missing:
         pytest.fail(missing)
-    return harness.build({R2: code.R2, XARM2: code.XARM2, ROVER: code.R2}, quick=True)
+    return harness.build({R2: code.R2, XARM2: code.XARM2, ROVER: code.R2}, quick=True,
+                         runtime_dir=B.runtime_dir(tmp_path_factory))
+
+
+@pytest.fixture(scope="module")
+def shared(tmp_path_factory) -> dict[str, Path]:
+    """The seeds' bridges and the rig's, from the session's shared C++ build."""
+    return B.stream_bridges(tmp_path_factory)
+
+
+def python_package(descriptor: Path, out: Path) -> tuple[Path, str, dict]:
+    """The descriptor's Python package (folder, name) and an environment pinning Cyclone DDS
+    to loopback (its qos_files/cyclonedds/local.xml)."""
+    if not (out / "python").exists():
+        harness.run([sys.executable, "-m", "rapidgen", "generate", descriptor, "--lang", "python", "-o", out])
+    pkg = out / "python"
+    name = next(p.parent.name for p in pkg.glob("*/qos.py"))
+    local = pkg / name / "qos_files" / "cyclonedds" / "local.xml"
+    return pkg, name, dict(os.environ, CYCLONEDDS_URI=f"file://{local}", PYTHONPATH=f"{ROOT}")
 
 
 class Watcher:
-    """tests/streams/watch.py on R2's partition: AgentState values and TextMessages."""
+    """tests/streams/watch.py on an asset's partition: AgentState values, TextMessages, acks
+    and the sample topics named."""
 
-    def __init__(self, domain: int, partition: str = "") -> None:
-        pydir = harness.workdir() / "py-robonaut2"
-        harness.run([sys.executable, "-m", "rapidgen", "generate", R2, "--lang", "python", "-o", pydir])
-        pkg = pydir / "python"
-        local = pkg / "rapid_robonaut2" / "qos_files" / "cyclonedds" / "local.xml"
-        env = dict(os.environ, CYCLONEDDS_URI=f"file://{local}", PYTHONPATH=f"{ROOT}")
-        self.proc = subprocess.Popen([sys.executable, "-m", "tests.streams.watch", str(pkg), "rapid_robonaut2",
-                                      str(domain), *([partition] if partition else [])], cwd=ROOT, env=env,
+    def __init__(self, domain: int, partition: str = "", descriptor: Path = R2, out: Path | None = None,
+                 topics: tuple[str, ...] = ()) -> None:
+        pkg, name, env = python_package(descriptor, out or harness.workdir() / "py-robonaut2")
+        self.proc = subprocess.Popen([sys.executable, "-m", "tests.streams.watch", str(pkg), name,
+                                      str(domain), partition, *topics], cwd=ROOT, env=env,
                                      stdout=subprocess.PIPE, text=True)
         self.events: queue.Queue = queue.Queue()
+        self.history: list[dict] = []  # every event next() returned
         threading.Thread(target=self._pump, daemon=True).start()
         assert "ready" in self.next(30)
 
@@ -73,7 +99,13 @@ class Watcher:
             self.events.put(json.loads(line))
 
     def next(self, timeout: float) -> dict:
-        return self.events.get(timeout=timeout)  # type: ignore[no-any-return]
+        e = self.events.get(timeout=timeout)
+        self.history.append(e)
+        return e  # type: ignore[no-any-return]
+
+    def seen_or_until(self, pred, timeout: float, what: str) -> dict:
+        """The first event seen so far for which pred holds, else until()."""
+        return next((e for e in self.history if pred(e)), None) or self.until(pred, timeout, what)
 
     def until(self, pred, timeout: float, what: str) -> dict:
         end = time.monotonic() + timeout
@@ -108,6 +140,7 @@ def agent_is(state: str):
     return lambda e: "agent" in e and e["agent"].get("handPoseStream") == state
 
 
+@long_run
 def test_stream_arrives_is_lost_and_recovers(bridges):
     env = harness.dds_env()
     r2 = BridgeProcess.of_command([str(bridges["robonaut2"]), "--domain", str(DOMAIN), "--seconds", "90"], ROOT, env)
@@ -156,4 +189,148 @@ def test_stream_arrives_is_lost_and_recovers(bridges):
             if w is not None:
                 w.stop()
         rover.stop()
+        r2.stop()
+
+
+# ---- default tier: the session's shared build ------------------------------------------------
+
+RIG_TOPICS = ("rapid_position_sample", "rapid_position_sample-mastHead", "rapid_joint_sample")
+RIG_STREAMS = {"drive": "motion stopped", "arm": "holding the last setpoint", "mast": "no action"}
+
+
+class Pilot:
+    """tests/streams/pilot.py: the rig's setpoints from partition RigPilot."""
+
+    def __init__(self, out: Path) -> None:
+        pkg, name, env = python_package(RIG, out)
+        self.proc = subprocess.Popen([sys.executable, "-m", "tests.streams.pilot", str(pkg), name, str(RIG_DOMAIN)],
+                                     cwd=ROOT, env=env, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        assert self.proc.stdout is not None
+        line = self.proc.stdout.readline()
+        assert "ready" in line, f"the pilot did not start: {line!r}"
+
+    def send(self, command: str) -> None:
+        assert self.proc.stdin is not None
+        self.proc.stdin.write(command + "\n")
+        self.proc.stdin.flush()
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.wait()
+
+
+def agent_all(state: str, names=tuple(RIG_STREAMS)):
+    return lambda e: "agent" in e and all(e["agent"].get(f"{n}Stream") == state for n in names)
+
+
+def texts_until(watcher: Watcher, want: dict[str, str], timeout: float, what: str) -> dict[str, dict]:
+    """The first TextMessage of each stream containing want[stream]; fails on none."""
+    got: dict[str, dict] = {}
+
+    def pred(e: dict) -> bool:
+        if "text" in e:
+            for name, part in want.items():
+                if name not in got and e["text"].startswith(f"stream {name}") and part in e["text"]:
+                    got[name] = e
+        return len(got) == len(want)
+    watcher.until(pred, timeout, what)
+    return got
+
+
+def latest(watcher: Watcher, seconds: float) -> dict[str, list[float]]:
+    """The last value of each sample topic seen within `seconds`."""
+    last: dict[str, list[float]] = {}
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        try:
+            e = watcher.next(max(0.01, end - time.monotonic()))
+        except queue.Empty:
+            break
+        if "position" in e:
+            last[e["position"]] = e["xyz"]
+        elif "joint" in e:
+            last[e["joint"]] = e["pos"]
+    return last
+
+
+def test_loss_actions_on_deadline_and_liveliness_under_simulate(shared, tmp_path_factory):
+    py = tmp_path_factory.mktemp("streams-rig")
+    rig = BridgeProcess.of_command([str(shared[B.STREAM_RIG]), "--simulate", "--sim-speed", "0.25", "--domain",
+                                    str(RIG_DOMAIN), "--seconds", "120", "--no-journal"], ROOT, B.dds_env())
+    watcher = pilot = None
+    try:
+        rig.wait_ready()
+        watcher = Watcher(RIG_DOMAIN, descriptor=RIG, out=py, topics=RIG_TOPICS)
+        watcher.until(agent_all("waiting"), 15, "AgentState: every stream waiting before any writer")
+        pilot = Pilot(py)
+        watcher.until(agent_all("active"), 15, "AgentState: every stream active")
+        # the setpoints move the simulated robot: body toward x = 2, arm toward 2 rad, mast toward z = 1
+        watcher.until(lambda e: e.get("joint") == "rapid_joint_sample" and e["pos"][0] > 0.05, 10, "the arm moving")
+        pilot.send("pause drive arm mast")  # the writers stay alive: DEADLINE, not LIVELINESS
+        lost = texts_until(watcher, {n: "lost (no sample within its 200 ms deadline" for n in RIG_STREAMS}, 10,
+                           "a TextMessage per stream saying lost on its deadline")
+        for name, action in RIG_STREAMS.items():
+            assert lost[name]["text"].endswith(action) and "WARN" in lost[name]["level"], lost[name]
+        stop = watcher.seen_or_until(lambda e: e.get("ack") == "stream-drive-stop-1" and "COMPLETED" in e["status"],
+                                     10, "Mobility/stopAllMotion run for the drive stream")
+        assert "OK" in stop["completed"] and "stopped" in stop["message"]  # the simulator's handler answered
+        agent = watcher.until(agent_all("lost"), 10, "AgentState: every stream lost")
+        assert all(agent["agent"][f"{n}Missed"] >= 1 for n in RIG_STREAMS)
+        before = latest(watcher, 1.0)
+        after = latest(watcher, 5.0)  # stop: the body stays; hold and none: arm and mast go on to their setpoints
+        body0, body1 = before["rapid_position_sample"][0], after["rapid_position_sample"][0]
+        assert 0 < body1 < 1.5 and abs(body1 - body0) < 1e-6, (body0, body1)
+        assert after["rapid_joint_sample"][0] > before["rapid_joint_sample"][0] + 0.5, (before, after)
+        assert after["rapid_position_sample-mastHead"][2] > before["rapid_position_sample-mastHead"][2] + 0.3
+
+        pilot.send("resume drive arm mast")
+        texts_until(watcher, {n: "recovered" for n in RIG_STREAMS}, 10, "a TextMessage per stream saying recovered")
+        watcher.until(agent_all("active"), 10, "AgentState: every stream active again")
+
+        pilot.proc.kill()  # the writer gone: its liveliness lapses after the 600 ms lease
+        texts_until(watcher, {n: "lost" for n in RIG_STREAMS}, 10, "a TextMessage per stream saying lost")
+        gone = texts_until(watcher, {n: "its writer is gone" for n in RIG_STREAMS}, 10,
+                           "a TextMessage per stream saying its writer is gone (LIVELINESS)")
+        assert all("600 ms" in g["text"] for g in gone.values())
+        watcher.until(agent_all("lost"), 10, "AgentState: every stream lost again")
+        stops = {e["ack"] for e in watcher.history if "ack" in e}
+        assert stops == {"stream-drive-stop-1", "stream-drive-stop-2"}, stops  # stop only: hold and none run nothing
+        log = rig.stop()
+        assert "stream drive: " in log and " 2 losses" in log  # the bridge's summary at stop
+    finally:
+        for p in (pilot, watcher):
+            if p is not None:
+                p.stop()
+        rig.stop()
+
+
+def test_seed_streams_x_arm_2_simulated_drives_robonaut_2(shared, tmp_path_factory):
+    env = B.dds_env()
+    r2 = BridgeProcess.of_command([str(shared["robonaut2"]), "--domain", str(SEED_DOMAIN), "--seconds", "90",
+                                   "--no-journal"], ROOT, env)
+    watcher = writer = None
+    try:
+        r2.wait_ready()
+        watcher = Watcher(SEED_DOMAIN, out=tmp_path_factory.mktemp("streams-r2"))
+        watcher.until(agent_is("waiting"), 15, "AgentState 'waiting' before any writer")
+        writer = BridgeProcess.of_command([str(shared["xarm2"]), "--simulate", "--domain", str(SEED_DOMAIN),
+                                           "--seconds", "90", "--no-journal"], ROOT, env)
+        writer.wait_ready()
+        watcher.until(agent_is("active"), 15, "AgentState 'active': the simulated X-Arm-2's hand pose arrives")
+        watcher.until(lambda e: "text" in e and "handPose active" in e["text"], 10, "a TextMessage saying active")
+        os.kill(writer.proc.pid, signal.SIGSTOP)
+        text = watcher.until(lambda e: "text" in e and "lost" in e["text"], 10, "a TextMessage saying lost")
+        assert "handPose" in text["text"] and text["text"].endswith("motion stopped") and "WARN" in text["level"]
+        agent = watcher.until(agent_is("lost"), 10, "AgentState 'lost'")
+        assert agent["agent"]["handPoseMissed"] >= 1
+        os.kill(writer.proc.pid, signal.SIGCONT)
+        watcher.until(lambda e: "text" in e and "recovered" in e["text"], 10, "a TextMessage saying recovered")
+        watcher.until(agent_is("active"), 10, "AgentState 'active' again")
+    finally:
+        if writer is not None:
+            os.kill(writer.proc.pid, signal.SIGCONT)
+            writer.stop()
+        if watcher is not None:
+            watcher.stop()
         r2.stop()

@@ -39,6 +39,7 @@ class StreamsView:
     member: str  # HandlerSet member holding it
     values: str  # HandlerSet member: the asset's own agent values
     state_hook: str
+    simulate: str  # the glue's function: the streams on the simulated robot
     streams: list[StreamView]
 
     @property
@@ -84,4 +85,4 @@ def build(loaded: "LoadedAsset", b: "Builder", top: namer.Scope, members: namer.
             out.append(StreamView(i, False, "", sample_fn, send_fn, b.qualified(s.type), spec,
                                   [cpp_comment(d) for d in doc]))
     return StreamsView(cls, impl, members.claim("streams", "(streams)"), members.claim("agent_values", "(agent values)"),
-                       STATE_HOOK, out)
+                       STATE_HOOK, top.claim("simulated_streams", "the streams under --simulate"), out)

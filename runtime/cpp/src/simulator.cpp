@@ -86,6 +86,7 @@ Simulator::Simulator(const Tables& tables, double speed) : tables_(tables), spee
                 joint_frames_.push_back(j.frame);
                 joint_limits_.emplace_back(j.min, j.max);
                 joint_pos_.push_back(clamp(0.0, joint_limits_.back()));
+                joint_goal_.push_back(std::nan(""));
             }
         } else if (t.kind == "agent") {
             for (const auto& v : t.values) agent_[v.name] = initial(v);
@@ -107,12 +108,111 @@ std::vector<double> Simulator::joints(std::size_t joint_entry) const {
 }
 
 std::map<std::string, Value> Simulator::agent() const {
+    std::function<std::map<std::string, Value>()> more;
+    std::map<std::string, Value> out;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        out = agent_;
+        more = agent_source_;
+    }
+    if (more)
+        for (auto& [k, v] : more()) out[k] = std::move(v);
+    return out;
+}
+
+void Simulator::agent_source(std::function<std::map<std::string, Value>()> values) {
     std::lock_guard<std::mutex> lock(mutex_);
-    return agent_;
+    agent_source_ = std::move(values);
+}
+
+bool Simulator::drives_body(const std::string& subsystem) const {
+    if (subsystem.empty()) return true;
+    const std::string* type = tables_.type_of(subsystem);
+    if (type != nullptr && *type == "Mobility") return true;
+    for (const auto& t : tables_.telemetry)
+        if (t.kind == "position" && t.subsystem == subsystem) return false;
+    return true;
+}
+
+std::vector<std::size_t> Simulator::stream_targets(const std::string& subsystem) const {
+    if (!subsystem.empty()) return joints_of(subsystem);  // (none for one without joints: a drive)
+    std::vector<std::size_t> own;
+    if (!joint_offset_.empty()) {  // no subsystem named: the first joint entry's
+        const TelemetrySpec* t = tables_.telemetry_of("joint", 0);
+        for (std::size_t j = 0; t != nullptr && j < t->joints.size(); ++j) own.push_back(joint_offset_[0] + j);
+    }
+    return own;
+}
+
+void Simulator::stream_joints(const std::string& subsystem, const std::vector<double>& positions) {
+    auto targets = stream_targets(subsystem);
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (std::size_t k = 0; k < targets.size() && k < positions.size(); ++k)
+        if (std::isfinite(positions[k])) joint_goal_[targets[k]] = clamp(positions[k], joint_limits_[targets[k]]);
+}
+
+void Simulator::stream_pose(const std::string& subsystem, const std::array<double, 3>& xyz) {
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return;
+    bool body = drives_body(subsystem);
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (body) {
+        body_goal_ = xyz;
+    } else {
+        parts_.try_emplace(subsystem);
+        part_goal_[subsystem] = xyz;
+    }
+}
+
+void Simulator::stream_halt(const std::string& subsystem) {
+    auto targets = stream_targets(subsystem);
+    bool body = drives_body(subsystem);
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto i : targets) joint_goal_[i] = std::nan("");
+    if (body) {
+        body_goal_.reset();
+        body_.velocity = {0.0, 0.0, 0.0};
+    } else if (parts_.count(subsystem)) {
+        part_goal_[subsystem].reset();
+        parts_[subsystem].velocity = {0.0, 0.0, 0.0};
+    }
+}
+
+Simulator::Body Simulator::pose(const std::string& subsystem) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto found = parts_.find(subsystem);
+    return found != parts_.end() ? found->second : body_;
+}
+
+std::vector<double> Simulator::stream_joint_positions(const std::string& subsystem) const {
+    auto targets = stream_targets(subsystem);
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<double> out;
+    for (auto i : targets) out.push_back(joint_pos_[i]);
+    return out;
+}
+
+void Simulator::approach(Body& b, const std::array<double, 3>& goal, double step, double dt) {
+    double d[3] = {goal[0] - b.xyz[0], goal[1] - b.xyz[1], goal[2] - b.xyz[2]};
+    double dist = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double k = dist > step ? step / dist : 1.0;
+    for (int i = 0; i < 3; ++i) {
+        b.xyz[i] += d[i] * k;
+        b.velocity[i] = dt > 0 ? d[i] * k / dt : 0.0;
+    }
+    b.odometer += dist * k;
 }
 
 void Simulator::advance(double seconds) {
     std::lock_guard<std::mutex> lock(mutex_);
+    double dt = std::max(0.0, seconds) * speed_;
+    for (std::size_t i = 0; i < joint_pos_.size(); ++i) {
+        if (std::isnan(joint_goal_[i])) continue;
+        double most = sim::JOINT_SPEED * dt;
+        joint_pos_[i] += std::max(-most, std::min(most, joint_goal_[i] - joint_pos_[i]));
+    }
+    if (body_goal_) approach(body_, *body_goal_, sim::DRIVE_SPEED * dt, dt);
+    for (auto& [name, goal] : part_goal_)
+        if (goal) approach(parts_[name], *goal, sim::DRIVE_SPEED * dt, dt);
     for (auto& [key, value] : agent_) {
         std::string k = lower(key);
         if (!contains(k, "battery") || !(contains(k, "charge") || contains(k, "%"))) continue;
@@ -144,6 +244,7 @@ Result Simulator::execute(CommandContext& ctx) {
     if (type == "Mobility" && name == "stopAllMotion") {
         std::lock_guard<std::mutex> lock(mutex_);
         body_.velocity = {0.0, 0.0, 0.0};
+        body_goal_.reset();  // a stream's setpoint too
         return Result::ok("stopped (simulated)");
     }
     if (type == "Mobility" && (name == "simpleMove" || name == "move") && is_vec3(args, 1)) {

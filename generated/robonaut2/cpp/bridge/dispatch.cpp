@@ -5,6 +5,7 @@
 #include "handlers.hpp"
 
 #include <atomic>
+#include <memory>
 #include <vector>
 
 #include <rapid_runtime/dds/stream.hpp>
@@ -70,6 +71,13 @@ void Dispatch::on_stop() {
     if (set_.on_stop) set_.on_stop();
     running = nullptr;
     if (streams_) streams_->stop();
+}
+
+::std::shared_ptr<void> simulated_streams(::rapid_runtime::dds::Bridge& bridge, ::rapid_runtime::Simulator& sim) {
+    auto set = ::std::make_shared<::rapid_runtime::dds::SimulatedStreams>(bridge, sim, stream_specs());
+    set->read<::rapid::PositionSample>(0u);
+    set->start();
+    return set;
 }
 
 }  // namespace rapid_robonaut2::bridge

@@ -38,5 +38,6 @@ int main(int argc, char** argv) {
         return ::std::make_unique<::rapid_robonaut2::bridge::Dispatch>(::rapid_robonaut2::bridge::make_handlers());
     };
     program.custom = custom_publishers();
+    program.simulated_streams = ::rapid_robonaut2::bridge::simulated_streams;
     return ::rapid_runtime::dds::run_bridge(argc, argv, program);
 }

@@ -29,7 +29,10 @@
 #include <rapid_runtime/value.hpp>
 #include <rapid_xarm2/types.hpp>
 
-namespace rapid_runtime { namespace dds { class StreamSet; } }
+namespace rapid_runtime {
+class Simulator;
+namespace dds { class Bridge; class StreamSet; }
+}  // namespace rapid_runtime
 
 namespace rapid_xarm2::bridge {
 
@@ -69,13 +72,16 @@ public:
 // the deadline: on a loss it runs the declared action (stop: on_state() is your
 // cue to bring the driven joints to rest, and Mobility/stopAllMotion goes through the
 // command manager when the asset has Mobility; hold: keep the last setpoint), sends a
-// TextMessage and reports the state in AgentState. Streams run without --simulate only.
+// TextMessage and reports the state in AgentState. Under --simulate the simulated robot
+// takes the samples instead (JointSample and PositionSample setpoints move it) and writes
+// the output streams.
 class Streams {
 public:
     virtual ~Streams() = default;
 
-    // A stream changed state: lost (the declared action is being taken) or active (first
-    // sample, recovered). Runs on the runtime's reporting thread.
+    // A stream with on_loss stop or hold changed state: lost (the declared action is being
+    // taken) or active (first sample, recovered). Runs on the runtime's reporting thread.
+    // Not called for on_loss none: the runtime only reports those.
     virtual void on_state(const ::rapid_runtime::StreamSpec& stream, ::rapid_runtime::StreamState state) {
         (void)stream;
         (void)state;
@@ -107,6 +113,9 @@ struct HandlerSet {
 
 // Yours, in handlers.cpp.
 HandlerSet make_handlers();
+
+// The glue (dispatch.cpp): the streams on the simulated robot (--simulate).
+::std::shared_ptr<void> simulated_streams(::rapid_runtime::dds::Bridge& bridge, ::rapid_runtime::Simulator& sim);
 
 // The glue (dispatch.cpp): each command's arguments unpacked into its typed method.
 class Dispatch final : public ::rapid_runtime::dds::BridgeHandlers {

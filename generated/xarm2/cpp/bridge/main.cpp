@@ -37,5 +37,6 @@ int main(int argc, char** argv) {
         return ::std::make_unique<::rapid_xarm2::bridge::Dispatch>(::rapid_xarm2::bridge::make_handlers());
     };
     program.custom = custom_publishers();
+    program.simulated_streams = ::rapid_xarm2::bridge::simulated_streams;
     return ::rapid_runtime::dds::run_bridge(argc, argv, program);
 }

@@ -183,6 +183,8 @@ int run_bridge(int argc, char** argv, const Program& program) {
         }
         bridge.start();
         if (telemetry) telemetry->start();
+        std::shared_ptr<void> streams;  // (stopped before the telemetry: its AgentState reads them)
+        if (simulator && program.simulated_streams) streams = program.simulated_streams(bridge, *simulator);
         if (handlers) handlers->on_start(bridge);
         std::signal(SIGINT, on_signal);
         std::signal(SIGTERM, on_signal);
@@ -196,6 +198,7 @@ int run_bridge(int argc, char** argv, const Program& program) {
         while (!signalled && !bridge.wait(0.1) && std::chrono::steady_clock::now() < end) {
         }
         if (handlers) handlers->on_stop();
+        streams.reset();
         if (telemetry) telemetry->stop();
         bridge.stop();
     } catch (const std::exception& e) {

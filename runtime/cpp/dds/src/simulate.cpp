@@ -159,7 +159,7 @@ void SimulatedTelemetry::sample(std::size_t entry, std::size_t index) {
         }
         tel_.agent_state(mine, index);
     } else if (e.kind == "position") {
-        auto body = sim_.body();
+        auto body = sim_.pose(e.subsystem);  // the body, or the part a setpoint stream drives
         std::map<std::string, Value> values;
         for (const auto& k : e.values) {
             if (k.name == "speed") values.emplace("speed", std::hypot(body.velocity[0], body.velocity[1]));

@@ -14,6 +14,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,8 +57,26 @@ public:
     std::vector<double> joints(std::size_t joint_entry) const;
     // Agent values by key (every agent entry's keys), as declared types.
     std::map<std::string, Value> agent() const;
-    // Simulated seconds pass: the battery drains.
+    // Seconds pass: the battery drains, stream-driven joints and poses move toward their
+    // setpoints (at JOINT_SPEED and DRIVE_SPEED, times the speed).
     void advance(double seconds);
+
+    // Setpoint streams (--simulate, dds/stream.hpp SimulatedStreams): a stream's setpoints
+    // drive the subsystem it names: its joints (a JointSample's positions, in the joint
+    // entry's order, clamped to their limits; no subsystem: the first joint entry's) or its pose (a PositionSample's xyz: the pose
+    // of the position entry of that subsystem, or the body when the subsystem is empty, a
+    // Mobility one or has no position entry of its own). They move there in advance().
+    void stream_joints(const std::string& subsystem, const std::vector<double>& positions);
+    void stream_pose(const std::string& subsystem, const std::array<double, 3>& xyz);
+    // on_loss stop: what the subsystem's stream drives stops where it is.
+    void stream_halt(const std::string& subsystem);
+    // The pose a position entry of this subsystem reports (the body unless a stream drives it).
+    Body pose(const std::string& subsystem) const;
+    // Positions of the joints a stream of this subsystem drives ("": the first joint entry's).
+    std::vector<double> stream_joint_positions(const std::string& subsystem) const;
+    // More agent values (the streams' state keys), merged into agent(); called without the
+    // simulator's lock held.
+    void agent_source(std::function<std::map<std::string, Value>()> values);
     double speed() const { return speed_; }
 
     // The DDS side takes pictures: called with the index among image entries, from the
@@ -72,6 +91,9 @@ private:
     Result pictures(CommandContext& ctx, const std::vector<std::size_t>& cameras);
     std::vector<std::size_t> cameras(const CommandContext& ctx) const;
     std::vector<std::size_t> joints_of(const std::string& subsystem) const;
+    std::vector<std::size_t> stream_targets(const std::string& subsystem) const;
+    bool drives_body(const std::string& subsystem) const;
+    static void approach(Body& b, const std::array<double, 3>& goal, double step, double dt);
 
     const Tables& tables_;
     double speed_;
@@ -83,6 +105,12 @@ private:
     std::vector<std::size_t> joint_offset_;  // per joint entry: its first joint
     std::map<std::string, Value> agent_;
     std::function<void(std::size_t)> take_picture_;
+    // setpoint streams
+    std::vector<double> joint_goal_;  // per joint: a stream's setpoint, NaN when none
+    std::optional<std::array<double, 3>> body_goal_;
+    std::map<std::string, Body> parts_;  // poses of subsystems a stream drives
+    std::map<std::string, std::optional<std::array<double, 3>>> part_goal_;
+    std::function<std::map<std::string, Value>()> agent_source_;
 };
 
 }  // namespace rapid_runtime

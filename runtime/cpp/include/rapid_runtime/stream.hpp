@@ -18,6 +18,9 @@ namespace rapid_runtime {
 
 enum class LossAction { Stop, Hold, None };
 enum class StreamState : int { Waiting = 0, Active = 1, Lost = 2 };
+// What made an active stream lost: its DEADLINE passed without a sample, or its writer's
+// LIVELINESS lapsed (the writer process is gone or frozen, or left the domain).
+enum class LossCause : int { Deadline = 0, Liveliness = 1 };
 
 inline const char* state_name(StreamState s) {
     switch (s) {
@@ -56,37 +59,58 @@ public:
     // A valid sample arrived; true when the stream became active (first sample, recovery).
     bool sample() {
         samples_.fetch_add(1, std::memory_order_relaxed);
-        return set(StreamState::Active);
+        return set(StreamState::Active, LossCause::Deadline);
     }
     // The reader's DEADLINE passed without a sample (total_count_change of them); true when
     // the stream was active and is now lost.
     bool deadline_missed(std::uint64_t count = 1) {
         missed_.fetch_add(count, std::memory_order_relaxed);
-        return state() == StreamState::Active && set(StreamState::Lost);
+        return lose(LossCause::Deadline);
     }
-    // LIVELINESS: no writer alive any more; true when the stream was active.
+    // LIVELINESS: alive writers now; true when the stream was active and is now lost, or
+    // when the last writer just went (reported even when a deadline lost the stream first).
     bool writers_alive(int alive) {
-        if (alive > 0 || state() != StreamState::Active) return false;
-        return set(StreamState::Lost);
-    }
-
-    StreamState state() const { return static_cast<StreamState>(state_.load(std::memory_order_acquire)); }
-    std::uint64_t samples() const { return samples_.load(std::memory_order_relaxed); }
-    std::uint64_t missed() const { return missed_.load(std::memory_order_relaxed); }
-    std::uint64_t losses() const { return losses_.load(std::memory_order_relaxed); }
-
-private:
-    bool set(StreamState s) {
-        int old = state_.exchange(static_cast<int>(s), std::memory_order_acq_rel);
-        if (old == static_cast<int>(s)) return false;
-        if (s == StreamState::Lost) losses_.fetch_add(1, std::memory_order_relaxed);
+        int was = alive_.exchange(alive, std::memory_order_acq_rel);
+        if (alive > 0 || was <= 0) return false;
+        gone_.fetch_add(1, std::memory_order_relaxed);
+        lose(LossCause::Liveliness);
         return true;
     }
 
+    StreamState state() const { return static_cast<StreamState>(state_.load(std::memory_order_acquire) & STATE); }
+    // Why the stream was last lost (meaningful while state() is Lost).
+    LossCause cause() const { return static_cast<LossCause>(state_.load(std::memory_order_acquire) >> CAUSE_SHIFT); }
+    std::uint64_t samples() const { return samples_.load(std::memory_order_relaxed); }
+    std::uint64_t missed() const { return missed_.load(std::memory_order_relaxed); }
+    std::uint64_t losses() const { return losses_.load(std::memory_order_relaxed); }
+    // Times the last alive writer went (LIVELINESS lapsed or the writer left).
+    std::uint64_t writers_gone() const { return gone_.load(std::memory_order_relaxed); }
+
+private:
+    // The state and the cause of a loss in one atomic: the reporting thread never reads a
+    // "lost" with the cause of an earlier loss.
+    static constexpr int STATE = 0xf;
+    static constexpr int CAUSE_SHIFT = 4;
+
+    bool lose(LossCause cause) {
+        int expected = static_cast<int>(StreamState::Active);
+        if (!state_.compare_exchange_strong(expected, pack(StreamState::Lost, cause), std::memory_order_acq_rel))
+            return false;
+        losses_.fetch_add(1, std::memory_order_relaxed);
+        return true;
+    }
+    bool set(StreamState s, LossCause cause) {
+        int old = state_.exchange(pack(s, cause), std::memory_order_acq_rel);
+        return (old & STATE) != static_cast<int>(s);
+    }
+    static int pack(StreamState s, LossCause c) { return static_cast<int>(s) | (static_cast<int>(c) << CAUSE_SHIFT); }
+
     std::atomic<int> state_{static_cast<int>(StreamState::Waiting)};
+    std::atomic<int> alive_{0};
     std::atomic<std::uint64_t> samples_{0};
     std::atomic<std::uint64_t> missed_{0};
     std::atomic<std::uint64_t> losses_{0};
+    std::atomic<std::uint64_t> gone_{0};
 };
 
 }  // namespace rapid_runtime

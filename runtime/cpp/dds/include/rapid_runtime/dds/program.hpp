@@ -33,6 +33,9 @@ struct Program {
     std::function<void(Bridge&)> publish_configs;  // the computed configs (asset.hpp)
     std::function<std::unique_ptr<BridgeHandlers>()> make_handlers;  // the user's
     std::vector<CustomPublisher> custom;  // extension telemetry the simulated robot publishes
+    // --simulate: the asset's setpoint streams on the simulated robot (the generated glue's,
+    // when the asset has streams: dds/stream.hpp SimulatedStreams), kept until the bridge stops.
+    std::function<std::shared_ptr<void>(Bridge&, Simulator&)> simulated_streams;
 };
 
 int run_bridge(int argc, char** argv, const Program& program);

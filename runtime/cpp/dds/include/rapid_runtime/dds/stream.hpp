@@ -16,15 +16,23 @@
 //
 // Deadline misses (Fast DDS's event thread) and liveliness changes only flip the stream's
 // StreamMonitor and wake the reporting thread, which then runs the declared action (stop:
-// the handlers' on_loss hook and, when the asset has Mobility, stopAllMotion through the
-// command manager; hold: the last setpoint is kept, the hook told so; none), publishes a
-// TextMessage on the asset's text telemetry and the AgentState with the state and missed
-// keys, and does so again on recovery. AgentState also goes out at the agent entry's rate.
+// the handlers' on_state hook and, when the asset has Mobility, stopAllMotion through the
+// command manager; hold: the hook, whose cue is to keep the last setpoint; none: nothing,
+// the hook is not called), publishes a TextMessage on the asset's text telemetry saying
+// why (no sample within the deadline, or the writer's liveliness lapsed) and the AgentState
+// with the state and missed keys, and does so again on recovery. A writer whose liveliness
+// lapses after a deadline already lost the stream is reported too. AgentState also goes
+// out at the agent entry's rate.
+//
+// Under --simulate, SimulatedStreams (below) runs the same set with the simulated robot
+// behind it: input setpoints move its joints or pose, output streams carry its state.
 #ifndef RAPID_RUNTIME_DDS_STREAM_HPP
 #define RAPID_RUNTIME_DDS_STREAM_HPP
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <condition_variable>
 #include <cstdint>
@@ -46,6 +54,7 @@
 #include <fastdds/dds/subscriber/qos/SubscriberQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <rapid_runtime/simulator.hpp>
 #include <rapid_runtime/stream.hpp>
 #include <rapid_runtime/text.hpp>
 #include <rapid_runtime/value.hpp>
@@ -58,11 +67,15 @@ namespace dds {
 
 // What the generated glue tells the stream set about the user's handlers.
 struct StreamHooks {
-    // The stream changed state (lost: the declared action is being taken; active again).
+    // A stream with on_loss stop or hold changed state (lost: the declared action is being
+    // taken; active: first sample or recovered). Not called for on_loss none.
     std::function<void(const StreamSpec&, StreamState)> on_state;
     // The asset's own agent values, merged under the stream keys when the set publishes
     // AgentState (unset: declared defaults).
     std::function<std::map<std::string, Value>()> agent_values;
+    // false: AgentState only when a stream's state or missed count changed (the simulated
+    // robot publishes it at the agent entry's rate).
+    bool periodic_agent = true;
 };
 
 class StreamSet;
@@ -245,21 +258,31 @@ private:
         for (const auto& s : specs_) reports = reports || !s.state_key.empty() || !s.missed_key.empty();
         double rate = agent != nullptr && agent->rate ? *agent->rate : 1.0;
         auto period = std::chrono::duration<double>(1.0 / (rate > 0 ? rate : 1.0));
+        std::vector<std::uint64_t> gone(specs_.size(), 0);  // writers gone, as reported
         std::unique_lock<std::mutex> lock(mutex_);
         while (!stopping_) {
             wake_.wait_for(lock, period, [this] { return stopping_ || poked_; });
             if (stopping_) break;
+            bool poked = poked_;
             poked_ = false;
             lock.unlock();
             for (std::size_t i = 0; i < specs_.size(); ++i) {
                 StreamState now = monitors_[i].state();
+                bool went = monitors_[i].writers_gone() != gone[i];
+                gone[i] = monitors_[i].writers_gone();
                 if (now != reported_[i]) {
                     StreamState was = reported_[i];
                     reported_[i] = now;
                     changed(i, was, now);
                 }
+                if (went && now == StreamState::Lost && monitors_[i].cause() == LossCause::Deadline) {
+                    // a deadline lost it first: the writer's going is news of its own
+                    say("stream " + visible(specs_[i].name) + ": its writer is gone (no liveliness within " +
+                            format_ms(specs_[i].liveliness_ms) + ")",
+                        ::rapid::MessageLevel::MSG_WARN);
+                }
             }
-            if (agent != nullptr && reports) publish_agent();
+            if (agent != nullptr && reports && (poked || hooks_.periodic_agent)) publish_agent();
             lock.lock();
         }
     }
@@ -268,27 +291,33 @@ private:
         const StreamSpec& s = specs_[i];
         std::string text;
         if (now == StreamState::Lost) {
-            text = "stream " + visible(s.name) + " lost (" + std::to_string(monitors_[i].missed()) +
-                   " deadlines of " + format_ms(s.deadline_ms) + " missed): " + action_text(s.on_loss);
+            std::string why = monitors_[i].cause() == LossCause::Liveliness
+                                  ? "its writer is gone: no liveliness within " + format_ms(s.liveliness_ms)
+                                  : "no sample within its " + format_ms(s.deadline_ms) + " deadline";
+            text = "stream " + visible(s.name) + " lost (" + why + "; " + std::to_string(monitors_[i].missed()) +
+                   " deadlines missed): " + action_text(s.on_loss);
             if (s.on_loss == LossAction::Stop) stop_motion(s);
         } else if (now == StreamState::Active) {
             text = was == StreamState::Lost ? "stream " + visible(s.name) + " recovered" :
                                               "stream " + visible(s.name) + " active";
         }
-        if (hooks_.on_state) {
+        if (hooks_.on_state && s.on_loss != LossAction::None) {  // none: reported, nothing done
             try {
                 hooks_.on_state(s, now);
             } catch (const std::exception& e) {
                 bridge_.log("stream " + visible(s.name) + ": handler failed: " + e.what());
             }
         }
-        if (text.empty()) return;
+        if (!text.empty())
+            say(text, now == StreamState::Lost ? ::rapid::MessageLevel::MSG_WARN : ::rapid::MessageLevel::MSG_INFO);
+    }
+
+    // The log and the asset's text telemetry (when it has one).
+    void say(const std::string& text, ::rapid::MessageLevel level) {
         bridge_.log(text);
         if (bridge_.tables().telemetry_of("text") == nullptr) return;
         try {
-            Telemetry(bridge_).text(clip(text), "stream",
-                                    now == StreamState::Lost ? ::rapid::MessageLevel::MSG_WARN
-                                                             : ::rapid::MessageLevel::MSG_INFO);
+            Telemetry(bridge_).text(clip(text), "stream", level);
         } catch (const std::exception& e) {
             bridge_.log(std::string("stream text not sent: ") + e.what());
         }
@@ -353,6 +382,133 @@ private:
     bool poked_ = false;
     std::uint64_t stops_ = 0;
     bool summarized_ = false;
+    std::thread thread_;
+};
+
+// ---- --simulate ------------------------------------------------------------------------------
+
+// What the simulated robot does with a setpoint (other types: counted and watched only):
+// a JointSample's positions move the joints the stream drives, a PositionSample's xyz the
+// pose (Simulator::stream_joints / stream_pose).
+inline void simulated_setpoint(Simulator& sim, const StreamSpec& s, const ::rapid::JointSample& sample) {
+    std::vector<double> pos(sample.anglePos.begin(), sample.anglePos.end());
+    sim.stream_joints(s.subsystem, pos);
+}
+inline void simulated_setpoint(Simulator& sim, const StreamSpec& s, const ::rapid::PositionSample& sample) {
+    sim.stream_pose(s.subsystem, sample.pose.xyz);
+}
+template <class T>
+void simulated_setpoint(Simulator&, const StreamSpec&, const T&) {}
+
+// What the simulated robot writes on an output stream at time t (simulated seconds): its
+// own state with a slow sweep on top, so a consumer has something to follow: the pose of
+// the stream's subsystem (or the body) circling 10 cm around it every 20 s, the joints it
+// names (or the first joint entry's) swinging 0.2 rad every 10 s. Other types: the header.
+inline void simulated_output(const Simulator& sim, const StreamSpec& s, double t, ::rapid::JointSample& out) {
+    auto pos = sim.stream_joint_positions(s.subsystem);
+    out.anglePos.resize(pos.size());
+    double swing = 0.2 * std::sin(2 * 3.141592653589793 * t / 10.0);
+    for (std::size_t i = 0; i < pos.size(); ++i) out.anglePos[i] = static_cast<float>(pos[i] + swing);
+}
+inline void simulated_output(const Simulator& sim, const StreamSpec& s, double t, ::rapid::PositionSample& out) {
+    auto pose = sim.pose(s.subsystem);
+    double a = 2 * 3.141592653589793 * t / 20.0;
+    out.pose.xyz = {pose.xyz[0] + 0.1 * std::cos(a), pose.xyz[1] + 0.1 * std::sin(a), pose.xyz[2]};
+    out.pose.rot = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+}
+template <class T>
+void simulated_output(const Simulator&, const StreamSpec&, double, T&) {}
+
+// The asset's streams on the simulated robot (program.cpp runs it under --simulate; the
+// generated glue registers each stream's type):
+//   input   read like the real bridge's (same QoS, state, TextMessages, AgentState keys);
+//           each sample drives the simulator (simulated_setpoint); on a loss, stop halts what
+//           the stream drives (and Mobility/stopAllMotion goes to the simulator through the
+//           command manager), hold keeps moving to the last setpoint, none does nothing.
+//   output  written at the stream's rate by one thread (simulated_output).
+// The streams' agent keys go out with the simulated robot's AgentState.
+class SimulatedStreams {
+public:
+    SimulatedStreams(Bridge& bridge, Simulator& sim, std::vector<StreamSpec> specs)
+        : sim_(sim), set_(bridge, std::move(specs), hooks(sim)) {
+        sim_.agent_source([this] { return set_.agent_values(); });
+    }
+    ~SimulatedStreams() { stop(); }
+    SimulatedStreams(const SimulatedStreams&) = delete;
+    SimulatedStreams& operator=(const SimulatedStreams&) = delete;
+
+    template <class T>
+    void read(std::size_t index) {
+        const StreamSpec& s = set_.spec(index);
+        Simulator& sim = sim_;
+        set_.read<T>(index, [&sim, &s](const T& sample) { simulated_setpoint(sim, s, sample); });
+    }
+
+    template <class T>
+    void write(std::size_t index) {
+        StreamWriter<T>* w = &set_.writer<T>(index);
+        const StreamSpec& s = set_.spec(index);
+        double rate = s.rate_hz > 0 ? s.rate_hz : 1.0;
+        outputs_.push_back({1.0 / rate, [this, w, &s](double t) {
+                                simulated_output(sim_, s, t, w->sample());
+                                w->write();
+                            }});
+    }
+
+    void start() {
+        set_.start();
+        if (outputs_.empty() || running_.exchange(true)) return;
+        thread_ = std::thread([this] { write_loop(); });
+    }
+
+    void stop() {
+        running_ = false;
+        if (thread_.joinable()) thread_.join();
+        set_.stop();
+        sim_.agent_source({});
+    }
+
+    const StreamSet& set() const { return set_; }
+
+private:
+    struct Output {
+        double period;  // s
+        std::function<void(double)> send;
+        double next = 0;
+    };
+
+    static StreamHooks hooks(Simulator& sim) {
+        StreamHooks h;
+        h.on_state = [&sim](const StreamSpec& s, StreamState state) {
+            if (state == StreamState::Lost && s.on_loss == LossAction::Stop) sim.stream_halt(s.subsystem);
+        };
+        h.agent_values = [&sim] { return sim.agent(); };
+        h.periodic_agent = false;
+        return h;
+    }
+
+    void write_loop() {
+        using clock = std::chrono::steady_clock;
+        const auto t0 = clock::now();
+        while (running_) {
+            double now = std::chrono::duration<double>(clock::now() - t0).count();
+            double next = now + 0.1;
+            for (auto& o : outputs_) {
+                if (now >= o.next) {
+                    o.send(now * sim_.speed());
+                    o.next = std::max(o.next + o.period, now);
+                }
+                next = std::min(next, o.next);
+            }
+            std::this_thread::sleep_until(t0 + std::chrono::duration_cast<clock::duration>(
+                                                   std::chrono::duration<double>(next)));
+        }
+    }
+
+    Simulator& sim_;
+    StreamSet set_;
+    std::vector<Output> outputs_;
+    std::atomic<bool> running_{false};
     std::thread thread_;
 };
 
