@@ -13,9 +13,16 @@ CYCLONEDDS_URI). Prints figures, never passes or fails on time; exit 1 when an a
 
   ddsperf    `ddsperf ping` against `ddsperf pong` (Cyclone C): the floor of a round trip
   latency    N sequential Admin/echo (BYPASS, from the controller): write() to the final
-             COMPLETED ack read by rapid_cmd; p50/p99 and commands/s one at a time
-  flood      N echoes written back to back (rapid_cmd --flood), then waited for: acks lost
+             COMPLETED ack read by rapid_cmd; p50/p99 and commands/s one at a time; with
+             the bridge's CPU time and context switches per command (all its threads)
+  flood      N echoes written back to back (rapid_cmd --flood), then waited for: acks lost,
+             and what the bridge's intake door said (it sheds past 256 waiting per writer,
+             drops past 4096 busy answers: a bridge that falls behind loses acks by design)
   rss        the bridge's VmRSS after every tenth of N commands (256 in flight): flat?
+
+The goal lines run the bridge with --no-journal (the protocol path; a bridge without the
+option is run as it is, and said so); then one more latency run with its restart journal
+on (a temporary folder), labelled as such.
 """
 from __future__ import annotations
 
@@ -26,6 +33,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -85,6 +93,56 @@ def rss_kib(pid: int) -> int:
     return int(re.search(r"VmRSS:\s+(\d+) kB", text).group(1))
 
 
+def cpu_and_switches(pid: int) -> tuple[float, int]:
+    """(CPU seconds, context switches) of all the process's threads so far."""
+    ticks = os.sysconf("SC_CLK_TCK")
+    cpu, switches = 0.0, 0
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        try:
+            fields = (task / "stat").read_text().rsplit(")", 1)[1].split()
+            cpu += (int(fields[11]) + int(fields[12])) / ticks  # utime, stime
+            status = (task / "status").read_text()
+        except OSError:  # (a thread that ended meanwhile)
+            continue
+        switches += sum(int(n) for n in re.findall(r"ctxt_switches:\s+(\d+)", status))
+    return cpu, switches
+
+
+def start_bridge(exe: Path, domain: int, env: dict, extra: list[str], tmp: str):
+    """The bridge, ready; its stderr goes to a file in tmp (the door's log lines)."""
+    log = Path(tmp) / f"bridge-{len(list(Path(tmp).glob('bridge-*')))}.err"
+    with log.open("w") as err:
+        bridge = subprocess.Popen([str(exe), "--domain", str(domain), *extra], env=env, stdout=subprocess.PIPE,
+                                  stderr=err, text=True)
+    if not bridge.stdout.readline().startswith("bridge ready"):
+        stop_bridge(bridge)
+        raise SystemExit(f"bench: the bridge did not start: {log.read_text()[-2000:]}")
+    return bridge, log
+
+
+def take_control(cmd: Path, domain: int, env: dict) -> None:
+    granted = subprocess.run([str(cmd), "AccessControl", "requestControl", "--domain", str(domain), "--source", SOURCE],
+                             capture_output=True, text=True, env=env, timeout=120)
+    if granted.returncode != 0:
+        raise SystemExit(f"bench: control not granted: {granted.stdout} {granted.stderr}")
+
+
+def stop_bridge(bridge: subprocess.Popen) -> None:
+    bridge.terminate()
+    try:
+        bridge.wait(30)
+    except subprocess.TimeoutExpired:  # (said, and not left running to skew the next run)
+        print("bench: the bridge did not stop within 30 s of SIGTERM; killed", flush=True)
+        bridge.kill()
+        bridge.wait()
+
+
+def door_said(log: Path) -> str:
+    """The intake door's lines (a writer shed or dropped), shortened."""
+    lines = [ln.split("] ", 1)[-1] for ln in log.read_text(errors="replace").splitlines() if "floods" in ln]
+    return "; ".join(ln[:160] for ln in lines)
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--latency", type=int, default=2000, help="sequential commands timed (default 2000)")
@@ -110,45 +168,56 @@ def main() -> int:
         print(f"ddsperf ping (Cyclone C, loopback, {args.ddsperf_seconds:g} s): {perf}", flush=True)
     else:
         perf = None
-    bridge = subprocess.Popen([str(bridge_exe), "--domain", str(args.domain)], env=env, stdout=subprocess.PIPE,
-                              stderr=subprocess.DEVNULL, text=True)
+    usage = subprocess.run([str(bridge_exe), "--help"], capture_output=True, text=True, env=env, timeout=60)
+    has_journal = "--no-journal" in usage.stdout + usage.stderr
+    if not has_journal:
+        print("note: this bridge has no --no-journal option: run as it is", flush=True)
     lost = 0
-    try:
-        if not bridge.stdout.readline().startswith("bridge ready"):
-            raise SystemExit("bench: the bridge did not start")
-        granted = subprocess.run([str(cmd), "AccessControl", "requestControl", "--domain", str(args.domain),
-                                  "--source", SOURCE], capture_output=True, text=True, env=env, timeout=120)
-        if granted.returncode != 0:
-            raise SystemExit(f"bench: control not granted: {granted.stdout} {granted.stderr}")
-        client("--repeat", "50")  # warm-up
-        lat = client("--repeat", str(args.latency))
-        ratio = f", {lat['p50_us'] / perf['50%']:.1f}x ddsperf's p50" if isinstance(perf, dict) and "50%" in perf \
-            else ""
-        print(f"C++ bridge, command -> COMPLETED ack ({lat['answered']} of {lat['count']} sequential echoes, "
-              f"rapid_cmd): p50 {lat['p50_us']:.0f} us, p99 {lat['p99_us']:.0f} us, max {lat['max_us']:.0f} us"
-              f"{ratio}; {lat['per_s']:.0f} commands/s one at a time", flush=True)
-        fl = client("--flood", str(args.flood))
-        lost += fl["lost"]
-        print(f"flood: {fl['sent']} echoes written back to back, {fl['final']} final acks ({fl['ok']} OK), "
-              f"{fl['lost']} lost, {fl['per_s']:.0f} commands/s", flush=True)
-        step = max(1, args.rss // 10)
-        before = rss_kib(bridge.pid)
-        figures = []
-        for i in range(10):
-            got = client("--flood", str(step), "--window", "256")
-            lost += got["lost"]
-            figures.append(rss_kib(bridge.pid))
-        print(f"RSS of the bridge: {before / 1024:.1f} MiB before, after each {step} commands: "
-              + ", ".join(f"{k / 1024:.1f}" for k in figures) + " MiB "
-              f"({(figures[-1] - figures[0]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
-    finally:
-        bridge.terminate()
+    with tempfile.TemporaryDirectory(prefix="rapidgen-bench-cpp-") as tmp:
+        bridge, log = start_bridge(bridge_exe, args.domain, env, ["--no-journal"] if has_journal else [], tmp)
         try:
-            bridge.wait(30)
-        except subprocess.TimeoutExpired:  # (said, and not left running to skew the next run)
-            print("bench: the bridge did not stop within 30 s of SIGTERM; killed", flush=True)
-            bridge.kill()
-            bridge.wait()
+            take_control(cmd, args.domain, env)
+            client("--repeat", "50")  # warm-up
+            cpu0, sw0 = cpu_and_switches(bridge.pid)
+            lat = client("--repeat", str(args.latency))
+            cpu1, sw1 = cpu_and_switches(bridge.pid)
+            per = max(1, lat["answered"])
+            ratio = f", {lat['p50_us'] / perf['50%']:.1f}x ddsperf's p50" \
+                if isinstance(perf, dict) and "50%" in perf else ""
+            print(f"C++ bridge{' (--no-journal)' if has_journal else ''}, command -> COMPLETED ack "
+                  f"({lat['answered']} of {lat['count']} sequential echoes, rapid_cmd): p50 {lat['p50_us']:.0f} us, "
+                  f"p99 {lat['p99_us']:.0f} us, max {lat['max_us']:.0f} us{ratio}; {lat['per_s']:.0f} commands/s "
+                  f"one at a time; the bridge spent {(cpu1 - cpu0) / per * 1e6:.0f} us of CPU and "
+                  f"{(sw1 - sw0) / per:.1f} context switches a command", flush=True)
+            fl = client("--flood", str(args.flood))
+            lost += fl["lost"]
+            door = door_said(log)
+            print(f"flood: {fl['sent']} echoes written back to back, {fl['final']} final acks ({fl['ok']} OK), "
+                  f"{fl['lost']} lost, {fl['per_s']:.0f} commands/s" + (f"; the door: {door}" if door else ""),
+                  flush=True)
+            step = max(1, args.rss // 10)
+            before = rss_kib(bridge.pid)
+            figures = []
+            for i in range(10):
+                got = client("--flood", str(step), "--window", "256")
+                lost += got["lost"]
+                figures.append(rss_kib(bridge.pid))
+            print(f"RSS of the bridge: {before / 1024:.1f} MiB before; after "
+                  + ", ".join(f"{(i + 1) * step}: {k / 1024:.1f}" for i, k in enumerate(figures)) + " MiB "
+                  f"({(figures[-1] - figures[0]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
+        finally:
+            stop_bridge(bridge)
+        if has_journal:  # the same path with the restart journal on: what a default bridge costs
+            bridge, _ = start_bridge(bridge_exe, args.domain, env, ["--journal", str(Path(tmp) / "journal")], tmp)
+            try:
+                take_control(cmd, args.domain, env)
+                client("--repeat", "50")
+                lat = client("--repeat", str(args.latency))
+                print(f"C++ bridge, journal on: command -> COMPLETED ack ({lat['answered']} of {lat['count']}): "
+                      f"p50 {lat['p50_us']:.0f} us, p99 {lat['p99_us']:.0f} us, max {lat['max_us']:.0f} us; "
+                      f"{lat['per_s']:.0f} commands/s one at a time", flush=True)
+            finally:
+                stop_bridge(bridge)
     return 1 if lost else 0
 
 
