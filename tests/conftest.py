@@ -4,6 +4,7 @@ from pathlib import Path
 import pytest
 
 from tests.cpp.conftest import build_cpp_tests
+from tests.cpp_runtime import build as B
 from tests.rust.conftest import build_rust_peer
 
 # Every diagnostic reported while the tests run (in this process and in the children the
@@ -12,10 +13,51 @@ os.environ["RAPIDGEN_CHECK_CODES"] = "1"
 
 # Every bridge the tests start keeps its restart journal (docs/runtime.md) in this run's own
 # folder: a journal left by an earlier run (a killed bridge) would otherwise answer its old
-# commands again in this one. Tests that need their own folder pass --journal.
-if "RAPID_STATE_DIR" not in os.environ:
+# commands again in this one. Tests that need their own folder pass --journal. Under xdist
+# each worker makes its own (the one it inherits is marked as the tests'): two workers'
+# bridges of one asset must not share a journal.
+if os.environ.get("RAPID_STATE_DIR", "") in ("", os.environ.get("RAPIDGEN_TESTS_STATE_DIR")):
     import tempfile
-    os.environ["RAPID_STATE_DIR"] = tempfile.mkdtemp(prefix="rapidgen-tests-state-")
+    os.environ["RAPID_STATE_DIR"] = os.environ["RAPIDGEN_TESTS_STATE_DIR"] = \
+        tempfile.mkdtemp(prefix="rapidgen-tests-state-")
+
+
+def _xdist_scope(nodeid: str) -> str:
+    """The unit of work a worker takes: a test file (its module fixtures, e.g. a whole
+    broken-kinds campaign, run once), tests/rust as one (its tests share the cargo target
+    folder, where programs' names repeat)."""
+    path = nodeid.split("::", 1)[0]
+    return "tests/rust" if path.startswith("tests/rust/") else path
+
+
+# The tiers that build programs or run long campaigns, handed out first: started last, one
+# of them would leave the other worker idle at the end of the run.
+_XDIST_FIRST = ("tests/conformance/", "tests/cpp", "tests/rust/", "tests/field/", "tests/secure/")
+
+
+class _XdistScheduling:
+    def pytest_xdist_make_scheduler(self, config, log):
+        """scripts/test's workers take whole files (_xdist_scope), the slow tiers first;
+        xdist's loadgroup cannot group on pytest 9 (it renames node ids pytest no longer reads)."""
+        from xdist.scheduler import LoadScopeScheduling
+
+        class ByFile(LoadScopeScheduling):
+            def _split_scope(self, nodeid: str) -> str:
+                return _xdist_scope(nodeid)
+
+            def _assign_work_unit(self, node) -> None:
+                if not getattr(self, "_slow_first", False):  # (the queue is whole by the first call)
+                    self._slow_first = True
+                    for scope in [s for s in self.workqueue if not s.startswith(_XDIST_FIRST)]:
+                        self.workqueue.move_to_end(scope)
+                super()._assign_work_unit(node)
+        config.option.loadscopereorder = False  # (by test count: the slow tiers have few tests)
+        return ByFile(config, log)
+
+
+def pytest_configure(config):
+    if config.pluginmanager.hasplugin("xdist"):  # (its hook is unknown to pytest without it)
+        config.pluginmanager.register(_XdistScheduling(), "rapidgen-xdist-scheduling")
 
 
 def pytest_addoption(parser):
@@ -29,16 +71,19 @@ def update_golden(request) -> bool:
 
 
 # The builds several tiers share (tests/cpp, tests/rust: the Rust <-> C++ interop test needs
-# both), once per session, inside the session's temp folder.
+# both), once per run (B.once: across xdist workers too), inside the run's temp folder.
 @pytest.fixture(scope="session")
 def cpp_build(tmp_path_factory) -> Path:
     """The generated C++ packages and tests/cpp's programs (peer, vectors, fuzz, configs)."""
-    return build_cpp_tests(tmp_path_factory.mktemp("cpp"))
+    return B.once(tmp_path_factory, "cpp-tests",  # type: ignore[no-any-return]
+                  lambda: build_cpp_tests(B.run_folder(tmp_path_factory, "cpp")))
 
 
 @pytest.fixture(scope="session")
 def rust_target(tmp_path_factory) -> Path:
-    """The session's cargo target folder (shared: every Rust program builds once)."""
+    """The session's cargo target folder (shared: every Rust program builds once). The
+    programs' names repeat across tests: the tests using it share one xdist worker
+    (pytest_collection_modifyitems)."""
     return tmp_path_factory.mktemp("cargo-target")
 
 

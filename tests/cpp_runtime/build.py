@@ -10,10 +10,16 @@ in the session's temp folder, with -Wall -Wextra -Werror.
 
 `f` is pytest's tmp_path_factory. The seeds are tests.runtime.live.SEEDS (all six unless
 RAPIDGEN_CPP_SEEDS names some, comma-separated) and HOSTILE, K10 with names C++ reserves
-and text that ends comments and strings (hostile_descriptor())."""
+and text that ends comments and strings (hostile_descriptor()).
+
+Under pytest-xdist (scripts/test runs the suite on workers) each build is still made once
+per run, in the run's folder the workers share: the first worker to ask makes it under a
+file lock, the others take its result (once())."""
 from __future__ import annotations
 
+import fcntl
 import os
+import pickle
 import shutil
 import subprocess
 import sys
@@ -54,15 +60,45 @@ def needs_toolchain() -> None:
         pytest.fail("cmake, g++, googletest and libfastrtps-dev/libfastcdr-dev are needed (scripts/setup.sh)")
 
 
-def _once(factory, what: str, make):
+def run_root(factory) -> Path:
+    """The session's temp folder; under xdist the run's, which every worker's is inside."""
+    own = factory.getbasetemp()
+    return own.parent if os.environ.get("PYTEST_XDIST_WORKER") else own
+
+
+def once(factory, what: str, make):
+    """make()'s result, made once per run: per process (_CACHE) and, under xdist, across
+    workers (a lock file and the pickled result in the run's folder)."""
     key = (str(factory.getbasetemp()), what)
     if key not in _CACHE:
-        _CACHE[key] = make()
+        if not os.environ.get("PYTEST_XDIST_WORKER"):
+            _CACHE[key] = make()
+        else:
+            shared = run_root(factory) / "shared-builds"
+            shared.mkdir(exist_ok=True)
+            with open(shared / f"{what}.lock", "w") as lock:
+                fcntl.flock(lock, fcntl.LOCK_EX)  # (released on close; a failed make leaves no result)
+                done = shared / f"{what}.pickle"
+                if not done.exists():
+                    done.write_bytes(pickle.dumps(make()))
+                _CACHE[key] = pickle.loads(done.read_bytes())
     return _CACHE[key]
 
 
+_once = once  # (the name the functions below use)
+
+
+def run_folder(factory, name: str) -> Path:
+    """A new folder in the session's temp folder, under xdist in the run's (call it in once())."""
+    if not os.environ.get("PYTEST_XDIST_WORKER"):
+        return factory.mktemp(name)  # type: ignore[no-any-return]
+    out = run_root(factory) / name
+    out.mkdir()
+    return out
+
+
 def base(factory) -> Path:
-    return _once(factory, "base", lambda: factory.mktemp("cpp-runtime"))  # type: ignore[no-any-return]
+    return _once(factory, "base", lambda: run_folder(factory, "cpp-runtime"))  # type: ignore[no-any-return]
 
 
 def runtime_dir(factory) -> Path:

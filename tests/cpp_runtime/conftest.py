@@ -15,18 +15,24 @@ from tests.cpp_runtime import build as B
 @pytest.fixture(scope="session")
 def runtime_build(tmp_path_factory) -> Path:
     """The runtime package and the test folder's build; returns the tests' build folder."""
-    runtime = B.runtime_dir(tmp_path_factory)
-    k10 = B.generated(tmp_path_factory, "k10")
-    out = B.base(tmp_path_factory) / "tests"
-    B.configure(B.HERE, out, f"-Drapid_runtime_cpp_DIR={runtime}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}")
-    B.build(out, "logic")
-    return out
+    def make() -> Path:
+        runtime = B.runtime_dir(tmp_path_factory)
+        k10 = B.generated(tmp_path_factory, "k10")
+        out = B.base(tmp_path_factory) / "tests"
+        B.configure(B.HERE, out, f"-Drapid_runtime_cpp_DIR={runtime}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}")
+        B.build(out, "logic")
+        return out
+    return B.once(tmp_path_factory, "runtime-tests", make)  # type: ignore[no-any-return]
 
 
 @pytest.fixture(scope="session")
 def logic_under_tsan(runtime_build: Path, tmp_path_factory) -> Path:
     """The logic suite again, runtime and test built with ThreadSanitizer (handlers run on
     threads of their own, acks go out under the manager's lock)."""
+    return B.once(tmp_path_factory, "tsan", lambda: _tsan(runtime_build, tmp_path_factory))  # type: ignore[no-any-return]
+
+
+def _tsan(runtime_build: Path, tmp_path_factory) -> Path:
     base = runtime_build.parent / "tsan"
     flags = [f"-DCMAKE_CXX_FLAGS={B.FLAGS} -fsanitize=thread -g -O1", "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread"]
     B.run(["cmake", "-S", str(B.ROOT / "runtime" / "cpp"), "-B", str(base / "runtime"), "-DCMAKE_BUILD_TYPE=Debug",

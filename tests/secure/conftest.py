@@ -104,6 +104,11 @@ def _tamper(path: Path, old: bytes, new: bytes) -> None:
 def programs(tmp_path_factory) -> dict[str, Path]:
     """K10's generated bridge (with the runtime's security hook) and secure_ground."""
     from tests.cpp_runtime import build as B
+    return B.once(tmp_path_factory, "secure", lambda: _programs(tmp_path_factory))  # type: ignore[no-any-return]
+
+
+def _programs(tmp_path_factory) -> dict[str, Path]:
+    from tests.cpp_runtime import build as B
     runtime = B.runtime_dir(tmp_path_factory)
     k10 = B.generated(tmp_path_factory, "k10")
     out = B.base(tmp_path_factory) / "secure"
