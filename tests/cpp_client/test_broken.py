@@ -1,11 +1,15 @@
-"""The conformance suite's broken-asset kinds that are protocol behaviour of the C++
-runtime, injected into K10's generated C++ bridge with `--break KIND` (a test build:
-RAPID_RUNTIME_TEST_BREAKS, runtime/cpp/dds/include/rapid_runtime/dds/breaks.hpp): each
-makes `rapidgen conform` fail the check it aims at and no other, the same check the Python
-runtime's kind of that name fails (tests/conformance/broken). Runs in parallel, each run
-the checks of its area (--only CMD-, the checks it builds on included): the full suite's judgment of the unbroken bridge is
-tests/conformance/test_cpp_asset.py's. Domains 133-138, each used again once its bridge
-and runner left it cleanly. docs/conformance.md lists the kinds that do not apply."""
+"""The conformance suite's broken-asset kinds that apply to a C++ bridge, injected into K10's
+generated C++ bridge with `--break KIND` (a test build: RAPID_RUNTIME_TEST_BREAKS,
+runtime/cpp/dds/include/rapid_runtime/dds/breaks.hpp; the manager's decisions through
+ManagerBreaks, compiled into test builds only): each makes `rapidgen conform` fail the check
+it aims at and no other, the same check the Python runtime's kind of that name fails
+(tests/conformance/broken). One bridge per kind (a failure is then the kind's alone), PARALLEL
+at a time, each run the checks of its area (--only CMD-, the checks it builds on included):
+the full suite's judgment of the unbroken bridge is tests/conformance/test_cpp_asset.py's.
+The runs wait on the network and on declared rates far more than they compute, so they
+overlap well beyond the machine's cores; the longest areas start first. Domains 133-138 and
+73-82, each used again once its bridge and runner left it cleanly. docs/conformance.md lists
+the kinds that do not apply."""
 from __future__ import annotations
 
 import queue
@@ -21,15 +25,21 @@ from tests.cpp_runtime import build as B
 pytest.importorskip("cyclonedds")
 BREAKS_HPP = B.ROOT / "runtime" / "cpp" / "dds" / "include" / "rapid_runtime" / "dds" / "breaks.hpp"
 KINDS = dict(re.findall(r'\{"([a-z0-9-]+)", "([A-Z]+-\d\d)"\}', BREAKS_HPP.read_text(encoding="utf-8")))
-DOMAINS = range(133, 139)
-PARALLEL = 6
+DOMAINS = [*range(133, 139), *range(73, 83)]
+PARALLEL = 10
+# Areas by how long their conform run takes (telemetry and configs wait out rates and late
+# judgments, the queue its long command): started longest first, the short ones fill in.
+AREA_ORDER = ("TEL-", "QUE-", "CFG-", "ACC-", "CMD-")
 
 
 def _run(args) -> dict:
     kind, program, free, out = args
-    domain = free.get()
-    # (new_delete_type_mismatch=0: Fast DDS 2.9's own StatisticsReaderImpl at shutdown, test_fuzz.py)
-    env = dict(B.dds_env(), ASAN_OPTIONS="detect_leaks=0:new_delete_type_mismatch=0")
+    domain = free.get(timeout=600)  # (none back: every bridge before it died; fails, not hangs)
+    # (new_delete_type_mismatch=0: Fast DDS 2.9's own StatisticsReaderImpl at shutdown, test_fuzz.py);
+    # a restart journal of its own: bridges of one asset running side by side share none
+    state = out / f"state-{kind}"
+    state.mkdir()
+    env = dict(B.dds_env(), ASAN_OPTIONS="detect_leaks=0:new_delete_type_mismatch=0", RAPID_STATE_DIR=str(state))
     proc = subprocess.Popen([str(program), "--simulate", "--break", kind, "--domain", str(domain), "--seconds", "180"],
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
@@ -52,14 +62,15 @@ def broken_runs(programs, tmp_path_factory):
     free: queue.Queue[int] = queue.Queue()
     for d in DOMAINS:
         free.put(d)
+    order = sorted(KINDS, key=lambda k: AREA_ORDER.index(KINDS[k][:4]))
     with ThreadPoolExecutor(PARALLEL) as pool:
-        return dict(zip(KINDS, pool.map(_run, [(k, programs["bridge_test"], free, out) for k in KINDS])))
+        return dict(zip(order, pool.map(_run, [(k, programs["bridge_test"], free, out) for k in order])))
 
 
 def test_kinds_are_the_conformance_suites():
     """Each C++ kind is a kind of tests/conformance/broken aimed at the same check."""
     from tests.conformance.broken import KINDS as PYTHON_KINDS
-    assert len(KINDS) >= 15
+    assert len(KINDS) >= 45
     assert {k: PYTHON_KINDS.get(k) for k in KINDS} == KINDS
 
 

@@ -5,10 +5,19 @@
 #include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
+#include <thread>
 #include <typeinfo>
 
 #include "rapid_runtime/text.hpp"
 #include "rapid_runtime/validate.hpp"
+
+// A test build's broken decision (ManagerBreaks); the constant false in a plain build, where
+// the branches on it compile to nothing.
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+#define BROKEN(flag) (options_.breaks.flag)
+#else
+#define BROKEN(flag) false
+#endif
 
 namespace rapid_runtime {
 namespace {
@@ -95,12 +104,26 @@ CommandManager::CommandManager(const Tables& tables, Handlers& handlers, Outbox&
     if (!options_.clock) options_.clock = steady_seconds;
     has_queue_ = tables_.has_type("Queue");
     has_control_ = tables_.has_type("AccessControl");
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+    if (options_.breaks.queue_lifo)  // soraCore's 10 Hz executive tick starts queued commands
+        workers_.spawn([this] {
+            for (;;) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                Lock lock(mutex_);
+                if (closing_) return;
+                broken_service(true);
+            }
+        });
+#endif
 }
 
 CommandManager::~CommandManager() {
     {
         Lock lock(mutex_);
         suspended_ = true;  // nothing new starts from the queue
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+        closing_ = true;
+#endif
         for (const auto& r : bypass_)
             if (r->ctx) r->ctx->cancel();
         if (active_ && active_->ctx) active_->ctx->cancel();
@@ -148,7 +171,7 @@ void CommandManager::receive(const Cmd& in) {
         out_.log("ignored '" + in.cmd_id + "': addressed to asset '" + in.asset_name + "'");
         return;
     }
-    if (seen_.count(in.cmd_id) != 0 || live(in.cmd_id)) {
+    if ((seen_.count(in.cmd_id) != 0 && !BROKEN(no_dedup)) || live(in.cmd_id)) {
         out_.log("ignored '" + in.cmd_id + "': repeated cmdId");
         return;
     }
@@ -185,6 +208,13 @@ void CommandManager::remember(const std::string& cmd_id) {
 }
 
 std::optional<CommandManager::Refusal> CommandManager::intake(const std::shared_ptr<const Cmd>& cmd) {
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+    if (options_.breaks.append_target_ignored && cmd->action == QueueAction::Append && !cmd->target.empty()) {
+        auto untargeted = std::make_shared<Cmd>(*cmd);
+        untargeted->target.clear();
+        return intake(untargeted);
+    }
+#endif
     const auto action = cmd->action;
     const std::string& target = cmd->target;
     const std::string act(name_of(action));
@@ -258,15 +288,23 @@ std::optional<std::string> CommandManager::authorize(const std::string& source, 
                                                      const CommandRef& ref) const {
     const std::string& type = ref.type->name;
     const std::string& name = ref.spec->name;
-    if (always_allowed(type, name)) return std::nullopt;
+    if (always_allowed(type, name) && !BROKEN(stop_needs_control)) return std::nullopt;
     if (!allowed(tables_.access, source, subsystem, name))
         return VIOLATION + shorten(source) + " may not send " + shorten(subsystem) + "/" + shorten(name);
-    if (has_control_ && type != "AccessControl" && source != tables_.name && !control_.holds(source))
+    if (has_control_ && !BROKEN(no_control_gate) && type != "AccessControl" && source != tables_.name &&
+        !control_.holds(source))
         return VIOLATION + shorten(source) + " does not have control (send requestControl)";
     return std::nullopt;
 }
 
 std::optional<CommandManager::Refusal> CommandManager::remove_target(const std::shared_ptr<const Cmd>& cmd) {
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+    if (options_.breaks.delete_wrong_command && active_ && active_->id() != cmd->target && queued_run(cmd->target)) {
+        auto head = std::make_shared<Cmd>(*cmd);  // the running command canceled instead
+        head->target = active_->id();
+        return remove_target(head);
+    }
+#endif
     RunPtr target = queued_run(cmd->target);
     if (!target)
         for (const auto& r : bypass_)
@@ -298,6 +336,9 @@ bool CommandManager::busy(const std::string& subsystem) const {
 }
 
 void CommandManager::service() {
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+    if (options_.breaks.queue_lifo || options_.breaks.queue_parallel) return broken_service(false);
+#endif
     while (!active_ && !suspended_) {
         RunPtr run = pending_.pop_ready([this](const std::string& s) { return busy(s); });
         if (!run) break;
@@ -592,6 +633,9 @@ std::optional<Result> CommandManager::builtin(const RunPtr& run) {
         const std::string& src = run->cmd->cmd_src;
         const std::string& name = run->ref.spec->name;
         Control::Outcome done;
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+        if (auto broken = broken_control(src, name)) return broken;
+#endif
         if (name == "requestControl") done = control_.request(src);
         else if (name == "grabControl") done = control_.grab(src);
         else if (name == "releaseControl") done = control_.release(src);
@@ -638,6 +682,52 @@ void CommandManager::stop_all_motion(const RunPtr& run) {
     for (const auto& r : running)
         if (r != run && moving(r)) cancel(r);
 }
+
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+std::optional<Result> CommandManager::broken_control(const std::string& src, const std::string& name) {
+    const ManagerBreaks& b = options_.breaks;
+    Control::Outcome done;
+    bool publish = true;
+    if (name == "requestControl" && (b.request_steals_control || b.request_unpublished)) {
+        done = b.request_steals_control ? control_.grab(src) : control_.request(src);
+        publish = !b.request_unpublished;
+    } else if (name == "grabControl" && (b.grab_refused || b.grab_unpublished)) {
+        if (b.grab_refused && !control_.controller().empty() && control_.controller() != src)
+            return Result::failed("control is held by " + control_.controller());
+        done = control_.grab(src);
+        publish = !b.grab_unpublished;
+    } else if (name == "releaseControl" && b.release_by_anyone) {
+        done = control_.release(control_.controller());  // on behalf of whoever holds it
+    } else {
+        return std::nullopt;
+    }
+    if (done.ok && publish) publish_access();
+    return done.ok ? Result::ok(done.text) : Result::failed(done.text);
+}
+
+void CommandManager::broken_service(bool tick) {
+    if (options_.breaks.queue_parallel) {
+        // each waiting command started at once, none waiting for the one before; kept among
+        // the bypass commands, where cancelAll and stopAllMotion still reach it
+        while (!suspended_ && !pending_.empty()) {
+            RunPtr run = pending_.items().front();
+            pending_.remove(run);
+            active_ = run;
+            start(run);
+            if (!run->done && std::find(bypass_.begin(), bypass_.end(), run) == bypass_.end()) bypass_.push_back(run);
+        }
+    } else if (tick) {  // queue-lifo: the tick starts the newest waiting command
+        while (!active_ && !suspended_ && !pending_.empty() && !busy(pending_.items().back()->cmd->subsystem)) {
+            RunPtr run = pending_.items().back();
+            pending_.remove(run);
+            active_ = run;
+            start(run);
+        }
+    }
+    publish_queue();
+    idle_.notify_all();
+}
+#endif
 
 // ---- what tests look at ---------------------------------------------------------------------
 

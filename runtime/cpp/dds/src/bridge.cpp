@@ -59,12 +59,20 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
     ManagerOptions m;
     m.window = options.command_window;
     m.on_shutdown = [this] { request_stop(); };
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+    m.breaks = breaks_->manager();
+#endif
+    breaking_configs_ = breaks_->configs_broken();
     m.journal = journal_.get();
     manager_ = std::make_unique<CommandManager>(breaks_->any() ? breaks_->tables() : tables, handlers, *this, m);
     intake_ = std::make_unique<Intake>(*manager_, [this](const std::string& text) { log(text); });
 }
 
 Bridge::~Bridge() { stop(); }
+
+ConfigBreak Bridge::config_break(const std::string& topic, std::function<void()> republish) {
+    return breaks_->config(topic, std::move(republish));
+}
 
 std::int32_t Bridge::serial_of(const std::string& config_topic) const {
     std::lock_guard<std::mutex> lock(config_mutex_);
@@ -141,6 +149,7 @@ void Bridge::stop() {
     if (stopped_) return;
     stopped_ = true;
     request_stop();
+    breaks_->stop();  // (serial-drift's republications)
     reading_ = false;
     if (reader_thread_.joinable()) reader_thread_.join();
     if (intake_) intake_->stop();

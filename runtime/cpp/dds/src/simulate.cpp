@@ -8,6 +8,8 @@
 
 #include <rapid_runtime/images.hpp>
 
+#include "rapid_runtime/dds/breaks.hpp"
+
 namespace rapid_runtime {
 namespace dds {
 
@@ -41,7 +43,11 @@ std::string fixed1(double x) {
 }  // namespace
 
 SimulatedTelemetry::SimulatedTelemetry(Bridge& bridge, Simulator& simulator, std::vector<CustomPublisher> custom)
-    : bridge_(bridge), sim_(simulator), tel_(bridge), custom_(std::move(custom)) {
+    : bridge_(bridge),
+      sim_(simulator),
+      tel_(bridge),
+      breaks_(bridge.breaks().any() ? &bridge.breaks() : nullptr),
+      custom_(std::move(custom)) {
     sim_.on_picture([this](std::size_t index) { picture(index); });
 }
 
@@ -94,6 +100,7 @@ void SimulatedTelemetry::start() {
         const auto& e = entries[i];
         std::size_t k = seen[e.kind]++;
         double rate = e.rate.value_or(0.0);
+        if (breaks_ != nullptr) rate = breaks_->rate(rate);
         if (e.kind == "agent" || e.kind == "position" || e.kind == "joint") {
             fast.push_back({i, k, 1.0 / (rate > 0 ? rate : 1.0), now});
         } else if (e.kind == "custom") {
@@ -150,6 +157,7 @@ void SimulatedTelemetry::run(std::vector<Due> due, bool drain) {
 
 void SimulatedTelemetry::sample(std::size_t entry, std::size_t index) {
     const auto& e = bridge_.tables().telemetry[entry];
+    if (breaks_ != nullptr && breaks_->silent(e.kind, index)) return;  // (its writer exists)
     if (e.kind == "agent") {
         auto all = sim_.agent();
         std::map<std::string, Value> mine;

@@ -4,6 +4,8 @@
 
 #include <rapid_runtime/images.hpp>
 
+#include "rapid_runtime/dds/breaks.hpp"
+
 namespace rapid_runtime {
 namespace dds {
 
@@ -91,6 +93,9 @@ std::array<float, 9> rotation_about_z(const std::string& encoding, double headin
     return r;
 }
 
+Telemetry::Telemetry(Bridge& bridge)
+    : b_(bridge), t_(bridge.tables()), breaks_(bridge.breaks().any() ? &bridge.breaks() : nullptr) {}
+
 const TelemetrySpec& Telemetry::entry(const std::string& kind, std::size_t index) const {
     const TelemetrySpec* e = t_.telemetry_of(kind, index);
     if (e == nullptr)
@@ -122,6 +127,7 @@ std::vector<::rapid::ParameterUnion> Telemetry::values(const TelemetrySpec& e,
                                       : zero(k.type);
         out.push_back(union_of(v));
     }
+    if (breaks_ != nullptr) breaks_->values(e, out);
     return out;
 }
 
@@ -133,13 +139,22 @@ const std::string& config_topic(const TelemetrySpec& e) {
 }
 }  // namespace
 
+template <class T>
+void Telemetry::send(const std::string& topic, T& sample, const TelemetrySpec& e, const std::string& qos) {
+    if (breaks_ == nullptr || !breaks_->samples_broken()) return b_.publish(topic, sample, config_topic(e), qos);
+    // Bridge::publish's header, then broken
+    sample.hdr = header(t_.name, t_.name, b_.serial_of(config_topic(e)));
+    breaks_->sample_header(sample.hdr);
+    b_.node().writer<T>(topic, qos)->write(&sample);
+}
+
 void Telemetry::agent_state(const std::map<std::string, Value>& given, std::size_t index) {
     const auto& e = entry("agent", index);
     std::string qos;
     const auto& name = topic(e, "state", qos);
     ::rapid::AgentState s;
     s.values = values(e, given);
-    b_.publish(name, s, config_topic(e), qos);
+    send(name, s, e, qos);
 }
 
 void Telemetry::position(const std::array<double, 3>& xyz, const std::array<float, 9>& rot,
@@ -154,7 +169,7 @@ void Telemetry::position(const std::array<double, 3>& xyz, const std::array<floa
     s.velocity.xyz = velocity_xyz;
     s.velocity.rot = velocity_rot;
     s.values = values(e, given);
-    b_.publish(name, s, config_topic(e), qos);
+    send(name, s, e, qos);
 }
 
 void Telemetry::joints(const std::vector<double>& positions, const std::vector<double>& velocities,
@@ -171,7 +186,7 @@ void Telemetry::joints(const std::vector<double>& positions, const std::vector<d
     s.anglePos.assign(positions.begin(), positions.end());
     s.angleVel.assign(velocities.begin(), velocities.end());
     s.torque.assign(torques.begin(), torques.end());
-    b_.publish(name, s, config_topic(e), qos);
+    send(name, s, e, qos);
 }
 
 void Telemetry::text(const std::string& message, const std::string& category, ::rapid::MessageLevel level,
@@ -183,7 +198,7 @@ void Telemetry::text(const std::string& message, const std::string& category, ::
     s.level = level;
     s.category = category;
     s.message = message;
-    b_.publish(name, s, config_topic(e), qos);
+    send(name, s, e, qos);
 }
 
 ::rapid::ImageMetadata Telemetry::meta(const TelemetrySpec& e, int width, int height) const {
@@ -205,14 +220,14 @@ void Telemetry::image(const std::vector<std::uint8_t>& data, std::size_t index, 
         const auto& name = topic(e, "state", qos);
         ::rapid::ImageSensorState s;
         s.meta = meta(e, info.width, info.height);
-        b_.publish(name, s, config_topic(e), qos);
+        send(name, s, e, qos);
     }
     const auto& name = topic(e, "sample", qos);
     ::rapid::ImageSensorSample s;
     s.meta = meta(e, info.width, info.height);
     s.mimeType = info.mime;
     s.data = data;
-    b_.publish(name, s, config_topic(e), qos);
+    send(name, s, e, qos);
 }
 
 void Telemetry::image_state(std::size_t index) {
@@ -221,7 +236,7 @@ void Telemetry::image_state(std::size_t index) {
     const auto& name = topic(e, "state", qos);
     ::rapid::ImageSensorState s;
     s.meta = meta(e, e.width, e.height);
-    b_.publish(name, s, config_topic(e), qos);
+    send(name, s, e, qos);
 }
 
 }  // namespace dds

@@ -97,12 +97,35 @@ public:
     virtual void end_batch() {}
 };
 
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+// Test builds only (the bridge's --break KIND, dds/breaks.hpp): decisions broken on purpose,
+// so that the conformance tests can show `rapidgen conform` catching each. A plain build
+// has neither these flags nor a branch on them.
+struct ManagerBreaks {
+    bool no_dedup = false;  // a repeated cmdId runs again (CMD-10)
+    bool request_unpublished = false;  // requestControl's grant not written to AccessControlState (ACC-02)
+    bool no_control_gate = false;  // commands of a source without control accepted (ACC-03)
+    bool grab_refused = false;  // grabControl refused while another source holds control (ACC-04)
+    bool grab_unpublished = false;  // grabControl's change not written to AccessControlState (ACC-04)
+    bool release_by_anyone = false;  // releaseControl from any source releases (ACC-05)
+    bool stop_needs_control = false;  // stopAllMotion gated like any command (ACC-06)
+    bool request_steals_control = false;  // requestControl takes control from its holder (ACC-07)
+    bool queue_lifo = false;  // the queue served by a 10 Hz tick, newest first (QUE-02)
+    bool queue_parallel = false;  // every queued command started at once (QUE-02)
+    bool append_target_ignored = false;  // APPEND's targetCmdId never looked at (QUE-03)
+    bool delete_wrong_command = false;  // DELETE of a pending command cancels the running one (QUE-04)
+};
+#endif
+
 struct ManagerOptions {
     std::size_t window = COMMAND_WINDOW;
     std::size_t queue_limit = QUEUE_LIMIT;
     std::size_t bypass_limit = BYPASS_LIMIT;
     std::function<void()> on_shutdown;  // after Admin/shutdown's COMPLETED ack, on a thread of its own
     std::function<double()> clock;  // seconds, monotonic (default: steady_clock)
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+    ManagerBreaks breaks;
+#endif
     Journal* journal = nullptr;  // the restart journal (outlives the manager); nullptr: none
 };
 
@@ -225,6 +248,12 @@ private:
     Journal* journal_;
     int depth_ = 0;  // nested batches
     std::vector<std::function<void()>> outgoing_;  // held until the journal is synced
+#ifdef RAPID_RUNTIME_TEST_BREAKS
+    void broken_service(bool tick);  // queue-lifo's tick, queue-parallel's start-all
+    // The AccessControl command's outcome when a break changes it, else nothing.
+    std::optional<Result> broken_control(const std::string& src, const std::string& name);
+    bool closing_ = false;  // (queue-lifo's tick ends)
+#endif
     Workers workers_;  // last: joined first when the manager goes
 };
 

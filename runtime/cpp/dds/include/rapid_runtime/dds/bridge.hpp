@@ -18,6 +18,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include <rapid_runtime/intake.hpp>
@@ -54,6 +55,16 @@ struct BridgeOptions {
 
 class Breaks;
 
+// What a test build's --break does to one config's publication (breaks.hpp); a plain
+// bridge publishes every config as it is.
+struct ConfigBreak {
+    bool write = true;  // false: never written (no writer either); its serial is still set
+    bool durable = true;  // false: a volatile writer
+    bool named = true;  // false: srcName left empty
+    bool short_command_config = false;  // the CommandConfig's last subsystem left out
+    std::string salt;  // added to the content compared for a new serial (serial-drift: always new)
+};
+
 class Bridge : public Outbox {
 public:
     Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options = {});
@@ -65,6 +76,7 @@ public:
     // serial (receivers ignore a config whose serial did not change). Returns the serial.
     template <class T>
     std::int32_t publish_config(const std::string& topic, T value, const std::string& profile = "RapidConfigQos") {
+        if (breaking_configs_) return broken_config(topic, std::move(value), profile);
         std::lock_guard<std::mutex> lock(config_mutex_);
         value.hdr = ::rapid::Header{};
         auto bytes = rapidgen::cdr::serialize(value);
@@ -86,6 +98,8 @@ public:
     }
 
     std::int32_t serial_of(const std::string& config_topic) const;
+    // The test build's breaks (breaks.hpp; none in a plain bridge), for the telemetry helpers.
+    const Breaks& breaks() const { return *breaks_; }
     void start();  // publishes the states, opens the command path; prints nothing
     // idempotent: no command read any more, the pending and running ones answered, the last
     // acks delivered (up to 2 s), the journal closed clean, threads joined
@@ -108,9 +122,31 @@ public:
 
 private:
     void read_commands();
+    // A test build's config breaks: what publish_config does instead (breaks.hpp).
+    ConfigBreak config_break(const std::string& topic, std::function<void()> republish);
+    template <class T>
+    std::int32_t broken_config(const std::string& topic, T value, const std::string& profile) {
+        const ConfigBreak how = config_break(topic, [this, topic, value, profile] { broken_config(topic, value, profile); });
+        std::lock_guard<std::mutex> lock(config_mutex_);
+        value.hdr = ::rapid::Header{};
+        if constexpr (std::is_same_v<T, ::rapid::CommandConfig>)
+            if (how.short_command_config && !value.availableSubsystems.empty()) value.availableSubsystems.pop_back();
+        auto bytes = rapidgen::cdr::serialize(value);
+        auto [serial, changed] = serials_.update(topic, std::string(bytes.begin(), bytes.end()) + how.salt);
+        if (changed && how.write) {
+            value.hdr = header(tables_.name, tables_.name, serial);
+            if (!how.named) value.hdr.srcName.clear();
+            const bool durable = how.durable;
+            node_->writer<T>(topic, profile, [durable](eprosima::fastdds::dds::DataWriterQos& q) {
+                     if (!durable) q.durability().kind = eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
+                 })->write(&value);
+        }
+        return serial;
+    }
 
     const Tables& tables_;
     std::unique_ptr<Breaks> breaks_;  // (before the manager: it may hold the manager's tables)
+    bool breaking_configs_ = false;  // (a test build's config breaks)
     std::unique_ptr<Log> log_;
     JournalRecovered recovered_;  // what the journal held after a crash (answered at start())
     std::unique_ptr<Journal> journal_;  // before the manager, which writes to it

@@ -68,6 +68,7 @@ private:
     Bridge& bridge_;
     Simulator& sim_;
     Telemetry tel_;
+    const Breaks* breaks_;  // a test build's --break (breaks.hpp); null: none
     std::vector<CustomPublisher> custom_;
     std::mutex mutex_;
     std::condition_variable wake_;

@@ -43,7 +43,7 @@ std::array<float, 9> rotation_about_z(const std::string& encoding, double headin
 
 class Telemetry {
 public:
-    explicit Telemetry(Bridge& bridge) : b_(bridge), t_(bridge.tables()) {}
+    explicit Telemetry(Bridge& bridge);
 
     // The index-th agent entry's AgentState: values by key; a key not given keeps its
     // declared default (else its type's zero).
@@ -72,9 +72,12 @@ private:
     ::rapid::ImageMetadata meta(const TelemetrySpec& e, int width, int height) const;
     std::vector<::rapid::ParameterUnion> values(const TelemetrySpec& e, const std::map<std::string, Value>& given) const;
     const std::string& topic(const TelemetrySpec& e, const std::string& role, std::string& qos) const;
+    template <class T>
+    void send(const std::string& topic, T& sample, const TelemetrySpec& e, const std::string& qos);
 
     Bridge& b_;
     const Tables& t_;
+    const Breaks* breaks_ = nullptr;  // a test build's --break (breaks.hpp); null: none
 };
 
 }  // namespace dds
