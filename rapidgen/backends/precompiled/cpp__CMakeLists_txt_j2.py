@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/cpp/CMakeLists.txt.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "14ea982159d34066726cb4f42ab5d1816ceaa1757a0fd62daf59f4f9af219c76"
+KEY = "17a4b6048e097d84a0e1266fee1c66c9a564cbac98f783833fa850a3b1f7c553"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'CMakeLists.txt.j2'
 
@@ -39,7 +39,11 @@ def root(context, missing=missing, environment=environment):
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
         yield "_bridge (bridge/: the C++ RAPID runtime on these types) is\n# built too when find_package(rapid_runtime_cpp) finds the runtime (rapidgen's runtime/cpp;\n# rapid_runtime_cpp_DIR=<its build folder>, or installed); -D"
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
-        yield '_BRIDGE=OFF skips it.\n'
+        yield '_BRIDGE=OFF skips it.\n# -D'
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_CMD=ON adds '
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield "_cmd, the ground-side client (rapidgen cmd's words)\n# with this asset's tables and profiles built in.\n"
     yield 'cmake_minimum_required(VERSION 3.16)\nproject('
     yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
     yield ' VERSION 1.0.0 LANGUAGES CXX)\n\nfind_package(fastcdr REQUIRED)\nfind_package(fastrtps REQUIRED)\n\nadd_library('
@@ -89,7 +93,11 @@ def root(context, missing=missing, environment=environment):
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
         yield '_BRIDGE "build '
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
-        yield '_bridge (needs rapid_runtime_cpp)" ON)\nif('
+        yield '_bridge (needs rapid_runtime_cpp)" ON)\n# (off by default: a robot needs its bridge, not a commander)\noption('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_CMD "build '
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_cmd, the ground-side client (needs rapid_runtime_cpp)" OFF)\nif('
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
         yield '_BRIDGE)\n    find_package(rapid_runtime_cpp QUIET)\n    if(rapid_runtime_cpp_FOUND)\n        add_executable('
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
@@ -103,11 +111,19 @@ def root(context, missing=missing, environment=environment):
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
         yield ')\n        install(TARGETS '
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
-        yield '_bridge RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})\n    else()\n        message(STATUS "'
+        yield '_bridge RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})\n        if('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_CMD)\n            rapid_runtime_cpp_add_cmd('
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_cmd PACKAGE '
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '\n                BRIDGE_DIR ${CMAKE_CURRENT_SOURCE_DIR}/bridge)\n            install(TARGETS '
+        yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
+        yield '_cmd RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})\n        endif()\n    else()\n        message(STATUS "'
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
         yield ': rapid_runtime_cpp not found; '
         yield str(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'package'))
         yield '_bridge is not built "\n                       "(set rapid_runtime_cpp_DIR to the runtime\'s build folder)")\n    endif()\nendif()\n'
 
 blocks = {}
-debug_info = '1=20&2=22&3=24&4=30&5=32&6=35&8=37&11=40&16=42&17=44&18=50&19=52&20=54&23=56&27=58&28=60&32=64&33=68&34=72&36=74&37=76&39=78&40=80&41=82&43=85&44=89&47=91&53=93&54=95&55=97&56=101&58=103'
+debug_info = '1=20&2=22&3=24&4=30&5=32&6=35&8=37&9=39&13=44&18=46&19=48&20=54&21=56&22=58&25=60&29=62&30=64&34=68&35=72&36=76&38=78&39=80&41=82&42=84&43=86&45=89&47=93&48=97&51=99&57=101&58=103&59=105&60=109&61=111&62=113&64=117&67=119'

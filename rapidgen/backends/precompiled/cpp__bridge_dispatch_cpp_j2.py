@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/cpp/bridge/dispatch.cpp.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "3c5a93409265ad5c4961a1c8e9f7ddfb1caa4b334babeab6a2bc12fb0e5d9399"
+KEY = "5a2a4782cb5e9e4555461fac2952cf74db700e3e4465e5623a8c13ca1cb749ac"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/dispatch.cpp.j2'
 
@@ -28,7 +28,7 @@ def root(context, missing=missing, environment=environment):
     yield ': a command\'s type\n// and name pick the method, its arguments (validated against the tables before) become\n// the method\'s typed parameters.\n#include "handlers.hpp"\n'
     if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
         pass
-        yield '\n#include <atomic>\n#include <vector>\n\n#include <rapid_runtime/dds/stream.hpp>\n'
+        yield '\n#include <atomic>\n#include <memory>\n#include <vector>\n\n#include <rapid_runtime/dds/stream.hpp>\n'
     yield '\nnamespace '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
     yield ' {\n\n::rapid_runtime::Result Dispatch::execute(::rapid_runtime::CommandContext& ctx) {\n'
@@ -131,7 +131,28 @@ def root(context, missing=missing, environment=environment):
         yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
         yield ') set_.'
         yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'on_stop'))
-        yield '();\n    running = nullptr;\n    if (streams_) streams_->stop();\n}\n'
+        yield '();\n    running = nullptr;\n    if (streams_) streams_->stop();\n}\n\n::std::shared_ptr<void> '
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'simulate'))
+        yield '(::rapid_runtime::dds::Bridge& bridge, ::rapid_runtime::Simulator& sim) {\n    auto set = ::std::make_shared<::rapid_runtime::dds::SimulatedStreams>(bridge, sim, stream_specs());\n'
+        for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'inputs'):
+            _loop_vars = {}
+            pass
+            yield '    set->read<'
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '>('
+            yield str(environment.getattr(l_1_s, 'index'))
+            yield 'u);\n'
+        l_1_s = missing
+        for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'outputs'):
+            _loop_vars = {}
+            pass
+            yield '    set->write<'
+            yield str(environment.getattr(l_1_s, 'type'))
+            yield '>('
+            yield str(environment.getattr(l_1_s, 'index'))
+            yield 'u);\n'
+        l_1_s = missing
+        yield '    set->start();\n    return set;\n}\n'
         for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'outputs'):
             _loop_vars = {}
             pass
@@ -169,4 +190,4 @@ def root(context, missing=missing, environment=environment):
     yield '\n'
 
 blocks = {}
-debug_info = '1=21&2=23&6=25&14=29&17=31&20=35&21=39&22=41&23=44&24=48&25=50&35=72&36=74&44=78&45=82&57=86&59=92&61=96&62=100&63=106&66=113&67=117&71=123&75=127&79=131&81=135&82=139&84=141&87=145&89=147&94=155&98=159&102=164'
+debug_info = '1=21&2=23&6=25&15=29&18=31&21=35&22=39&23=41&24=44&25=48&26=50&36=72&37=74&45=78&46=82&58=86&60=92&62=96&63=100&64=106&67=113&68=117&72=123&76=127&81=131&83=133&84=137&86=142&87=146&92=152&94=156&95=160&97=162&100=166&102=168&107=176&111=180&115=185'

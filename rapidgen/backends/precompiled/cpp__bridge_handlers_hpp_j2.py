@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/cpp/bridge/handlers.hpp.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "3daabfc2f66b81c359706e5d73979482b73040eb7a2c8f4265b15734dedc680e"
+KEY = "5d8800b297840b8f1236b5001317cba935b2912cdbf88aaf3ed76bc280788673"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/handlers.hpp.j2'
 
@@ -38,7 +38,7 @@ def root(context, missing=missing, environment=environment):
         pass
         yield '#include <rapid_runtime/stream.hpp>\n#include <rapid_runtime/value.hpp>\n#include <'
         yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'package'))
-        yield '/types.hpp>\n\nnamespace rapid_runtime { namespace dds { class StreamSet; } }\n'
+        yield '/types.hpp>\n\nnamespace rapid_runtime {\nclass Simulator;\nnamespace dds { class Bridge; class StreamSet; }\n}  // namespace rapid_runtime\n'
     yield '\nnamespace '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
     yield " {\n\n// The asset as the runtime's tables (tables.cpp).\nconst ::rapid_runtime::Tables& tables();\n// The asset's Fast DDS profiles, built in (profiles.cpp).\nextern const ::std::string_view PROFILES_XML;\n"
@@ -92,7 +92,7 @@ def root(context, missing=missing, environment=environment):
         context.exported_vars.add('st')
         yield "\n// The asset's setpoint streams (docs/realtime.md), read outside the command queue with\n// DEADLINE and LIVELINESS QoS (profiles RapidStream_<name>). Each input stream's method is\n// called for every sample on Fast DDS's receive thread: keep it short, lock-free and\n// allocation-free (copy the setpoint where the control loop reads it). The runtime watches\n// the deadline: on a loss it runs the declared action (stop: "
         yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'state_hook'))
-        yield '() is your\n// cue to bring the driven joints to rest, and Mobility/stopAllMotion goes through the\n// command manager when the asset has Mobility; hold: keep the last setpoint), sends a\n// TextMessage and reports the state in AgentState. Streams run without --simulate only.\nclass '
+        yield '() is your\n// cue to bring the driven joints to rest, and Mobility/stopAllMotion goes through the\n// command manager when the asset has Mobility; hold: keep the last setpoint), sends a\n// TextMessage and reports the state in AgentState. Under --simulate the simulated robot\n// takes the samples instead (JointSample and PositionSample setpoints move it) and writes\n// the output streams.\nclass '
         yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'cls'))
         yield ' {\npublic:\n    virtual ~'
         yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'cls'))
@@ -114,7 +114,7 @@ def root(context, missing=missing, environment=environment):
             yield str(environment.getattr(l_1_s, 'type'))
             yield '& sample) { (void)sample; }\n'
         l_1_s = missing
-        yield "\n    // A stream changed state: lost (the declared action is being taken) or active (first\n    // sample, recovered). Runs on the runtime's reporting thread.\n    virtual void "
+        yield "\n    // A stream with on_loss stop or hold changed state: lost (the declared action is being\n    // taken) or active (first sample, recovered). Runs on the runtime's reporting thread.\n    // Not called for on_loss none: the runtime only reports those.\n    virtual void "
         yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'state_hook'))
         yield '(const ::rapid_runtime::StreamSpec& stream, ::rapid_runtime::StreamState state) {\n        (void)stream;\n        (void)state;\n    }\n};\n'
         l_1_loop = missing
@@ -169,7 +169,13 @@ def root(context, missing=missing, environment=environment):
         yield ";\n    // Your agent values: the runtime publishes AgentState with the streams' state keys and\n    // these (unset: the declared defaults) at the agent telemetry's rate.\n    ::std::function<::std::map<::std::string, ::rapid_runtime::Value>()> "
         yield str(environment.getattr(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'), 'values'))
         yield ';\n'
-    yield "};\n\n// Yours, in handlers.cpp.\nHandlerSet make_handlers();\n\n// The glue (dispatch.cpp): each command's arguments unpacked into its typed method.\nclass Dispatch final : public ::rapid_runtime::dds::BridgeHandlers {\npublic:\n    explicit Dispatch(HandlerSet set) : set_(::std::move(set)) {}\n"
+    yield '};\n\n// Yours, in handlers.cpp.\nHandlerSet make_handlers();\n'
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        yield '\n// The glue (dispatch.cpp): the streams on the simulated robot (--simulate).\n::std::shared_ptr<void> '
+        yield str(environment.getattr(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'), 'simulate'))
+        yield '(::rapid_runtime::dds::Bridge& bridge, ::rapid_runtime::Simulator& sim);\n'
+    yield "\n// The glue (dispatch.cpp): each command's arguments unpacked into its typed method.\nclass Dispatch final : public ::rapid_runtime::dds::BridgeHandlers {\npublic:\n    explicit Dispatch(HandlerSet set) : set_(::std::move(set)) {}\n"
     if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
         pass
         yield '    ~Dispatch() override;\n'
@@ -184,4 +190,4 @@ def root(context, missing=missing, environment=environment):
     yield '_BRIDGE_HANDLERS_HPP\n'
 
 blocks = {}
-debug_info = '1=21&2=23&13=25&14=27&23=29&30=33&33=36&38=39&44=41&46=45&47=47&49=49&50=51&52=55&53=59&55=62&56=66&58=70&62=84&63=86&69=90&73=92&75=94&76=96&78=100&79=104&81=108&86=114&91=117&93=122&94=126&96=133&97=135&99=137&100=141&109=145&110=149&112=155&113=157&114=159&116=162&119=166&130=169&139=173&144=177&146=179'
+debug_info = '1=21&2=23&13=25&14=27&23=29&30=33&33=36&41=39&47=41&49=45&50=47&52=49&53=51&55=55&56=59&58=62&59=66&61=70&65=84&66=86&72=90&78=92&80=94&81=96&83=100&84=104&86=108&92=114&97=117&99=122&100=126&102=133&103=135&105=137&106=141&115=145&116=149&118=155&119=157&120=159&122=162&125=166&131=169&134=172&141=175&150=179&155=183&157=185'

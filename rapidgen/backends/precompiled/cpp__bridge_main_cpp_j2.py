@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/cpp/bridge/main.cpp.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "4b88567bc9bd86e2df6b5d30bab3f7afcb8b107fd584308f4826c435b687132f"
+KEY = "f6a45a4a94e1140446f03ba1dfe088e871ab3066d19f3ba22b7db4631d54154a"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/main.cpp.j2'
 
@@ -101,7 +101,15 @@ def root(context, missing=missing, environment=environment):
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
     yield '::Dispatch>(::'
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
-    yield '::make_handlers());\n    };\n    program.custom = custom_publishers();\n    return ::rapid_runtime::dds::run_bridge(argc, argv, program);\n}\n'
+    yield '::make_handlers());\n    };\n    program.custom = custom_publishers();\n'
+    if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'):
+        pass
+        yield '    program.simulated_streams = ::'
+        yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'ns'))
+        yield '::'
+        yield str(environment.getattr(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'streams'), 'simulate'))
+        yield ';\n'
+    yield '    return ::rapid_runtime::dds::run_bridge(argc, argv, program);\n}\n'
 
 blocks = {}
-debug_info = '1=20&2=22&10=26&17=29&18=33&27=47&28=51&29=55&31=61&32=65&33=68&34=72&35=75&37=84&48=93&49=95&52=97'
+debug_info = '1=20&2=22&10=26&17=29&18=33&27=47&28=51&29=55&31=61&32=65&33=68&34=72&35=75&37=84&48=93&49=95&52=97&55=101&56=104'
