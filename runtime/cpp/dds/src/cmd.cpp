@@ -23,7 +23,7 @@ struct Args {
     std::string asset, partition, transport = "local", qos, source = "rapid_cmd", target, id;
     std::optional<int> domain;
     QueueAction action = QueueAction::Bypass;
-    double timeout = 30, discover = 2;
+    double timeout = 30, discover = 2, rtt = 0;
     bool no_check = false, no_wait = false;
     long long repeat = 0, flood = 0, window = 0;
     std::vector<std::string> words;  // SUBSYSTEM COMMAND key=value...
@@ -45,11 +45,20 @@ void usage(std::ostream& out, const char* prog) {
            "  --id CMDID          this command's cmdId (default: a fresh one)\n"
            "  --timeout S         seconds to wait for the asset, then for completion (default 30)\n"
            "  --discover S        seconds to wait for the live CommandConfig (default 2)\n"
+           "  --rtt S             the link's round trip (0..600): the waits grow by 2 of them for\n"
+           "                      an answer, 6 for finding the asset and its CommandConfig\n"
            "  --no-check          send values outside their range or allowed values\n"
            "  --no-wait           return after the first ack\n"
            "  --repeat N          benchmark: N commands one after the other; JSON latency figures\n"
            "  --flood N           benchmark: N commands at once (--window W in flight); JSON counts\n";
 }
+
+// As `rapidgen cmd --rtt` (rapidgen/cmd/timing.py): a loopback wait over a link grows by
+// what the link costs: an answer a round trip, a lost packet's repair another; a late
+// joiner's first durable sample (participants, endpoints, request, history, one loss) 6.
+constexpr double ANSWER_TRIPS = 2, DISCOVERY_TRIPS = 6, MAX_RTT = 600;
+
+double allow(double seconds, double rtt, double trips = ANSWER_TRIPS) { return seconds + trips * rtt; }
 
 bool to_number(const std::string& text, double& out) {
     char* end = nullptr;
@@ -106,6 +115,7 @@ bool parse(int argc, char** argv, Args& a, bool& help) {
         else if (key == "--domain") ok = to_integer(value, n) && n >= 0 && n <= 232, a.domain = static_cast<int>(n);
         else if (key == "--timeout") ok = to_number(value, x) && x > 0, a.timeout = x;
         else if (key == "--discover") ok = to_number(value, x) && x >= 0, a.discover = x;
+        else if (key == "--rtt") ok = to_number(value, x) && x >= 0 && x <= MAX_RTT, a.rtt = x;
         else if (key == "--repeat") ok = to_integer(value, n) && n > 0, a.repeat = n;
         else if (key == "--flood") ok = to_integer(value, n) && n > 0, a.flood = n;
         else if (key == "--window") ok = to_integer(value, n) && n > 0, a.window = n;
@@ -176,7 +186,7 @@ int repeat(Client& client, const Args& a, const SendOptions& how) {
     for (long long i = 0; i < a.repeat; ++i) {
         auto t0 = Clock::now();
         auto id = client.send_text(a.words[0], a.words[1], {a.words.begin() + 2, a.words.end()}, how);
-        auto acks = client.wait_final(id, a.timeout);
+        auto acks = client.wait_final(id, allow(a.timeout, a.rtt));
         auto t1 = Clock::now();
         client.forget(id);
         if (acks.empty() || !acks.back().final()) {
@@ -217,9 +227,9 @@ int flood(Client& client, const Args& a, const SendOptions& how) {
     while (sent < total && !lost) {
         inflight.push_back(client.send_text(a.words[0], a.words[1], {a.words.begin() + 2, a.words.end()}, how));
         ++sent;
-        if (inflight.size() >= window) lost = !drain(window - 1, a.timeout);
+        if (inflight.size() >= window) lost = !drain(window - 1, allow(a.timeout, a.rtt));
     }
-    if (!lost) drain(0, a.timeout);
+    if (!lost) drain(0, allow(a.timeout, a.rtt));
     double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     std::printf("{\"sent\": %zu, \"final\": %zu, \"ok\": %zu, \"lost\": %zu, \"seconds\": %.3f, \"per_s\": %.1f}\n",
                 sent, finals, ok, total - finals, seconds, static_cast<double>(finals) / seconds);
@@ -257,8 +267,10 @@ int run_cmd(int argc, char** argv, const CmdProgram& program) {
     how.limits = !a.no_check;
     try {
         Client client(o, tables);
-        if (a.discover > 0 && !client.read_dictionary(a.discover)) {
-            std::cerr << "rapid_cmd: no CommandConfig from " << visible(client.asset()) << " within " << a.discover
+        const double discover = allow(a.discover, a.rtt, DISCOVERY_TRIPS);
+        const double find = allow(a.timeout, a.rtt, DISCOVERY_TRIPS), answer = allow(a.timeout, a.rtt);
+        if (a.discover > 0 && !client.read_dictionary(discover)) {
+            std::cerr << "rapid_cmd: no CommandConfig from " << visible(client.asset()) << " within " << discover
                       << " s (domain " << client.domain() << ")"
                       << (tables != nullptr ? "; using the built-in tables" : "") << std::endl;
         }
@@ -269,10 +281,10 @@ int run_cmd(int argc, char** argv, const CmdProgram& program) {
         }
         const std::vector<std::string> words(a.words.begin() + 2, a.words.end());
         Cmd cmd = client.prepare_text(a.words[0], a.words[1], words, how);  // checked before waiting
-        if (!client.wait_for_asset(a.timeout)) {
+        if (!client.wait_for_asset(find)) {
             std::cerr << "rapid_cmd: no asset " << visible(client.asset()) << " reads commands on domain "
                       << client.domain() << ", partition '" << visible(client.partition()) << "' (waited "
-                      << a.timeout << " s)" << std::endl;
+                      << find << " s)" << std::endl;
             return 1;
         }
         if (a.repeat > 0) return repeat(client, a, how);
@@ -287,15 +299,15 @@ int run_cmd(int argc, char** argv, const CmdProgram& program) {
         line += "  [cmdId " + visible(id) + ", " + std::string(name_of(a.action)) +
                 (a.target.empty() ? "" : " " + visible(a.target)) + ", from " + visible(a.source) + "]";
         std::cout << line << std::endl;
-        auto acks = follow(client, id, a.timeout, a.no_wait);
+        auto acks = follow(client, id, answer, a.no_wait);
         if (acks.empty()) {
-            std::cout << "  no ack within " << a.timeout << " s" << std::endl;
+            std::cout << "  no ack within " << answer << " s" << std::endl;
             return 1;
         }
         const AckEvent& last = acks.back();
         if (a.action == QueueAction::Delete && last.final()) {
             std::cout << "target " << visible(a.target) << ":" << std::endl;
-            follow(client, a.target, 3.0, false);
+            follow(client, a.target, allow(3.0, a.rtt), false);
         }
         if (a.no_wait) return !last.final() || last.ok() ? 0 : 1;
         return last.ok() ? 0 : 1;
