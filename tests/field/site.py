@@ -29,6 +29,20 @@ def site_config(folder: Path, asset: str = "k10", transport: str = "wan", extra:
     return out
 
 
+def _site_data(rtt: float | None, lease: float | None, transport: str, participants: int | None) -> dict:
+    """specs/qos/rapid.yaml as a site copies it: its peers in the transport and, for a slow
+    link, its round trip, lease and participants."""
+    import yaml
+
+    data = yaml.safe_load((ROOT / "specs" / "qos" / "rapid.yaml").read_text(encoding="utf-8"))
+    t = data["transports"][transport]
+    t["peers"] = list(ADDRESS.values())
+    for key, value in (("rtt", rtt), ("lease", lease), ("max_participants_per_host", participants)):
+        if value is not None:
+            t[key] = value
+    return data
+
+
 def site_library(folder: Path, rtt: float | None, lease: float | None, transport: str = "wan",
                  participants: int | None = None) -> Path:
     """The Cyclone file of a site's own QoS library (docs/qos.md: a site copies
@@ -42,12 +56,7 @@ def site_library(folder: Path, rtt: float | None, lease: float | None, transport
     from rapidgen.diagnostics import DiagnosticSink
     from rapidgen.qos.spec import load_qos
 
-    data = yaml.safe_load((ROOT / "specs" / "qos" / "rapid.yaml").read_text(encoding="utf-8"))
-    t = data["transports"][transport]
-    t["peers"] = list(ADDRESS.values())
-    for key, value in (("rtt", rtt), ("lease", lease), ("max_participants_per_host", participants)):
-        if value is not None:
-            t[key] = value
+    data = _site_data(rtt, lease, transport, participants)
     lib = folder / "site-qos.yaml"
     lib.write_text(yaml.safe_dump(data, sort_keys=False), encoding="utf-8")
     sink = DiagnosticSink()
@@ -87,12 +96,7 @@ def site_fastdds(folder: Path, rtt: float | None, lease: float | None, transport
     from rapidgen.generate import load_inputs
     from rapidgen.qos.spec import parse_qos
 
-    data = yaml.safe_load((ROOT / "specs" / "qos" / "rapid.yaml").read_text(encoding="utf-8"))
-    t = data["transports"][transport]
-    t["peers"] = list(ADDRESS.values())
-    for key, value in (("rtt", rtt), ("lease", lease), ("max_participants_per_host", participants)):
-        if value is not None:
-            t[key] = value
+    data = _site_data(rtt, lease, transport, participants)
     sink = DiagnosticSink()
     spec = parse_qos(yaml.safe_dump(data, sort_keys=False), str(folder / "site-qos.yaml"), sink)
     inputs = load_inputs([str(ROOT / "specs" / "assets" / f"{asset}.yaml")], [str(ROOT / "specs" / "rapid")], sink)
