@@ -158,14 +158,13 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
         shown = " ".join(f"{p.name}={_shown(v)}" for p, (_t, v) in zip(payload[0].params, payload[1]))
         if args.target:
             commander.follow(args.target)
-        watch = AssetWatch(commander, args.rtt)  # before the send: who the asset is now
+        watch = AssetWatch(commander, args.rtt, time.monotonic())  # before the send: who the asset is now
         cmd_id = commander.send(args.subsystem, args.command_name, payload[1], action="QUEUE_" + action,
                                 target=args.target or "", cmd_id=args.id)
 
         def again() -> None:  # the same command, the same cmdId (docs/runtime.md, "The ground's part")
-            print(f"cmd: {tables.name} came back (a new participant) and has not answered {visible(cmd_id)} "
-                  f"within {watch.settle:g} s: the command was lost in the old one; sending it again with the "
-                  f"same cmdId ({watch.resends} of {MAX_RESENDS})", file=sys.stderr, flush=True)
+            print(f"cmd: {tables.name} {watch.why}; sending it again with the same cmdId "
+                  f"({watch.resends} of {MAX_RESENDS})", file=sys.stderr, flush=True)
             commander.send(args.subsystem, args.command_name, payload[1], action="QUEUE_" + action,
                            target=args.target or "", cmd_id=cmd_id)
         print(f"{tables.name} <- {args.subsystem}/{args.command_name}" + (f" {shown}" if shown else "")
@@ -240,7 +239,7 @@ def _follow(commander, cmd_id: str, timeout: float, stop_at_first: bool = False,
             if acks and (stop_at_first or any(a[0] == COMPLETED for a in acks)):
                 return list(acks)
             now = time.monotonic()
-            if watch is not None and watch.due(now):
+            if watch is not None and watch.due(now, bool(acks)):
                 again()
                 end = max(end, now + timeout)  # bounded: MAX_RESENDS
             left = end - now

@@ -8,13 +8,21 @@ reader, in the same participant: a tool that only reads commands is not the asse
 a new one appears and the command still has no final ack some seconds later (time for the
 new ack writer's history to arrive), it is sent again with the same cmdId, at most
 MAX_RESENDS times. That is safe: a bridge drops a cmdId its journal knows as a repeat
-and answers it from the rewritten history."""
+and answers it from the rewritten history.
+
+The same resend covers a command lost at first contact: the writer matched the asset's
+reader, but the asset had not yet discovered the writer, and a volatile reader that
+matches late starts after what was written before (seen across the lunar link, where one
+discovery message lost costs seconds). A RAPID asset answers a command at once (QUEUED,
+EXECUTING or COMPLETED), so no ack at all UNANSWERED s + 2 round trips after the send
+means the command never arrived; a repeat that did arrive is dropped by the bridge."""
 from __future__ import annotations
 
 from rapidgen.cmd.timing import allow
 
 MAX_RESENDS = 3
 SETTLE = 3.0  # s on loopback after the asset came back, before its history is taken as complete
+UNANSWERED = 5.0  # s on loopback with no ack at all, before the command is taken as never received
 POLL = 0.25  # s between looks at the matched endpoints while no ack comes
 
 
@@ -31,11 +39,13 @@ def _participants(handles, data) -> set:
 class AssetWatch:
     """Notices an asset participant that was not there when the command was sent."""
 
-    def __init__(self, commander, rtt: float) -> None:
-        self.commander, self.settle = commander, allow(SETTLE, rtt)
+    def __init__(self, commander, rtt: float, now: float) -> None:
+        self.commander, self.settle, self.unanswered = commander, allow(SETTLE, rtt), allow(UNANSWERED, rtt)
         self.known = self._asset()
         self.back_at: float | None = None
+        self.sent_at = now
         self.resends = 0
+        self.why = ""
 
     def _asset(self) -> set:
         c = self.commander
@@ -47,16 +57,24 @@ class AssetWatch:
             return set()
         return readers & writers
 
-    def due(self, now: float) -> bool:
-        """True when the command should be sent again now (call while it has no final ack)."""
+    def due(self, now: float, answered: bool) -> bool:
+        """True when the command should be sent again now (call while it has no final ack;
+        `answered`: some ack of it came). self.why then says why. Silence counts only while
+        the asset is there and no comeback is being waited for (that wait resends itself)."""
         if self.resends >= MAX_RESENDS:
             return False
-        new = self._asset() - self.known
+        current = self._asset()
+        new = current - self.known
         if new:
             self.known |= new
             self.back_at = now  # a later newcomer restarts the wait: its history must arrive too
         if self.back_at is not None and now - self.back_at >= self.settle:
-            self.back_at = None
-            self.resends += 1
-            return True
-        return False
+            self.why = f"came back (a new participant) and has not answered within {self.settle:g} s: " \
+                       "the command was lost in the old one"
+        elif self.back_at is None and not answered and now - self.sent_at >= self.unanswered and current:
+            self.why = f"has not answered within {self.unanswered:g} s: the command did not reach it"
+        else:
+            return False
+        self.back_at, self.sent_at = None, now
+        self.resends += 1
+        return True

@@ -27,7 +27,7 @@ import pytest
 from tests.cpp_client.drive import Running
 from tests.cpp_runtime import build as B
 from tests.field.site import site_fastdds
-from tests.field.test_link import LEASE, PACKAGE, RTT, SPEED, _answer, _ground, _runs, _Site
+from tests.field.test_link import DISCOVER, LEASE, PACKAGE, RTT, SPEED, _answer, _ground, _runs, _Site
 
 pytestmark = pytest.mark.skipif(os.geteuid() != 0 or not Path("/dev/net/tun").exists(),
                                 reason="needs root and /dev/net/tun (network namespaces, TUN devices)")
@@ -67,7 +67,8 @@ class _Ground:
               extra: tuple[str, ...] = ()) -> tuple[str, Running]:
         cmd_id = f"cpp-{name}-{self.stamp}"
         argv = [str(self.program), *words, "--source", SOURCE, "--domain", str(DOMAIN), "--transport", "wan",
-                "--qos", str(self.fastdds), "--rtt", f"{RTT:g}", "--timeout", str(STAGE), "--action", action,
+                "--qos", str(self.fastdds), "--rtt", f"{RTT:g}", "--timeout", str(STAGE), "--discover", f"{DISCOVER:g}",
+                "--action", action,
                 *(["--target", target] if target else []), *(["--id", cmd_id] if not extra else []), *extra]
         run = Running(self.site.link.argv("ground", argv), B.dds_env())  # no FASTDDS_* of ours: --qos only
         self.site.link.children.append(run.proc)

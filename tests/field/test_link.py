@@ -36,6 +36,11 @@ SPEED = 20.0  # the bridge's simulation speed (drives are given in seconds of th
 DOMAIN = 7  # inside the namespaces: any
 PACKAGE = SEEDS["k10"]
 RTT = rtt(LUNAR)
+# s (+ 6 round trips) a late-joining rapidgen cmd waits for the CommandConfig: the default 2 s
+# is a typical first contact; at 5% loss each way a lost SPDP costs an interval (5.2 s) and a
+# lost endpoint or history packet a heartbeat and a round trip more, and one run in ~10 met
+# two of them (17.6 s was not enough). The test asks that the config arrives, not how fast.
+DISCOVER = 30.0
 
 
 # ---------------------------------------------------------------------------- the emulator
@@ -182,7 +187,8 @@ def _runs(log: Path) -> Counter:
 
 def _cmd(link: Link, config: Path, cmd_id: str, *words: str) -> subprocess.Popen:
     return link.popen("ground", [*RAPIDGEN, "cmd", PACKAGE, *words, "--id", cmd_id, "--source", "RapidWorkbench",
-                                 "--domain", str(DOMAIN), "--rtt", f"{RTT:g}", "--timeout", "300"],
+                                 "--domain", str(DOMAIN), "--rtt", f"{RTT:g}", "--timeout", "300",
+                                 "--discover", str(DISCOVER)],
                       cwd=ROOT, env=site_env(config), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 

@@ -273,7 +273,9 @@ def test_rapidgen_cmd_sends_again_a_command_lost_in_a_killed_bridge(tmp_path):
                 p.kill()
                 p.wait()
     assert cmd.returncode == 0 and "COMPLETED OK" in out, out + err
-    assert "sending it again with the same cmdId (1 of 3)" in err and err.count("sending it again") == 1, err
+    resends = [ln for ln in err.splitlines() if "sending it again with the same cmdId" in ln]
+    # one for the comeback; on a slow machine maybe one before it for the stalled bridge's silence
+    assert sum("came back" in ln for ln in resends) == 1 and len(resends) <= 2, err
     assert executions.read_text().splitlines() == ["stalled lost-1", "lost-1"]  # run once, by the new bridge
 
 
@@ -353,17 +355,42 @@ def test_cmd_sends_again_only_for_a_new_asset_participant_and_at_most_three_time
                                                        get_matched_subscription_data=r_data),
                                 ack_reader=SimpleNamespace(get_matched_publications=w_list,
                                                            get_matched_publication_data=w_data))
-    watch = AssetWatch(commander, rtt=1.0)
+    watch = AssetWatch(commander, rtt=1.0, now=0.0)
     assert watch.known == {"old"} and watch.settle == 5.0  # 3 s + 2 round trips
     readers[2] = "spy"
-    assert not watch.due(0.0) and not watch.due(100.0)  # reads commands, writes no acks
+    assert not watch.due(0.0, True) and not watch.due(100.0, True)  # reads commands, writes no acks
     readers[3], writers[3] = "new", "new"
-    assert not watch.due(10.0) and not watch.due(14.9)
+    assert not watch.due(10.0, True) and not watch.due(14.9, True)
     readers[4], writers[4] = "newer", "newer"  # came back again: its history must arrive too
-    assert not watch.due(15.0) and not watch.due(19.9) and watch.due(20.0) and watch.resends == 1
-    assert not watch.due(40.0)  # nothing new since: once per comeback
+    assert not watch.due(15.0, True) and not watch.due(19.9, True) and watch.due(20.0, True)
+    assert watch.resends == 1 and "came back" in watch.why
+    assert not watch.due(40.0, True)  # nothing new since: once per comeback
     for n in range(5, 5 + MAX_RESENDS + 1):
         readers[n], writers[n] = f"p{n}", f"p{n}"
-        watch.due(100.0 * n)
-        watch.due(100.0 * n + 6)
+        watch.due(100.0 * n, True)
+        watch.due(100.0 * n + 6, True)
     assert watch.resends == MAX_RESENDS
+
+
+def test_cmd_sends_again_a_command_the_asset_never_answered():
+    """No ack at all 5 s + 2 round trips after the send: the command never reached the
+    asset (a writer matched before the asset's reader knew it); sent again, the wait starts
+    over from that send, at most MAX_RESENDS times; an answered command is never resent
+    for silence, nor one whose asset is not there."""
+    from types import SimpleNamespace
+
+    from rapidgen.cmd.recover import MAX_RESENDS, AssetWatch
+
+    key = {1: "asset"}
+    side = SimpleNamespace(get_matched_subscriptions=lambda: list(key), get_matched_publications=lambda: list(key),
+                           get_matched_subscription_data=lambda h: SimpleNamespace(participant_key=key[h]),
+                           get_matched_publication_data=lambda h: SimpleNamespace(participant_key=key[h]))
+    watch = AssetWatch(SimpleNamespace(writer=side, ack_reader=side), rtt=2.6, now=100.0)
+    assert watch.unanswered == 10.2  # 5 s + 2 round trips
+    assert not watch.due(110.1, False) and not watch.due(500.0, True)  # answered: only a comeback counts
+    key.clear()
+    assert not watch.due(110.3, False)  # the asset is not there: a resend would reach nobody
+    key[1] = "asset"
+    assert watch.due(110.2, False) and watch.resends == 1 and "has not answered within 10.2 s" in watch.why
+    assert not watch.due(120.3, False) and watch.due(120.4, False)  # counted from the resend
+    assert watch.due(131.0, False) and watch.resends == MAX_RESENDS and not watch.due(1000.0, False)

@@ -149,14 +149,18 @@ void Client::read_acks() {
     }
 }
 
+bool Client::asset_matched() const {
+    PublicationMatchedStatus pub;
+    SubscriptionMatchedStatus sub;
+    commands_->get_publication_matched_status(pub);
+    acks_reader_->get_subscription_matched_status(sub);
+    return pub.current_count > 0 && sub.current_count > 0;
+}
+
 bool Client::wait_for_asset(double seconds) {
     const auto end = deadline(seconds);
     while (true) {
-        PublicationMatchedStatus pub;
-        SubscriptionMatchedStatus sub;
-        commands_->get_publication_matched_status(pub);
-        acks_reader_->get_subscription_matched_status(sub);
-        if (pub.current_count > 0 && sub.current_count > 0) return true;
+        if (asset_matched()) return true;
         if (Clock::now() >= end) return false;
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }

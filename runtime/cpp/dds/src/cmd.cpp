@@ -19,6 +19,8 @@ namespace dds {
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
 struct Args {
     std::string asset, partition, transport = "local", qos, source = "rapid_cmd", target, id;
     std::optional<int> domain;
@@ -156,16 +158,55 @@ std::string shown(const Value& v) {
     return repr(v);
 }
 
-// Prints cmd_id's acks as they come until the final one (or the first, or the deadline).
-std::vector<AckEvent> follow(const Client& client, const std::string& cmd_id, double seconds, bool first_only) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+// A command no ack at all answered UNANSWERED s + 2 round trips after its send, while the
+// asset is matched, never reached it: the writer matched the asset's reader before that
+// reader knew the writer, and a volatile reader matching late starts after what was
+// written (seen across the lunar link). Sent again with the same cmdId, at most
+// MAX_RESENDS times: a RAPID asset answers at once, and drops a repeat that did arrive.
+// As `rapidgen cmd` (rapidgen/cmd/recover.py).
+constexpr double UNANSWERED = 5;
+constexpr int MAX_RESENDS = 3;
+
+struct Resend {
+    Cmd cmd;  // as sent, cmd_id filled
+    double after;
+    Clock::time_point sent = Clock::now();
+    int done = 0;
+
+    // True when it was sent again now.
+    bool due(Client& client, bool answered) {
+        auto now = Clock::now();
+        if (answered || done >= MAX_RESENDS || now - sent < std::chrono::duration<double>(after) ||
+            !client.asset_matched())
+            return false;
+        client.send_raw(cmd);
+        sent = now;
+        ++done;
+        std::cerr << "rapid_cmd: " << visible(client.asset()) << " has not answered " << visible(cmd.cmd_id)
+                  << " within " << after << " s: the command did not reach it; sending it again with the same cmdId ("
+                  << done << " of " << MAX_RESENDS << ")" << std::endl;
+        return true;
+    }
+};
+
+// cmd_id's acks as they come (printed when `print`) until the final one (or the first,
+// or the deadline; a resend starts the wait over).
+std::vector<AckEvent> follow(Client& client, const std::string& cmd_id, double seconds, bool first_only,
+                             Resend* resend = nullptr, bool print = true) {
+    auto end = Clock::now() + std::chrono::duration<double>(seconds);
     std::size_t printed = 0;
     while (true) {
-        double left = std::chrono::duration<double>(end - std::chrono::steady_clock::now()).count();
-        auto acks = client.wait_count(cmd_id, printed + 1, std::max(0.0, left));
-        for (; printed < acks.size(); ++printed) std::cout << "  " << describe(acks[printed]) << std::endl;
+        double left = std::chrono::duration<double>(end - Clock::now()).count();
+        double slice = resend != nullptr ? std::min(left, 0.25) : left;
+        auto acks = client.wait_count(cmd_id, printed + 1, std::max(0.0, slice));
+        for (; printed < acks.size(); ++printed)
+            if (print) std::cout << "  " << describe(acks[printed]) << std::endl;
         bool final = std::any_of(acks.begin(), acks.end(), [](const AckEvent& e) { return e.final(); });
-        if ((!acks.empty() && (first_only || final)) || left <= 0) return acks;
+        if (!acks.empty() && (first_only || final)) return acks;
+        if (resend != nullptr && resend->due(client, !acks.empty()))
+            end = std::max(end, Clock::now() + std::chrono::duration<double>(seconds));
+        else if (left <= 0)
+            return acks;
     }
 }
 
@@ -176,8 +217,6 @@ double percentile(std::vector<double> v, double q) {
     return v[std::min(v.size() - 1, i == 0 ? 0 : i - 1)];
 }
 
-using Clock = std::chrono::steady_clock;
-
 int repeat(Client& client, const Args& a, const SendOptions& how) {
     std::vector<double> us;
     us.reserve(static_cast<std::size_t>(a.repeat));
@@ -185,8 +224,11 @@ int repeat(Client& client, const Args& a, const SendOptions& how) {
     const auto start = Clock::now();
     for (long long i = 0; i < a.repeat; ++i) {
         auto t0 = Clock::now();
-        auto id = client.send_text(a.words[0], a.words[1], {a.words.begin() + 2, a.words.end()}, how);
-        auto acks = client.wait_final(id, allow(a.timeout, a.rtt));
+        Resend again{client.prepare_text(a.words[0], a.words[1], {a.words.begin() + 2, a.words.end()}, how),
+                     allow(UNANSWERED, a.rtt)};
+        auto id = client.send_raw(again.cmd);
+        again.cmd.cmd_id = id;
+        auto acks = follow(client, id, allow(a.timeout, a.rtt), false, &again, false);
         auto t1 = Clock::now();
         client.forget(id);
         if (acks.empty() || !acks.back().final()) {
@@ -291,7 +333,9 @@ int run_cmd(int argc, char** argv, const CmdProgram& program) {
         if (a.flood > 0) return flood(client, a, how);
         if (!a.target.empty()) client.follow(a.target);
         std::vector<Value> values = cmd.args;
+        Resend again{cmd, allow(UNANSWERED, a.rtt)};
         auto id = client.send_raw(std::move(cmd));
+        again.cmd.cmd_id = id;
         std::string line = visible(client.asset()) + " <- " + visible(a.words[0]) + "/" + visible(a.words[1]);
         // the values as sent (defaults included), by name
         const auto* spec = client.dictionary()->command(a.words[0], a.words[1]).spec;
@@ -299,7 +343,7 @@ int run_cmd(int argc, char** argv, const CmdProgram& program) {
         line += "  [cmdId " + visible(id) + ", " + std::string(name_of(a.action)) +
                 (a.target.empty() ? "" : " " + visible(a.target)) + ", from " + visible(a.source) + "]";
         std::cout << line << std::endl;
-        auto acks = follow(client, id, answer, a.no_wait);
+        auto acks = follow(client, id, answer, a.no_wait, &again);
         if (acks.empty()) {
             std::cout << "  no ack within " << answer << " s" << std::endl;
             return 1;

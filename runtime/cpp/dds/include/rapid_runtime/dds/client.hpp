@@ -84,6 +84,8 @@ public:
     // True once an asset's command reader matched the command writer and its ack writer
     // the ack reader (Astrobee's ground side waits likewise).
     bool wait_for_asset(double seconds);
+    // The same, now, without waiting.
+    bool asset_matched() const;
     // Reads the asset's CommandConfig (transient-local: published once) for up to
     // `seconds`: it becomes the dictionary, a parameter keeping the tables' unit, range,
     // allowed values and default when its name and type agree. False: none came.
