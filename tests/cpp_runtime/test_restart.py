@@ -28,13 +28,12 @@ from pathlib import Path
 import pytest
 
 from tests.cpp_runtime import build as B
-from tests.field.restart_asset import DESCRIPTOR, ROOT, generate
+from tests.field.restart_asset import DESCRIPTOR, RESTARTED, ROOT, check_kill_run, generate
 
 KILL_DOMAIN, CROSS_DOMAIN = 66, 67  # (cross: 67 and 68)
 FULL = os.environ.get("RAPIDGEN_FIELD_FULL") == "1"
 KILLS = 20 if FULL else 5
 COMMANDS = 200 if FULL else 60
-RESTARTED = ("asset restarted before it ran", "asset restarted while it ran; outcome unknown")
 HANDLERS = Path(__file__).parent / "restarter" / "handlers.cpp"
 
 
@@ -78,27 +77,9 @@ def test_kill_9_at_random_moments_leaves_no_command_without_an_outcome(restarter
     why = f"seed {seed}: {json.dumps({k: v for k, v in got.items() if k != 'plan'})[-6000:]}"
     assert got["starts"] == KILLS + 1 and got["stop_code"] == 0 and got["crashes"] == [], why
 
-    finals, late, runs = got["finals"], got["late"], got["runs"]
-    assert [cid for cid, f in finals.items() if f is None] == [], why  # every command: a final ack
-    assert {cid: late[cid] for cid in finals if late[cid] != finals[cid]} == {}, why  # the late joiner: the same
-    assert {cid: n for cid, n in runs.items() if n > 1} == {}, why  # nothing ran twice
-    assert set(runs) <= set(finals), why
-    restarted = 0
-    for cid, (sub, _name, _action) in got["plan"].items():
-        _status, completion, message = finals[cid]
-        if message == RESTARTED[0]:
-            assert completion == "ACK_COMPLETED_CANCELED" and cid not in runs, f"{cid} {finals[cid]} {why}"
-        elif message == RESTARTED[1]:
-            assert completion == "ACK_COMPLETED_EXEC_FAILED", f"{cid} {finals[cid]} {why}"
-        elif sub != "Admin":
-            assert (completion, message, runs.get(cid)) == ("ACK_COMPLETED_OK", "worked", 1), f"{cid} {why}"
-        restarted += message in RESTARTED
-    # the damaged journal: one line, set aside, the bridge went on
-    damaged = [ln for ln in got["journal_logs"] if "damaged line" in ln]
-    assert len(damaged) == 1 and len(got["aside"]) == 1 and got["aside"][0] in damaged[0], why
-    assert sum(1 for ln in got["journal_logs"] if "restarted after a crash" in ln) == KILLS, why
-    print(f"seed {seed}: {len(finals)} commands, {KILLS} kills, {restarted} answered 'restarted', "
-          f"{sum(got['retried'].values())} sent again, {len(runs)} ran")
+    restarted = check_kill_run(got, KILLS, why)
+    print(f"seed {seed}: {len(got['finals'])} commands, {KILLS} kills, {restarted} answered 'restarted', "
+          f"{sum(got['retried'].values())} sent again, {len(got['runs'])} ran")
 
 
 def test_one_runtimes_journal_is_answered_from_by_the_other(restarter, tmp_path):

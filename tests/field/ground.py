@@ -28,6 +28,7 @@ from rapid_runtime.dds import Node, type_class, use_transport
 from rapid_runtime.tables import Tables
 
 WAIT = 600.0  # s: a bound for a broken run; the tests judge what arrived, not when
+SILENT = 15.0  # s without any ack of the first command: it was lost at first contact (> 5 s + 2 lunar round trips)
 
 
 def load(package: str):
@@ -58,6 +59,19 @@ class TimedCommander(Commander):
         self.sent_at[cid] = t
         return cid
 
+    def first_contact(self, *a, **kw) -> str:
+        """The first command, sent again with the same cmdId while no ack at all answers it:
+        a command can be lost at first contact, before the asset's reader knows our writer
+        (docs/runtime.md, "The ground's part"; rapidgen cmd does the same)."""
+        cid = self.timed_send(*a, **kw)
+        for _ in range(3):
+            with self.cond:
+                if self.cond.wait_for(lambda: self.acks.get(cid), SILENT):
+                    return cid
+            print(f"ground: no ack of {cid} within {SILENT:g} s: sending it again", file=sys.stderr, flush=True)
+            self.send(*a, cmd_id=cid, **kw)
+        return cid
+
     def wait_final(self, ids, timeout: float) -> bool:
         end = time.monotonic() + timeout
         with self.cond:
@@ -84,7 +98,7 @@ def drive(args) -> dict:
     c = TimedCommander(rapid, qos, tables.name, args.source, args.domain)
     if not c.wait_for_asset(WAIT):
         return {"error": "no asset"}
-    cid = c.timed_send("AccessControl", "requestControl", [])
+    cid = c.first_contact("AccessControl", "requestControl", [])
     c.wait_final([cid], WAIT)
     rounds, holds, releases, targets = [], [], [], []
     for start in range(0, args.rounds, args.wave):
@@ -136,7 +150,7 @@ def sequential(args) -> dict:
     c = TimedCommander(rapid, qos, tables.name, args.source, args.domain)
     if not c.wait_for_asset(WAIT):
         return {"error": "no asset"}
-    control = c.timed_send("AccessControl", "requestControl", [])
+    control = c.first_contact("AccessControl", "requestControl", [])
     c.wait_final([control], WAIT)
     ids = []
     for i in range(args.count):
@@ -157,7 +171,7 @@ def outage(args) -> dict:
     c = TimedCommander(rapid, qos, tables.name, args.source, args.domain)
     if not c.wait_for_asset(WAIT):
         return {"error": "no asset"}
-    control = c.timed_send("AccessControl", "requestControl", [])
+    control = c.first_contact("AccessControl", "requestControl", [])
     c.wait_final([control], WAIT)
     before, x = [], 0.0
     for i in range(args.long):

@@ -54,3 +54,33 @@ def env_for(pydir: Path) -> dict:
     local = pydir / PACKAGE / "qos_files" / "cyclonedds" / "local.xml"  # loopback only
     return dict(os.environ, CYCLONEDDS_URI=f"file://{local}", PYTHONDONTWRITEBYTECODE="1",
                 PYTHONPATH=os.pathsep.join([str(pydir), str(ROOT / "runtime"), str(ROOT)]))
+
+
+RESTARTED = ("asset restarted before it ran", "asset restarted while it ran; outcome unknown")
+
+
+def check_kill_run(got: dict, kills: int, why: str) -> int:
+    """The verdict on a kill campaign (restart_ground.py's JSON, either runtime's bridge):
+    every command a final ack, the late joiner's the same, nothing run twice, each outcome
+    as its command and the restarts say; the damaged journal reported once and set aside.
+    Returns how many commands were answered "restarted"."""
+    finals, late, runs = got["finals"], got["late"], got["runs"]
+    assert [cid for cid, f in finals.items() if f is None] == [], why  # every command: a final ack
+    assert {cid: late[cid] for cid in finals if late[cid] != finals[cid]} == {}, why  # the late joiner: the same
+    assert {cid: n for cid, n in runs.items() if n > 1} == {}, why  # nothing ran twice
+    assert set(runs) <= set(finals), why
+    restarted = 0
+    for cid, (sub, _name, _action) in got["plan"].items():
+        _status, completion, message = finals[cid]
+        if message == RESTARTED[0]:
+            assert completion == "ACK_COMPLETED_CANCELED" and cid not in runs, f"{cid} {finals[cid]} {why}"
+        elif message == RESTARTED[1]:
+            assert completion == "ACK_COMPLETED_EXEC_FAILED", f"{cid} {finals[cid]} {why}"
+        elif sub != "Admin":
+            assert (completion, message, runs.get(cid)) == ("ACK_COMPLETED_OK", "worked", 1), f"{cid} {why}"
+        restarted += message in RESTARTED
+    # the damaged journal: one line, set aside, the bridge went on
+    damaged = [ln for ln in got["journal_logs"] if "damaged line" in ln]
+    assert len(damaged) == 1 and len(got["aside"]) == 1 and got["aside"][0] in damaged[0], why
+    assert sum(1 for ln in got["journal_logs"] if "restarted after a crash" in ln) == kills, why
+    return restarted

@@ -27,13 +27,12 @@ import pytest
 
 from rapid_runtime.command import Cmd
 from rapid_runtime.journal import COMPACT_FACTOR, Journal, file_name
-from tests.field.restart_asset import ROOT, generate
+from tests.field.restart_asset import ROOT, check_kill_run, generate
 
 DOMAIN = 195
 FULL = os.environ.get("RAPIDGEN_FIELD_FULL") == "1"
 KILLS = 20 if FULL else 5
 COMMANDS = 200 if FULL else 60
-RESTARTED = ("asset restarted before it ran", "asset restarted while it ran; outcome unknown")
 
 
 def test_kill_9_at_random_moments_leaves_no_command_without_an_outcome(tmp_path):
@@ -55,23 +54,7 @@ def test_kill_9_at_random_moments_leaves_no_command_without_an_outcome(tmp_path)
     why = f"seed {seed}: {json.dumps({k: v for k, v in got.items() if k != 'plan'})[-6000:]}"
     assert got["starts"] == KILLS + 1 and got["stop_code"] == 0 and got["tracebacks"] == 0, why
 
-    finals, late, runs = got["finals"], got["late"], got["runs"]
-    assert [cid for cid, f in finals.items() if f is None] == [], why  # every command: a final ack
-    assert {cid: late[cid] for cid in finals if late[cid] != finals[cid]} == {}, why  # the late joiner: the same
-    assert {cid: n for cid, n in runs.items() if n > 1} == {}, why  # nothing ran twice
-    assert set(runs) <= set(finals), why
-    for cid, (sub, _name, _action) in got["plan"].items():
-        _status, completion, message = finals[cid]
-        if message == RESTARTED[0]:
-            assert completion == "ACK_COMPLETED_CANCELED" and cid not in runs, f"{cid} {finals[cid]} {why}"
-        elif message == RESTARTED[1]:
-            assert completion == "ACK_COMPLETED_EXEC_FAILED", f"{cid} {finals[cid]} {why}"
-        elif sub != "Admin":
-            assert (completion, message, runs.get(cid)) == ("ACK_COMPLETED_OK", "worked", 1), f"{cid} {why}"
-    # the damaged journal: one line, set aside, the bridge went on
-    damaged = [ln for ln in got["journal_logs"] if "damaged line" in ln]
-    assert len(damaged) == 1 and len(got["aside"]) == 1 and got["aside"][0] in damaged[0], why
-    assert sum(1 for ln in got["journal_logs"] if "restarted after a crash" in ln) == KILLS, why
+    check_kill_run(got, KILLS, why)
 
 
 # ---- the journal alone --------------------------------------------------------------------------
