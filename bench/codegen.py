@@ -208,15 +208,18 @@ def main(argv: list[str] | None = None) -> int:
                  or t.name.startswith("baseline ") and "baseline" in wanted]
     stale = subprocess.run([sys.executable, "-m", "rapidgen.backends.templating", "--check"], cwd=REPO, env=env,
                            capture_output=True, text=True)
+    qos_stale = subprocess.run([sys.executable, "-m", "rapidgen.qos", "--check"], cwd=REPO, env=env,
+                               capture_output=True, text=True)
     load_before = os.getloadavg()
-    rows = []
+    rows, loads = [], []
     with tempfile.TemporaryDirectory(prefix="bench-codegen-idl-") as tmp:
         folder = args.keep or Path(tmp)
         folder.mkdir(parents=True, exist_ok=True)
         for n in args.sizes:
             idl, lines = write_idl(folder.resolve(), n, args.seed)
             rows.append((n, lines, measure(tools, idl, args.repeat)))
-            print(f"... {n} structs done", file=sys.stderr, flush=True)
+            print(f"... {n} structs done (load average {os.getloadavg()[0]:.2f})", file=sys.stderr, flush=True)
+            loads.append((n, os.getloadavg()[0]))
     check = None if args.no_check else check_time(sys.executable, env, args.repeat)
     base_check = (check_time(sys.executable, env, args.repeat, args.baseline.resolve())
                   if args.baseline and not args.no_check else None)
@@ -225,7 +228,8 @@ def main(argv: list[str] | None = None) -> int:
             res.setdefault(name, "not measured (--only)")
     print(f"machine: {os.cpu_count()} CPUs, load average {load_before[0]:.2f} before, "
           f"{os.getloadavg()[0]:.2f} after; python {sys.version.split()[0]}; "
-          f"RAPIDGEN_JOBS={env.get('RAPIDGEN_JOBS', '(default)')}\n")
+          f"RAPIDGEN_JOBS={env.get('RAPIDGEN_JOBS', '(default)')}; load average after each size: "
+          + ", ".join(f"{load:.2f} ({n})" for n, load in loads) + "\n")
     report(rows, tools)
     if check is not None:
         print(f"\nrapidgen check (this repository): {check}")
@@ -234,6 +238,9 @@ def main(argv: list[str] | None = None) -> int:
     if stale.returncode != 0:
         print("\nnote: some precompiled templates are stale, so those are compiled on every run "
               "(python -m rapidgen.backends.templating --write):\n  " + stale.stdout.strip().replace("\n", "\n  "))
+    if qos_stale.returncode != 0:
+        print("\nnote: rapidgen/qos/packaged.py is stale (or missing), so the QoS library's YAML is parsed on "
+              "every run (python -m rapidgen.qos --write)")
     print(f"\n{GOALS}")
     if args.keep:
         print(f"\nIDL files kept in {args.keep}")

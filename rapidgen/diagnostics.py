@@ -9,7 +9,6 @@ so one run can report every error it finds. Rendering follows the rustc/clang sh
 """
 from __future__ import annotations
 
-import difflib
 import enum
 from dataclasses import dataclass, field
 from typing import Callable, Iterable, NamedTuple
@@ -103,6 +102,8 @@ class DiagnosticSink:
 def did_you_mean(name: str, candidates: Iterable[str]) -> str | None:
     """A 'did you mean' hint for a misspelt name, or None when nothing is close."""
     pool = sorted(set(candidates))
+    import difflib  # only where a name is unknown
+
     best = difflib.get_close_matches(name, pool, n=1, cutoff=0.6)
     if not best:
         lowered = {c.lower(): c for c in pool}

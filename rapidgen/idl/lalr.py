@@ -12,9 +12,11 @@ no terminal callbacks (methods named after terminals): this loop would not call 
 from __future__ import annotations
 
 from itertools import chain
-from typing import Any
+from types import SimpleNamespace
+from typing import Any, Callable
 
-from lark import Lark, Token, Transformer
+from lark import Lark, Token, Transformer, Tree
+from lark.parse_tree_builder import ParseTreeBuilder
 from lark.parsers.lalr_analysis import Shift
 
 from rapidgen.idl.lexer import IdlLexer
@@ -35,7 +37,7 @@ class LeanLALR:
     def __init__(self, parser: Lark) -> None:
         inner = parser.parser.parser.parser  # ParsingFrontend -> LALR_Parser -> _Parser
         table = inner.parse_table
-        self.parser = parser
+        self.fallback: Callable[[], Lark] = lambda: parser
         self.lexer = IdlLexer(parser.lexer_conf)
         self.start = table.start_states["start"]
         self.end = table.end_states["start"]
@@ -49,6 +51,31 @@ class LeanLALR:
                     for sym, (action, arg) in row.items()}
             for state, row in table.states.items()
         }
+        self.terminals, self.ignore = list(parser.lexer_conf.terminals), list(parser.lexer_conf.ignore)
+        self.builder = parser._parse_tree_builder
+
+    @property
+    def parser(self) -> Lark:
+        """lark's own parser of the grammar (built on first use for one made by from_state)."""
+        return self.fallback()
+
+    def state(self) -> tuple:
+        """What from_state() needs, all of it picklable: the flattened table, the rules and
+        the terminals (lark's own objects), without the Lark instance."""
+        return self.rows, self.start, self.end, self.rules, self.terminals, self.ignore
+
+    @classmethod
+    def from_state(cls, state: tuple, fallback: Callable[[], Lark]) -> "LeanLALR":
+        """A LeanLALR from state() of one built from the same grammar by the same lark,
+        without building a Lark instance: `fallback()` makes one only for an input the
+        table rejects. The tree builder is lark's, built as Lark builds it for this
+        parser (a LALR parser, Tree, no positions propagated, no placeholders)."""
+        self = cls.__new__(cls)
+        self.rows, self.start, self.end, self.rules, self.terminals, self.ignore = state
+        self.fallback = fallback
+        self.lexer = IdlLexer(SimpleNamespace(terminals=self.terminals, ignore=self.ignore))
+        self.builder = ParseTreeBuilder(self.rules, Tree, False, False, False)
+        return self
 
     def parse(self, text: str, transformer: Transformer):
         """The value of the start rule, `transformer`'s methods applied as rules reduce.
@@ -58,13 +85,13 @@ class LeanLALR:
         """
         # lark wraps each method (dropping punctuation tokens, inlining _rules) as it would
         # for a parser built with this transformer; terminal callbacks are not supported
-        callbacks = self.parser._parse_tree_builder.create_callback(transformer)
+        callbacks = self.builder.create_callback(transformer)
         table = [callbacks[rule] for rule in self.rules]
         try:
             return self._run(text, table)
         except _Rejected:
             pass
-        self.parser.parse(text)  # raises lark's UnexpectedToken / UnexpectedCharacters
+        self.fallback().parse(text)  # raises lark's UnexpectedToken / UnexpectedCharacters
         raise AssertionError("lark accepted an input its own table rejected")
 
     def _run(self, text: str, callbacks: list):

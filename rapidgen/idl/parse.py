@@ -11,9 +11,9 @@ from __future__ import annotations
 import bisect
 import copy
 import functools
+import os
 import re
 from decimal import Decimal, InvalidOperation
-from importlib import resources
 from typing import Callable
 
 import lark
@@ -44,20 +44,85 @@ _TERMINAL_NAMES = {
 
 
 @functools.lru_cache(maxsize=1)
+def _grammar() -> str:
+    try:  # a plain file beside this module (importlib.resources costs imports)
+        with open(os.path.join(os.path.dirname(__file__), "grammar.lark"), encoding="utf-8") as f:
+            return f.read()
+    except OSError:  # a package not on the file system
+        from importlib import resources
+        return resources.files("rapidgen.idl").joinpath("grammar.lark").read_text(encoding="utf-8")
+
+
+@functools.lru_cache(maxsize=1)
 def _parser() -> Lark:
     """The LALR tables and lark's own parser (a plain tree builder: it only runs on input
     the lean driver rejected, to raise its detailed syntax error)."""
-    grammar = resources.files("rapidgen.idl").joinpath("grammar.lark").read_text(encoding="utf-8")
     options = dict(parser="lalr", lexer=IdlLexer, maybe_placeholders=False)
     try:
-        return Lark(grammar, cache=True, **options)
+        return Lark(_grammar(), cache=True, **options)
     except OSError:  # unwritable temp dir: build without the on-disk cache
-        return Lark(grammar, **options)
+        return Lark(_grammar(), **options)
+
+
+# The lean driver's tables are cached on disk beside lark's own cache (same folder, same
+# kind of file: a pickle of lark's objects), keyed by the grammar, lark's version and this
+# format: loading them skips building a Lark instance (~15 ms of every run), which is then
+# built only for an input the table rejects (its syntax error). A file another user owns,
+# or that others may write, is not read.
+_TABLES_FORMAT = 1
+
+
+def _tables_path() -> str:
+    import hashlib
+    import sys
+    import tempfile
+
+    key = "\0".join((str(_TABLES_FORMAT), lark.__version__, sys.version, _grammar()))
+    digest = hashlib.sha256(key.encode("utf-8", "surrogatepass")).hexdigest()[:32]
+    return os.path.join(tempfile.gettempdir(), f".rapidgen_idl_{os.getuid() if hasattr(os, 'getuid') else 0}_{digest}.pickle")
+
+
+def _load_tables(path: str) -> tuple | None:
+    import pickle
+    try:
+        with open(path, "rb") as f:
+            st = os.fstat(f.fileno())
+            if hasattr(os, "getuid") and (st.st_uid != os.getuid() or st.st_mode & 0o022):
+                return None
+            state = pickle.load(f)
+    except Exception:  # noqa: BLE001 (missing, unreadable or damaged: build the tables again)
+        return None
+    return state if isinstance(state, tuple) and len(state) == 6 else None
+
+
+def _save_tables(path: str, state: tuple) -> None:
+    import pickle
+    import tempfile
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".rapidgen_idl_", dir=os.path.dirname(path))
+        try:
+            with os.fdopen(fd, "wb") as f:
+                pickle.dump(state, f, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(tmp, path)
+        except BaseException:
+            os.unlink(tmp)
+            raise
+    except OSError:  # an unwritable temp dir: no cache, as lark
+        pass
 
 
 @functools.lru_cache(maxsize=1)
 def _lean() -> LeanLALR:
-    return LeanLALR(_parser())
+    path = _tables_path()
+    state = _load_tables(path)
+    if state is not None:
+        try:
+            return LeanLALR.from_state(state, _parser)
+        except Exception:  # noqa: BLE001 (a file of another shape: build the tables again)
+            pass
+    lean = LeanLALR(_parser())
+    _save_tables(path, lean.state())
+    return lean
 
 
 @functools.lru_cache(maxsize=1)

@@ -20,11 +20,12 @@ from dataclasses import dataclass
 from importlib import resources
 from typing import TYPE_CHECKING
 
-from rapidgen.asset.yamlread import YamlDoc, parse_yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 
 if TYPE_CHECKING:
     import jsonschema
+
+    from rapidgen.asset.yamlread import YamlDoc
 
 MAX_BYTES = 1024 * 1024
 PACKAGED = "rapidgen/qos/rapid.yaml"  # how diagnostics name the packaged library
@@ -224,9 +225,26 @@ def schema() -> dict:
 def default_library() -> QosSpec:
     """The library the package ships; a broken one is a packaging bug. Its schema check is
     tests/qos/test_spec.py's, not every run's (the file is part of the package); the
-    semantic checks still run."""
+    semantic checks still run.
+
+    Read through its precomputed form (rapidgen/qos/packaged.py, see packaged_module_text)
+    when that was made from the very text read now: no YAML parser imported or run (about
+    0.035 s of each `generate` with the qos target). Otherwise (the YAML edited since) it
+    is parsed as before: the result is the same object either way."""
+    text = _packaged_text()
+    try:
+        from rapidgen.qos import packaged
+    except ImportError:  # a copy of the package without it: parse the YAML
+        return _parse_packaged(text)
+    return packaged.library() if packaged.SOURCE == text else _parse_packaged(text)
+
+
+def _packaged_text() -> str:
+    return resources.files("rapidgen.qos").joinpath("rapid.yaml").read_text("utf-8")
+
+
+def _parse_packaged(text: str) -> QosSpec:
     sink = DiagnosticSink()
-    text = resources.files("rapidgen.qos").joinpath("rapid.yaml").read_text("utf-8")
     spec = parse_qos(text, PACKAGED, sink, schema_checked=True)
     if spec is None:
         raise RuntimeError(f"the packaged QoS library is invalid: {sink.diagnostics[0]}")
@@ -254,6 +272,8 @@ def load_qos(path: str, sink: DiagnosticSink) -> QosSpec | None:
 
 def parse_qos(text: str, file: str, sink: DiagnosticSink, schema_checked: bool = False) -> QosSpec | None:
     """`schema_checked`: the text is known to pass the schema (the packaged library)."""
+    from rapidgen.asset.yamlread import parse_yaml  # PyYAML: only where a library is parsed
+
     doc = parse_yaml(text.lstrip("\ufeff"), file, sink)
     if doc is None:
         return None
@@ -414,3 +434,49 @@ def ordered(spec: QosSpec) -> list[Profile]:
                 pending.remove(p)
                 break
     return out
+
+
+# ---------------------------------------------------------------- the packaged library, precomputed
+
+PACKAGED_MODULE = "packaged.py"  # beside this file
+
+
+def _code(value: object) -> str:
+    """Python source that evaluates to value (the library's dataclasses, SourceLoc, tuples
+    and plain scalars)."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        args = ", ".join(f"{f.name}={_code(getattr(value, f.name))}" for f in dataclasses.fields(value))
+        return f"{type(value).__name__}({args})"
+    if isinstance(value, SourceLoc):
+        return f"SourceLoc{tuple(value)!r}"
+    if isinstance(value, tuple):
+        return "(" + "".join(f"{_code(v)}, " for v in value) + ")"
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return repr(value)
+    raise TypeError(f"no source form for {type(value).__name__}")
+
+
+def packaged_module_text(text: str | None = None) -> str:
+    """rapidgen/qos/packaged.py: the packaged library's text and the QosSpec parsed from it,
+    as Python (its bytecode cached like any module's)."""
+    text = _packaged_text() if text is None else text
+    spec = _parse_packaged(text)
+    names = sorted({type(v).__name__ for v in _objects(spec)})
+    return ("# mypy: ignore-errors\n"
+            "# The packaged QoS library (rapidgen/qos/rapid.yaml) as parsed by rapidgen.qos.spec; do not edit.\n"
+            "# python -m rapidgen.qos --write refreshes it; a stale copy is ignored (the YAML is parsed).\n"
+            f"SOURCE = {text!r}\n\n\n"
+            "def library():\n"
+            f"    from rapidgen.qos.spec import {', '.join(names)}, SourceLoc\n\n"
+            f"    return {_code(spec)}\n")
+
+
+def _objects(value: object):
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        yield value
+        for f in dataclasses.fields(value):
+            yield from _objects(getattr(value, f.name))
+    elif isinstance(value, tuple) and not isinstance(value, SourceLoc):
+        for v in value:
+            yield from _objects(v)
+
