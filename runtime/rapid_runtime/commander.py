@@ -22,13 +22,17 @@ from rapid_runtime.dds import Node, ReaderThread
 COMMAND_TOPIC, ACK_TOPIC, COMMAND_CONFIG_TOPIC = "rapid_command", "rapid_ack", "rapid_command_config"
 FOLLOW_LOOK = 32  # followed commands looked for in an ack's bytes before decoding it
 ACKS_PER_COMMAND = 64  # a command's acks kept (QUEUED, EXECUTING, progress, REQUEUED, COMPLETED ...)
+WRITE_BLOCKING = 10.0  # s a command write may wait for room in the writer's history
 
 
 class Commander:
     def __init__(self, rapid, qos, asset: str, source: str, domain: int) -> None:
         self.rapid, self.asset, self.source = rapid, asset, source
         self.node = Node(rapid, qos, domain)
-        self.writer = self.node.writer(COMMAND_TOPIC, rapid.Command)
+        # a burst of commands over a slow link fills the writer's history until the asset
+        # acknowledges (a round trip): the profile's 100 ms then failed a write with TIMEOUT
+        # (200 rounds across the lunar link); it waits for room instead, as the C++ client
+        self.writer = self.node.writer(COMMAND_TOPIC, rapid.Command, blocking=WRITE_BLOCKING)
         self.acks: dict[str, list[tuple[str, str, str]]] = {}  # followed cmdId -> its acks
         self.writers: dict[str, set[int]] = {}  # followed cmdId -> the writers that acked it
         self.strangers = 0  # acks for cmdIds not followed, dropped

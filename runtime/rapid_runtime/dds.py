@@ -55,15 +55,18 @@ class Node:
                 self._topics[name] = Topic(self.participant, name, cls)
             return self._topics[name]
 
-    def writer(self, topic: str, cls, keep_last: int | None = None) -> DataWriter:
-        """keep_last: history depth per instance instead of the profile's (not a
-        request/offered policy, so matching is unchanged)."""
+    def writer(self, topic: str, cls, keep_last: int | None = None, blocking: float | None = None) -> DataWriter:
+        """keep_last: history depth per instance instead of the profile's; blocking: how
+        long (s) a reliable write may wait for room in the writer's history instead of the
+        profile's max_blocking_time (neither is request/offered, so matching is unchanged)."""
         with self._lock:
             w = self._writers.get(topic)
         if w is None:
             q = self.qos.writer(topic)
             if keep_last is not None:
                 q = q + Qos(Policy.History.KeepLast(keep_last))
+            if blocking is not None:
+                q = q + Qos(Policy.Reliability.Reliable(max_blocking_time=duration(seconds=blocking)))
             w = DataWriter(self.publisher, self.topic(topic, cls), qos=q)
             with self._lock:
                 self._writers[topic] = w

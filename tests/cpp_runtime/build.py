@@ -242,6 +242,19 @@ def hostile_descriptor() -> dict:
     return data
 
 
+def k10_cmd(factory) -> Path:
+    """K10's `rapid_k10red_cmd` alone, in the seeds' build (client_programs() also builds an
+    ASan bridge); skips when K10 is not among RAPIDGEN_CPP_SEEDS."""
+    if "k10" not in chosen_seeds():
+        pytest.skip("RAPIDGEN_CPP_SEEDS leaves out k10")
+
+    def make() -> Path:
+        out = seed_bridges(factory)["k10"].parent.parent
+        build(out, "rapid_k10red_cmd")
+        return out / "rapid_k10red_cmd"
+    return _once(factory, "field-cmd", make)  # type: ignore[no-any-return]
+
+
 def client_programs(factory) -> dict[str, Path]:
     """On K10's package, in the seeds' build (seeds/CMakeLists.txt): `cmd`, the ground-side
     client program with K10's tables (rapid_runtime_cpp_add_cmd), and `bridge_test`, K10's

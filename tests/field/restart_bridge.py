@@ -3,7 +3,8 @@ Worker/work handler appending the cmdId to EXECFILE as it starts (one O_APPEND w
 kill -9 loses nothing written), so the test counts how often each command ran.
 With RESTART_STALL=PREFIX a command whose cmdId starts with PREFIX is taken from the DDS
 reader and never reaches the manager (nor the journal): `stalled CMDID` goes to EXECFILE
-and the intake blocks, as a process being killed would leave it.
+and the intake blocks, as a process being killed would leave it. RESTART_PACKAGE=PKG serves
+another generated package instead (its handler stubs; the runtime answers Admin/noOp).
 
     python -m tests.field.restart_bridge PYDIR EXECFILE [BRIDGE ARGS...]
 """
@@ -20,8 +21,9 @@ def main(argv: list[str]) -> int:
     sys.path.insert(0, pydir)
     from rapid_runtime.bridge import main as bridge_main
     from rapid_runtime.handlers import Handlers
-    tables = importlib.import_module("rapid_restarter.asset_tables")
-    rapid = importlib.import_module("rapid_restarter.rapid")
+    package = os.environ.get("RESTART_PACKAGE", "rapid_restarter")
+    tables = importlib.import_module(f"{package}.asset_tables")
+    rapid = importlib.import_module(f"{package}.rapid")
     fd = os.open(exec_file, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
 
     class Worker(Handlers):
@@ -43,7 +45,8 @@ def main(argv: list[str]) -> int:
             receive(self, cmd)
         CommandManager.receive = stalled  # type: ignore[method-assign]
 
-    return bridge_main(tables, rapid, Worker, package="rapid_restarter", argv=rest)
+    handlers = Worker if package == "rapid_restarter" else Handlers
+    return bridge_main(tables, rapid, handlers, package=package, argv=rest)
 
 
 if __name__ == "__main__":

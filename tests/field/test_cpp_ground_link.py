@@ -44,16 +44,7 @@ STAGE = 300.0  # s: a bound for one step of a broken run (discovery over the lin
 @pytest.fixture(scope="module")
 def cpp_cmd(tmp_path_factory) -> Path:
     prebuilt = os.environ.get("RAPIDGEN_FIELD_CPP_CMD")  # a rapid_k10red_cmd built already (iterating)
-    if prebuilt:
-        return Path(prebuilt)
-    if "k10" not in B.chosen_seeds():
-        pytest.skip("RAPIDGEN_CPP_SEEDS leaves out k10")
-
-    def make() -> Path:  # the client program only (client_programs() also builds an ASan bridge)
-        out = B.seed_bridges(tmp_path_factory)["k10"].parent.parent
-        B.build(out, "rapid_k10red_cmd")
-        return out / "rapid_k10red_cmd"
-    return B._once(tmp_path_factory, "field-cmd", make)  # type: ignore[no-any-return]
+    return Path(prebuilt) if prebuilt else B.k10_cmd(tmp_path_factory)
 
 
 class _Ground:

@@ -213,22 +213,21 @@ def test_rapidgen_cmd_waiting_across_a_kill_learns_the_outcome(tmp_path):
     assert executions.read_text().split() == ["long-1"]
 
 
-RESEND_DOMAIN = 84
+RESEND_DOMAIN, CPP_RESEND_DOMAIN = 84, 85  # one each: a killed bridge's participant outlives it a lease
 
 
-def test_rapidgen_cmd_sends_again_a_command_lost_in_a_killed_bridge(tmp_path):
+def _lost_in_a_killed_bridge(tmp_path: Path, domain: int, ground: list[str], words: list[str], pydir: Path,
+                             env: dict, ground_env: dict) -> list[str]:
     """A command the bridge took from its DDS reader but never journaled (RESTART_STALL holds
     it there, as a process being killed leaves it) is gone with the process; the restarted
-    bridge knows nothing of it. rapidgen cmd, waiting, sees the asset come back without an
-    answer, sends the command again with the same cmdId and says so; it runs once."""
+    bridge knows nothing of it. The ground program (`ground` + `words`, cmdId lost-1),
+    waiting, sees the asset come back without an answer, sends the command again with the
+    same cmdId and says so; the new bridge answers it OK. Returns the bridge's EXECFILE lines."""
     import time
 
-    from tests.field.restart_asset import PACKAGE, env_for
-    pydir = generate(tmp_path / "gen")
-    env = env_for(pydir)
     executions = tmp_path / "executions"
     argv = [sys.executable, "-m", "tests.field.restart_bridge", str(pydir), str(executions), "--domain",
-            str(RESEND_DOMAIN), "--journal", str(tmp_path / "journal")]
+            str(domain), "--journal", str(tmp_path / "journal")]
 
     def start(extra: dict) -> subprocess.Popen:
         proc = subprocess.Popen(argv, cwd=ROOT, env=dict(env, **extra), stdout=subprocess.PIPE,
@@ -238,9 +237,8 @@ def test_rapidgen_cmd_sends_again_a_command_lost_in_a_killed_bridge(tmp_path):
         return proc
 
     bridge = start({"RESTART_STALL": "lost-"})
-    cmd = subprocess.Popen([sys.executable, "-m", "rapidgen", "cmd", PACKAGE, "Belt", "work", "ms=100", "--action",
-                            "APPEND", "--id", "lost-1", "--domain", str(RESEND_DOMAIN), "--timeout", "60"], cwd=ROOT,
-                           env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    cmd = subprocess.Popen([*ground, *words, "--id", "lost-1", "--domain", str(domain), "--timeout", "60"], cwd=ROOT,
+                           env=ground_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         end = time.monotonic() + 60
         while not (executions.exists() and "stalled lost-1" in executions.read_text()):
@@ -259,7 +257,30 @@ def test_rapidgen_cmd_sends_again_a_command_lost_in_a_killed_bridge(tmp_path):
     resends = [ln for ln in err.splitlines() if "sending it again with the same cmdId" in ln]
     # one for the comeback; on a slow machine maybe one before it for the stalled bridge's silence
     assert sum("came back" in ln for ln in resends) == 1 and len(resends) <= 2, err
-    assert executions.read_text().splitlines() == ["stalled lost-1", "lost-1"]  # run once, by the new bridge
+    return executions.read_text().splitlines()
+
+
+def test_rapidgen_cmd_sends_again_a_command_lost_in_a_killed_bridge(tmp_path):
+    from tests.field.restart_asset import PACKAGE, env_for
+    pydir = generate(tmp_path / "gen")
+    env = env_for(pydir)
+    ran = _lost_in_a_killed_bridge(tmp_path, RESEND_DOMAIN, [sys.executable, "-m", "rapidgen", "cmd", PACKAGE],
+                                   ["Belt", "work", "ms=100", "--action", "APPEND"], pydir, env, env)
+    assert ran == ["stalled lost-1", "lost-1"]  # run once, by the new bridge
+
+
+def test_cpp_cmd_sends_again_a_command_lost_in_a_killed_bridge(tmp_path, tmp_path_factory):
+    """The same with the C++ ground program: K10's rapid_k10red_cmd and K10's Python bridge
+    (the stall served on its package: RESTART_PACKAGE), requestControl lost in the old one."""
+    from tests.cpp_runtime import build as B
+    from tests.runtime.live import SEEDS, env_for, python_dir
+    program = B.k10_cmd(tmp_path_factory)
+    pydir = python_dir("k10")
+    env = dict(env_for(pydir, SEEDS["k10"]), RESTART_PACKAGE=SEEDS["k10"],
+               PYTHONPATH=os.pathsep.join([str(pydir), str(ROOT / "runtime"), str(ROOT)]))
+    ran = _lost_in_a_killed_bridge(tmp_path, CPP_RESEND_DOMAIN, [str(program), "--source", "RapidWorkbench"],
+                                   ["AccessControl", "requestControl"], pydir, env, B.dds_env())  # rapid_local
+    assert ran == ["stalled lost-1"]  # the old bridge took it and died; the new one answered it
 
 
 # ---- the C++ runtime's journal: the same file format ------------------------------------------------

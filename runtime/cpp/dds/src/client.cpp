@@ -1,11 +1,13 @@
 #include "rapid_runtime/dds/client.hpp"
 
 #include <chrono>
+#include <sstream>
 #include <unistd.h>
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 #include <fastdds/dds/core/status/SubscriptionMatchedStatus.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/rtps/common/InstanceHandle.h>
 
 #include <rapid_runtime/text.hpp>
 
@@ -117,8 +119,45 @@ Client::Client(ClientOptions options, const Tables* tables) : options_(std::move
         q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
         q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(10, 0);  // a flood waits for room
     });
+    commands_->set_listener(&matches_, StatusMask::publication_matched());
+    acks_reader_->set_listener(&matches_, StatusMask::subscription_matched());
     reader_ = std::thread([this] { read_acks(); });
 }
+
+namespace {
+
+std::string participant_of(const eprosima::fastrtps::rtps::InstanceHandle_t& handle) {
+    eprosima::fastrtps::rtps::GUID_t guid;
+    eprosima::fastrtps::rtps::iHandle2GUID(guid, handle);
+    std::ostringstream out;
+    out << guid.guidPrefix;
+    return out.str();
+}
+
+void count(std::mutex& mutex, std::map<std::string, int>& table, const std::string& key, int change) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if ((table[key] += change) <= 0) table.erase(key);
+}
+
+}  // namespace
+
+void Client::Matches::on_publication_matched(DataWriter*, const PublicationMatchedStatus& info) {
+    count(mutex_, readers_, participant_of(info.last_subscription_handle), info.current_count_change);
+}
+
+void Client::Matches::on_subscription_matched(DataReader*, const SubscriptionMatchedStatus& info) {
+    count(mutex_, writers_, participant_of(info.last_publication_handle), info.current_count_change);
+}
+
+std::set<std::string> Client::Matches::both() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::set<std::string> out;
+    for (const auto& [key, n] : readers_)
+        if (writers_.count(key) != 0) out.insert(key);
+    return out;
+}
+
+std::set<std::string> Client::asset_participants() const { return matches_.both(); }
 
 Client::~Client() {
     reading_ = false;

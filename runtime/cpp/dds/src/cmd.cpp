@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -158,34 +159,61 @@ std::string shown(const Value& v) {
     return repr(v);
 }
 
-// A command no ack at all answered UNANSWERED s + 2 round trips after its send, while the
-// asset is matched, never reached it: the writer matched the asset's reader before that
-// reader knew the writer, and a volatile reader matching late starts after what was
-// written (seen across the lunar link). Sent again with the same cmdId, at most
-// MAX_RESENDS times: a RAPID asset answers at once, and drops a repeat that did arrive.
-// As `rapidgen cmd` (rapidgen/cmd/recover.py).
-constexpr double UNANSWERED = 5;
+// Sending a command again with the same cmdId, as `rapidgen cmd` does (rapidgen/cmd/recover.py,
+// docs/runtime.md "The ground's part"), at most MAX_RESENDS times; safe, since a RAPID asset
+// drops a repeated cmdId (its journal's too) and answers it from its ack history:
+// - the asset came back (a new participant with a command reader and an ack writer) and
+//   has not answered SETTLE s + 2 round trips later: the command was lost in the old one;
+// - no ack at all UNANSWERED s + 2 round trips after the send, while the asset is there:
+//   the writer matched the asset's reader before that reader knew the writer, and a
+//   volatile reader need not deliver what was written before it matched (seen across the
+//   lunar link). A RAPID asset answers a command at once.
+constexpr double SETTLE = 3, UNANSWERED = 5;
 constexpr int MAX_RESENDS = 3;
 
 struct Resend {
+    Resend(Client& c, Cmd command, double rtt)
+        : client(c), cmd(std::move(command)), settle(allow(SETTLE, rtt)), unanswered(allow(UNANSWERED, rtt)),
+          known(c.asset_participants()) {}
+
+    Client& client;
     Cmd cmd;  // as sent, cmd_id filled
-    double after;
+    double settle, unanswered;
+    std::set<std::string> known;  // the asset's participants so far
+    std::optional<Clock::time_point> back_at;  // when a new one appeared
     Clock::time_point sent = Clock::now();
     int done = 0;
 
-    // True when it was sent again now.
-    bool due(Client& client, bool answered) {
-        auto now = Clock::now();
-        if (answered || done >= MAX_RESENDS || now - sent < std::chrono::duration<double>(after) ||
-            !client.asset_matched())
+    // True when it was sent again now (call while the command has no final ack).
+    bool due(bool answered) {
+        if (done >= MAX_RESENDS) return false;
+        const auto now = Clock::now();
+        const auto current = client.asset_participants();
+        for (const auto& p : current)
+            if (known.insert(p).second) back_at = now;  // a later newcomer restarts the wait
+        auto since = [&](Clock::time_point t) { return std::chrono::duration<double>(now - t).count(); };
+        std::string why;
+        if (back_at && since(*back_at) >= settle) {
+            why = "came back (a new participant) and has not answered within " + seconds(settle) +
+                  " s: the command was lost in the old one";
+        } else if (!back_at && !answered && since(sent) >= unanswered && !current.empty()) {
+            why = "has not answered within " + seconds(unanswered) + " s: the command did not reach it";
+        } else {
             return false;
-        client.send_raw(cmd);
+        }
+        back_at.reset();
         sent = now;
         ++done;
-        std::cerr << "rapid_cmd: " << visible(client.asset()) << " has not answered " << visible(cmd.cmd_id)
-                  << " within " << after << " s: the command did not reach it; sending it again with the same cmdId ("
-                  << done << " of " << MAX_RESENDS << ")" << std::endl;
+        client.send_raw(cmd);
+        std::cerr << "rapid_cmd: " << visible(client.asset()) << " " << why
+                  << "; sending it again with the same cmdId (" << done << " of " << MAX_RESENDS << ")" << std::endl;
         return true;
+    }
+
+    static std::string seconds(double s) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", s);
+        return buf;
     }
 };
 
@@ -203,7 +231,7 @@ std::vector<AckEvent> follow(Client& client, const std::string& cmd_id, double s
             if (print) std::cout << "  " << describe(acks[printed]) << std::endl;
         bool final = std::any_of(acks.begin(), acks.end(), [](const AckEvent& e) { return e.final(); });
         if (!acks.empty() && (first_only || final)) return acks;
-        if (resend != nullptr && resend->due(client, !acks.empty()))
+        if (resend != nullptr && resend->due(!acks.empty()))
             end = std::max(end, Clock::now() + std::chrono::duration<double>(seconds));
         else if (left <= 0)
             return acks;
@@ -224,8 +252,8 @@ int repeat(Client& client, const Args& a, const SendOptions& how) {
     const auto start = Clock::now();
     for (long long i = 0; i < a.repeat; ++i) {
         auto t0 = Clock::now();
-        Resend again{client.prepare_text(a.words[0], a.words[1], {a.words.begin() + 2, a.words.end()}, how),
-                     allow(UNANSWERED, a.rtt)};
+        Resend again(client, client.prepare_text(a.words[0], a.words[1], {a.words.begin() + 2, a.words.end()}, how),
+                     a.rtt);
         auto id = client.send_raw(again.cmd);
         again.cmd.cmd_id = id;
         auto acks = follow(client, id, allow(a.timeout, a.rtt), false, &again, false);
@@ -333,7 +361,7 @@ int run_cmd(int argc, char** argv, const CmdProgram& program) {
         if (a.flood > 0) return flood(client, a, how);
         if (!a.target.empty()) client.follow(a.target);
         std::vector<Value> values = cmd.args;
-        Resend again{cmd, allow(UNANSWERED, a.rtt)};
+        Resend again(client, cmd, a.rtt);
         auto id = client.send_raw(std::move(cmd));
         again.cmd.cmd_id = id;
         std::string line = visible(client.asset()) + " <- " + visible(a.words[0]) + "/" + visible(a.words[1]);

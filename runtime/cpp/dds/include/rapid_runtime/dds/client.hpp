@@ -22,6 +22,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -30,6 +31,9 @@
 #include <rapid_runtime/args.hpp>
 #include <rapid_runtime/command.hpp>
 #include <rapid_runtime/tables.hpp>
+
+#include <fastdds/dds/publisher/DataWriterListener.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
 #include "node.hpp"
 
@@ -86,6 +90,10 @@ public:
     bool wait_for_asset(double seconds);
     // The same, now, without waiting.
     bool asset_matched() const;
+    // The participants (GUID prefixes) that are the asset now: a command reader matched to
+    // the command writer and an ack writer matched to the ack reader, in one participant
+    // (a tool that only reads commands is not the asset). A restarted asset is a new one.
+    std::set<std::string> asset_participants() const;
     // Reads the asset's CommandConfig (transient-local: published once) for up to
     // `seconds`: it becomes the dictionary, a parameter keeping the tables' unit, range,
     // allowed values and default when its name and type agree. False: none came.
@@ -125,6 +133,22 @@ public:
     std::string new_id();
 
 private:
+    // Which remote participants' endpoints are matched (Fast DDS 2.9 does not list them:
+    // get_matched_subscriptions is unsupported), from the matched-status callbacks.
+    class Matches : public eprosima::fastdds::dds::DataWriterListener,
+                    public eprosima::fastdds::dds::DataReaderListener {
+    public:
+        void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
+                                    const eprosima::fastdds::dds::PublicationMatchedStatus& info) override;
+        void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
+                                     const eprosima::fastdds::dds::SubscriptionMatchedStatus& info) override;
+        std::set<std::string> both() const;
+
+    private:
+        mutable std::mutex mutex_;
+        std::map<std::string, int> readers_, writers_;  // participant -> endpoints matched
+    };
+
     const CommandSpec& entry(const std::string& subsystem, const std::string& command) const;
     std::string write(Cmd& cmd);
     void read_acks();
@@ -133,6 +157,7 @@ private:
     const Tables* given_ = nullptr;
     Tables live_;
     const Tables* dictionary_ = nullptr;
+    Matches matches_;  // before node_: its entities call it until they are deleted
     std::unique_ptr<Node> node_;
     eprosima::fastdds::dds::DataWriter* commands_ = nullptr;
     eprosima::fastdds::dds::DataReader* acks_reader_ = nullptr;
