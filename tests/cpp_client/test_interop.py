@@ -3,7 +3,7 @@ drives K10's generated C++ bridge (Fast DDS), and the C++ client program (rapid_
 runtime's dds::Client) drives K10's Python bridge, through the same scenario (drive.py:
 valid, invalid, queued with APPEND/INSERT/REPLACE/DELETE, cancelled). Every command gets
 the same acks both ways, and they are the ones the protocol asks for (EXPECTED). Both
-directions run at once; domains 131 and 132."""
+directions run at once; domains 131 and 132 (and 86 for the partition test)."""
 from __future__ import annotations
 
 import subprocess
@@ -91,3 +91,34 @@ def test_cmd_program_refuses_bad_input_with_a_clear_error(programs):
     assert res.returncode == 1 and "QUEUE_INSERT needs a target cmdId" in res.stderr
     res = run("Admin", "echo", "text=hi")  # the dictionary's, but no asset on domain 139
     assert res.returncode == 1 and "no asset K10Red reads commands on domain 139" in res.stderr
+
+
+PARTITION_DOMAIN = 86
+
+
+def test_cmd_program_commands_the_partition_it_is_given(programs, tmp_path):
+    """The client's endpoints are in the asset's partition, not the one its built-in
+    profiles were generated for: Fast DDS 2.9 keeps a profile's <partition> as an endpoint
+    property that overrode the node's, so K10's rapid_cmd with `--partition Elsewhere`
+    still reached K10Red, and with `--asset Restarter` never reached the Restarter
+    (runtime/cpp/dds/src/node.cpp)."""
+    from tests.field.restart_asset import generate
+    k10 = BridgeProcess(python_dir("k10"), SEEDS["k10"], PARTITION_DOMAIN)
+    restarter = BridgeProcess(generate(tmp_path / "gen"), "rapid_restarter", PARTITION_DOMAIN)
+
+    def run(*args: str) -> subprocess.CompletedProcess:
+        return subprocess.run([str(programs["cmd"]), *args, "--domain", str(PARTITION_DOMAIN), "--discover", "10",
+                               "--timeout", "10"], capture_output=True, text=True, timeout=120, env=B.dds_env())
+    try:
+        k10.wait_ready()
+        restarter.wait_ready()
+        elsewhere = run("--partition", "Elsewhere", "--source", "RapidWorkbench", "AccessControl", "requestControl")
+        other = run("--asset", "Restarter", "Belt", "work", "ms=10")
+    finally:
+        k10.stop()
+        restarter.stop()
+    assert elsewhere.returncode == 1 and "no asset K10Red reads commands" in elsewhere.stderr, elsewhere
+    assert "partition 'Elsewhere'" in elsewhere.stderr and "COMPLETED" not in elsewhere.stdout, elsewhere
+    assert other.returncode == 0 and "Restarter <- Belt/work ms=10" in other.stdout, other  # its live dictionary
+    assert other.stdout.splitlines()[-1].startswith("  COMPLETED OK"), other
+    assert "no CommandConfig" not in other.stderr, other

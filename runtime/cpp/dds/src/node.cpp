@@ -1,6 +1,7 @@
 #include "rapid_runtime/dds/node.hpp"
 #include "rapid_runtime/dds/security.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -10,6 +11,21 @@ namespace rapid_runtime {
 namespace dds {
 
 using namespace eprosima::fastdds::dds;
+
+namespace {
+
+// Fast DDS 2.9 keeps a profile's <data_writer>/<data_reader> <partition> as the endpoint
+// property "partitions", which overrides the publisher's and subscriber's: every endpoint
+// then stayed in the partition the profiles were generated for (K10's rapid_cmd with
+// `--asset Restarter` or `--partition Foo` still matched only K10Red). The node's
+// partition is the asset's (NodeOptions::partition), so the endpoint's copy goes.
+void drop_endpoint_partitions(eprosima::fastrtps::rtps::PropertyPolicy& properties) {
+    auto& all = properties.properties();
+    all.erase(std::remove_if(all.begin(), all.end(), [](const auto& p) { return p.name() == "partitions"; }),
+              all.end());
+}
+
+}  // namespace
 
 Node::Node(const NodeOptions& options) : partition_(options.partition) {
     auto* factory = DomainParticipantFactory::get_instance();
@@ -75,6 +91,7 @@ DataWriter* Node::make_writer(Topic* topic, const std::string& profile, const Wr
                               ReturnCode_t::RETCODE_OK) &&
         publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK)
         throw DdsError("no writer profile " + profile + " in the loaded QoS profiles");
+    drop_endpoint_partitions(qos.properties());
     if (tweak) tweak(qos);
     DataWriter* w = publisher_->create_datawriter(topic, qos);
     if (w == nullptr) throw DdsError("cannot create writer of " + topic->get_name() + " (" + profile + ")");
@@ -87,6 +104,7 @@ DataReader* Node::make_reader(Topic* topic, const std::string& profile, const Re
                               ReturnCode_t::RETCODE_OK) &&
         subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK)
         throw DdsError("no reader profile " + profile + " in the loaded QoS profiles");
+    drop_endpoint_partitions(qos.properties());
     if (tweak) tweak(qos);
     DataReader* r = subscriber_->create_datareader(topic, qos);
     if (r == nullptr) throw DdsError("cannot create reader of " + topic->get_name() + " (" + profile + ")");
