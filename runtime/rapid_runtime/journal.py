@@ -28,6 +28,12 @@ Durability: one fdatasync per batch of records, before the acks of that batch ar
 (the intake hands the manager up to 32 commands at a time, so a flood costs one sync per
 batch, not per command). Compaction fsyncs the new file before the rename and the folder
 after it. Same format as the C++ runtime's journal (runtime/cpp, when it has one).
+
+Memory: the journal remembers the last `window` outcomes for as long as the bridge runs, so
+each is a tuple (Entry) sharing its strings with the command it came from (cmdId, and the
+names messages.command_in shares), kept in a plain dict with a deque for its order (an
+OrderedDict costs twice as much), and compaction writes its lines a few at a time (one
+rewrite building every line at once left ~2 MiB of freed but unreturned memory behind).
 """
 from __future__ import annotations
 
@@ -40,11 +46,13 @@ import time
 import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import NamedTuple
 
 COMPACT_FACTOR = 4  # compact once the file holds this many times window lines (plus live ones)
 # A journal never grows past a few MB (compaction); a bigger file is not ours to read whole:
 # it is set aside unread.
 MAX_READ = 64 * 1024 * 1024
+REWRITE_CHUNK = 256  # records per write() when compacting (what one write holds in memory)
 STATE_ENV = "RAPID_STATE_DIR"  # the journal's default folder, before XDG_STATE_HOME
 
 
@@ -61,9 +69,9 @@ def file_name(asset: str, domain: int) -> str:
     return f"{re.sub(r'[^A-Za-z0-9_.-]', '_', asset)[:64]}-domain{int(domain)}.journal"
 
 
-@dataclass
-class Entry:
-    """A command as the journal knows it: enough to write its ack again."""
+class Entry(NamedTuple):
+    """A command as the journal knows it: enough to write its ack again. A tuple: the journal
+    keeps `window` of them (a dataclass with a __dict__ costs half as much again)."""
     cmd_id: str
     src_name: str
     asset_name: str
@@ -79,6 +87,13 @@ class Recovered:
     finished: list[Entry] = field(default_factory=list)  # oldest first, the last `window`
     last_serial: int = 0
     crashed: bool = False  # the journal did not end with a clean stop
+
+
+def _record(e: Entry) -> dict:
+    rec = {"k": e.state, "id": e.cmd_id, "src": e.src_name, "asset": e.asset_name, "serial": e.serial}
+    if e.state == "c":
+        rec.update(c=e.completion, m=e.message)
+    return rec
 
 
 def _line(record: dict) -> bytes:
@@ -115,7 +130,9 @@ class Journal:
     def __init__(self, path: Path, fd: int, window: int, log) -> None:
         self.path, self.fd, self.window, self.log = path, fd, window, log
         self.live: dict[str, Entry] = {}  # cmdId -> accepted or running
-        self.done: collections.OrderedDict[str, Entry] = collections.OrderedDict()  # the last `window`
+        self.done: dict[str, Entry] = {}  # cmdId -> the last `window` outcomes, oldest first
+        self._order: collections.deque[Entry] = collections.deque()  # done's entries, oldest first (and
+        # entries since replaced there: a cmdId finished again), so the oldest goes in O(1)
         self.last_serial = 0
         self.lines = 0  # in the file now
         self.unsynced = False
@@ -183,16 +200,21 @@ class Journal:
         else:
             self.live.clear()
             self.done.clear()
+            self._order.clear()
         self._rewrite([{"k": "s", "serial": self.last_serial}] if self.last_serial else [])
         return out
 
     def _apply(self, e: Entry) -> None:
         if e.state == "c":
             self.live.pop(e.cmd_id, None)
-            self.done.pop(e.cmd_id, None)
-            self.done[e.cmd_id] = e
+            if self.done.pop(e.cmd_id, None) is not None and len(self._order) > 2 * self.window:
+                self._order = collections.deque(self.done.values())  # drop the replaced ones
+            self.done[e.cmd_id] = e  # the newest (an id finished again moves to the end)
+            self._order.append(e)
             while len(self.done) > self.window:
-                self.done.popitem(last=False)
+                old = self._order.popleft()
+                if self.done.get(old.cmd_id) is old:  # not since replaced by a newer outcome
+                    del self.done[old.cmd_id]
         else:
             self.live[e.cmd_id] = e
 
@@ -207,17 +229,17 @@ class Journal:
             self.last_serial = serial
             self._append({"k": "s", "serial": serial})
 
-    def note(self, cmd, state: str, completion: str = "", message: str = "") -> None:
-        """The command's step (q, x or c) before its ack; a repeated step is not written again."""
+    def note(self, cmd, state: str, completion: str = "", message: str = "") -> Entry | None:
+        """The command's step (q, x or c) before its ack; a repeated step is not written again.
+        Returns the entry written (None: none), which the manager may keep as the command's
+        ack key (the same object, not a second copy)."""
         old = self.live.get(cmd.cmd_id)
         if state != "c" and old is not None and (old.state == state or old.state == "x"):
-            return  # progress acks, REQUEUED then EXECUTING again: it ran already
+            return None  # progress acks, REQUEUED then EXECUTING again: it ran already
         e = Entry(cmd.cmd_id, cmd.src_name, cmd.asset_name, int(cmd.serial), state, completion, message)
-        rec = {"k": state, "id": e.cmd_id, "src": e.src_name, "asset": e.asset_name, "serial": e.serial}
-        if state == "c":
-            rec.update(c=completion, m=message)
         self._apply(e)
-        self._append(rec)
+        self._append(_record(e))
+        return e
 
     def sync(self) -> None:
         """Make what was written durable (before the acks that promise it); compact when due."""
@@ -247,18 +269,14 @@ class Journal:
         """Compaction: the serial, the live commands and the last `window` outcomes in a new file,
         fsynced, renamed over the journal, the folder fsynced; the lock moves to the new file."""
         recs = [*head, *([{"k": "s", "serial": self.last_serial}] if self.last_serial and not head else [])]
-        for e in [*self.done.values(), *self.live.values()]:
-            rec = {"k": e.state, "id": e.cmd_id, "src": e.src_name, "asset": e.asset_name, "serial": e.serial}
-            if e.state == "c":
-                rec.update(c=e.completion, m=e.message)
-            recs.append(rec)
+        entries = [*self.done.values(), *self.live.values()]
         tmp = self.path.with_name(self.path.name + ".new")
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_APPEND, 0o600)
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            data = b"".join(_line(r) for r in recs)
-            if data:
-                os.write(fd, data)
+            _write_all(fd, b"".join(_line(r) for r in recs))
+            for n in range(0, len(entries), REWRITE_CHUNK):  # a few lines at a time: little held at once
+                _write_all(fd, b"".join(_line(_record(e)) for e in entries[n:n + REWRITE_CHUNK]))
             os.fsync(fd)
             os.rename(tmp, self.path)
         except BaseException:
@@ -266,7 +284,13 @@ class Journal:
             raise
         _fsync_dir(self.path.parent)
         os.close(self.fd)
-        self.fd, self.lines, self.unsynced = fd, len(recs), False
+        self.fd, self.lines, self.unsynced = fd, len(recs) + len(entries), False
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view):]
 
 
 def _fsync_dir(folder: Path) -> None:

@@ -26,7 +26,7 @@ import functools
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Callable, Protocol
+from typing import Callable, NamedTuple, Protocol
 
 from rapid_runtime import access
 from rapid_runtime.acks import (APPEND, BAD_SYNTAX, BYPASS, CANCELED, COMPLETED, DELETE, EXEC_FAILED, EXECUTING,
@@ -43,6 +43,12 @@ from rapid_runtime.validate import _short, check_command, kwargs_of
 # again after 4096 newer commands is a new command. Bridge(command_window=N) or the
 # bridge's --command-window N changes it.
 COMMAND_WINDOW = 4096
+# What the window costs in Python: per command its cmdId, a slot in the recent ids (_Recent)
+# and a _Kept tuple, or with a journal the journal's own Entry of its outcome (one object
+# for both); the names a command carries are one str for all (messages.command_in). About
+# 200 bytes a command, 285 with the journal (tests/runtime/test_window_memory.py): 0.8 and
+# 1.1 MiB for 4096. The ack instances DDS keeps for them cost more (bench/README.md, "the
+# Python bridge's memory").
 # A flood of commands must not grow the asset without bound either: queued commands wait
 # (each held with its sample) and BYPASS ones each run on a thread of their own. Past these,
 # a command is answered EXEC_FAILED at once (docs/runtime.md, "Bounded memory").
@@ -94,8 +100,8 @@ class CommandManager:
         self.clock = clock
         self.window = window
         self.lock = threading.RLock()
-        self.seen: collections.OrderedDict[str, None] = collections.OrderedDict()  # the last `window` cmdIds
-        self.acked: collections.deque[Cmd] = collections.deque()  # completed, acks still kept; oldest first
+        self.seen = _Recent(window)  # the last `window` cmdIds
+        self.acked: collections.deque = collections.deque()  # completed (_Kept or journal.Entry), acks kept; oldest first
         self.pending = Pending()
         self.active: Run | None = None  # the queue's running command
         self.bypass: list[Run] = []  # BYPASS commands running
@@ -154,9 +160,7 @@ class CommandManager:
             if cmd.cmd_id in self.seen or self._live(cmd.cmd_id):
                 self.out.log(f"ignored {cmd.cmd_id!r}: repeated cmdId")
                 return
-            self.seen[cmd.cmd_id] = None
-            while len(self.seen) > self.window:
-                self.seen.popitem(last=False)
+            self.seen.add(cmd.cmd_id)
             reason = self._intake(cmd)
             if reason is not None:
                 kind, text = reason
@@ -392,13 +396,15 @@ class CommandManager:
         moves on all the same (a lost ack must not leave the queue stuck). With a journal, the
         step the ack promises is recorded first (written out after the batch's sync)."""
         message = clip(message)
+        noted = None
         if self.journal is not None and journal:
             step = {QUEUED: "q", EXECUTING: "x", COMPLETED: "c"}.get(status)
             if step is not None:
-                self.journal.note(cmd, step, completed, message)
+                noted = self.journal.note(cmd, step, completed, message)
         self._emit(lambda: self._write_ack(cmd, status, completed, message))
         if status == COMPLETED:  # each command's last ack: keep the last `window` commands' acks
-            self._keep(_key_of(cmd))
+            # the journal's entry for its outcome when there is one (the journal keeps it too)
+            self._keep(noted if noted is not None else _Kept(cmd.cmd_id, cmd.src_name, cmd.asset_name, cmd.serial))
 
     def _write_ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None:
         try:
@@ -406,12 +412,14 @@ class CommandManager:
         except Exception as exc:  # DDS refusing a write: the commander hears nothing of this one
             self.out.log(f"{status} ack of {cmd.cmd_id!r} not written: {type(exc).__name__}: {str(exc)[:120]}")
 
-    def _keep(self, key: Cmd) -> None:
+    def _keep(self, key) -> None:
+        """key: a _Kept or a journal.Entry (what retiring the acks needs: cmd_id, src_name,
+        asset_name, serial)."""
         self.acked.append(key)
         while len(self.acked) > self.window:
             old = self.acked.popleft()
             if not self._live(old.cmd_id):  # its id sent again (after the window) and still running
-                self._emit(functools.partial(self.out.retire, old))
+                self._emit(functools.partial(self.out.retire, _entry_cmd(old)))
 
     def _publish_queue(self) -> None:
         if not self.has_queue:
@@ -442,12 +450,11 @@ class CommandManager:
         (commands answered now, final acks written again)."""
         with self.batch():
             for e in recovered.finished:
-                key = _entry_cmd(e)
-                self._remember(e.cmd_id)
-                self._emit(functools.partial(self._write_ack, key, COMPLETED, e.completion, e.message))
-                self._keep(key)
+                self.seen.add(e.cmd_id)
+                self._emit(functools.partial(self._write_ack, _entry_cmd(e), COMPLETED, e.completion, e.message))
+                self._keep(e)
             for e in recovered.unfinished:
-                self._remember(e.cmd_id)
+                self.seen.add(e.cmd_id)
                 completion, why = (CANCELED, RESTARTED_QUEUED) if e.state == "q" else (EXEC_FAILED, RESTARTED_RUNNING)
                 self._ack(_entry_cmd(e), COMPLETED, completion, why)
         return len(recovered.unfinished), len(recovered.finished)
@@ -472,11 +479,6 @@ class CommandManager:
             self.idle.notify_all()
             return len(runs)
 
-    def _remember(self, cmd_id: str) -> None:
-        self.seen[cmd_id] = None
-        while len(self.seen) > self.window:
-            self.seen.popitem(last=False)
-
     def wait_idle(self, timeout: float) -> bool:
         """True once no queued or bypass command runs (tests, shutdown)."""
         end = time.monotonic() + timeout
@@ -489,15 +491,47 @@ class CommandManager:
             return True
 
 
-def _key_of(cmd: Cmd) -> Cmd:
-    """What retiring the command's acks needs (the ack key: header names and cmdId), without
-    the received sample and arguments, which the window would otherwise keep alive."""
-    return Cmd(cmd.cmd_id, cmd.cmd_src, cmd.subsystem, cmd.name, src_name=cmd.src_name, asset_name=cmd.asset_name,
-               serial=cmd.serial)
+class _Recent:
+    """The last `size` cmdIds, the oldest forgotten first: `in` and len(). A dict and a deque
+    (about 60 bytes an id; an OrderedDict costs about 115)."""
+    __slots__ = ("ids", "order", "size")
+
+    def __init__(self, size: int) -> None:
+        self.ids: dict[str, None] = {}
+        self.order: collections.deque[str] = collections.deque()
+        self.size = size
+
+    def add(self, cmd_id: str) -> None:
+        if cmd_id in self.ids:
+            return  # it keeps its place (as an OrderedDict's key does)
+        self.ids[cmd_id] = None
+        self.order.append(cmd_id)
+        while len(self.order) > self.size:
+            del self.ids[self.order.popleft()]
+
+    def __contains__(self, cmd_id: object) -> bool:
+        return cmd_id in self.ids
+
+    def __len__(self) -> int:
+        return len(self.ids)
+
+    def __iter__(self):
+        return iter(self.ids)
+
+
+class _Kept(NamedTuple):
+    """A completed command as the window keeps it without a journal (with one, the journal's
+    Entry of its outcome, which has the same fields): what retiring its acks needs (the ack
+    key: header names and cmdId; the header's serial), not the received sample and arguments,
+    and a tuple (a Cmd costs twice as much)."""
+    cmd_id: str
+    src_name: str
+    asset_name: str
+    serial: int
 
 
 def _entry_cmd(e) -> Cmd:
-    """A journal entry as the Cmd its acks need (header names, serial, cmdId)."""
+    """A journal entry (or a _Kept) as the Cmd its acks need (header names, serial, cmdId)."""
     return Cmd(e.cmd_id, "", "", "", src_name=e.src_name, asset_name=e.asset_name, serial=e.serial)
 
 

@@ -39,12 +39,32 @@ def union_value(u) -> tuple[str, object]:
     return _enum_name(u.discriminator), value
 
 
+# The names every command carries (its sender, asset, subsystem and command): one str object
+# each, however many commands carry them, rather than one decoded copy per command (the
+# command window remembers thousands of commands: manager.py, journal.py). Wire text, so not
+# sys.intern (interned strings may live for good): a table of at most NAMES_KEPT, emptied when
+# full.
+NAMES_KEPT = 1024
+_names: dict[str, str] = {}
+
+
+def shared_name(text: str) -> str:
+    """text, or an equal str object seen before."""
+    got = _names.get(text)
+    if got is None:
+        if len(_names) >= NAMES_KEPT:
+            _names.clear()
+        got = _names.setdefault(text, text)
+    return got
+
+
 def command_in(sample) -> Cmd:
-    """A received rapid::Command as Cmd."""
-    return Cmd(cmd_id=sample.cmdId, cmd_src=sample.cmdSrc, subsystem=sample.subsysName, name=sample.cmdName,
-               args=tuple(union_value(a) for a in sample.arguments), action=_enum_name(sample.cmdAction),
-               target=sample.targetCmdId, src_name=sample.hdr.srcName, asset_name=sample.hdr.assetName,
-               serial=sample.hdr.serial, raw=sample)
+    """A received rapid::Command as Cmd (its names shared: shared_name)."""
+    hdr = sample.hdr
+    return Cmd(cmd_id=sample.cmdId, cmd_src=shared_name(sample.cmdSrc), subsystem=shared_name(sample.subsysName),
+               name=shared_name(sample.cmdName), args=tuple(union_value(a) for a in sample.arguments),
+               action=_enum_name(sample.cmdAction), target=sample.targetCmdId, src_name=shared_name(hdr.srcName),
+               asset_name=shared_name(hdr.assetName), serial=hdr.serial, raw=sample)
 
 
 def command_out(rapid, cmd: Cmd, stamp: int | None = None):
