@@ -69,7 +69,7 @@ def _parser() -> Lark:
 # format: loading them skips building a Lark instance (~15 ms of every run), which is then
 # built only for an input the table rejects (its syntax error). A file another user owns,
 # or that others may write, is not read.
-_TABLES_FORMAT = 1
+_TABLES_FORMAT = 1  # bump when LeanLALR.state() or how LeanLALR.__init__ flattens the table changes
 
 
 def _tables_path() -> str:
