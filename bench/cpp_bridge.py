@@ -163,6 +163,7 @@ def main() -> int:
             raise SystemExit(f"bench: rapid_cmd said {res.stdout[-1000:]} {res.stderr[-2000:]}")
         return json.loads(lines[-1])
 
+    print("load average at the start: " + " ".join(f"{x:.2f}" for x in os.getloadavg()), flush=True)
     if args.ddsperf_seconds > 0:
         perf = ddsperf(args.ddsperf_seconds, args.domain + 1)
         print(f"ddsperf ping (Cyclone C, loopback, {args.ddsperf_seconds:g} s): {perf}", flush=True)
@@ -218,6 +219,7 @@ def main() -> int:
                       f"{lat['per_s']:.0f} commands/s one at a time", flush=True)
             finally:
                 stop_bridge(bridge)
+    print("load average at the end: " + " ".join(f"{x:.2f}" for x in os.getloadavg()), flush=True)
     return 1 if lost else 0
 
 

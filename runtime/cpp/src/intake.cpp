@@ -31,7 +31,24 @@ void Intake::stop() {
 // ---- the reader thread ----------------------------------------------------------------------
 
 void Intake::offer(Cmd cmd, const std::string& in_writer) {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (!stopping_ && !working_ && fifos_.empty() && shed_.empty() && thread_.joinable() &&
+        sink_.answers_at_once(cmd)) {
+        // Nothing waits before it and the sink answers it at once: handed over here, without
+        // waking the worker (one thread handoff less; bench/README.md, the C++ bridge).
+        working_ = true;
+        lock.unlock();
+        const std::string id = cmd.cmd_id;
+        try {
+            hand_over({std::move(cmd), false});
+        } catch (...) {  // (the sink's batch calls do not throw; the door must stay open if one did)
+            log_("command '" + id + "' not handled: its batch failed");
+        }
+        lock.lock();
+        working_ = false;
+        if (!fifos_.empty() || !shed_.empty() || stopping_) wake_.notify_all();
+        return;
+    }
     std::string writer = in_writer;
     auto found = index_.find(writer);
     if (found == index_.end() && fifos_.size() >= MAX_WRITERS) {
@@ -87,6 +104,10 @@ Intake::Fifos::iterator Intake::control_writer() {
 
 bool Intake::next(std::unique_lock<std::mutex>& lock, Next& out) {
     while (!stopping_) {
+        if (working_) {  // (a command handed over by offer(): the next ones come after it)
+            wake_.wait(lock);
+            continue;
+        }
         auto writer = control_writer();
         if (writer == fifos_.end()) {
             if (!shed_.empty() && (shed_turn_ || fifos_.empty())) {
@@ -126,17 +147,30 @@ void Intake::run() {
             // what is waiting already goes in one manager batch: one journal sync
             while (batch.size() < BATCH && (!fifos_.empty() || !shed_.empty()) && next(lock, got))
                 batch.push_back(std::move(got));
+            working_ = true;  // offer() hands nothing over until this batch is answered
         }
         sink_.begin_batch();
-        for (auto& got : batch) {
-            try {
-                if (got.shed) sink_.refuse(got.cmd, busy_message(per_writer_));
-                else sink_.receive(got.cmd);
-            } catch (const std::exception& e) {  // a bad command must not stop intake
-                log_("command '" + got.cmd.cmd_id + "' not handled: " + e.what());
-            }
-        }
+        for (auto& got : batch) hand_over_one(got);
         sink_.end_batch();
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            working_ = false;
+        }
+    }
+}
+
+void Intake::hand_over(Next got) {
+    sink_.begin_batch();
+    hand_over_one(got);
+    sink_.end_batch();
+}
+
+void Intake::hand_over_one(Next& got) {
+    try {
+        if (got.shed) sink_.refuse(got.cmd, busy_message(per_writer_));
+        else sink_.receive(got.cmd);
+    } catch (const std::exception& e) {  // a bad command must not stop intake
+        log_("command '" + got.cmd.cmd_id + "' not handled: " + e.what());
     }
 }
 

@@ -198,6 +198,14 @@ bool CommandManager::is_control(const Cmd& cmd) const {
            (*kind == "Queue" && cmd.name == "cancelAll");
 }
 
+bool CommandManager::answers_at_once(const Cmd& cmd) const {
+    // (what it reads is set at construction: no lock)
+    if (options_.journal != nullptr || cmd.action != QueueAction::Bypass) return false;  // no sync there
+    const std::string* kind = tables_.type_of(cmd.subsystem);
+    if (kind == nullptr) return false;
+    return (*kind == "Admin" && (cmd.name == "echo" || cmd.name == "noOp")) || *kind == "AccessControl";
+}
+
 void CommandManager::remember(const std::string& cmd_id) {
     seen_.insert(cmd_id);
     seen_order_.push_back(cmd_id);

@@ -30,6 +30,15 @@ std::string writer_id(const InstanceHandle_t& handle) {
 
 }  // namespace
 
+class Bridge::CommandListener : public DataReaderListener {
+public:
+    explicit CommandListener(Bridge& bridge) : bridge_(bridge) {}
+    void on_data_available(DataReader* reader) override { bridge_.read_commands(reader); }
+
+private:
+    Bridge& bridge_;
+};
+
 Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
     : tables_(tables), breaks_(std::make_unique<Breaks>(options.breaks, tables)) {
     auto write = options.log;
@@ -88,6 +97,7 @@ void Bridge::start() {
             if (!durable) q.durability().kind = VOLATILE_DURABILITY_QOS;
             // an ack a commander missed is sent again within 100 ms (Fast DDS's heartbeat: 3 s)
             q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
+            quiet_nack_suppression(q);
             q.history().kind = KEEP_LAST_HISTORY_QOS;
             q.history().depth = ACK_HISTORY;
             q.resource_limits().max_samples_per_instance = ACK_HISTORY;
@@ -105,29 +115,28 @@ void Bridge::start() {
     // instances are unbounded (one instance per commander, never bounded safely), so the
     // bound is the intake door's (PER_WRITER waiting, then "bridge busy"), which takes
     // every sample as it comes.
-    commands_ = node_->reader<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos");
+    // Read by a listener on Fast DDS's receive thread, not a thread of ours waiting on the
+    // reader: one thread handoff less per command (bench/README.md, the C++ bridge).
     intake_->start();
     reading_ = true;
-    reader_thread_ = std::thread([this] { read_commands(); });
+    listener_ = std::make_unique<CommandListener>(*this);
+    commands_ = node_->reader<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos", {}, listener_.get());
 }
 
-void Bridge::read_commands() {
-    ::rapid::Command sample;  // reused: taking a command allocates only what it holds
+void Bridge::read_commands(DataReader* reader) {
+    std::lock_guard<std::mutex> lock(reading_mutex_);
+    ::rapid::Command& sample = command_;  // reused: taking a command allocates only what it holds
     SampleInfo info;
-    const eprosima::fastrtps::Duration_t slice(0, 200'000'000);
-    while (reading_) {
-        if (!commands_->wait_for_unread_message(slice)) continue;
-        while (reading_ && commands_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-            if (!info.valid_data) continue;  // (samples that do not decode are dropped by the topic type)
-            try {
-                if (!breaks_->any()) {
-                    intake_->offer(command_in(sample), writer_id(info.publication_handle));
-                } else if (auto cmd = breaks_->intake(command_in(sample), *this)) {
-                    intake_->offer(std::move(*cmd), writer_id(info.publication_handle));
-                }
-            } catch (const std::exception& e) {  // a bad sample must not stop command intake
-                log("command '" + sample.cmdId + "' not read: " + e.what());
+    while (reading_ && reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+        if (!info.valid_data) continue;  // (samples that do not decode are dropped by the topic type)
+        try {
+            if (!breaks_->any()) {
+                intake_->offer(command_in(sample), writer_id(info.publication_handle));
+            } else if (auto cmd = breaks_->intake(command_in(sample), *this)) {
+                intake_->offer(std::move(*cmd), writer_id(info.publication_handle));
             }
+        } catch (const std::exception& e) {  // a bad sample must not stop command intake
+            log("command '" + sample.cmdId + "' not read: " + e.what());
         }
     }
 }
@@ -150,8 +159,10 @@ void Bridge::stop() {
     stopped_ = true;
     request_stop();
     breaks_->stop();  // (serial-drift's republications)
-    reading_ = false;
-    if (reader_thread_.joinable()) reader_thread_.join();
+    {
+        std::lock_guard<std::mutex> lock(reading_mutex_);  // (a callback under way ends first)
+        reading_ = false;
+    }
     if (intake_) intake_->stop();
     if (manager_) {
         std::size_t abandoned = manager_->abandon();

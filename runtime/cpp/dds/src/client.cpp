@@ -112,16 +112,16 @@ Client::Client(ClientOptions options, const Tables* tables) : options_(std::move
         // instance, a COMPLETED right behind its EXECUTING was refused and came again
         // only on the writer's next heartbeat (a third of round trips took 100-200 ms)
         q.resource_limits().max_samples_per_instance = static_cast<std::int32_t>(ACKS_PER_COMMAND);
-    });
+    }, &ack_listener_);
     // A command written while the asset's reader has not yet matched this writer is dropped
     // there and sent again on the next heartbeat: every 100 ms, not Fast DDS's 3 s.
     commands_ = node_->writer<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos", [](DataWriterQos& q) {
         q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
         q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(10, 0);  // a flood waits for room
+        quiet_nack_suppression(q);  // (node.hpp: Fast DDS's event thread not woken per command)
     });
     commands_->set_listener(&matches_, StatusMask::publication_matched());
-    acks_reader_->set_listener(&matches_, StatusMask::subscription_matched());
-    reader_ = std::thread([this] { read_acks(); });
+    acks_reader_->set_listener(&ack_listener_, StatusMask::subscription_matched() << StatusMask::data_available());
 }
 
 namespace {
@@ -160,32 +160,33 @@ std::set<std::string> Client::Matches::both() const {
 std::set<std::string> Client::asset_participants() const { return matches_.both(); }
 
 Client::~Client() {
-    reading_ = false;
-    if (reader_.joinable()) reader_.join();
+    {
+        std::lock_guard<std::mutex> lock(mutex_);  // (a callback under way ends first)
+        reading_ = false;
+    }
     node_.reset();
 }
 
-void Client::read_acks() {
-    ::rapid::Ack sample;  // reused
+void Client::read_acks(DataReader* reader) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ::rapid::Ack& sample = ack_;
     SampleInfo info;
-    const eprosima::fastrtps::Duration_t slice(0, 100'000'000);
-    while (reading_) {
-        if (!acks_reader_->wait_for_unread_message(slice)) continue;
-        while (reading_ && acks_reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-            if (!info.valid_data) continue;
-            std::lock_guard<std::mutex> lock(mutex_);
-            auto found = acks_.find(sample.cmdId);
-            if (found == acks_.end()) {
-                ++strangers_;
-                continue;
-            }
-            if (found->second.size() < ACKS_PER_COMMAND)
-                found->second.push_back({static_cast<AckStatus>(static_cast<std::int32_t>(sample.status)),
-                                         static_cast<Completion>(static_cast<std::int32_t>(sample.completedStatus)),
-                                         sample.message});
-            changed_.notify_all();
+    bool added = false;
+    while (reading_ && reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+        if (!info.valid_data) continue;
+        auto found = acks_.find(sample.cmdId);
+        if (found == acks_.end()) {
+            ++strangers_;
+            continue;
+        }
+        if (found->second.size() < ACKS_PER_COMMAND) {
+            found->second.push_back({static_cast<AckStatus>(static_cast<std::int32_t>(sample.status)),
+                                     static_cast<Completion>(static_cast<std::int32_t>(sample.completedStatus)),
+                                     sample.message});
+            added = true;
         }
     }
+    if (added) changed_.notify_all();
 }
 
 bool Client::asset_matched() const {

@@ -12,6 +12,11 @@ namespace dds {
 
 using namespace eprosima::fastdds::dds;
 
+void quiet_nack_suppression(DataWriterQos& qos) {
+    auto& d = qos.reliable_writer_qos().times.nackSupressionDuration;
+    if (d.seconds == 0 && d.nanosec == 0) d = eprosima::fastrtps::Duration_t(0, NACK_SUPPRESSION_NS);
+}
+
 namespace {
 
 // Fast DDS 2.9 keeps a profile's <data_writer>/<data_reader> <partition> as the endpoint
@@ -98,7 +103,8 @@ DataWriter* Node::make_writer(Topic* topic, const std::string& profile, const Wr
     return w;
 }
 
-DataReader* Node::make_reader(Topic* topic, const std::string& profile, const ReaderTweak& tweak) {
+DataReader* Node::make_reader(Topic* topic, const std::string& profile, const ReaderTweak& tweak,
+                              DataReaderListener* listener) {
     DataReaderQos qos;
     if ((link_.empty() || subscriber_->get_datareader_qos_from_profile(profile + "@" + link_, qos) !=
                               ReturnCode_t::RETCODE_OK) &&
@@ -106,7 +112,9 @@ DataReader* Node::make_reader(Topic* topic, const std::string& profile, const Re
         throw DdsError("no reader profile " + profile + " in the loaded QoS profiles");
     drop_endpoint_partitions(qos.properties());
     if (tweak) tweak(qos);
-    DataReader* r = subscriber_->create_datareader(topic, qos);
+    DataReader* r = listener == nullptr
+                        ? subscriber_->create_datareader(topic, qos)
+                        : subscriber_->create_datareader(topic, qos, listener, StatusMask::data_available());
     if (r == nullptr) throw DdsError("cannot create reader of " + topic->get_name() + " (" + profile + ")");
     return r;
 }

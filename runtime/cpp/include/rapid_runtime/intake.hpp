@@ -4,6 +4,7 @@
 //
 //     Intake intake(manager, log);   intake.start();   // a worker thread runs the manager
 //     intake.offer(cmd, writer);     // the reader thread: every decoded Command, never blocks
+//                                    // (but see the last point)
 //
 // - One FIFO per writer (the DDS writer the sample came from), served round-robin.
 // - Control commands go first: a writer whose next command is a control command is served
@@ -12,6 +13,10 @@
 //   answered COMPLETED/EXEC_FAILED "bridge busy" without running. Those answers wait in a
 //   bounded list (shed_answers); when that is full too, commands are dropped unanswered,
 //   counted and logged once per writer.
+// - A command the sink answers at once (CommandSink::answers_at_once: the runtime's own
+//   BYPASS echo, noOp, AccessControl, without a journal) is handed to the sink on the
+//   offering thread when nothing waits and no batch is with the sink: the same order, one
+//   thread handoff less. offer() then takes as long as that answer (the acks written).
 #ifndef RAPID_RUNTIME_INTAKE_HPP
 #define RAPID_RUNTIME_INTAKE_HPP
 
@@ -65,6 +70,8 @@ private:
     bool next(std::unique_lock<std::mutex>& lock, Next& out);
     Fifos::iterator control_writer();
     void run();
+    void hand_over(Next got);  // one command as a batch of its own
+    void hand_over_one(Next& got);
 
     CommandSink& sink_;
     std::function<void(const std::string&)> log_;
@@ -80,6 +87,7 @@ private:
     std::map<std::string, std::size_t> shed_count_;
     bool stopping_ = false;
     bool shed_turn_ = false;
+    bool working_ = false;  // a batch is with the sink (the worker's, or one handed over by offer())
     std::thread thread_;
 };
 

@@ -91,8 +91,13 @@ public:
     virtual void refuse(const Cmd& cmd, const std::string& why) = 0;
     // A control command (stopAllMotion, Queue cancelAll, any AccessControl command) goes first.
     virtual bool is_control(const Cmd& cmd) const = 0;
+    // A command this sink answers itself at once, without a handler and without waiting
+    // (a BYPASS Admin/echo, noOp or AccessControl command, no journal to sync): the intake
+    // may hand it over on the thread that offers it when nothing waits before it.
+    virtual bool answers_at_once(const Cmd&) const { return false; }
     // The intake's calls between these two are one batch (the manager: one journal sync).
-    // Called in pairs, by one thread.
+    // Called in pairs, each pair on one thread (the intake's, or the offering thread's for
+    // a command handed over at once), never two batches at a time.
     virtual void begin_batch() {}
     virtual void end_batch() {}
 };
@@ -141,6 +146,7 @@ public:
     void receive(const Cmd& cmd) override;
     void refuse(const Cmd& cmd, const std::string& why) override;
     bool is_control(const Cmd& cmd) const override;
+    bool answers_at_once(const Cmd& cmd) const override;
     void begin_batch() override;  // takes the lock (held until end_batch)
     void end_batch() override;
 

@@ -121,7 +121,10 @@ public:
     void retire(const Cmd& cmd) override;
 
 private:
-    void read_commands();
+    class CommandListener;
+    // Fast DDS's receive thread, when commands came: each is offered to the intake (which
+    // never blocks: its own thread runs the manager, the handlers run on theirs).
+    void read_commands(eprosima::fastdds::dds::DataReader* reader);
     // A test build's config breaks: what publish_config does instead (breaks.hpp).
     ConfigBreak config_break(const std::string& topic, std::function<void()> republish);
     template <class T>
@@ -158,8 +161,10 @@ private:
     ::rapid::Ack ack_;  // one sample, reused for every ack
     std::unique_ptr<CommandManager> manager_;
     std::unique_ptr<Intake> intake_;
-    std::thread reader_thread_;
+    std::unique_ptr<CommandListener> listener_;  // (outlives the reader: node_ goes first in stop())
     eprosima::fastdds::dds::DataReader* commands_ = nullptr;
+    std::mutex reading_mutex_;  // a callback under way; stop() waits for it
+    ::rapid::Command command_;  // one sample, reused (under reading_mutex_)
     std::atomic<bool> stop_requested_{false};
     std::atomic<bool> reading_{false};
     bool stopped_ = false;

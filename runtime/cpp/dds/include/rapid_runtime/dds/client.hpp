@@ -149,15 +149,32 @@ private:
         std::map<std::string, int> readers_, writers_;  // participant -> endpoints matched
     };
 
+    // The ack reader's listener: acks are taken on Fast DDS's receive thread, which wakes
+    // the thread waiting for them (no reader thread of ours between the two); its matches
+    // go to matches_.
+    class AckListener : public eprosima::fastdds::dds::DataReaderListener {
+    public:
+        explicit AckListener(Client& client) : client_(client) {}
+        void on_data_available(eprosima::fastdds::dds::DataReader* reader) override { client_.read_acks(reader); }
+        void on_subscription_matched(eprosima::fastdds::dds::DataReader* reader,
+                                     const eprosima::fastdds::dds::SubscriptionMatchedStatus& info) override {
+            client_.matches_.on_subscription_matched(reader, info);
+        }
+
+    private:
+        Client& client_;
+    };
+
     const CommandSpec& entry(const std::string& subsystem, const std::string& command) const;
     std::string write(Cmd& cmd);
-    void read_acks();
+    void read_acks(eprosima::fastdds::dds::DataReader* reader);
 
     ClientOptions options_;
     const Tables* given_ = nullptr;
     Tables live_;
     const Tables* dictionary_ = nullptr;
     Matches matches_;  // before node_: its entities call it until they are deleted
+    AckListener ack_listener_{*this};  // (likewise)
     std::unique_ptr<Node> node_;
     eprosima::fastdds::dds::DataWriter* commands_ = nullptr;
     eprosima::fastdds::dds::DataReader* acks_reader_ = nullptr;
@@ -166,8 +183,8 @@ private:
     mutable std::condition_variable changed_;
     std::map<std::string, std::vector<AckEvent>> acks_;
     std::atomic<std::uint64_t> strangers_{0};
-    std::atomic<bool> reading_{true};
-    std::thread reader_;
+    ::rapid::Ack ack_;  // one sample, reused (under mutex_)
+    bool reading_ = true;  // (under mutex_)
     std::uint64_t counter_ = 0;
 };
 

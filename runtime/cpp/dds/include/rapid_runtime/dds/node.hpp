@@ -9,6 +9,7 @@
 #ifndef RAPID_RUNTIME_DDS_NODE_HPP
 #define RAPID_RUNTIME_DDS_NODE_HPP
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -20,6 +21,7 @@
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
@@ -41,6 +43,15 @@ struct NodeOptions {
     std::string transport = "local";  // participant profile "rapid_<transport>"
     std::string partition;  // the asset's; overrides the profiles' partition
 };
+
+// A reliable writer's NACK suppression, when its profile leaves Fast DDS's 0: 5 ms. With 0,
+// each sample sent restarts the reader proxy's suppression timer, which wakes Fast DDS's
+// event thread at once to take the writer's lock (against the next write) for every
+// sample; with 5 ms it wakes once per 5 ms of writes. A NACK inside those 5 ms is for a
+// sample still on its way (it comes only with a heartbeat: 100 ms apart here); a link's
+// profile (docs/qos.md "Slow links") sets its own (0.8 x rtt) and keeps it.
+inline constexpr std::uint32_t NACK_SUPPRESSION_NS = 5'000'000;
+void quiet_nack_suppression(eprosima::fastdds::dds::DataWriterQos& qos);
 
 class Node {
 public:
@@ -64,11 +75,14 @@ public:
         return w;
     }
 
+    // A new reader of the topic; with a listener, it hears data_available only (on Fast
+    // DDS's receive thread, from the reader's creation: no sample comes before it).
     template <class T>
     eprosima::fastdds::dds::DataReader* reader(const std::string& topic, const std::string& profile,
-                                               const ReaderTweak& tweak = {}) {
+                                               const ReaderTweak& tweak = {},
+                                               eprosima::fastdds::dds::DataReaderListener* listener = nullptr) {
         std::lock_guard<std::recursive_mutex> lock(mutex_);
-        return make_reader(make_topic<T>(topic), profile, tweak);
+        return make_reader(make_topic<T>(topic), profile, tweak, listener);
     }
 
     eprosima::fastdds::dds::DomainParticipant* participant() { return participant_; }
@@ -86,7 +100,8 @@ private:
     eprosima::fastdds::dds::DataWriter* make_writer(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
                                                     const WriterTweak& tweak);
     eprosima::fastdds::dds::DataReader* make_reader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
-                                                    const ReaderTweak& tweak);
+                                                    const ReaderTweak& tweak,
+                                                    eprosima::fastdds::dds::DataReaderListener* listener);
 
     std::recursive_mutex mutex_;
     std::string partition_;
