@@ -81,17 +81,26 @@ def _hand_written(domain):
     return _beside("plain_vec3d", "plain-vec3d ready", domain)
 
 
+# Seeds spied on alone, after the others: X-Arm-2's joint samples are declared at 500 Hz, and
+# a Python bridge needs most of a core for that; beside ten other bridges and spies on a
+# loaded 2-core CI machine it published 372 Hz, and the test judged the machine, not spy.
+ALONE = ("xarm2",)
+
+
 @pytest.fixture(scope="module")
 def runs():
     pytest.importorskip("cyclonedds")
     seeds = sorted(SEEDS)
+    domains = {a: DOMAIN + i for i, a in enumerate(seeds)}
     with ThreadPoolExecutor(6) as pool:
-        seed_f = pool.map(_seed, [(a, DOMAIN + i) for i, a in enumerate(seeds)])
+        seed_f = pool.map(_seed, [(a, domains[a]) for a in seeds if a not in ALONE])
         broken_f = pool.map(_broken, [(k, DOMAIN + 6 + i) for i, k in enumerate(BROKEN)])
         sab_f = pool.submit(_sabotaged, DOMAIN + 9)
         hand_f = pool.submit(_hand_written, DOMAIN + 10)
-        return {"seeds": dict(zip(seeds, seed_f)), "broken": dict(zip(BROKEN, broken_f)), "saboteur": sab_f.result(),
-                "hand-written": hand_f.result()}
+        got = {"seeds": dict(zip([a for a in seeds if a not in ALONE], seed_f)),
+               "broken": dict(zip(BROKEN, broken_f)), "saboteur": sab_f.result(), "hand-written": hand_f.result()}
+    got["seeds"].update({a: _seed((a, domains[a])) for a in ALONE})
+    return got
 
 
 def _tables(asset: str) -> AssetFacts:

@@ -1,7 +1,6 @@
 """Broken assets: command intake and acks (conformance/commands.py)."""
 from __future__ import annotations
 
-import collections
 import dataclasses
 import math
 import os
@@ -132,10 +131,12 @@ def other_asset_accepted(a):
 
 @kind("no-dedup", "CMD-10")
 def no_dedup(a):
-    class Forgetful(collections.OrderedDict):
-        def __contains__(self, key):
+    seen = a.manager.seen  # the manager's window of cmdIds, whatever its class: it never says "seen"
+
+    class Forgetful(type(seen)):
+        def __contains__(self, key) -> bool:
             return False
-    a.manager.seen = Forgetful()
+    a.manager.seen = Forgetful(seen.size)
 
 
 @kind("long-ack-message", "CMD-11")
