@@ -360,10 +360,10 @@ int run_cmd(int argc, char** argv, const CmdProgram& program) {
         if (a.repeat > 0) return repeat(client, a, how);
         if (a.flood > 0) return flood(client, a, how);
         if (!a.target.empty()) client.follow(a.target);
-        std::vector<Value> values = cmd.args;
-        Resend again(client, cmd, a.rtt);
-        auto id = client.send_raw(std::move(cmd));
+        Resend again(client, std::move(cmd), a.rtt);  // the command is kept there, as sent
+        auto id = client.send_raw(again.cmd);
         again.cmd.cmd_id = id;
+        const std::vector<Value>& values = again.cmd.args;
         std::string line = visible(client.asset()) + " <- " + visible(a.words[0]) + "/" + visible(a.words[1]);
         // the values as sent (defaults included), by name
         const auto* spec = client.dictionary()->command(a.words[0], a.words[1]).spec;
