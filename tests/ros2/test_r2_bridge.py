@@ -68,6 +68,20 @@ class Scene:
             assert res.returncode == 0, res.stdout + res.stderr
             self.controlling = True
 
+    def at_rest(self) -> None:
+        """Until the simulated arm's last status is not "moving" (fails at WAIT). A command that
+        waits for "reached" starts from rest: an earlier motion ending after the command's pose
+        was published would answer its wait (the status names no target)."""
+        log, end = self.tmp / "sim.log", time.monotonic() + WAIT
+        while True:
+            states = [ln.split()[1] for ln in log.read_text(errors="replace").splitlines()
+                      if ln.startswith("r2_sim: ") and ln.split()[1:2] in (["moving"], ["reached"], ["stopped"])]
+            if not states or states[-1] != "moving":
+                return
+            if time.monotonic() > end:
+                pytest.fail(f"the simulated arm still moving after {WAIT:g} s:\n{log.read_text()[-2000:]}")
+            time.sleep(0.1)
+
     def samples(self, **topics: str) -> dict[str, dict]:
         """The next sample of each R2Ros topic (topic=rapid::Type), read by a plain RAPID
         subscriber in another process (tests/ros2/rapid_listener.py)."""
@@ -129,6 +143,7 @@ def test_conform_passes_every_required_check(scene):
 
 def test_pose_command_moves_the_ros2_arm_and_its_joints_come_back(scene):
     scene.take_control()
+    scene.at_rest()
     res = scene.cmd("RightArm", "Setpoint for Tool", "xyz=[0.3,0.2,-0.1]", "rpy=[0.1,0.2,0.3]")
     assert res.returncode == 0, res.stdout + res.stderr
     acks = [line.split()[0] for line in res.stdout.splitlines()[1:] if line.strip()]
@@ -182,6 +197,7 @@ def test_cancel_reaches_the_waiting_command(scene):
     """A queued pose command waits for the arm (50 rad away at 1 rad/s); Queue/cancelAll
     makes it CANCELED."""
     scene.take_control()
+    scene.at_rest()  # the joint command's motion may still run on a loaded machine
     log = scene.tmp / "long.log"
     with open(log, "w") as out:
         long = subprocess.Popen([*scene.ns, sys.executable, "-m", "rapidgen", "cmd", "--action", "APPEND",
