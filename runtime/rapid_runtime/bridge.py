@@ -38,6 +38,10 @@ ACCESS_STATE_TOPIC = "rapid_accesscontrol_state"
 # discovered yet when EXECUTING goes out still gets the whole sequence (QUEUED, EXECUTING,
 # REQUEUED, EXECUTING, COMPLETED and a few progress acks), not only the last one.
 ACK_HISTORY = 8
+# How long an ack write may wait for room in the writer's history: a burst across a slow
+# link fills it for a round trip or more, and the profile's 100 ms would then lose the ack
+# (DDS_RETCODE_TIMEOUT). As the commander's writer (commander.WRITE_BLOCKING).
+ACK_BLOCKING = 10.0
 # Ack writer generations (ack_writers.py): a new writer every window/4 commands (at least
 # every 256: each new writer is discovered anew by every ack reader), an old one deleted once
 # all its commands' acks are retired.
@@ -108,7 +112,8 @@ class Bridge:
     # ---- Outbox (manager.py) ---------------------------------------------------------------
     def _acks(self) -> AckWriters:
         if self.ack_writers is None:
-            self.ack_writers = AckWriters(lambda: self.node.new_writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY),
+            self.ack_writers = AckWriters(lambda: self.node.new_writer(ACK_TOPIC, self.rapid.Ack, ACK_HISTORY,
+                                                                       ACK_BLOCKING),
                                           max(ACK_GENERATION_MIN, self.manager.window // ACK_GENERATIONS),
                                           self._delete_writer)
         return self.ack_writers

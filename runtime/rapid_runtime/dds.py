@@ -56,28 +56,29 @@ class Node:
             return self._topics[name]
 
     def writer(self, topic: str, cls, keep_last: int | None = None, blocking: float | None = None) -> DataWriter:
-        """keep_last: history depth per instance instead of the profile's; blocking: how
-        long (s) a reliable write may wait for room in the writer's history instead of the
-        profile's max_blocking_time (neither is request/offered, so matching is unchanged)."""
+        """The topic's shared writer. keep_last: history depth per instance instead of the
+        profile's; blocking: how long (s) a reliable write may wait for room in the writer's
+        history instead of the profile's max_blocking_time (neither is request/offered, so
+        matching is unchanged)."""
         with self._lock:
             w = self._writers.get(topic)
         if w is None:
-            q = self.qos.writer(topic)
-            if keep_last is not None:
-                q = q + Qos(Policy.History.KeepLast(keep_last))
-            if blocking is not None:
-                q = q + Qos(Policy.Reliability.Reliable(max_blocking_time=duration(seconds=blocking)))
-            w = DataWriter(self.publisher, self.topic(topic, cls), qos=q)
+            w = DataWriter(self.publisher, self.topic(topic, cls), qos=self._writer_qos(topic, keep_last, blocking))
             with self._lock:
                 self._writers[topic] = w
         return w
 
-    def new_writer(self, topic: str, cls, keep_last: int | None = None) -> DataWriter:
+    def new_writer(self, topic: str, cls, keep_last: int | None = None, blocking: float | None = None) -> DataWriter:
         """A writer of its own (not the topic's shared one), for the caller to delete()."""
+        return DataWriter(self.publisher, self.topic(topic, cls), qos=self._writer_qos(topic, keep_last, blocking))
+
+    def _writer_qos(self, topic: str, keep_last: int | None, blocking: float | None) -> Qos:
         q = self.qos.writer(topic)
         if keep_last is not None:
             q = q + Qos(Policy.History.KeepLast(keep_last))
-        return DataWriter(self.publisher, self.topic(topic, cls), qos=q)
+        if blocking is not None:
+            q = q + Qos(Policy.Reliability.Reliable(max_blocking_time=duration(seconds=blocking)))
+        return q
 
     @staticmethod
     def delete(entity) -> None:
