@@ -4,14 +4,23 @@ same run.
 
     .venv/bin/python bench/cpp_bridge.py [--latency 2000] [--flood 10000] [--rss 100000]
                                          [--build /tmp/rapidgen-bench-cpp] [--domain 135]
+                                         [--ddsperf-domain D] [--floor-domain D]
 
 Builds what it needs once in --build (kept: later runs are incremental): the runtime, K10's
-generated package with its bridge and rapid_cmd (rapid_runtime_cpp_add_cmd), Release.
+generated package with its bridge and rapid_cmd (rapid_runtime_cpp_add_cmd), and
+bench/fastdds_ping (a bare Fast DDS round trip), Release.
 Everything stays on loopback: the bridge and rapid_cmd use the built-in rapid_local
 profile (127.0.0.1 only), ddsperf ../shared/dds-local/cyclonedds-loopback.xml (or
 CYCLONEDDS_URI). Prints figures, never passes or fails on time; exit 1 when an ack was lost.
 
   ddsperf    `ddsperf ping` against `ddsperf pong` (Cyclone C): the floor of a round trip
+  Fast DDS   bench/fastdds_ping: the same N sequential round trips on bare Fast DDS 2.9
+             (K10's Command and Ack types, the runtime's Node and the bridge's built-in
+             rapid_local profile, the endpoints set up as rapid_cmd's and the bridge's), no
+             runtime above it: pong answers on its receive thread. Three shapes: 1 ack, the
+             ping's main thread waiting (rapid_cmd's shape); 2 acks (EXECUTING, COMPLETED:
+             an echo's), main thread; 1 ack, the ping's listener writing the next command
+             (ddsperf's shape, no wake-up). The floor Fast DDS itself sets under the bridge
   latency    N sequential Admin/echo (BYPASS, from the controller): write() to the final
              COMPLETED ack read by rapid_cmd; p50/p99 and commands/s one at a time; with
              the bridge's CPU time and context switches per command (all its threads)
@@ -34,9 +43,17 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from datetime import datetime, timezone
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+def git_head() -> str:
+    res = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--", "runtime/cpp", "bench"],
+                           capture_output=True, text=True).stdout.strip()
+    return res.stdout.strip() + (" (runtime/cpp or bench modified)" if dirty else "")
 LOOPBACK = ROOT.parent / "shared" / "dds-local" / "cyclonedds-loopback.xml"
 SOURCE = "RapidWorkbench"  # K10's allow-list lets it send Admin/echo and AccessControl
 ECHO = ["Admin", "echo", "text=bench"]
@@ -49,8 +66,8 @@ def run(cmd: list[str], **kw) -> subprocess.CompletedProcess:
     return res
 
 
-def build(out: Path) -> tuple[Path, Path]:
-    """(bridge, rapid_cmd) of K10, built in `out` (incremental)."""
+def build(out: Path) -> tuple[Path, Path, Path]:
+    """(bridge, rapid_cmd) of K10 and fastdds_ping, built in `out` (incremental)."""
     gen = out / "gen" / "k10"
     run([sys.executable, "-m", "rapidgen", "generate", str(ROOT / "specs" / "assets" / "k10.yaml"), "--lang", "cpp",
          "-o", str(gen)], cwd=ROOT)
@@ -63,7 +80,34 @@ def build(out: Path) -> tuple[Path, Path]:
          f"-DPLAIN_DIR={cpp}"])
     run(["cmake", "--build", str(out / "bridges"), "-j", jobs, "--target", "rapid_k10red_bridge", "--target",
          "rapid_k10red_cmd"])
-    return out / "bridges" / "k10" / "rapid_k10red_bridge", out / "bridges" / "rapid_k10red_cmd"
+    run(["cmake", "-S", str(ROOT / "bench" / "fastdds_ping"), "-B", str(out / "fastdds_ping"),
+         "-DCMAKE_BUILD_TYPE=Release", f"-Drapid_runtime_cpp_DIR={out / 'runtime'}",
+         f"-Drapid_k10red_DIR={out / 'bridges' / 'k10'}", f"-DK10_BRIDGE_DIR={cpp / 'bridge'}"])
+    run(["cmake", "--build", str(out / "fastdds_ping"), "-j", jobs])
+    return (out / "bridges" / "k10" / "rapid_k10red_bridge", out / "bridges" / "rapid_k10red_cmd",
+            out / "fastdds_ping" / "fastdds_ping")
+
+
+def fastdds_floor(exe: Path, domain: int, count: int, acks: int, wait: str, env: dict) -> dict | str:
+    """bench/fastdds_ping: `count` sequential round trips on bare Fast DDS (its JSON figures)."""
+    pong = subprocess.Popen([str(exe), "pong", "--domain", str(domain), "--acks", str(acks)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        if not pong.stdout.readline().startswith("pong ready"):
+            return f"fastdds_ping pong did not start: {pong.stderr.read()[-500:]!r}"
+        res = subprocess.run([str(exe), "ping", "--domain", str(domain), "--count", str(count), "--wait", wait],
+                             env=env, capture_output=True, text=True, timeout=600)
+    finally:
+        pong.terminate()
+        try:
+            pong.wait(30)
+        except subprocess.TimeoutExpired:
+            pong.kill()
+            pong.wait()
+    lines = [ln for ln in res.stdout.splitlines() if ln.startswith("{")]
+    if not lines:
+        return f"fastdds_ping ping said (exit {res.returncode}): {res.stdout[-300:]!r} {res.stderr[-500:]!r}"
+    return json.loads(lines[-1])
 
 
 def ddsperf(seconds: float, domain: int) -> dict | str:
@@ -143,17 +187,40 @@ def door_said(log: Path) -> str:
     return "; ".join(ln[:160] for ln in lines)
 
 
+def columns(perf, floors: dict, bridge: dict) -> str:
+    """The round trips side by side (p50 / p99 us) and the bridge's p50 over each floor's."""
+    heads = ["ddsperf (Cyclone C)", "Fast DDS 1 ack, main", "Fast DDS 2 acks, main", "Fast DDS 1 ack, listener",
+             "C++ bridge"]
+    cells = [perf.get("50%"), perf.get("99%")] if isinstance(perf, dict) else [None, None]
+    cells = [tuple(cells)]
+    for key in ((1, "main"), (2, "main"), (1, "listener")):
+        f = floors.get(key)
+        cells.append((f["p50_us"], f["p99_us"]) if isinstance(f, dict) else (None, None))
+    cells.append((bridge["p50_us"], bridge["p99_us"]))
+    show = lambda c: "-" if c[0] is None else f"{c[0]:.0f} / {c[1]:.0f}"
+    ratio = lambda c: "-" if not c[0] else f"{bridge['p50_us'] / c[0]:.1f}x"
+    width = max(len(h) for h in heads) + 2
+    lines = ["round trip, p50 / p99 us, and the bridge's p50 over each (load " +
+             " ".join(f"{x:.2f}" for x in os.getloadavg()) + "):"]
+    for h, c in zip(heads, cells):
+        lines.append(f"  {h:<{width}}{show(c):>14}  {ratio(c):>6}")
+    return "\n".join(lines)
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--latency", type=int, default=2000, help="sequential commands timed (default 2000)")
     p.add_argument("--flood", type=int, default=10000, help="commands sent back to back (default 10000)")
     p.add_argument("--rss", type=int, default=100000, help="commands for the memory figure (default 100000)")
     p.add_argument("--build", type=Path, default=Path("/tmp/rapidgen-bench-cpp"))
-    p.add_argument("--domain", type=int, default=135)
+    p.add_argument("--domain", type=int, default=135, help="the bridge's DDS domain (default 135)")
+    p.add_argument("--ddsperf-domain", type=int, help="ddsperf's (default: --domain + 1)")
+    p.add_argument("--floor-domain", type=int, help="fastdds_ping's (default: --domain + 2)")
     p.add_argument("--ddsperf-seconds", type=float, default=5, help="0 skips ddsperf")
     args = p.parse_args()
-    bridge_exe, cmd = build(args.build)
+    bridge_exe, cmd, ping_exe = build(args.build)
     env = {k: v for k, v in os.environ.items() if not k.startswith(("FASTDDS_", "FASTRTPS_"))}  # built-in rapid_local
+    print(f"commit {git_head()}, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC", flush=True)
 
     def client(*extra: str, words=ECHO) -> dict:
         res = subprocess.run([str(cmd), *words, "--domain", str(args.domain), "--source", SOURCE, "--timeout", "120",
@@ -165,10 +232,24 @@ def main() -> int:
 
     print("load average at the start: " + " ".join(f"{x:.2f}" for x in os.getloadavg()), flush=True)
     if args.ddsperf_seconds > 0:
-        perf = ddsperf(args.ddsperf_seconds, args.domain + 1)
+        perf = ddsperf(args.ddsperf_seconds,
+                       args.domain + 1 if args.ddsperf_domain is None else args.ddsperf_domain)
         print(f"ddsperf ping (Cyclone C, loopback, {args.ddsperf_seconds:g} s): {perf}", flush=True)
     else:
         perf = None
+    floors = {}
+    for acks, wait, what in ((1, "main", "1 ack, main thread waits (rapid_cmd's shape)"),
+                             (2, "main", "2 acks (an echo's), main thread waits"),
+                             (1, "listener", "1 ack, the listener sends the next (ddsperf's shape)")):
+        got = fastdds_floor(ping_exe, args.domain + 2 if args.floor_domain is None else args.floor_domain,
+                            args.latency, acks, wait, env)
+        floors[(acks, wait)] = got
+        if isinstance(got, dict):
+            print(f"bare Fast DDS round trip, {what}: p50 {got['p50_us']:.0f} us, p99 {got['p99_us']:.0f} us, "
+                  f"max {got['max_us']:.0f} us ({got['answered']} of {got['count']}), {got['per_s']:.0f}/s",
+                  flush=True)
+        else:
+            print(f"bare Fast DDS round trip, {what}: {got}", flush=True)
     usage = subprocess.run([str(bridge_exe), "--help"], capture_output=True, text=True, env=env, timeout=60)
     has_journal = "--no-journal" in usage.stdout + usage.stderr
     if not has_journal:
@@ -185,11 +266,15 @@ def main() -> int:
             per = max(1, lat["answered"])
             ratio = f", {lat['p50_us'] / perf['50%']:.1f}x ddsperf's p50" \
                 if isinstance(perf, dict) and "50%" in perf else ""
+            for (acks, wait), floor in floors.items():
+                if isinstance(floor, dict) and floor["p50_us"] > 0:
+                    ratio += f", {lat['p50_us'] / floor['p50_us']:.1f}x bare Fast DDS's ({acks} ack, {wait})"
             print(f"C++ bridge{' (--no-journal)' if has_journal else ''}, command -> COMPLETED ack "
                   f"({lat['answered']} of {lat['count']} sequential echoes, rapid_cmd): p50 {lat['p50_us']:.0f} us, "
                   f"p99 {lat['p99_us']:.0f} us, max {lat['max_us']:.0f} us{ratio}; {lat['per_s']:.0f} commands/s "
                   f"one at a time; the bridge spent {(cpu1 - cpu0) / per * 1e6:.0f} us of CPU and "
                   f"{(sw1 - sw0) / per:.1f} context switches a command", flush=True)
+            print(columns(perf, floors, lat), flush=True)
             fl = client("--flood", str(args.flood))
             lost += fl["lost"]
             door = door_said(log)
