@@ -226,7 +226,9 @@ std::vector<AckEvent> follow(Client& client, const std::string& cmd_id, double s
     while (true) {
         double left = std::chrono::duration<double>(end - Clock::now()).count();
         double slice = resend != nullptr ? std::min(left, 0.25) : left;
-        auto acks = client.wait_count(cmd_id, printed + 1, std::max(0.0, slice));
+        // (not printing: woken once, by the final ack, not once per ack as they come)
+        auto acks = print || first_only ? client.wait_count(cmd_id, printed + 1, std::max(0.0, slice))
+                                        : client.wait_final(cmd_id, std::max(0.0, slice));
         for (; printed < acks.size(); ++printed)
             if (print) std::cout << "  " << describe(acks[printed]) << std::endl;
         bool final = std::any_of(acks.begin(), acks.end(), [](const AckEvent& e) { return e.final(); });

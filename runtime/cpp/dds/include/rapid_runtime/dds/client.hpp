@@ -16,6 +16,7 @@
 #define RAPID_RUNTIME_DDS_CLIENT_HPP
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <map>
@@ -67,6 +68,9 @@ struct ClientOptions {
     std::string profiles_file;  // the asset's generated qos/fastdds/rapid_qos_profiles.xml
     std::string profiles_xml;  // or its text (a generated bridge's PROFILES_XML)
     std::string transport = "local";  // participant profile rapid_<transport>
+    // A wait for acks spins (yielding) this long before it sleeps: an ack that comes
+    // within it does not need this thread woken (0: sleep at once).
+    unsigned spin_us = 300;
 };
 
 struct SendOptions {
@@ -168,6 +172,9 @@ private:
     const CommandSpec& entry(const std::string& subsystem, const std::string& command) const;
     std::string write(Cmd& cmd);
     void read_acks(eprosima::fastdds::dds::DataReader* reader);
+    // Until done() (under lock) or `end`: spins up to options_.spin_us, then sleeps.
+    template <class Done>
+    void await(std::unique_lock<std::mutex>& lock, std::chrono::steady_clock::time_point end, Done done) const;
 
     ClientOptions options_;
     const Tables* given_ = nullptr;
@@ -183,6 +190,7 @@ private:
     mutable std::condition_variable changed_;
     std::map<std::string, std::vector<AckEvent>> acks_;
     std::atomic<std::uint64_t> strangers_{0};
+    std::atomic<std::uint64_t> arrived_{0};  // acks kept so far (a spinning wait looks here)
     ::rapid::Ack ack_;  // one sample, reused (under mutex_)
     bool reading_ = true;  // (under mutex_)
     std::uint64_t counter_ = 0;
