@@ -122,11 +122,24 @@ def headers(s):
 
 
 # Judged at the end of the run: a serial must stay put for the whole run, and an asset that
-# republishes its configs with a new serial every few seconds looks right at first.
+# republishes its configs with a new serial every few seconds looks right at first. A short
+# run (--only CFG-, about 2 s) could end before such an asset republishes: the configs are
+# watched for SERIAL_SPAN s at least.
+SERIAL_SPAN = 4.0
+
+
+def _watched(s, span: float) -> None:
+    """Until span s have passed since the first config sample came (now, if none came)."""
+    firsts = [got[0].at for t in _configs(s) if (got := s.client.samples(t))]
+    if firsts:
+        time.sleep(max(0.0, min(firsts) + span - time.monotonic()))
+
+
 @check("CFG-05", REQUIRED, "Config serials are set and stay put while the content does not change",
        "rapid-protocol.md 5 and 5b: serial set once (start time in seconds); a new one only on a change",
        needs=("CFG-02",), late=True)
 def serials(s):
+    _watched(s, SERIAL_SPAN)
     bad = []
     for t in _configs(s):
         _latest(s, t)

@@ -58,9 +58,7 @@ public:
             {"queue-parallel", "QUE-02"},      {"append-target-ignored", "QUE-03"}, {"delete-wrong-command", "QUE-04"},
             // configs (Bridge::publish_config)
             {"position-config-unpublished", "CFG-01"}, {"volatile-config", "CFG-02"}, {"wrong-config", "CFG-03"},
-            {"config-without-source", "CFG-04"},
-            // (serial-drift is implemented below but not listed: a `--only CFG-` run against this
-            // bridge did not reliably see two serials of one content; docs/conformance.md)
+            {"config-without-source", "CFG-04"}, {"serial-drift", "CFG-05"},
             // telemetry (telemetry.cpp) and the simulated robot (simulate.cpp)
             {"position-silent", "TEL-01"},     {"wrong-serial", "TEL-02"},       {"misaligned-values", "TEL-03"},
             {"millisecond-stamps", "TEL-04"},  {"frozen-stamps", "TEL-04"},      {"sample-without-source", "TEL-05"},
