@@ -98,12 +98,7 @@ def fastdds_floor(exe: Path, domain: int, count: int, acks: int, wait: str, env:
         res = subprocess.run([str(exe), "ping", "--domain", str(domain), "--count", str(count), "--wait", wait],
                              env=env, capture_output=True, text=True, timeout=600)
     finally:
-        pong.terminate()
-        try:
-            pong.wait(30)
-        except subprocess.TimeoutExpired:
-            pong.kill()
-            pong.wait()
+        stop(pong, "fastdds_ping pong")
     lines = [ln for ln in res.stdout.splitlines() if ln.startswith("{")]
     if not lines:
         return f"fastdds_ping ping said (exit {res.returncode}): {res.stdout[-300:]!r} {res.stderr[-500:]!r}"
@@ -159,7 +154,7 @@ def start_bridge(exe: Path, domain: int, env: dict, extra: list[str], tmp: str):
         bridge = subprocess.Popen([str(exe), "--domain", str(domain), *extra], env=env, stdout=subprocess.PIPE,
                                   stderr=err, text=True)
     if not bridge.stdout.readline().startswith("bridge ready"):
-        stop_bridge(bridge)
+        stop(bridge)
         raise SystemExit(f"bench: the bridge did not start: {log.read_text()[-2000:]}")
     return bridge, log
 
@@ -171,14 +166,14 @@ def take_control(cmd: Path, domain: int, env: dict) -> None:
         raise SystemExit(f"bench: control not granted: {granted.stdout} {granted.stderr}")
 
 
-def stop_bridge(bridge: subprocess.Popen) -> None:
-    bridge.terminate()
+def stop(proc: subprocess.Popen, name: str = "the bridge") -> None:
+    proc.terminate()
     try:
-        bridge.wait(30)
+        proc.wait(30)
     except subprocess.TimeoutExpired:  # (said, and not left running to skew the next run)
-        print("bench: the bridge did not stop within 30 s of SIGTERM; killed", flush=True)
-        bridge.kill()
-        bridge.wait()
+        print(f"bench: {name} did not stop within 30 s of SIGTERM; killed", flush=True)
+        proc.kill()
+        proc.wait()
 
 
 def door_said(log: Path) -> str:
@@ -292,7 +287,7 @@ def main() -> int:
                   + ", ".join(f"{(i + 1) * step}: {k / 1024:.1f}" for i, k in enumerate(figures)) + " MiB "
                   f"({(figures[-1] - figures[0]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
         finally:
-            stop_bridge(bridge)
+            stop(bridge)
         if has_journal:  # the same path with the restart journal on: what a default bridge costs
             bridge, _ = start_bridge(bridge_exe, args.domain, env, ["--journal", str(Path(tmp) / "journal")], tmp)
             try:
@@ -303,7 +298,7 @@ def main() -> int:
                       f"p50 {lat['p50_us']:.0f} us, p99 {lat['p99_us']:.0f} us, max {lat['max_us']:.0f} us; "
                       f"{lat['per_s']:.0f} commands/s one at a time", flush=True)
             finally:
-                stop_bridge(bridge)
+                stop(bridge)
     print("load average at the end: " + " ".join(f"{x:.2f}" for x in os.getloadavg()), flush=True)
     return 1 if lost else 0
 
