@@ -1,3 +1,3 @@
-from rapidgen.cli import main
+from rapidgen.entry import main
 
 raise SystemExit(main())

@@ -362,6 +362,9 @@ _NO_CYCLIC_GC = frozenset({"ir", "generate", "check"})
 
 
 def _hard_exit(code: int) -> None:
+    from rapidgen import codecache
+
+    codecache.save()
     try:
         sys.stdout.flush()
         sys.stderr.flush()

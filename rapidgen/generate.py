@@ -210,7 +210,7 @@ def _share(count: int, work, alternate: bool = False) -> list:
         except BaseException:  # noqa: BLE001 (the parent reports a child that sent nothing)
             code = 70
         finally:
-            os._exit(code)
+            _child_exit(code)
     os.close(write)
     results: dict[int, object] = {}
     try:
@@ -240,6 +240,15 @@ def _share(count: int, work, alternate: bool = False) -> list:
             raise value
         results[i] = value
     return [results[i] for i in range(count)]
+
+
+def _child_exit(code: int) -> None:
+    """End a forked worker: what it compiled of the back ends' classes is saved too."""
+    try:
+        from rapidgen import codecache
+        codecache.save()
+    finally:
+        os._exit(code)
 
 
 def _portable(exc: Exception) -> Exception:
@@ -398,7 +407,7 @@ def _generate_in_two(renderer: "_Renderer", langs: list[str], out_dir: str, sink
         except BaseException:  # noqa: BLE001 (the parent reports a child that sent nothing)
             code = 70
         finally:
-            os._exit(code)
+            _child_exit(code)
     os.close(up_w)
     os.close(down_r)
     up = os.fdopen(up_r, "rb")
