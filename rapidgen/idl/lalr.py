@@ -1,98 +1,97 @@
-"""A lean LALR(1) driver over the parse table lark builds from grammar.lark.
+"""A lean LALR(1) driver over the IDL grammar's tables, with no dependency on lark.
 
-Lark compiles the grammar, builds the LALR tables and wraps the syntax-tree callbacks;
-this module only runs the shift/reduce loop over those same tables, with the actions
-flattened once into plain dicts (lark's generic loop hashes rule objects and checks
-its state on every step, which was most of the parse time). On any input the table
-rejects, parsing is handed to lark's own parser, which raises its full exception (with
-the expected tokens and an interactive parser) for the error translation in parse.py:
-error reporting is lark's, only the happy path is ours. The grammar's transformer has
-no terminal callbacks (methods named after terminals): this loop would not call them.
+lark compiles the grammar and builds the LALR tables (rapidgen.idl.grammar, shipped
+precomputed); this module only runs the shift/reduce loop over them and shapes each
+rule's children as lark's tree builder would (punctuation dropped, `_rule`s inlined,
+`?rule`s with one child collapsed) before calling the syntax-tree builder's method of
+that rule. On any input the tables reject, the parse is handed to lark's own parser,
+which raises its full exception (the expected tokens, an interactive parser) for the
+error translation in parse.py: error reporting is lark's, only the happy path is ours.
 """
 from __future__ import annotations
 
 from itertools import chain
-from types import SimpleNamespace
 from typing import Any, Callable
 
-from lark import Lark, Token, Transformer, Tree
-from lark.parse_tree_builder import ParseTreeBuilder
-from lark.parsers.lalr_analysis import Shift
+from rapidgen.idl.lexer import IdlLexer, LexError, LexSpec, Token
 
-from rapidgen.idl.lexer import IdlLexer
-
-
-_END = (Token("$END", ""),)  # end of input, fed through the same loop as the tokens
+_END = Token("")  # end of input, fed through the same loop as the tokens
+_END.type = "$END"
 
 
-class _Rejected(Exception):
-    """The table has no action: let lark's parser produce the real error."""
+class Rejected(Exception):
+    """The tables have no action for the input: lark's parser says why."""
+
+
+class Node:
+    """What a rule without a builder method makes (as lark's Tree): its name and children."""
+
+    __slots__ = ("data", "children")
+
+    def __init__(self, data: str, children: list) -> None:
+        self.data, self.children = data, children
+
+    def __repr__(self) -> str:
+        return f"Node({self.data!r}, {self.children!r})"
+
+
+def _shaped(method: Callable[[list], Any], keep: tuple | None, expand1: bool) -> Callable[[list], Any]:
+    """`method` called with the children lark's tree builder would give it."""
+    if expand1:
+        inner = method
+
+        def method(children: list) -> Any:
+            return children[0] if len(children) == 1 else inner(children)
+    if keep is None:
+        return method
+    inner2 = method
+
+    def filtered(children: list) -> Any:
+        out: list = []
+        for i, expand in keep:
+            if expand:  # an inlined `_rule`: its children take its place
+                if out:
+                    out += children[i].children
+                else:
+                    out = children[i].children
+            else:
+                out.append(children[i])
+        return inner2(out)
+    return filtered
 
 
 class LeanLALR:
-    """Parses with the tables of `parser` (built without a transformer); the syntax-tree
-    builder is an argument of each parse, so one LeanLALR serves any number of parses at
-    once and holds nothing of any input."""
+    """Parses with plain tables (rapidgen.idl.grammar.tables()); the syntax-tree builder is
+    an argument of each parse, so one LeanLALR serves any number of parses at once and holds
+    nothing of any input."""
 
-    def __init__(self, parser: Lark) -> None:
-        inner = parser.parser.parser.parser  # ParsingFrontend -> LALR_Parser -> _Parser
-        table = inner.parse_table
-        self.fallback: Callable[[], Lark] = lambda: parser
-        self.lexer = IdlLexer(parser.lexer_conf)
-        self.start = table.start_states["start"]
-        self.end = table.end_states["start"]
-        # rule number -> rule; per parse, the builder's callbacks are listed in this order
-        self.rules = list(parser.rules)
-        number = {rule: i for i, rule in enumerate(self.rules)}
-        # state -> symbol -> next state (int: shift / goto) or (size, rule name, rule number) to reduce
-        # (Any: an int or a triple, told apart by class in the hot loop, where isinstance costs)
-        self.rows: dict[int, dict[str, Any]] = {
-            state: {sym: arg if action is Shift else (len(arg.expansion), arg.origin.name, number[arg])
-                    for sym, (action, arg) in row.items()}
-            for state, row in table.states.items()
-        }
-        self.terminals, self.ignore = list(parser.lexer_conf.terminals), list(parser.lexer_conf.ignore)
-        self.builder = parser._parse_tree_builder
+    def __init__(self, tables: dict, fallback: Callable[[], Any]) -> None:
+        self.rows: dict[int, dict[str, Any]] = tables["rows"]
+        self.start: int = tables["start"]
+        self.end: int = tables["end"]
+        self.rules: tuple = tables["rules"]
+        self.lexer = IdlLexer(LexSpec(*tables["lexer"]))
+        self.fallback = fallback  # -> lark's parser of the grammar, built only for an input rejected
 
-    @property
-    def parser(self) -> Lark:
-        """lark's own parser of the grammar (built on first use for one made by from_state)."""
-        return self.fallback()
+    def parse(self, text: str, builder: object):
+        """The value of the start rule, `builder`'s methods applied as rules reduce (a rule
+        without a method makes a Node).
 
-    def state(self) -> tuple:
-        """What from_state() needs, all of it picklable: the flattened table, the rules and
-        the terminals (lark's own objects), without the Lark instance."""
-        return self.rows, self.start, self.end, self.rules, self.terminals, self.ignore
-
-    @classmethod
-    def from_state(cls, state: tuple, fallback: Callable[[], Lark]) -> "LeanLALR":
-        """A LeanLALR from state() of one built from the same grammar by the same lark,
-        without building a Lark instance: `fallback()` makes one only for an input the
-        table rejects. The tree builder is lark's, built as Lark builds it for this
-        parser (a LALR parser, Tree, no positions propagated, no placeholders)."""
-        self = cls.__new__(cls)
-        self.rows, self.start, self.end, self.rules, self.terminals, self.ignore = state
-        self.fallback = fallback
-        self.lexer = IdlLexer(SimpleNamespace(terminals=self.terminals, ignore=self.ignore))
-        self.builder = ParseTreeBuilder(self.rules, Tree, False, False, False)
-        return self
-
-    def parse(self, text: str, transformer: Transformer):
-        """The value of the start rule, `transformer`'s methods applied as rules reduce.
-
-        On input the table rejects, lark's parser (a tree builder, so no callback of
-        `transformer` runs twice) raises its UnexpectedInput with the full context.
+        On input the tables reject, lark's parser (a tree builder, so no method of `builder`
+        runs twice) raises its UnexpectedInput with the full context.
         """
-        # lark wraps each method (dropping punctuation tokens, inlining _rules) as it would
-        # for a parser built with this transformer; terminal callbacks are not supported
-        callbacks = self.builder.create_callback(transformer)
-        table = [callbacks[rule] for rule in self.rules]
+        callbacks = []
+        for name, keep, expand1 in self.rules:
+            method = getattr(builder, name, None)
+            if method is None:
+                method = (lambda name: lambda children: Node(name, children))(name)
+            callbacks.append(_shaped(method, keep, expand1))
         try:
-            return self._run(text, table)
-        except _Rejected:
+            return self._run(text, callbacks)
+        except (Rejected, LexError):
             pass
         self.fallback().parse(text)  # raises lark's UnexpectedToken / UnexpectedCharacters
-        raise AssertionError("lark accepted an input its own table rejected")
+        raise AssertionError("lark accepted an input its own tables rejected")
 
     def _run(self, text: str, callbacks: list):
         rows, end = self.rows, self.end
@@ -100,7 +99,7 @@ class LeanLALR:
         states = [state]
         values: list[object] = []
         push_state, push_value = states.append, values.append
-        for tok in chain(self.lexer.lex(text), _END):
+        for tok in chain(self.lexer.lex(text), (_END,)):
             kind = tok.type
             while True:
                 act = rows[state].get(kind)
@@ -110,7 +109,7 @@ class LeanLALR:
                     push_value(tok)
                     break
                 if act is None:
-                    raise _Rejected
+                    raise Rejected
                 size, origin, rule = act
                 if size:
                     args = values[-size:]
@@ -123,4 +122,4 @@ class LeanLALR:
                 push_state(state)
                 if state == end and kind == "$END":  # the start rule is complete
                     return values[-1]
-        raise _Rejected
+        raise Rejected

@@ -1,67 +1,79 @@
-"""A fast lexer for the IDL grammar, plugged into lark's LALR parser.
+"""A fast lexer for the IDL grammar, with no dependency on lark.
 
-Lark's contextual lexer tries each parser state's terminals in turn; for IDL one master
-regex (alternatives in a fixed order) plus a keyword table after each identifier match
-is about twice as fast. Keywords are reserved everywhere, as IDL 4.2 (7.2.4) says: a
+One master regex (alternatives in a fixed order) plus a keyword table after each
+identifier match: about twice as fast as lark's contextual lexer, which tries each parser
+state's terminals in turn. Keywords are reserved everywhere, as IDL 4.2 (7.2.4) says: a
 keyword used as a name is a syntax error with its own message (parse.py).
+
+The lexer's tables (`LexSpec`) are derived from the grammar's terminals once, when the
+parse tables are built (rapidgen.idl.grammar), and ship precomputed with them, so a parse
+imports no lark. lark's own parser, used only to explain a syntax error, runs this same
+lexer through an adapter (grammar.LarkLexer).
 """
 from __future__ import annotations
 
 import re
-from typing import Iterator
+from typing import Callable, Iterator, NamedTuple
 
-from lark.exceptions import UnexpectedCharacters
-from lark.lexer import Lexer, PatternStr, Token
 
-# Regex terminals tried before punctuation, in this order: comments before '/', wide
-# literals before identifiers (L'x'), fixed before float before integer literals.
-_ORDER = ("WS", "LINE_COMMENT", "BLOCK_COMMENT", "PRAGMA_KEYLIST", "ANNOTATION_KW", "WCHAR_LIT",
-          "WSTRING_LIT", "FIXED_LIT", "FLOAT_LIT", "INT_LIT", "CHAR_LIT", "STRING_LIT", "IDENT")
+class Token(str):
+    """A token: its text (the str), its terminal's name and where it lies, with the same
+    attribute names as lark's Token (the error translation reads either)."""
+
+    __slots__ = ("type", "value", "start_pos", "end_pos", "line", "column", "end_line", "end_column")
+
+    type: str
+    value: str
+    start_pos: int
+    end_pos: int
+    line: int
+    column: int
+    end_line: int
+    end_column: int
+
+    def __repr__(self) -> str:
+        return f"Token({self.type!r}, {self.value!r})"
+
+
+class LexError(Exception):
+    """No terminal matches at `pos` (1-based line and column)."""
+
+    def __init__(self, text: str, pos: int, line: int, column: int) -> None:
+        super().__init__(f"no token at line {line} column {column}")
+        self.text, self.pos, self.line, self.column = text, pos, line, column
+
+
+class LexSpec(NamedTuple):
+    master: str  # the alternatives, one named group per terminal
+    keywords: dict[str, str]  # word -> terminal name
+    ignore: tuple[str, ...]  # terminals dropped (white space, comments)
+    greater: str  # the terminal of '>' (one '>>' closes two template lists)
+
+
 # `sequence<sequence<long>>`: inside two open template lists '>>' closes both (as in C++11).
 _TEMPLATE_WORDS = frozenset({"sequence", "string", "wstring", "map", "fixed", "bitfield"})
-_WORD_ALTERNATION = re.compile(r"\(\?:([A-Za-z_][A-Za-z0-9_|]*)\)")
 
 
-class IdlLexer(Lexer):
-    def __init__(self, lexer_conf) -> None:
-        self.ignore = frozenset(lexer_conf.ignore)
-        self.keywords: dict[str, str] = {}
-        ordered: list[tuple[str, str]] = []
-        rest: list[tuple[int, str, str]] = []
-        by_name = {t.name: t for t in lexer_conf.terminals}
-        for term in lexer_conf.terminals:
-            pattern = term.pattern
-            if isinstance(pattern, PatternStr) and pattern.value.isidentifier():
-                self.keywords[pattern.value] = term.name
-                continue
-            words = _WORD_ALTERNATION.fullmatch(pattern.to_regexp())
-            if words and not isinstance(pattern, PatternStr):
-                for word in words.group(1).split("|"):
-                    self.keywords[word] = term.name
-                continue
-            if term.name not in _ORDER:
-                rest.append((pattern.max_width, term.name, pattern.to_regexp()))
-        for name in _ORDER:
-            if name in by_name:
-                ordered.append((name, by_name[name].pattern.to_regexp()))
-        # Punctuation: longest first, so '::' wins over ':' and '>>' over '>'.
-        ordered += [(name, regex) for _, name, regex in sorted(rest, key=lambda r: (-r[0], r[1]))]
-        self.master = re.compile("|".join(f"(?P<{name}>{regex})" for name, regex in ordered))
-        self.greater = next((t.name for t in lexer_conf.terminals
-                             if isinstance(t.pattern, PatternStr) and t.pattern.value == ">"), "MORETHAN")
+class IdlLexer:
+    def __init__(self, spec: LexSpec) -> None:
+        self.spec = spec
+        self.master = re.compile(spec.master)
+        self.keywords = spec.keywords
+        self.ignore = frozenset(spec.ignore)
+        self.greater = spec.greater
 
-    # lark's custom-lexer interface for a whole text: lark wraps a lexer without
-    # __future_interface__ and calls lex(text), not the (lexer_state, parser_state) of its base
-    def lex(self, text: str) -> Iterator[Token]:  # type: ignore[override]
+    def lex(self, text: str, token: type[Token] = Token) -> Iterator[Token]:
+        """The tokens of `text`, made as `token` (a str subclass with Token's slots);
+        LexError where nothing matches."""
         match = self.master.match
-        new_str = str.__new__
+        new_str: Callable[[type[Token], str], Token] = str.__new__
         ignore, keywords = self.ignore, self.keywords
         line, line_start, pos, n = 1, 0, 0, len(text)
         prev, templates = "", 0  # previous token's text; template '<' lists open
         while pos < n:
             m = match(text, pos)
             if m is None:
-                raise UnexpectedCharacters(text, pos, line, pos - line_start + 1)
+                raise LexError(text, pos, line, pos - line_start + 1)
             kind = m.lastgroup or ""  # every alternative is a named group
             end = m.end()
             if kind in ignore:
@@ -82,13 +94,17 @@ class IdlLexer(Lexer):
                     templates -= 1
                 elif value == ">>" and templates >= 2:
                     templates -= 2
-                    yield Token(self.greater, ">", pos, line, col, line, col + 1, pos + 1)
-                    yield Token(self.greater, ">", pos + 1, line, col + 1, line, col + 2, end)
+                    for at in (pos, pos + 1):
+                        tok = new_str(token, ">")
+                        tok.type, tok.value, tok.start_pos, tok.end_pos = self.greater, ">", at, at + 1
+                        tok.line = tok.end_line = line
+                        tok.column, tok.end_column = at - line_start + 1, at - line_start + 2
+                        yield tok
                     prev, pos = ">", end
                     continue
             prev = value
-            # Token(...) goes through two Python frames per token; fill its slots directly.
-            tok = new_str(Token, value)
+            # filling the slots directly: a constructor would cost Python frames per token
+            tok = new_str(token, value)
             tok.type, tok.value, tok.start_pos, tok.end_pos = kind, value, pos, end
             tok.line = tok.end_line = line
             tok.column, tok.end_column = col, col + end - pos

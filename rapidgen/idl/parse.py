@@ -1,10 +1,11 @@
 """Parse preprocessed IDL text into the syntax tree (rapidgen.idl.ast).
 
-The lark LALR parser is built once per process (and cached on disk by lark); everything
-a parse needs to know of its input (the locator, //@key comments, the sink) lives in a
+A lean LALR driver runs over the grammar's tables (shipped precomputed, see
+rapidgen.idl.grammar: a parse imports no lark); everything a parse needs to know of its input (the locator, //@key comments, the sink) lives in a
 syntax-tree builder made for that call, so parses are re-entrant and nothing keeps an
-input alive once its parse returns. Lark's exceptions never reach the user: they are
-translated into diagnostics with the original file:line:col and a hint.
+input alive once its parse returns. An input the tables reject is parsed again by lark's
+own parser for its detailed exception, which never reaches the user: it is translated
+into diagnostics with the original file:line:col and a hint.
 """
 from __future__ import annotations
 
@@ -14,17 +15,16 @@ import functools
 import os
 import re
 from decimal import Decimal, InvalidOperation
-from typing import Callable
-
-import lark
-from lark import Lark, Token, Transformer
-from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
+from typing import TYPE_CHECKING, Callable
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
-from rapidgen.idl import ast
+from rapidgen.idl import ast, grammar
 from rapidgen.idl.lalr import LeanLALR
-from rapidgen.idl.lexer import IdlLexer
+from rapidgen.idl.lexer import Token
 from rapidgen.idl.preprocess import PreprocessResult
+
+if TYPE_CHECKING:  # lark is imported only to explain a syntax error (rapidgen.idl.grammar)
+    from lark.exceptions import UnexpectedInput
 
 
 # Longest integer literal accepted, leading zeros aside: uint64 needs 20 decimal digits
@@ -44,96 +44,23 @@ _TERMINAL_NAMES = {
 
 
 @functools.lru_cache(maxsize=1)
-def _grammar() -> str:
-    try:  # a plain file beside this module (importlib.resources costs imports)
-        with open(os.path.join(os.path.dirname(__file__), "grammar.lark"), encoding="utf-8") as f:
-            return f.read()
-    except OSError:  # a package not on the file system
-        from importlib import resources
-        return resources.files("rapidgen.idl").joinpath("grammar.lark").read_text(encoding="utf-8")
-
-
-@functools.lru_cache(maxsize=1)
-def _parser() -> Lark:
-    """The LALR tables and lark's own parser (a plain tree builder: it only runs on input
-    the lean driver rejected, to raise its detailed syntax error)."""
-    options = dict(parser="lalr", lexer=IdlLexer, maybe_placeholders=False)
-    try:
-        return Lark(_grammar(), cache=True, **options)
-    except OSError:  # unwritable temp dir: build without the on-disk cache
-        return Lark(_grammar(), **options)
-
-
-# The lean driver's tables are cached on disk beside lark's own cache (same folder, same
-# kind of file: a pickle of lark's objects), keyed by the grammar, lark's version and this
-# format: loading them skips building a Lark instance (~15 ms of every run), which is then
-# built only for an input the table rejects (its syntax error). A file another user owns,
-# or that others may write, is not read.
-_TABLES_FORMAT = 1  # bump when LeanLALR.state() or how LeanLALR.__init__ flattens the table changes
-
-
-def _tables_path() -> str:
-    import hashlib
-    import sys
-    import tempfile
-
-    key = "\0".join((str(_TABLES_FORMAT), lark.__version__, sys.version, _grammar()))
-    digest = hashlib.sha256(key.encode("utf-8", "surrogatepass")).hexdigest()[:32]
-    return os.path.join(tempfile.gettempdir(), f".rapidgen_idl_{os.getuid() if hasattr(os, 'getuid') else 0}_{digest}.pickle")
-
-
-def _load_tables(path: str) -> tuple | None:
-    import pickle
-    try:
-        with open(path, "rb") as f:
-            st = os.fstat(f.fileno())
-            if hasattr(os, "getuid") and (st.st_uid != os.getuid() or st.st_mode & 0o022):
-                return None
-            state = pickle.load(f)
-    except Exception:  # noqa: BLE001 (missing, unreadable or damaged: build the tables again)
-        return None
-    return state if isinstance(state, tuple) and len(state) == 6 else None
-
-
-def _save_tables(path: str, state: tuple) -> None:
-    import pickle
-    import tempfile
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".rapidgen_idl_", dir=os.path.dirname(path))
-        try:
-            with os.fdopen(fd, "wb") as f:
-                pickle.dump(state, f, protocol=pickle.HIGHEST_PROTOCOL)
-            os.replace(tmp, path)
-        except BaseException:
-            os.unlink(tmp)
-            raise
-    except OSError:  # an unwritable temp dir: no cache, as lark
-        pass
-
-
-@functools.lru_cache(maxsize=1)
 def _lean() -> LeanLALR:
-    path = _tables_path()
-    state = _load_tables(path)
-    if state is not None:
-        try:
-            return LeanLALR.from_state(state, _parser)
-        except Exception:  # noqa: BLE001 (a file of another shape: build the tables again)
-            pass
-    lean = LeanLALR(_parser())
-    _save_tables(path, lean.state())
-    return lean
+    """The driver over the grammar's tables (packaged: no lark imported); lark's parser is
+    built only to explain an input they reject."""
+    return LeanLALR(grammar.tables(), grammar.lark_parser)
 
 
 @functools.lru_cache(maxsize=1)
 def _terminal_text() -> dict[str, str]:
     """Terminal name -> how to show it ('struct', ';', an identifier)."""
+    from lark.lexer import PatternStr
+
     out: dict[str, str] = dict(_TERMINAL_NAMES)
-    for term in _parser().terminals:
+    for term in grammar.lark_parser().terminals:
         if term.name in out:
             continue
         pat = term.pattern
-        if isinstance(pat, lark.lexer.PatternStr):
+        if isinstance(pat, PatternStr):
             out[term.name] = f"'{pat.value}'"
         else:
             out[term.name] = term.name.lower()
@@ -142,8 +69,10 @@ def _terminal_text() -> dict[str, str]:
 
 @functools.lru_cache(maxsize=1)
 def _keywords() -> frozenset[str]:
-    return frozenset(t.pattern.value for t in _parser().terminals
-                     if isinstance(t.pattern, lark.lexer.PatternStr) and t.pattern.value.isidentifier())
+    from lark.lexer import PatternStr
+
+    return frozenset(t.pattern.value for t in grammar.lark_parser().terminals
+                     if isinstance(t.pattern, PatternStr) and t.pattern.value.isidentifier())
 
 
 class _Locator:
@@ -219,7 +148,7 @@ def _unescape(body: str) -> str:
     return _ESCAPE.sub(_unescape_one, body) if "\\" in body else body
 
 
-class _ToAst(Transformer):
+class _ToAst:
     """Builds the syntax tree while the LALR parser reduces (no intermediate lark tree).
 
     Lark gives inline transformers no position metadata, so locations come from tokens:
@@ -228,7 +157,6 @@ class _ToAst(Transformer):
     """
 
     def __init__(self, loc: _Locator, key_comments: dict[tuple[str, int], int], sink: DiagnosticSink) -> None:
-        super().__init__()
         self.loc = loc
         self.key_comments = key_comments
         self.sink = sink
@@ -612,12 +540,14 @@ def _viable(exc: UnexpectedInput, fallback) -> set[str]:
         candidates = [t for t in conf.states[state.position] if t.isupper()]
     except Exception:  # no parser state to try (other lark versions): keep lark's answer
         return fallback
+    from lark import Token as LarkToken
+
     out: set[str] = set()
     for term in candidates:
         probe = state.copy(deepcopy_values=False)
         probe.parse_conf = conf
         try:
-            probe.feed_token(Token(term, ""), is_end=term == "$END")
+            probe.feed_token(LarkToken(term, ""), is_end=term == "$END")
         except Exception:  # UnexpectedToken: not viable here
             continue
         out.add(term)
@@ -638,6 +568,8 @@ def _prev_token_end(lines: list[str], line: int, col: int) -> tuple[int, int] | 
 
 
 def _syntax_error(exc: UnexpectedInput, text: str, locator: _Locator, sink: DiagnosticSink) -> None:
+    from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+
     lines = text.split("\n")
     if isinstance(exc, UnexpectedCharacters):
         at = exc.pos_in_stream or 0  # lark always sets it on UnexpectedCharacters
@@ -722,11 +654,14 @@ def parse(pre: PreprocessResult, sink: DiagnosticSink) -> ast.Specification | No
     builder = _ToAst(locator, pre.key_comments, sink)
     try:
         definitions = lean.parse(pre.text, builder)
-    except UnexpectedInput as exc:
-        _syntax_error(exc, pre.text, locator, sink)
-        return None
     except RecursionError:
         sink.error("RG0201", "input is nested too deeply",
                    SourceLoc(pre.files[0] if pre.files else "<input>", 1, 1))
+        return None
+    except Exception as exc:
+        from lark.exceptions import UnexpectedInput
+        if not isinstance(exc, UnexpectedInput):
+            raise
+        _syntax_error(exc, pre.text, locator, sink)
         return None
     return ast.Specification(tuple(d for d in definitions if d is not None), tuple(pre.files))

@@ -98,11 +98,11 @@ def test_a_finished_parse_leaves_nothing_of_its_input_alive(tmp_path):
     gc.collect()
     assert [r() for r in refs] == [None, None]
     # and the cached parser objects hold no builder of a parse
-    held = gc.get_referents(parse_mod._lean()) + gc.get_referents(parse_mod._lean().parser)
+    held = gc.get_referents(parse_mod._lean()) + gc.get_referents(parse_mod._lean().rules)
     assert not any(isinstance(o, parse_mod._ToAst) for o in held)
 
 
 def test_the_builder_has_no_terminal_callbacks():
     """The lean driver calls rule callbacks only; a method named after a terminal would be skipped."""
-    terminals = {t.name for t in parse_mod._parser().terminals}
+    terminals = {t.name for t in parse_mod.grammar.lark_parser().terminals}
     assert terminals and not terminals & set(dir(parse_mod._ToAst))
