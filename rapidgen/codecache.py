@@ -83,6 +83,8 @@ class CodeCache:
                 code = self.code[source] = compile(source, "<string>", "exec", dont_inherit=True)
                 self.compiled += 1
             source = code
+        elif isinstance(source, (bytes, bytearray)):  # compiled as exec would: no flags of this module
+            source = compile(source, "<string>", "exec", dont_inherit=True)
         return builtins.exec(source, globals, locals)
 
     def save(self) -> None:
@@ -121,8 +123,8 @@ def install() -> CodeCache | None:
 
     if _installed is not None:
         return _installed
-    create = getattr(dataclasses, "_create_fn", None)
-    if create is None or "exec" not in getattr(create, "__code__", _CODE).co_names or "exec" in vars(dataclasses):
+    code = getattr(getattr(dataclasses, "_create_fn", None), "__code__", None)
+    if not isinstance(code, _CODE) or "exec" not in code.co_names or "exec" in vars(dataclasses):
         return None
     folder = _folder()
     tag = sys.implementation.cache_tag or "python"

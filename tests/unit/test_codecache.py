@@ -537,12 +537,8 @@ def test_cache_folder_from_xdg_or_home(tmp_path, monkeypatch):
         assert codecache._folder() == str(tmp_path / "home" / ".cache" / "rapidgen")
 
 
-# -- found defects (xfail strict: these pass once the module is fixed; then drop the mark) ------
+# -- odd inputs: a _create_fn without code, a bytes source ----------------------------------
 
-@pytest.mark.xfail(strict=True, raises=TypeError, reason=(
-    "BUG in rapidgen/codecache.py install(): the fallback for a _create_fn without __code__ is "
-    "`getattr(create, '__code__', _CODE).co_names` where _CODE is the code *type*, so .co_names is a "
-    "member_descriptor and `'exec' in ...` raises TypeError instead of install() returning None"))
 def test_install_with_create_fn_without_code_returns_none(tmp_path):
     proc = subprocess.run([sys.executable, "-c", textwrap.dedent("""
         import dataclasses, functools
@@ -555,10 +551,6 @@ def test_install_with_create_fn_without_code_returns_none(tmp_path):
     assert proc.returncode == 0 and proc.stdout.strip() == "None False", proc.stderr
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "minor BUG in CodeCache.exec: a non-str source (bytes) is passed on to builtins.exec, which then "
-    "compiles it with the flags of codecache.py's own frame (`from __future__ import annotations`), "
-    "not as builtins.exec called by the caller would; dataclasses itself only passes str"))
 def test_exec_of_bytes_source_is_as_builtins_exec():
     ns: dict = {}
     CodeCache(None).exec(b"def f(a: int): pass", ns)
