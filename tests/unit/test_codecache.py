@@ -1,7 +1,8 @@
 """rapidgen.codecache: the code `dataclasses` compiles, kept per user between runs.
 
 A CodeCache serving as dataclasses' `exec` makes the same classes as plain dataclasses;
-a cache loaded from its saved file compiles nothing for the same class; save() merges,
+a cache loaded from its saved files compiles nothing for the same class; save() writes
+each module's file with the classes this process made of it (nothing stale stays), and
 keeps off under dont_write_bytecode; files of another format/Python/owner or writable by
 others are not read; the `rapidgen` program itself writes the cache and its output is
 the same with it as without.
@@ -20,6 +21,7 @@ import stat
 import subprocess
 import sys
 import textwrap
+import types
 from pathlib import Path
 
 import pytest
@@ -146,12 +148,21 @@ def writable(monkeypatch):
     monkeypatch.setattr(sys, "dont_write_bytecode", False)
 
 
+MODULE = make_record.__module__  # the module the test classes are made in: their file's name
+
+
 @pytest.fixture
-def cache_path(tmp_path) -> str:
-    folder = tmp_path / "cache" / "rapidgen"
+def cache_dir(tmp_path) -> str:
+    folder = tmp_path / "cache" / "rapidgen" / "dataclass-code.test"
     folder.mkdir(parents=True)
     folder.chmod(0o700)
-    return str(folder / "dataclass-code.test.marshal")
+    return str(folder)
+
+
+def module_file(folder: str) -> str:
+    path = CodeCache(folder).path(MODULE)
+    assert path is not None
+    return path
 
 
 def write_raw(path: str, data, mode: int = 0o600) -> None:
@@ -170,16 +181,22 @@ def some_entries() -> dict:
     return dict(c.code)
 
 
+def saved(path: str) -> dict:
+    fmt, version, module, code = marshal.loads(Path(path).read_bytes())
+    assert (fmt, version, module) == (codecache._FORMAT, sys.version, MODULE)
+    return code
+
+
 # -- 1. the classes made through the cache -------------------------------------------------------
 
-def test_cached_class_behaves_as_plain_and_second_making_compiles_nothing(monkeypatch, writable, cache_path):
+def test_cached_class_behaves_as_plain_and_second_making_compiles_nothing(monkeypatch, writable, cache_dir):
     plain = make_record()
     assert not served_by(CodeCache(None), plain.__init__)
     expected = record_behaviour(plain)
 
-    first = CodeCache(cache_path)
-    assert first.code == {} and first.compiled == 0  # no file yet
+    first = CodeCache(cache_dir)
     cls = made_with(monkeypatch, first, make_record)
+    assert first.read == {MODULE: frozenset()}  # no file yet
     # __init__, __repr__, __eq__, __hash__, __setattr__, __delattr__: each text compiled here
     assert first.compiled >= 6 and len(first.code) == first.compiled
     assert any("def __init__" in t for t in first.code) and any("FrozenInstanceError" in t for t in first.code)
@@ -189,28 +206,30 @@ def test_cached_class_behaves_as_plain_and_second_making_compiles_nothing(monkey
     assert record_behaviour(cls) == expected
 
     first.save()
-    assert first.compiled == 0 and os.path.exists(cache_path)
-    assert stat.S_IMODE(os.stat(cache_path).st_mode) == 0o600
+    path = module_file(cache_dir)
+    assert saved(path) == first.code
+    assert stat.S_IMODE(os.stat(path).st_mode) == 0o600
 
-    second = CodeCache(cache_path)
-    assert set(second.code) == set(first.code)
+    second = CodeCache(cache_dir)
     again = made_with(monkeypatch, second, make_record)
-    assert second.compiled == 0
+    assert second.compiled == 0 and set(second.code) == set(first.code)
     for name in ("__init__", "__repr__", "__eq__", "__hash__", "__setattr__", "__delattr__"):
         assert served_by(second, getattr(again, name)), name
     assert record_behaviour(again) == expected
-    # nothing compiled: nothing to save, the file is left as it was
-    before = os.stat(cache_path)
+    # the same classes from the same texts: nothing to save, the file is left as it was
+    before = os.stat(path)
     second.save()
-    after = os.stat(cache_path)
+    after = os.stat(path)
     assert (after.st_ino, after.st_mtime_ns) == (before.st_ino, before.st_mtime_ns)
 
 
-def test_loaded_code_equals_what_exec_would_compile(cache_path, writable, monkeypatch):
-    c = CodeCache(cache_path)
+def test_loaded_code_equals_what_exec_would_compile(cache_dir, writable, monkeypatch):
+    c = CodeCache(cache_dir)
     made_with(monkeypatch, c, make_record)
     c.save()
-    for text, code in CodeCache(cache_path).code.items():
+    loaded = CodeCache(cache_dir)._load(MODULE)
+    assert loaded
+    for text, code in loaded.items():
         assert code == compile(text, "<string>", "exec", dont_inherit=True)
         assert code.co_filename == "<string>"
 
@@ -237,81 +256,75 @@ def test_exec_of_a_text_and_of_the_caller_namespaces():
 
 # -- 2. save() ----------------------------------------------------------------------------------
 
-def test_save_writes_nothing_when_nothing_was_compiled(cache_path, writable):
-    c = CodeCache(cache_path)
-    c.save()
-    assert not os.path.exists(cache_path)
-    assert os.listdir(os.path.dirname(cache_path)) == []
+def test_save_writes_nothing_when_no_class_was_made(cache_dir, writable):
+    CodeCache(cache_dir).save()
+    assert os.listdir(cache_dir) == []
 
 
 def test_save_writes_when_compiled_and_creates_the_folder(tmp_path, writable, monkeypatch):
-    path = tmp_path / "new" / "rapidgen" / "dataclass-code.test.marshal"
-    c = CodeCache(str(path))
+    folder = tmp_path / "new" / "rapidgen" / "dataclass-code.test"
+    c = CodeCache(str(folder))
     made_with(monkeypatch, c, make_other)
     assert c.compiled > 0
     c.save()
-    fmt, version, code = marshal.loads(path.read_bytes())
-    assert (fmt, version) == (codecache._FORMAT, sys.version)
-    assert code == c.code
+    path = Path(c.path(MODULE))
+    assert saved(str(path)) == c.code
     assert stat.S_IMODE(path.stat().st_mode) == 0o600
-    assert stat.S_IMODE(path.parent.stat().st_mode) & 0o077 == 0
-    assert os.listdir(path.parent) == [path.name]  # no temporary file left
+    assert stat.S_IMODE(folder.stat().st_mode) & 0o077 == 0
+    assert os.listdir(folder) == [path.name]  # no temporary file left
 
 
-def test_save_merges_with_what_another_process_saved(cache_path, writable, monkeypatch):
-    a = CodeCache(cache_path)
-    b = CodeCache(cache_path)  # both started before either saved
-    cls_a = made_with(monkeypatch, a, make_record)
-    cls_b = made_with(monkeypatch, b, make_other)
-    assert a.compiled and b.compiled
-    assert set(a.code) - set(b.code) and set(b.code) - set(a.code)
+def test_a_module_file_holds_the_classes_this_process_made_of_it(cache_dir, writable, monkeypatch):
+    """A run that makes more classes of the module adds them; one that makes fewer (a class
+    edited or gone) leaves only its own: nothing stale stays in the file."""
+    a = CodeCache(cache_dir)
+    made_with(monkeypatch, a, make_record)
     a.save()
+    record_texts = set(a.code)
+    b = CodeCache(cache_dir)
+    cls_b = made_with(monkeypatch, b, make_other)
+    made_with(monkeypatch, b, make_record)
+    assert b.compiled == len(set(b.code) - record_texts) > 0  # Record's texts came from the file
     b.save()
-    c = CodeCache(cache_path)
-    assert set(a.code) | set(b.code) == set(c.code)
-    again_a = made_with(monkeypatch, c, make_record)
-    again_b = made_with(monkeypatch, c, make_other)
+    assert set(saved(module_file(cache_dir))) == set(b.code) > record_texts
+    c = CodeCache(cache_dir)
+    again = made_with(monkeypatch, c, make_other)
     assert c.compiled == 0
-    assert record_behaviour(again_a) == record_behaviour(cls_a)
-    assert again_b("x", 1.0) < again_b("y") and again_b("a", 2.0) > again_b("a", 1.0)
-    assert again_b("q") == again_b("q", 0.5) and again_b("q") != again_b("q", 1.5)
-    assert repr(again_b("q")) == repr(cls_b("q")).replace(cls_b.__qualname__, again_b.__qualname__)
-    assert repr(again_b("q")).endswith("Other(alpha='q', beta=0.5)")
+    c.save()
+    other_texts = set(saved(module_file(cache_dir)))
+    assert other_texts == set(b.code) - record_texts  # Record's gone with the run that made none
+    assert again("x", 1.0) < again("y") and again("q") == again("q", 0.5) and again("q") != again("q", 1.5)
+    assert repr(again("q")) == repr(cls_b("q"))
 
 
-def test_save_not_under_dont_write_bytecode(cache_path, monkeypatch):
+def test_modules_have_files_of_their_own(cache_dir, writable, monkeypatch):
+    c = CodeCache(cache_dir)
+    other = types.ModuleType("some.other_module")
+    monkeypatch.setitem(sys.modules, other.__name__, other)
+    ns = vars(other)
+    with hooked(monkeypatch, c):
+        exec("import dataclasses\n@dataclasses.dataclass\nclass Q:\n    a: int = 0\n", ns)
+        make_record()
+    c.save()
+    assert sorted(os.listdir(cache_dir)) == sorted([f"{MODULE}.marshal", "some.other_module.marshal"])
+    assert ns["Q"]() == ns["Q"](0)
+    for odd in ("../escape", "a/b", "", "x y", ".hidden"):
+        assert c.path(odd) is None  # not a module name: not cached, never a path outside the folder
+
+
+def test_save_not_under_dont_write_bytecode(cache_dir, monkeypatch):
     monkeypatch.setattr(sys, "dont_write_bytecode", True)
-    c = CodeCache(cache_path)
+    c = CodeCache(cache_dir)
     made_with(monkeypatch, c, make_record)
     assert c.compiled > 0
     c.save()
-    assert not os.path.exists(cache_path)
-    assert os.listdir(os.path.dirname(cache_path)) == []
-
-
-def test_save_past_the_entry_limit_keeps_this_runs_only(cache_path, writable, monkeypatch):
-    a = CodeCache(cache_path)
-    made_with(monkeypatch, a, make_record)
-    a.save()
-    b = CodeCache(cache_path)
-    made_with(monkeypatch, b, make_other)
-    monkeypatch.setattr(codecache, "_MAX_ENTRIES", len(b.code) - 1)
-    b.save()
-    assert set(CodeCache(cache_path).code) == set(b.code)  # b loaded a's, so b.code holds both
-    c = CodeCache(str(Path(cache_path).with_name("other.marshal")))
-    made_with(monkeypatch, c, make_third)
-    d = CodeCache(c.path)
-    made_with(monkeypatch, d, make_other)
-    c.save()
-    monkeypatch.setattr(codecache, "_MAX_ENTRIES", len(c.code) + len(d.code) - 1)
-    d.save()
-    assert set(CodeCache(c.path).code) == set(d.code)  # the merge was too large: d's own only
+    assert os.listdir(cache_dir) == []
 
 
 def test_save_errors_are_ignored(tmp_path, writable, monkeypatch):
     blocker = tmp_path / "file"
     blocker.write_text("not a folder")
-    c = CodeCache(str(blocker / "rapidgen" / "x.marshal"))
+    c = CodeCache(str(blocker / "rapidgen" / "dc"))
     made_with(monkeypatch, c, make_record)
     c.save()  # the folder cannot be made: no error, nothing written
     assert blocker.read_text() == "not a folder"
@@ -322,84 +335,85 @@ def test_save_errors_are_ignored(tmp_path, writable, monkeypatch):
 
 # -- 3. files that are not read ----------------------------------------------------------------
 
-def test_a_good_file_is_read(cache_path):
+def test_a_good_file_is_read(cache_dir):
     entries = some_entries()
-    write_raw(cache_path, (codecache._FORMAT, sys.version, entries))
-    assert set(CodeCache(cache_path).code) == set(entries)
+    write_raw(module_file(cache_dir), (codecache._FORMAT, sys.version, MODULE, entries))
+    assert CodeCache(cache_dir)._load(MODULE) == entries
 
 
-@pytest.mark.parametrize("kind", ["damaged", "truncated", "empty", "format", "version", "not-a-tuple",
+@pytest.mark.parametrize("kind", ["damaged", "truncated", "empty", "format", "version", "module", "not-a-tuple",
                                   "long-tuple", "not-a-dict"])
-def test_refused_contents_load_as_empty(cache_path, monkeypatch, kind):
+def test_refused_contents_load_as_empty(cache_dir, monkeypatch, kind):
     entries = some_entries()
-    good = marshal.dumps((codecache._FORMAT, sys.version, entries))
+    good = marshal.dumps((codecache._FORMAT, sys.version, MODULE, entries))
     data = {
         "damaged": b"\x00\xffnot marshal at all" + good[40:],
         "truncated": good[: len(good) // 2],
         "empty": b"",
-        "format": ("rapidgen dataclass code 0", sys.version, entries),
-        "version": (codecache._FORMAT, sys.version + " (another build)", entries),
-        "not-a-tuple": [codecache._FORMAT, sys.version, entries],
-        "long-tuple": (codecache._FORMAT, sys.version, entries, None),
-        "not-a-dict": (codecache._FORMAT, sys.version, list(entries.items())),
+        "format": ("rapidgen dataclass code 1", sys.version, MODULE, entries),
+        "version": (codecache._FORMAT, sys.version + " (another build)", MODULE, entries),
+        "module": (codecache._FORMAT, sys.version, MODULE + "_other", entries),
+        "not-a-tuple": [codecache._FORMAT, sys.version, MODULE, entries],
+        "long-tuple": (codecache._FORMAT, sys.version, MODULE, entries, None),
+        "not-a-dict": (codecache._FORMAT, sys.version, MODULE, list(entries.items())),
     }[kind]
-    write_raw(cache_path, data)
-    c = CodeCache(cache_path)
-    assert c.code == {}
+    write_raw(module_file(cache_dir), data)
+    c = CodeCache(cache_dir)
+    assert c._load(MODULE) == {}
     cls = made_with(monkeypatch, c, make_record)
     assert c.compiled > 0
     assert record_behaviour(cls) == record_behaviour(make_record())
 
 
-def test_group_or_other_writable_file_is_not_read(cache_path, monkeypatch):
-    write_raw(cache_path, (codecache._FORMAT, sys.version, some_entries()))
+def test_group_or_other_writable_file_is_not_read(cache_dir, monkeypatch):
+    path = module_file(cache_dir)
+    write_raw(path, (codecache._FORMAT, sys.version, MODULE, some_entries()))
     for mode in (0o666, 0o620, 0o602):
-        os.chmod(cache_path, mode)
-        c = CodeCache(cache_path)
-        assert c.code == {}, oct(mode)
+        os.chmod(path, mode)
+        assert CodeCache(cache_dir)._load(MODULE) == {}, oct(mode)
+    c = CodeCache(cache_dir)
     cls = made_with(monkeypatch, c, make_record)
     assert c.compiled > 0 and record_behaviour(cls) == record_behaviour(make_record())
-    os.chmod(cache_path, 0o644)  # readable by others is fine
-    assert CodeCache(cache_path).code
+    os.chmod(path, 0o644)  # readable by others is fine
+    assert CodeCache(cache_dir)._load(MODULE)
 
 
-def test_file_in_group_or_other_writable_folder_is_not_read(cache_path, monkeypatch):
-    write_raw(cache_path, (codecache._FORMAT, sys.version, some_entries()))
-    folder = os.path.dirname(cache_path)
+def test_file_in_group_or_other_writable_folder_is_not_read(cache_dir, monkeypatch):
+    write_raw(module_file(cache_dir), (codecache._FORMAT, sys.version, MODULE, some_entries()))
     try:
         for mode in (0o777, 0o770, 0o703):
-            os.chmod(folder, mode)
-            c = CodeCache(cache_path)
-            assert c.code == {}, oct(mode)
+            os.chmod(cache_dir, mode)
+            assert CodeCache(cache_dir)._load(MODULE) == {}, oct(mode)
+        c = CodeCache(cache_dir)
         cls = made_with(monkeypatch, c, make_record)
         assert c.compiled > 0 and record_behaviour(cls) == record_behaviour(make_record())
     finally:
-        os.chmod(folder, 0o700)
-    assert CodeCache(cache_path).code
+        os.chmod(cache_dir, 0o700)
+    assert CodeCache(cache_dir)._load(MODULE)
 
 
 @pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() != 0, reason="chown to another user needs root")
-def test_file_or_folder_of_another_user_is_not_read(cache_path):
-    write_raw(cache_path, (codecache._FORMAT, sys.version, some_entries()))
-    assert CodeCache(cache_path).code
-    os.chown(cache_path, os.getuid() + 4321, -1)
-    assert CodeCache(cache_path).code == {}
-    os.chown(cache_path, os.getuid(), -1)
-    folder = os.path.dirname(cache_path)
-    os.chown(folder, os.getuid() + 4321, -1)
+def test_file_or_folder_of_another_user_is_not_read(cache_dir):
+    path = module_file(cache_dir)
+    write_raw(path, (codecache._FORMAT, sys.version, MODULE, some_entries()))
+    assert CodeCache(cache_dir)._load(MODULE)
+    os.chown(path, os.getuid() + 4321, -1)
+    assert CodeCache(cache_dir)._load(MODULE) == {}
+    os.chown(path, os.getuid(), -1)
+    os.chown(cache_dir, os.getuid() + 4321, -1)
     try:
-        assert CodeCache(cache_path).code == {}
+        assert CodeCache(cache_dir)._load(MODULE) == {}
     finally:
-        os.chown(folder, os.getuid(), -1)
+        os.chown(cache_dir, os.getuid(), -1)
 
 
-def test_entries_of_other_types_are_dropped(cache_path):
+def test_entries_of_other_types_are_dropped(cache_dir):
     entries = some_entries()
     text, code = next(iter(entries.items()))
     other_text = next(t for t in entries if t != text)
     data = {text: code, other_text: "not code", b"bytes key": code, 3: code, (text,): code, "x": 1.5}
-    write_raw(cache_path, (codecache._FORMAT, sys.version, data))
-    assert CodeCache(cache_path).code == {text: code}
+    write_raw(module_file(cache_dir), (codecache._FORMAT, sys.version, MODULE, data))
+    assert CodeCache(cache_dir)._load(MODULE) == {text: code}
 
 
 # -- 4. the rapidgen program, end to end ---------------------------------------------------------
@@ -435,8 +449,12 @@ def _tree(root: Path) -> dict[str, bytes]:
     return files
 
 
-def _cache_file(cache: Path) -> Path:
-    return cache / "rapidgen" / f"dataclass-code.{sys.implementation.cache_tag}.marshal"
+def _cache_folder(cache: Path) -> Path:
+    return cache / "rapidgen" / f"dataclass-code.{sys.implementation.cache_tag}"
+
+
+def _files(folder: Path) -> dict[str, tuple]:
+    return {p.name: (p.stat().st_ino, p.stat().st_mtime_ns, p.stat().st_size) for p in folder.iterdir()}
 
 
 def test_rapidgen_program_writes_and_uses_the_cache(tmp_path):
@@ -445,24 +463,25 @@ def test_rapidgen_program_writes_and_uses_the_cache(tmp_path):
     cache = tmp_path / "cache"
     env = _env(cache)
     _generate(idl, tmp_path / "out1", env)
-    path = _cache_file(cache)
-    assert path.is_file()
-    assert stat.S_IMODE(path.stat().st_mode) == 0o600
-    assert stat.S_IMODE(path.parent.stat().st_mode) & 0o077 == 0
-    fmt, version, code = marshal.loads(path.read_bytes())
-    assert (fmt, version) == (codecache._FORMAT, sys.version)
+    folder = _cache_folder(cache)
+    ir = folder / "rapidgen.model.ir.marshal"
+    assert ir.is_file()  # the front end's classes (the parent) ...
+    assert (folder / "rapidgen.backends.qos.view.marshal").is_file()  # ... and a forked worker's
+    assert stat.S_IMODE(ir.stat().st_mode) == 0o600
+    assert stat.S_IMODE(folder.stat().st_mode) & 0o077 == 0
+    fmt, version, module, code = marshal.loads(ir.read_bytes())
+    assert (fmt, version, module) == (codecache._FORMAT, sys.version, "rapidgen.model.ir")
     assert code and all(type(k) is str and type(v) is CODE_TYPE for k, v in code.items())
     assert any("__init__" in k for k in code)
-    assert [n for n in os.listdir(path.parent) if n != path.name] == []  # no temporary file left
+    assert not [n for n in os.listdir(folder) if not n.endswith(".marshal")]  # no temporary file left
     first = _tree(tmp_path / "out1")
     assert any(n.startswith("python/") for n in first) and any(n.startswith("cpp/") for n in first)
-    saved = path.stat()
+    files = _files(folder)
 
     _generate(idl, tmp_path / "out2", env)
     assert _tree(tmp_path / "out2") == first
-    # everything the second run needed was in the file: it compiled nothing, so wrote nothing
-    again = path.stat()
-    assert (again.st_ino, again.st_mtime_ns, again.st_size) == (saved.st_ino, saved.st_mtime_ns, saved.st_size)
+    # everything the second run needed was in the files: it compiled nothing, so wrote nothing
+    assert _files(folder) == files
 
     _generate(idl, tmp_path / "out3", _env(cache, RAPIDGEN_JOBS="1"))
     assert _tree(tmp_path / "out3") == first
@@ -471,7 +490,6 @@ def test_rapidgen_program_writes_and_uses_the_cache(tmp_path):
     fresh = tmp_path / "fresh-cache"
     _generate(idl, tmp_path / "out4", _env(fresh, PYTHONDONTWRITEBYTECODE="1"))
     assert _tree(tmp_path / "out4") == first
-    assert not _cache_file(fresh).exists()
     assert not (fresh / "rapidgen").exists()
 
 
@@ -520,12 +538,12 @@ def test_install_hooks_dataclasses_with_the_users_cache_file(tmp_path):
             a: int = 1
         assert K() == K(1) and repr(K(2)) == "K(a=2)"
         sys.dont_write_bytecode = False
-        print(c.path, c.compiled > 0)
+        print(c.folder, c.compiled > 0)
         codecache.save()
     """, cache)
-    path = _cache_file(cache)
-    assert out == f"{path} True"
-    assert path.is_file() and any("__init__" in t for t in marshal.loads(path.read_bytes())[2])
+    folder = _cache_folder(cache)
+    assert out == f"{folder} True"
+    assert any("__init__" in t for t in marshal.loads((folder / "__main__.marshal").read_bytes())[3])
 
 
 def test_cache_folder_from_xdg_or_home(tmp_path, monkeypatch):
