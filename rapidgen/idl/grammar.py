@@ -13,7 +13,7 @@ from __future__ import annotations
 import functools
 import os
 
-TABLES_FORMAT = 1  # bump when the shape of the tables changes (rapidgen.idl.larkgrammar.build_tables)
+TABLES_FORMAT = 2  # bump when the shape of the tables changes (rapidgen.idl.larkgrammar.build_tables)
 PACKAGED_MODULE = "packaged_tables.py"
 
 

@@ -13,10 +13,9 @@ from __future__ import annotations
 from itertools import chain
 from typing import Any, Callable
 
-from rapidgen.idl.lexer import IdlLexer, LexError, LexSpec, Token
+from rapidgen.idl.lexer import IdlLexer, LexError, LexSpec
 
-_END = Token("")  # end of input, fed through the same loop as the tokens
-_END.type = "$END"
+_END = ("$END", None)  # end of input, fed through the same loop as the tokens
 
 
 class Rejected(Exception):
@@ -99,8 +98,7 @@ class LeanLALR:
         states = [state]
         values: list[object] = []
         push_state, push_value = states.append, values.append
-        for tok in chain(self.lexer.lex(text), (_END,)):
-            kind = tok.type
+        for kind, tok in chain(self.lexer.lex(text), (_END,)):
             while True:
                 act = rows[state].get(kind)
                 if act.__class__ is int:

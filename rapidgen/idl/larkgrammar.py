@@ -29,8 +29,9 @@ _ORDER = ("WS", "LINE_COMMENT", "BLOCK_COMMENT", "PRAGMA_KEYLIST", "ANNOTATION_K
 _WORD_ALTERNATION = re.compile(r"\(\?:([A-Za-z_][A-Za-z0-9_|]*)\)")
 
 
-def lex_spec(terminals, ignore) -> LexSpec:
-    """The lexer's tables from lark's terminal definitions of the grammar."""
+def lex_spec(terminals, ignore, kept: set[str] | None = None) -> LexSpec:
+    """The lexer's tables from lark's terminal definitions of the grammar; `kept`: the
+    terminals some rule keeps (the others are `dropped`), None for all."""
     keywords: dict[str, str] = {}
     ordered: list[tuple[str, str]] = []
     rest: list[tuple[int, str, str]] = []
@@ -48,14 +49,21 @@ def lex_spec(terminals, ignore) -> LexSpec:
         if term.name not in _ORDER:
             rest.append((pattern.max_width, term.name, pattern.to_regexp()))
     for name in _ORDER:
-        if name in by_name:
+        if name in by_name and name not in ignore:
             ordered.append((name, by_name[name].pattern.to_regexp()))
     # Punctuation: longest first, so '::' wins over ':' and '>>' over '>'.
     ordered += [(name, regex) for _, name, regex in sorted(rest, key=lambda r: (-r[0], r[1]))]
     greater = next((t.name for t in terminals if isinstance(t.pattern, PatternStr) and t.pattern.value == ">"),
                    "MORETHAN")
-    return LexSpec("|".join(f"(?P<{name}>{regex})" for name, regex in ordered), dict(sorted(keywords.items())),
-                   tuple(sorted(ignore)), greater)
+    # What is ignored, in _ORDER's order (comments before '/'), skipped possessively: once
+    # skipped, never given back for a token to match instead (the '/' of a comment).
+    skip = "(?:" + "|".join(by_name[name].pattern.to_regexp() for name in _ORDER if name in ignore) + ")*+"
+    if set(ignore) - set(_ORDER):
+        raise RuntimeError(f"ignored terminals without a place in the lexer's order: {set(ignore) - set(_ORDER)}")
+    names = {t.name for t in terminals} | set(keywords.values())
+    dropped = () if kept is None else tuple(sorted(names - set(kept) - set(ignore)))
+    return LexSpec(skip + "(?:" + "|".join(f"(?P<{name}>{regex})" for name, regex in ordered) + ")", skip,
+                   dict(sorted(keywords.items())), greater, dropped)
 
 
 class LarkLexer(Lexer):
@@ -68,7 +76,8 @@ class LarkLexer(Lexer):
     # __future_interface__ and calls lex(text), not the (lexer_state, parser_state) of its base
     def lex(self, text: str):  # type: ignore[override]
         try:
-            yield from self.core.lex(text, Token)  # type: ignore[arg-type]  # lark's Token: the same slots
+            for _, tok in self.core.lex(text, Token, every=True):  # type: ignore[arg-type]  # the same slots
+                yield tok
         except LexError as exc:
             raise UnexpectedCharacters(text, exc.pos, exc.line, exc.column) from None
 
@@ -127,7 +136,12 @@ def build_tables() -> dict:
         name = rule.alias or rule.options.template_source or rule.origin.name
         recipes.append((str(name), keep, expand1))
     assert [r for r, _ in lark._parse_tree_builder.rule_builders] == rules
-    lexer = lex_spec(lark.lexer_conf.terminals, lark.lexer_conf.ignore)
+    kept = set()  # the terminals some rule hands its callback
+    for rule, (_, keep, _) in zip(rules, recipes):
+        for i in (range(len(rule.expansion)) if keep is None else (i for i, _ in keep)):
+            if rule.expansion[i].is_term:
+                kept.add(rule.expansion[i].name)
+    lexer = lex_spec(lark.lexer_conf.terminals, lark.lexer_conf.ignore, kept)
     return {"format": TABLES_FORMAT, "rows": rows, "start": new[start], "end": new[end],
             "rules": tuple(recipes), "lexer": tuple(lexer)}
 

@@ -44,10 +44,11 @@ class LexError(Exception):
 
 
 class LexSpec(NamedTuple):
-    master: str  # the alternatives, one named group per terminal
+    master: str  # what the text skips (white space, comments), then one named group per terminal
+    skip: str  # what the text skips, alone
     keywords: dict[str, str]  # word -> terminal name
-    ignore: tuple[str, ...]  # terminals dropped (white space, comments)
     greater: str  # the terminal of '>' (one '>>' closes two template lists)
+    dropped: tuple[str, ...]  # terminals no rule keeps (punctuation, most keywords): no Token made
 
 
 # `sequence<sequence<long>>`: inside two open template lists '>>' closes both (as in C++11).
@@ -58,35 +59,40 @@ class IdlLexer:
     def __init__(self, spec: LexSpec) -> None:
         self.spec = spec
         self.master = re.compile(spec.master)
+        self.skip = re.compile(spec.skip)
         self.keywords = spec.keywords
-        self.ignore = frozenset(spec.ignore)
         self.greater = spec.greater
+        self.dropped = frozenset(spec.dropped)
 
-    def lex(self, text: str, token: type[Token] = Token) -> Iterator[Token]:
-        """The tokens of `text`, made as `token` (a str subclass with Token's slots);
-        LexError where nothing matches."""
+    def lex(self, text: str, token: type[Token] = Token, every: bool = False) -> Iterator[tuple[str, Token | None]]:
+        """(terminal name, token) for each token of `text`, the token made as `token` (a
+        str subclass with Token's slots); None for a terminal no rule keeps, unless
+        `every`. LexError where nothing matches."""
         match = self.master.match
         new_str: Callable[[type[Token], str], Token] = str.__new__
-        ignore, keywords = self.ignore, self.keywords
+        keywords, dropped = self.keywords, frozenset() if every else self.dropped
         line, line_start, pos, n = 1, 0, 0, len(text)
         prev, templates = "", 0  # previous token's text; template '<' lists open
         while pos < n:
             m = match(text, pos)
-            if m is None:
-                raise LexError(text, pos, line, pos - line_start + 1)
+            if m is None:  # the end of the text, or a character no terminal matches
+                skipped = self.skip.match(text, pos)  # (it matches the empty string too)
+                at = skipped.end() if skipped else pos
+                if at < n:
+                    line += text.count("\n", pos, at)
+                    line_start = text.rfind("\n", 0, at) + 1
+                    raise LexError(text, at, line, at - line_start + 1)
+                return
             kind = m.lastgroup or ""  # every alternative is a named group
-            end = m.end()
-            if kind in ignore:
-                newlines = text.count("\n", pos, end)
+            start, end = m.span(kind)
+            if start != pos:  # white space or comments skipped first
+                newlines = text.count("\n", pos, start)
                 if newlines:
                     line += newlines
-                    line_start = text.rfind("\n", pos, end) + 1
-                pos = end
-                continue
-            value = m.group()
+                    line_start = text.rfind("\n", pos, start) + 1
+            value = m.group(kind)
             if kind == "IDENT":
                 kind = keywords.get(value, "IDENT")
-            col = pos - line_start + 1
             if value[0] in "<>":
                 if value == "<" and prev in _TEMPLATE_WORDS:
                     templates += 1
@@ -94,19 +100,26 @@ class IdlLexer:
                     templates -= 1
                 elif value == ">>" and templates >= 2:
                     templates -= 2
-                    for at in (pos, pos + 1):
+                    for at in (start, start + 1):
+                        if self.greater in dropped:
+                            yield self.greater, None
+                            continue
                         tok = new_str(token, ">")
                         tok.type, tok.value, tok.start_pos, tok.end_pos = self.greater, ">", at, at + 1
                         tok.line = tok.end_line = line
                         tok.column, tok.end_column = at - line_start + 1, at - line_start + 2
-                        yield tok
+                        yield self.greater, tok
                     prev, pos = ">", end
                     continue
             prev = value
+            pos = end
+            if kind in dropped:
+                yield kind, None
+                continue
             # filling the slots directly: a constructor would cost Python frames per token
             tok = new_str(token, value)
-            tok.type, tok.value, tok.start_pos, tok.end_pos = kind, value, pos, end
+            tok.type, tok.value, tok.start_pos, tok.end_pos = kind, value, start, end
             tok.line = tok.end_line = line
-            tok.column, tok.end_column = col, col + end - pos
-            yield tok
-            pos = end
+            col = start - line_start + 1
+            tok.column, tok.end_column = col, col + end - start
+            yield kind, tok

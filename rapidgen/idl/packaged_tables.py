@@ -2,7 +2,7 @@
 # The IDL grammar's LALR tables (rapidgen/idl/grammar.lark, compiled by lark), plain; do not edit.
 # python -m rapidgen.idl.larkgrammar --write refreshes them; stale ones are ignored (built from the grammar).
 GRAMMAR = '// OMG IDL 4.2 grammar for the building blocks DDS uses, plus the RTI "valuetype"\n// dialect of the original RAPID files. LALR(1); sections follow the spec\'s clauses.\n// Comments are ignored here; the preprocessor records RTI\'s trailing `//@key` comments.\n// `#pragma keylist` lines reach the grammar verbatim from the preprocessor.\n\n// ---- 7.4.1 Building Block Core Data Types -------------------------------------\nstart: definition*\n\n?definition: annotated_definition\n           | pragma_keylist\n           | annotation_dcl ";"?\n\nannotated_definition: annotation_appl* bare_definition ";"\n\n?bare_definition: module_dcl\n                | const_dcl\n                | struct_dcl\n                | struct_forward_dcl\n                | union_dcl\n                | union_forward_dcl\n                | enum_dcl\n                | bitset_dcl\n                | bitmask_dcl\n                | typedef_dcl\n                | native_dcl\n                | value_dcl\n                | value_forward_dcl\n\nmodule_dcl: "module" IDENT "{" definition* "}"\n\nscoped_name: IDENT                       -> rel_name\n           | "::" IDENT                  -> abs_name\n           | scoped_name "::" IDENT      -> sub_name\n\nconst_dcl: "const" type_spec IDENT "=" const_expr\n\n// Constant expressions (7.4.1.4.2). The grammar is flat, `operand (op operand)*`, and the\n// syntax-tree builder applies IDL\'s precedence (| ^ & shift additive multiplicative):\n// a chain of one nonterminal per precedence level costs ~10 LALR reductions per literal.\nconst_expr: operand (BINOP operand | PLUS operand | MINUS operand)*\nBINOP: "|" | "^" | "&" | ">>" | "<<" | "*" | "/" | "%"\nPLUS: "+"\nMINUS: "-"\n?operand: primary_expr\n        | MINUS primary_expr                        -> neg\n        | PLUS primary_expr                         -> pos\n        | "~" primary_expr                          -> inv\n?primary_expr: scoped_name                          -> name_expr\n             | INT_LIT                              -> int_lit\n             | FLOAT_LIT                            -> float_lit\n             | FIXED_LIT                            -> fixed_lit\n             | CHAR_LIT                             -> char_lit\n             | WCHAR_LIT                            -> char_lit\n             | string_lit\n             | TRUE_KW                              -> true_lit\n             | FALSE_KW                             -> false_lit\n             | "(" const_expr ")"\n\nstring_lit: (STRING_LIT | WSTRING_LIT)+\nTRUE_KW: "TRUE"\nFALSE_KW: "FALSE"\n\n// Types (7.4.1.4.3, 7.4.13.4.3, 7.4.14). One flat choice: a chain of type categories\n// would cost a reduction per level for every member. Which types fit where (constants,\n// discriminators, bitfields) is checked by the resolver, with better messages.\n?type_spec: FLOAT_KW                    -> t_float32\n          | DOUBLE_KW                   -> t_float64\n          | LONG_KW DOUBLE_KW           -> t_float128\n          | SHORT_KW                    -> t_int16\n          | LONG_KW                     -> t_int32\n          | LONG_KW LONG_KW             -> t_int64\n          | UNSIGNED_KW SHORT_KW        -> t_uint16\n          | UNSIGNED_KW LONG_KW         -> t_uint32\n          | UNSIGNED_KW LONG_KW LONG_KW -> t_uint64\n          | INT8_KW                     -> t_int8\n          | INT16_KW                    -> t_int16\n          | INT32_KW                    -> t_int32\n          | INT64_KW                    -> t_int64\n          | UINT8_KW                    -> t_uint8\n          | UINT16_KW                   -> t_uint16\n          | UINT32_KW                   -> t_uint32\n          | UINT64_KW                   -> t_uint64\n          | CHAR_KW                     -> t_char\n          | WCHAR_KW                    -> t_wchar\n          | BOOLEAN_KW                  -> t_boolean\n          | OCTET_KW                    -> t_octet\n          | FIXED_KW                    -> fixed_pt_const_type\n          | sequence_type | string_type | wide_string_type | fixed_pt_type | map_type\n          | scoped_name                 -> named_type\n\n// Type keywords are named terminals so the parser keeps them: their positions locate\n// diagnostics without lark\'s (slow) position propagation.\nFLOAT_KW: "float"\nDOUBLE_KW: "double"\nLONG_KW: "long"\nSHORT_KW: "short"\nUNSIGNED_KW: "unsigned"\nINT8_KW: "int8"\nINT16_KW: "int16"\nINT32_KW: "int32"\nINT64_KW: "int64"\nUINT8_KW: "uint8"\nUINT16_KW: "uint16"\nUINT32_KW: "uint32"\nUINT64_KW: "uint64"\nCHAR_KW: "char"\nWCHAR_KW: "wchar"\nBOOLEAN_KW: "boolean"\nOCTET_KW: "octet"\n\n// ---- 7.4.14 Anonymous types: template types usable directly as member types ----\n\nsequence_type: SEQUENCE_KW "<" type_spec "," const_expr ">"\n             | SEQUENCE_KW "<" type_spec ">"\nstring_type: STRING_KW "<" const_expr ">" | STRING_KW\nwide_string_type: WSTRING_KW "<" const_expr ">" | WSTRING_KW\nfixed_pt_type: FIXED_KW "<" const_expr "," const_expr ">"\nmap_type: MAP_KW "<" type_spec "," type_spec "," const_expr ">"\n        | MAP_KW "<" type_spec "," type_spec ">"\nSEQUENCE_KW: "sequence"\nSTRING_KW: "string"\nWSTRING_KW: "wstring"\nFIXED_KW: "fixed"\nMAP_KW: "map"\n\n// ---- 7.4.1.4.4 Constructed types ------------------------------------------------\nstruct_dcl: "struct" IDENT struct_inheritance? "{" member* "}"\nstruct_inheritance: ":" scoped_name\nstruct_forward_dcl: "struct" IDENT\n\nmember: annotation_appl* type_spec declarator ("," declarator)* ";"\n\ndeclarator: IDENT fixed_array_size*\nfixed_array_size: "[" const_expr "]"\n\n// Any type parses as a discriminator; the resolver says which ones are allowed.\nunion_dcl: "union" IDENT "switch" "(" annotation_appl* type_spec ")" "{" case+ "}"\nunion_forward_dcl: "union" IDENT\ncase: case_label+ annotation_appl* type_spec declarator ";"\ncase_label: "case" const_expr ":"\n          | DEFAULT_KW ":"           -> default_label\nDEFAULT_KW: "default"\n\nenum_dcl: "enum" IDENT "{" enumerator ("," enumerator)* ","? "}"\nenumerator: annotation_appl* IDENT ("=" const_expr)?\n\nnative_dcl: "native" IDENT\n\ntypedef_dcl: "typedef" type_spec declarator ("," declarator)*\n\n// ---- 7.4.13 Extended data types: bitsets and bitmasks ----------------------------\nbitset_dcl: "bitset" IDENT (":" scoped_name)? "{" bitfield* "}"\nbitfield: annotation_appl* "bitfield" "<" const_expr ("," type_spec)? ">" (IDENT ("," IDENT)*)? ";"\n\nbitmask_dcl: "bitmask" IDENT "{" bit_value ("," bit_value)* ","? "}"\nbit_value: annotation_appl* IDENT\n\n// ---- 7.4.5/7.4.6 Value types (the RTI dialect of the original RAPID files) -------\nvalue_dcl: "valuetype" IDENT (":" scoped_name)? "{" value_element* "}"\nvalue_forward_dcl: "valuetype" IDENT\n?value_element: state_member\n              | annotation_appl* const_dcl ";"     -> value_export\n              | annotation_appl* typedef_dcl ";"   -> value_export\nstate_member: annotation_appl* VISIBILITY type_spec declarator ("," declarator)* ";"\nVISIBILITY: "public" | "private"\n\n// ---- 7.4.15 Annotations ------------------------------------------------------------\nannotation_appl: "@" annotation_name annotation_args?\n?annotation_name: scoped_name | DEFAULT_KW -> default_name\nannotation_args: "(" ")"\n               | "(" const_expr ")"\n               | "(" annotation_param ("," annotation_param)* ")"\nannotation_param: IDENT "=" const_expr\n\nannotation_dcl: ANNOTATION_KW IDENT "{" annotation_body* "}"\nANNOTATION_KW.2: /@annotation\\b/\n?annotation_body: annotation_member\n                | enum_dcl ";"        -> annotation_export\n                | const_dcl ";"       -> annotation_export\n                | typedef_dcl ";"     -> annotation_export\nannotation_member: annotation_member_type IDENT (DEFAULT_KW const_expr)? ";"\n?annotation_member_type: type_spec | "any" -> any_type\n\n// Cyclone/OpenSplice keys: `#pragma keylist Type member member.sub ...`\npragma_keylist: PRAGMA_KEYLIST scoped_name keylist_member*\nkeylist_member: IDENT ("." IDENT)*\nPRAGMA_KEYLIST.2: /#[ \\t]*pragma[ \\t]+keylist\\b/\n\n// ---- 7.2 Lexical conventions ----------------------------------------------------------\n// Possessive repeats (*+, ++) never backtrack: the regex engine keeps no state per\n// character, so a 16 MiB string or comment lexes in linear time and constant extra memory.\nIDENT: /_?[A-Za-z][A-Za-z0-9_]*/\nINT_LIT.1: /0[xX][0-9a-fA-F]++|[1-9][0-9]*+|0[0-7]*+/\nFLOAT_LIT.2: /(?:[0-9]++\\.[0-9]*+|\\.[0-9]++)(?:[eE][+-]?[0-9]++)?[fF]?|[0-9]++[eE][+-]?[0-9]++[fF]?/\nFIXED_LIT.3: /(?:[0-9]++(?:\\.[0-9]*+)?|\\.[0-9]++)[dD]/\nCHAR_LIT: /\'([^\'\\\\\\n]|\\\\[ntvbrfa\\\\?\'"]|\\\\[0-7]{1,3}|\\\\x[0-9a-fA-F]{1,2}|\\\\u[0-9a-fA-F]{1,4})\'/\nWCHAR_LIT.3: /L\'([^\'\\\\\\n]|\\\\[ntvbrfa\\\\?\'"]|\\\\[0-7]{1,3}|\\\\x[0-9a-fA-F]{1,2}|\\\\u[0-9a-fA-F]{1,4})\'/\nSTRING_LIT: /"(?:[^"\\\\\\n]++|\\\\.)*+"/\nWSTRING_LIT.3: /L"(?:[^"\\\\\\n]++|\\\\.)*+"/\n\nLINE_COMMENT: /\\/\\/[^\\n]*/\nBLOCK_COMMENT: /\\/\\*(?:[^*]++|\\*(?!\\/))*+\\*\\//\n%import common.WS\n%ignore WS\n%ignore LINE_COMMENT\n%ignore BLOCK_COMMENT\n'
-TABLES = {'format': 1,
+TABLES = {'format': 2,
  'rows': {0: {'$END': (0, 'start', 1),
               'ANNOTATION_KW': 1,
               'AT': 2,
@@ -3770,15 +3770,16 @@ TABLES = {'format': 1,
            ('__pragma_keylist_star_16', ((0, True), (1, False)), False),
            ('__keylist_member_star_17', ((1, False),), False),
            ('__keylist_member_star_17', ((0, True), (2, False)), False)),
- 'lexer': ('(?P<WS>(?:[ \t\x0c'
+ 'lexer': ('(?:(?:[ \t\x0c'
            '\r\n'
-           '])+)|(?P<LINE_COMMENT>\\/\\/[^\n'
-           ']*)|(?P<BLOCK_COMMENT>\\/\\*(?:[^*]++|\\*(?!\\/))*+\\*\\/)|(?P<PRAGMA_KEYLIST>#[ \t]*pragma[ \t'
+           '])+|\\/\\/[^\n'
+           ']*|\\/\\*(?:[^*]++|\\*(?!\\/))*+\\*\\/)*+(?:(?P<PRAGMA_KEYLIST>#[ \t]*pragma[ \t'
            "]+keylist\\b)|(?P<ANNOTATION_KW>@annotation\\b)|(?P<WCHAR_LIT>L'([^'\\\\\n"
            ']|\\\\[ntvbrfa\\\\?\'"]|\\\\[0-7]{1,3}|\\\\x[0-9a-fA-F]{1,2}|\\\\u[0-9a-fA-F]{1,4})\')|(?P<WSTRING_LIT>L"(?:[^"\\\\\n'
            ']++|\\\\.)*+")|(?P<FIXED_LIT>(?:[0-9]++(?:\\.[0-9]*+)?|\\.[0-9]++)[dD])|(?P<FLOAT_LIT>(?:[0-9]++\\.[0-9]*+|\\.[0-9]++)(?:[eE][+-]?[0-9]++)?[fF]?|[0-9]++[eE][+-]?[0-9]++[fF]?)|(?P<INT_LIT>0[xX][0-9a-fA-F]++|[1-9][0-9]*+|0[0-7]*+)|(?P<CHAR_LIT>\'([^\'\\\\\n'
            ']|\\\\[ntvbrfa\\\\?\'"]|\\\\[0-7]{1,3}|\\\\x[0-9a-fA-F]{1,2}|\\\\u[0-9a-fA-F]{1,4})\')|(?P<STRING_LIT>"(?:[^"\\\\\n'
-           ']++|\\\\.)*+")|(?P<IDENT>_?[A-Za-z][A-Za-z0-9_]*)|(?P<BINOP>(?:>>|<<|\\||\\^|\\&|\\*|/|%))|(?P<__ANON_0>::)|(?P<AT>@)|(?P<COLON>:)|(?P<COMMA>,)|(?P<DOT>\\.)|(?P<EQUAL>=)|(?P<LBRACE>\\{)|(?P<LESSTHAN><)|(?P<LPAR>\\()|(?P<LSQB>\\[)|(?P<MINUS>\\-)|(?P<MORETHAN>>)|(?P<PLUS>\\+)|(?P<RBRACE>\\})|(?P<RPAR>\\))|(?P<RSQB>\\])|(?P<SEMICOLON>;)|(?P<TILDE>\\~)',
+           ']++|\\\\.)*+")|(?P<IDENT>_?[A-Za-z][A-Za-z0-9_]*)|(?P<BINOP>(?:>>|<<|\\||\\^|\\&|\\*|/|%))|(?P<__ANON_0>::)|(?P<AT>@)|(?P<COLON>:)|(?P<COMMA>,)|(?P<DOT>\\.)|(?P<EQUAL>=)|(?P<LBRACE>\\{)|(?P<LESSTHAN><)|(?P<LPAR>\\()|(?P<LSQB>\\[)|(?P<MINUS>\\-)|(?P<MORETHAN>>)|(?P<PLUS>\\+)|(?P<RBRACE>\\})|(?P<RPAR>\\))|(?P<RSQB>\\])|(?P<SEMICOLON>;)|(?P<TILDE>\\~))',
+           '(?:(?:[ \t\x0c\r\n])+|\\/\\/[^\n]*|\\/\\*(?:[^*]++|\\*(?!\\/))*+\\*\\/)*+',
            {'FALSE': 'FALSE_KW',
             'TRUE': 'TRUE_KW',
             'any': 'ANY',
@@ -3820,5 +3821,34 @@ TABLES = {'format': 1,
             'valuetype': 'VALUETYPE',
             'wchar': 'WCHAR_KW',
             'wstring': 'WSTRING_KW'},
-           ('BLOCK_COMMENT', 'LINE_COMMENT', 'WS'),
-           'MORETHAN')}
+           'MORETHAN',
+           ('ANY',
+            'AT',
+            'BITFIELD',
+            'BITMASK',
+            'BITSET',
+            'CASE',
+            'COLON',
+            'COMMA',
+            'CONST',
+            'DOT',
+            'ENUM',
+            'EQUAL',
+            'LBRACE',
+            'LESSTHAN',
+            'LPAR',
+            'LSQB',
+            'MODULE',
+            'MORETHAN',
+            'NATIVE',
+            'RBRACE',
+            'RPAR',
+            'RSQB',
+            'SEMICOLON',
+            'STRUCT',
+            'SWITCH',
+            'TILDE',
+            'TYPEDEF',
+            'UNION',
+            'VALUETYPE',
+            '__ANON_0'))}

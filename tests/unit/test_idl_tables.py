@@ -92,3 +92,35 @@ def test_a_model_is_made_without_lark_and_an_error_still_explained(tmp_path):
     assert runs[0].stdout.split("\n")[0] == "True False [] []"
     # the syntax error: lark's parser is loaded to explain it, at the token after `x`
     assert runs[1].stdout.split("\n")[0] == "False True ['RG0201'] [(1, 29)]"
+
+
+def _lexed(text: str, every: bool = True) -> list[tuple]:
+    lexer = parse_mod._lean().lexer
+    return [(kind, tok and (str(tok), tok.line, tok.column, tok.start_pos, tok.end_pos))
+            for kind, tok in lexer.lex(text, every=every)]
+
+
+def test_lexer_skips_space_and_comments_and_places_tokens():
+    text = "  // a comment / with slashes\n/* block\n * over lines */ x /* c */ / 2 // end\n  \n"
+    assert _lexed(text) == [("IDENT", ("x", 3, 18, 56, 57)), ("BINOP", ("/", 3, 28, 66, 67)),
+                            ("INT_LIT", ("2", 3, 30, 68, 69))]
+    assert _lexed("") == [] and _lexed(" \n// only a comment") == []
+    # punctuation no rule keeps: its name only, unless every token is asked for
+    assert _lexed("x;", every=False) == [("IDENT", ("x", 1, 1, 0, 1)), ("SEMICOLON", None)]
+    # two template lists closed by one '>>'
+    assert [k for k, _ in _lexed("sequence<sequence<long>> s;")] == \
+        ["SEQUENCE_KW", "LESSTHAN", "SEQUENCE_KW", "LESSTHAN", "LONG_KW", "MORETHAN", "MORETHAN", "IDENT", "SEMICOLON"]
+
+
+@pytest.mark.parametrize("text, where", [("x\n  `", (2, 3, 4)), ("/* c */ `", (1, 9, 8)),
+                                         ("// c\n  /* c */\n $", (3, 2, 16)), ("x /", "no error")])
+def test_lexer_error_is_at_the_character_no_terminal_matches(text, where):
+    from rapidgen.idl.lexer import LexError
+
+    lexer = parse_mod._lean().lexer
+    try:
+        list(lexer.lex(text))
+    except LexError as exc:
+        assert (exc.line, exc.column, exc.pos) == where
+    else:
+        assert where == "no error"
