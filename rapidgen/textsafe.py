@@ -21,4 +21,6 @@ def visible(text: str) -> str:
     """One line of printable text: what is not printable (newlines, controls, escape
     sequences, C1 codes, bidi overrides, lone surrogates) shown as a backslash escape such
     as \\x1b."""
+    if text.isprintable():  # nearly always: no character to look at one by one
+        return text
     return "".join(ch if ch.isprintable() else code_escape(ch) for ch in text)

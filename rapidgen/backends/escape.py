@@ -23,6 +23,8 @@ _CODING = re.compile(r"coding([:=])")
 
 def py_str(text: str) -> str:
     """A double-quoted, ASCII-only Python string literal of `text` (same bytes on every machine)."""
+    if text.isascii() and text.isprintable() and '"' not in text and "\\" not in text:  # the usual: as it is
+        return '"' + text + '"'
     return '"' + "".join(ch if " " <= ch < "\x7f" and ch not in '"\\' else
                          "\\" + ch if ch in '"\\' else _code_escape(ch) for ch in text) + '"'
 
@@ -31,6 +33,8 @@ def py_docstring(text: str) -> str:
     """The body of a `\"\"\"...\"\"\"` docstring whose value is `text`: printable characters and
     newlines as they are, quotes and backslashes escaped (no early end, no escape
     surprises), anything else as a backslash escape."""
+    if '"' not in text and "\\" not in text and text.replace("\n", "").isprintable():  # the usual: as it is
+        return text
     return "".join(ch if ch == "\n" or (ch.isprintable() and ch not in '"\\') else
                    "\\" + ch if ch in '"\\' else _code_escape(ch) for ch in text)
 

@@ -48,7 +48,9 @@ class Scope:
 
     def claim(self, preferred: str, owner: str) -> str:
         """A free name as close to `preferred` as possible, recorded as naming `owner`."""
-        name = escape(preferred, self.reserved, self.also_reserved)
+        name = preferred
+        if name in self.reserved or self.also_reserved(name):
+            name = escape(name, self.reserved, self.also_reserved)
         while (holder := self._holder(name)) is not None:
             if holder == owner:
                 return name
