@@ -7,6 +7,8 @@ rule's children as lark's tree builder would (punctuation dropped, `_rule`s inli
 that rule. On any input the tables reject, the parse is handed to lark's own parser,
 which raises its full exception (the expected tokens, an interactive parser) for the
 error translation in parse.py: error reporting is lark's, only the happy path is ours.
+The builder has no methods named after terminals (lark would call them for tokens; this
+loop does not).
 """
 from __future__ import annotations
 

@@ -1,18 +1,18 @@
 """Parse preprocessed IDL text into the syntax tree (rapidgen.idl.ast).
 
 A lean LALR driver runs over the grammar's tables (shipped precomputed, see
-rapidgen.idl.grammar: a parse imports no lark); everything a parse needs to know of its input (the locator, //@key comments, the sink) lives in a
-syntax-tree builder made for that call, so parses are re-entrant and nothing keeps an
-input alive once its parse returns. An input the tables reject is parsed again by lark's
-own parser for its detailed exception, which never reaches the user: it is translated
-into diagnostics with the original file:line:col and a hint.
+rapidgen.idl.grammar: a parse imports no lark); everything a parse needs to know of its
+input (the locator, //@key comments, the sink) lives in a syntax-tree builder made for
+that call, so parses are re-entrant and nothing keeps an input alive once its parse
+returns. An input the tables reject is parsed again by lark's own parser for its
+detailed exception, which never reaches the user: it is translated into diagnostics
+with the original file:line:col and a hint.
 """
 from __future__ import annotations
 
 import bisect
 import copy
 import functools
-import os
 import re
 from decimal import Decimal, InvalidOperation
 from typing import TYPE_CHECKING, Callable
