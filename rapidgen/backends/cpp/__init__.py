@@ -15,7 +15,6 @@ import re
 from typing import TYPE_CHECKING
 
 from rapidgen.backends.base import QOS_LIBRARY, GeneratedFile, Options, check_output, notice
-from rapidgen.backends.cpp import asset as asset_tables
 from rapidgen.backends.typewalk import Unsupported
 from rapidgen.backends.cpp.view import Builder, PackageView, UnsupportedInput
 from rapidgen.backends.escape import cmake_name, cpp_str
@@ -91,7 +90,7 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
              GeneratedFile(f"{inc}/topics.hpp", render("cpp", "topics.hpp.j2", p=p)),
              GeneratedFile("src/types.cpp", render("cpp", "types.cpp.j2", p=p))]
     if asset is not None:
-        from rapidgen.backends.cpp import bridge  # the descriptor's classes: an asset's only
+        from rapidgen.backends.cpp import asset as asset_tables, bridge  # an asset's only (their classes)
         try:
             a = asset_tables.build(asset, b)
             v = bridge.build(asset, b, p.package, a)
