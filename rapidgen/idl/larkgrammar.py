@@ -161,26 +161,11 @@ def packaged_module_text() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    import argparse
+    from rapidgen.precomputed import refresh_command
 
-    parser = argparse.ArgumentParser(prog="python -m rapidgen.idl.larkgrammar",
-                                     description="the IDL grammar's packaged LALR tables: refresh or check them")
-    what = parser.add_mutually_exclusive_group(required=True)
-    what.add_argument("--write", action="store_true", help=f"rewrite rapidgen/idl/{PACKAGED_MODULE}")
-    what.add_argument("--check", action="store_true", help="exit 1 if they are stale")
-    args = parser.parse_args(argv)
-    path = Path(__file__).resolve().parent / PACKAGED_MODULE
-    want = packaged_module_text()
-    have = path.read_text(encoding="utf-8") if path.is_file() else None
-    if args.write:
-        if have != want:
-            path.write_text(want, encoding="utf-8")
-            print(f"wrote {path}")
-        return 0
-    if have != want:
-        print(f"stale: {path} (python -m rapidgen.idl.larkgrammar --write)", file=sys.stderr)
-        return 1
-    return 0
+    return refresh_command("python -m rapidgen.idl.larkgrammar", "the IDL grammar's packaged LALR tables: "
+                           "refresh or check them", Path(__file__).resolve().parent / PACKAGED_MODULE,
+                           packaged_module_text, argv)
 
 
 if __name__ == "__main__":
