@@ -6,9 +6,9 @@ state's terminals in turn. Keywords are reserved everywhere, as IDL 4.2 (7.2.4) 
 keyword used as a name is a syntax error with its own message (parse.py).
 
 The lexer's tables (`LexSpec`) are derived from the grammar's terminals once, when the
-parse tables are built (rapidgen.idl.grammar), and ship precomputed with them, so a parse
-imports no lark. lark's own parser, used only to explain a syntax error, runs this same
-lexer through an adapter (grammar.LarkLexer).
+parse tables are built (rapidgen.idl.larkgrammar), and ship precomputed with them
+(rapidgen.idl.grammar), so a parse imports no lark. lark's own parser, used only to
+explain a syntax error, runs this same lexer through an adapter (larkgrammar.LarkLexer).
 """
 from __future__ import annotations
 
