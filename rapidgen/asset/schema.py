@@ -10,7 +10,6 @@ from __future__ import annotations
 import heapq
 import json
 from functools import lru_cache
-from importlib import resources
 from typing import Any, Callable, Iterable
 
 import jsonschema
@@ -18,6 +17,7 @@ from jsonschema.exceptions import ValidationError
 
 from rapidgen.asset.facts import STATIC_SHAPES
 from rapidgen.asset.yamlread import YamlDoc
+from rapidgen.packagedata import read_text
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink, Severity, SourceLoc, did_you_mean
 
 # Schema diagnostics shown per file: a list of 100,000 wrong items is one mistake made
@@ -35,8 +35,7 @@ _SCHEMA_TYPES = {"object": "a mapping", "array": "a list", "string": "a string",
 
 @lru_cache(maxsize=1)
 def schema() -> dict:
-    text = resources.files("rapidgen.asset").joinpath("asset.schema.json").read_text("utf-8")
-    return json.loads(text)
+    return json.loads(read_text("rapidgen.asset", "asset.schema.json"))
 
 
 @lru_cache(maxsize=1)

@@ -11,7 +11,8 @@ if they are stale (tests/unit/test_idl_tables.py too).
 from __future__ import annotations
 
 import functools
-import os
+
+from rapidgen.packagedata import read_text
 
 TABLES_FORMAT = 2  # bump when the shape of the tables changes (rapidgen.idl.larkgrammar.build_tables)
 PACKAGED_MODULE = "packaged_tables.py"
@@ -19,12 +20,7 @@ PACKAGED_MODULE = "packaged_tables.py"
 
 @functools.lru_cache(maxsize=1)
 def grammar_text() -> str:
-    try:  # a plain file beside this module (importlib.resources costs imports)
-        with open(os.path.join(os.path.dirname(__file__), "grammar.lark"), encoding="utf-8") as f:
-            return f.read()
-    except OSError:  # a package not on the file system
-        from importlib import resources
-        return resources.files("rapidgen.idl").joinpath("grammar.lark").read_text(encoding="utf-8")
+    return read_text("rapidgen.idl", "grammar.lark")
 
 
 def tables() -> dict:

@@ -15,12 +15,12 @@ import dataclasses
 import fnmatch
 import functools
 import json
-import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
+from rapidgen.packagedata import read_text
 
 if TYPE_CHECKING:
     import jsonschema
@@ -218,7 +218,7 @@ def _validator() -> jsonschema.Draft202012Validator:
 
 @functools.lru_cache(maxsize=1)
 def schema() -> dict:
-    return json.loads(_package_file("qos.schema.json"))
+    return json.loads(read_text("rapidgen.qos", "qos.schema.json"))
 
 
 @functools.lru_cache(maxsize=1)
@@ -240,18 +240,7 @@ def default_library() -> QosSpec:
 
 
 def _packaged_text() -> str:
-    return _package_file("rapid.yaml")
-
-
-def _package_file(name: str) -> str:
-    """A file of this package: read beside this module (importlib.resources costs ~5 ms of
-    imports, zipfile among them, in every run of the qos target), else through it."""
-    try:
-        with open(os.path.join(os.path.dirname(__file__), name), encoding="utf-8") as f:
-            return f.read()
-    except OSError:  # a package not on the file system
-        from importlib import resources
-        return resources.files("rapidgen.qos").joinpath(name).read_text("utf-8")
+    return read_text("rapidgen.qos", "rapid.yaml")
 
 
 def _parse_packaged(text: str) -> QosSpec:
