@@ -19,6 +19,7 @@
 #include <iostream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -52,6 +53,17 @@ struct Dds {
     }
 };
 
+// One line of the answer the tests read, written in one piece: Fast DDS's logging thread
+// writes to the same stdout, and a line written part by part could be split by its output
+// (a refused participant's line once was, by the log of that refusal).
+template <class... Parts>
+void say(const Parts&... parts) {
+    std::ostringstream line;
+    (line << ... << parts);
+    line << '\n';
+    std::cout << line.str() << std::flush;
+}
+
 // The participant from the profiles' rapid_local (loopback), secured when the environment
 // says so; publisher and subscriber in `partition`. False (and why, printed) when refused.
 bool open(Dds& d, const std::string& profiles, int domain, const std::string& partition, const std::string& who) {
@@ -59,7 +71,7 @@ bool open(Dds& d, const std::string& profiles, int domain, const std::string& pa
     DomainParticipantQos qos;
     if (factory->load_XML_profiles_file(profiles) != ReturnCode_t::RETCODE_OK ||
         factory->get_participant_qos_from_profile("rapid_local", qos) != ReturnCode_t::RETCODE_OK) {
-        std::cout << "participant: refused: cannot load " << profiles << std::endl;
+        say("participant: refused: cannot load ", profiles);
         return false;
     }
     qos.name(who);
@@ -68,17 +80,16 @@ bool open(Dds& d, const std::string& profiles, int domain, const std::string& pa
         enclave = rapid_runtime::dds::security_enclave(who);
         if (!enclave.empty()) rapid_runtime::dds::apply_security(qos, enclave);
     } catch (const std::exception& e) {
-        std::cout << "participant: refused: " << e.what() << std::endl;
+        say("participant: refused: ", e.what());
         return false;
     }
     d.participant = factory->create_participant(domain, qos);
     if (d.participant == nullptr) {
-        std::cout << "participant: refused: "
-                  << (enclave.empty() ? std::string("no participant") : rapid_runtime::dds::security_refusal(enclave))
-                  << std::endl;
+        say("participant: refused: ",
+            enclave.empty() ? std::string("no participant") : rapid_runtime::dds::security_refusal(enclave));
         return false;
     }
-    std::cout << "participant: ok" << (enclave.empty() ? " (unsecured)" : " (secured)") << std::endl;
+    say("participant: ok", enclave.empty() ? " (unsecured)" : " (secured)");
     PublisherQos pq = d.participant->get_default_publisher_qos();
     pq.partition().push_back(partition.c_str());
     d.publisher = d.participant->create_publisher(pq);
@@ -124,11 +135,10 @@ int command(int argc, char** argv) {
     DataWriter* w = ct == nullptr ? nullptr : d.publisher->create_datawriter(ct, wq);
     DataReader* acks = ack_reader(d);
     if (w == nullptr) {
-        std::cout << "writer: refused (its permissions do not grant rapid_command in partition " << partition << ")"
-                  << std::endl;
+        say("writer: refused (its permissions do not grant rapid_command in partition ", partition, ")");
         return 1;
     }
-    std::cout << "writer: ok" << std::endl;
+    say("writer: ok");
     const auto deadline = Clock::now() + std::chrono::milliseconds(static_cast<long>(wait_s * 1000));
     PublicationMatchedStatus m{};
     // Wait for the asset, but send whether or not it was found: what arrives is the test.
@@ -137,7 +147,7 @@ int command(int argc, char** argv) {
         if (m.current_count > 0) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
-    std::cout << "matched: " << m.current_count << std::endl;
+    say("matched: ", m.current_count);
     // Take control first (K10's access control runs other commands only for the controller).
     rapid::Command ctl;
     ctl.hdr.srcName = source;
@@ -173,7 +183,7 @@ int command(int argc, char** argv) {
             });
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    std::cout << "completed: " << ok << " of " << count << std::endl;
+    say("completed: ", ok, " of ", count);
     return ok == count ? 0 : 4;
 }
 
@@ -186,7 +196,7 @@ int watch(int argc, char** argv) {
     if (!open(d, profiles, domain, partition, "watcher")) return 1;
     DataReader* r = ack_reader(d);
     if (r == nullptr) {
-        std::cout << "reader: refused" << std::endl;
+        say("reader: refused");
         return 1;
     }
     std::map<std::string, std::set<std::string>> seen;
@@ -206,8 +216,8 @@ int watch(int argc, char** argv) {
         });
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
-    std::cout << "matched: " << (matched ? 1 : 0) << std::endl;
-    for (int i = 6; i < argc; ++i) std::cout << "acked " << argv[i] << ": " << seen[argv[i]].size() << std::endl;
+    say("matched: ", matched ? 1 : 0);
+    for (int i = 6; i < argc; ++i) say("acked ", argv[i], ": ", seen[argv[i]].size());
     return 0;
 }
 
