@@ -84,7 +84,7 @@ def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
     if problem:
         sink.error("RG0802", problem, SourceLoc("<command line>", 0, 0), "name targets with --lang a,b")
         return None
-    renderer = _Renderer(inputs, package)
+    renderer = Renderer(inputs, package)
     try:
         return {lang: renderer.target(lang) for lang in langs}
     except GenerationError as exc:
@@ -92,7 +92,7 @@ def render(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
         return None
 
 
-class _Renderer:
+class Renderer:
     """Renders targets on demand, each at most once, a target's companions before it: the
     unit of work that render() runs in order and generate/check spread over two processes."""
 
@@ -121,179 +121,12 @@ class _Renderer:
         return backend.embed(files, {c: self._generate(c) for c in backend.companions(asset)})
 
 
-# -- two processes ----------------------------------------------------------------------------
-# `generate` with several targets and `check` with several project targets spread their work
-# over two processes: the back ends are pure functions of the parsed input, so a forked child
-# renders some targets (it inherits the parsed model) and hands the files back, pickled. The
-# output is the same as in one process; RAPIDGEN_JOBS=1 keeps everything in one.
-
-def jobs() -> int:
-    """How many processes to use: 2 where fork exists, the process may run on two CPUs or
-    more and runs no other Python thread (a forked child would get only this one), else 1."""
-    text = os.environ.get("RAPIDGEN_JOBS", "").strip()
-    if text.isdigit() and int(text) <= 1:
-        return 1
-    if not hasattr(os, "fork"):
-        return 1
-    try:
-        cpus = len(os.sched_getaffinity(0))
-    except AttributeError:  # not Linux
-        cpus = os.cpu_count() or 1
-    import threading
-    return 2 if cpus >= 2 and threading.active_count() == 1 else 1
-
-
-class _Queue:
-    """Job numbers 0..n-1 handed out first come, first served to the two processes: one
-    byte each in a pipe, read one at a time (a pipe read of one byte is atomic)."""
-
-    def __init__(self, n: int) -> None:
-        self.read, write = os.pipe()
-        os.write(write, bytes(range(n)))  # n <= 255, far below a pipe's buffer
-        os.close(write)
-
-    def take(self) -> int | None:
-        got = os.read(self.read, 1)
-        return got[0] if got else None
-
-    def close(self) -> None:
-        os.close(self.read)
-
-
-class _Alternate:
-    """Jobs dealt in turn: this process the even ones, the child the odd ones (`generate`:
-    a few targets of known order, where the first come, first served queue would hand the
-    last target to whoever is done first, though it may be the one to start early)."""
-
-    def __init__(self, n: int) -> None:
-        self.n, self.next = n, 0
-
-    def child(self) -> None:
-        self.next = 1
-
-    def take(self) -> int | None:
-        i, self.next = self.next, self.next + 2
-        return i if i < self.n else None
-
-    def close(self) -> None:
-        pass
-
-
-def _share(count: int, work, alternate: bool = False) -> list:
-    """work(i) for every i < count, over two processes when jobs() says so; the results
-    in order. The jobs go first come, first served (or, alternate, in turn). Results (and
-    exceptions) of the child's jobs come back pickled."""
-    import pickle
-
-    if count < 2 or count > 255 or jobs() < 2:
-        return [work(i) for i in range(count)]
-    queue: _Queue | _Alternate = _Alternate(count) if alternate else _Queue(count)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    read, write = os.pipe()
-    pid = os.fork()
-    if pid == 0:  # the child: never returns into the caller
-        code = 0
-        try:
-            os.close(read)
-            if isinstance(queue, _Alternate):
-                queue.child()
-            done = []
-            while (i := queue.take()) is not None:
-                try:
-                    done.append((i, True, work(i)))
-                except Exception as exc:  # noqa: BLE001 (raised again in the parent)
-                    done.append((i, False, _portable(exc)))
-                    break
-            with os.fdopen(write, "wb") as out:
-                pickle.dump(done, out, protocol=pickle.HIGHEST_PROTOCOL)
-        except BaseException:  # noqa: BLE001 (the parent reports a child that sent nothing)
-            code = 70
-        finally:
-            _child_exit(code)
-    os.close(write)
-    results: dict[int, object] = {}
-    try:
-        error: BaseException | None = None
-        while error is None and (i := queue.take()) is not None:
-            try:
-                results[i] = work(i)
-            except Exception as exc:  # noqa: BLE001 (raised below, once the child is reaped)
-                error = exc
-        with os.fdopen(read, "rb") as got:
-            data = got.read()
-        _, status = os.waitpid(pid, 0)
-        pid = 0
-    finally:
-        queue.close()
-        if pid:  # interrupted: stop the child we started, then reap it
-            import signal
-            os.kill(pid, signal.SIGTERM)
-            os.waitpid(pid, 0)
-    if error is not None:
-        raise error
-    if not data:
-        raise RuntimeError(f"a rapidgen worker process ended without its results "
-                           f"(exit status {os.waitstatus_to_exitcode(status)})")
-    for i, ok, value in pickle.loads(data):
-        if not ok:
-            raise value
-        results[i] = value
-    return [results[i] for i in range(count)]
-
-
-def _child_exit(code: int) -> None:
-    """End a forked worker: what it compiled of the back ends' classes is saved too."""
-    try:
-        from rapidgen import codecache
-        codecache.save()
-    finally:
-        os._exit(code)
-
-
-def _portable(exc: Exception) -> Exception:
-    """exc if it survives pickling, else a RuntimeError saying what it was."""
-    import pickle
-    try:
-        pickle.loads(pickle.dumps(exc))
-        return exc
-    except Exception:  # noqa: BLE001
-        return RuntimeError(f"{type(exc).__name__}: {exc}")
-
-
-def _render_shared(inputs: Inputs, langs: list[str], sink: DiagnosticSink,
-                   package: str | None) -> dict[str, list[GeneratedFile]] | None:
-    """render(), its targets spread over two processes."""
-    langs, problem = backends.parse_langs(langs)
-    if problem:
-        sink.error("RG0802", problem, SourceLoc("<command line>", 0, 0), "name targets with --lang a,b")
-        return None
-    renderer = _Renderer(inputs, package)
-
-    def one(i: int) -> tuple[list[GeneratedFile] | None, list[Diagnostic]]:
-        local = DiagnosticSink()
-        try:
-            return renderer.target(langs[i]), []
-        except GenerationError as exc:
-            exc.report(local)
-            return None, list(local.diagnostics)
-
-    done = _share(len(langs), one, alternate=True)
-    out = {}
-    for lang, (files, diags) in zip(langs, done):
-        sink.extend(diags)
-        if files is None:
-            return None  # as render(): the first target that fails stops the run
-        out[lang] = files
-    return out
-
-
 def write_outputs(out_dir: str, per_lang: dict[str, list[GeneratedFile]], sink: DiagnosticSink) -> bool:
     """Write each target into out_dir/<lang>; print a line per target. False on a write error."""
-    return all(_write_lang(out_dir, lang, files, sink) for lang, files in per_lang.items())
+    return all(write_lang(out_dir, lang, files, sink) for lang, files in per_lang.items())
 
 
-def _write_lang(out_dir: str, lang: str, files: list[GeneratedFile], sink: DiagnosticSink) -> bool:
+def write_lang(out_dir: str, lang: str, files: list[GeneratedFile], sink: DiagnosticSink) -> bool:
     """One target's folder, out_dir/<lang> (its own manifest and lock); prints its line."""
     from rapidgen.writer import write_tree
 
@@ -335,129 +168,27 @@ def _call_writer(function, folder: str, files: list[GeneratedFile], sink: Diagno
 
 def generate_command(paths: list[str], include: list[str], defines: dict[str, str], langs: list[str],
                      out_dir: str, package: str | None, sink: DiagnosticSink) -> bool:
-    with _no_cyclic_gc():
+    """Several targets go over two processes (rapidgen.workers): by the worker forked ahead
+    of the front end, or for a large model, by this process and a child."""
+    from rapidgen import workers
+
+    wanted, problem = backends.parse_langs(langs)
+    two = not problem and len(wanted) >= 2 and workers.jobs() >= 2
+    with _no_cyclic_gc(), (workers.Ahead(wanted) if two else contextlib.nullcontext()) as ahead:
         inputs = load_inputs(paths, include, sink, defines)
         if inputs is None:
             return False
-        langs, problem = backends.parse_langs(langs)
         if problem:
             sink.error("RG0802", problem, SourceLoc("<command line>", 0, 0), "name targets with --lang a,b")
             return False
-        if len(langs) < 2 or jobs() < 2:
-            per_lang = render(inputs, langs, sink, package)
+        if not two:
+            per_lang = render(inputs, wanted, sink, package)
             return per_lang is not None and write_outputs(out_dir, per_lang, sink)
-        return _generate_in_two(_Renderer(inputs, package), langs, out_dir, sink)
-
-
-def _generate_in_two(renderer: "_Renderer", langs: list[str], out_dir: str, sink: DiagnosticSink) -> bool:
-    """render() then write_outputs(), the targets dealt in turn to this process and a forked
-    child, each rendering and writing its own (each target has its own folder, manifest and
-    lock; no process holds the other's files). Both render before either writes: a target
-    the back end refuses stops the run with nothing written, as in one process. The child's
-    diagnostics and printed lines come back pickled and everything is printed in target
-    order, up to the first target whose folder could not be written, as in one process."""
-    import pickle
-    import signal
-
-    ours, theirs = list(range(0, len(langs), 2)), list(range(1, len(langs), 2))
-    files: dict[int, list[GeneratedFile]] = {}
-
-    def render_some(indexes: list[int]) -> list[tuple[int, list[Diagnostic]]]:
-        """[(i, diagnostics)] of the first target that fails; [] when all rendered."""
-        for i in indexes:
-            local = DiagnosticSink(silenced=sink.silenced, warnings_as_errors=sink.warnings_as_errors)
-            try:
-                files[i] = renderer.target(langs[i])
-            except GenerationError as exc:
-                exc.report(local)
-                return [(i, list(local.diagnostics))]
-        return []
-
-    def write_some(indexes: list[int]) -> list[tuple[int, bool, str, str, list[Diagnostic]]]:
-        done = []
-        for i in indexes:
-            local = DiagnosticSink(silenced=sink.silenced, warnings_as_errors=sink.warnings_as_errors)
-            out, err = io.StringIO(), io.StringIO()
-            with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-                ok = _write_lang(out_dir, langs[i], files.pop(i), local)
-            done.append((i, ok, out.getvalue(), err.getvalue(), list(local.diagnostics)))
-        return done
-
-    # Jinja2 (through the template loader) once, before the fork, not once in each process.
-    import rapidgen.backends.templating  # noqa: F401
-
-    sys.stdout.flush()
-    sys.stderr.flush()
-    up_r, up_w = os.pipe()  # child -> parent: pickled results
-    down_r, down_w = os.pipe()  # parent -> child: b"w" write, b"" stop
-    pid = os.fork()
-    if pid == 0:  # the child: never returns into the caller
-        code = 0
-        try:
-            os.close(up_r)
-            os.close(down_w)
-            with os.fdopen(up_w, "wb") as to_parent:
-                try:
-                    pickle.dump(("rendered", render_some(theirs)), to_parent, protocol=pickle.HIGHEST_PROTOCOL)
-                    to_parent.flush()
-                    if os.read(down_r, 1) == b"w":
-                        pickle.dump(("written", write_some(theirs)), to_parent, protocol=pickle.HIGHEST_PROTOCOL)
-                except Exception as exc:  # noqa: BLE001 (raised again in the parent)
-                    pickle.dump(("error", _portable(exc)), to_parent, protocol=pickle.HIGHEST_PROTOCOL)
-        except BaseException:  # noqa: BLE001 (the parent reports a child that sent nothing)
-            code = 70
-        finally:
-            _child_exit(code)
-    os.close(up_w)
-    os.close(down_r)
-    up = os.fdopen(up_r, "rb")
-    finished = False  # the child was told what to do and has answered: it is ending by itself
-    try:
-        failed = render_some(ours)
-        kind, value = _receive(up, pickle)
-        failed += value
-        if failed:  # the first refused target in order, as render() reports it
-            os.close(down_w)
-            down_w = -1
-            i, diags = min(failed, key=lambda f: f[0])
-            sink.extend(diags)
-            finished = True
-            return False
-        os.write(down_w, b"w")
-        os.close(down_w)
-        down_w = -1
-        written = write_some(ours)
-        kind, value = _receive(up, pickle)
-        written += value
-        finished = True
-        for i, ok, out, err, diags in sorted(written, key=lambda w: w[0]):
-            sys.stdout.write(out)
-            sys.stderr.write(err)
-            sink.extend(diags)
-            if not ok:
-                return False
-        return True
-    finally:
-        if down_w >= 0:
-            os.close(down_w)
-        up.close()
-        if not finished:  # leaving early (an exception, an interrupt): stop the child we started
-            try:
-                os.kill(pid, signal.SIGTERM)
-            except ProcessLookupError:
-                pass
-        os.waitpid(pid, 0)
-
-
-def _receive(up, pickle) -> tuple[str, list]:
-    """The child's next message; raises what it raised, or when it sent nothing."""
-    try:
-        kind, value = pickle.load(up)
-    except EOFError:
-        raise RuntimeError("a rapidgen worker process ended without its results") from None
-    if kind == "error":
-        raise value
-    return kind, value
+        if ahead is not None and ahead.worth(inputs):
+            done = ahead.hand_over(inputs, package, out_dir, sink)
+            if done is not None:
+                return done
+        return workers.generate_in_two(Renderer(inputs, package), wanted, out_dir, sink)
 
 
 @contextlib.contextmanager
@@ -496,7 +227,8 @@ def check_command(project: str, fix: bool, sink: DiagnosticSink, annotate: bool 
 
     stale = 0
     with _no_cyclic_gc():
-        done = _share(len(targets), one)
+        from rapidgen import workers
+        done = workers.share(len(targets), one)
     for is_stale, out, err, diags in done:
         sys.stdout.write(out)
         sys.stderr.write(err)

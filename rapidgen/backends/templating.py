@@ -118,6 +118,12 @@ def render(target: str, template: str, **context: object) -> str:
     return environment(target).get_template(template).render(**context)
 
 
+def names(target: str) -> list[str]:
+    """The target's templates, as render() names them."""
+    folder = TEMPLATE_ROOT / target
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*.j2"))
+
+
 # -- precompiled templates ----------------------------------------------------------------
 def key(target: str, name: str, source: str) -> str:
     """What a precompiled module must have been made from to stand in for the source."""

@@ -1,0 +1,161 @@
+"""`generate` and `check` over processes (rapidgen.workers) write what one process writes:
+the worker forked ahead of the front end, the fallback for a large model, and errors,
+interrupts and a lost worker on the way. The model handed over (rapidgen.model.pickling)
+is the same model."""
+from __future__ import annotations
+
+import os
+import pickle
+import time
+from pathlib import Path
+
+import pytest
+
+from rapidgen import workers
+from rapidgen.diagnostics import DiagnosticSink
+from rapidgen.generate import generate_command, load_inputs
+from rapidgen.model import ir, pickling
+from tests.helpers import rapidgen
+
+REPO = Path(__file__).resolve().parents[2]
+TWO = pytest.mark.skipif(workers.jobs() < 2, reason="one process here (one CPU, no fork, or threads running)")
+LANGS = ["python", "cpp", "rust", "qos"]
+
+
+def _tree(folder: Path) -> dict[str, bytes]:
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def _no_children_left() -> bool:
+    try:
+        os.waitpid(-1, os.WNOHANG)
+    except ChildProcessError:
+        return True
+    return False
+
+
+@pytest.mark.skipif(workers.jobs() < 2, reason="one process here (one CPU, no fork, or threads running)")
+def test_shared_work_runs_in_two_processes_and_keeps_order():
+    def work(i: int) -> tuple[int, int]:
+        time.sleep(0.05)  # long enough for both processes to take jobs
+        return i * i, os.getpid()
+
+    got = workers.share(6, work)
+    assert [v for v, _ in got] == [0, 1, 4, 9, 16, 25]
+    assert len({pid for _, pid in got}) == 2 and os.getpid() in {pid for _, pid in got}
+    dealt = workers.share(5, work, alternate=True)  # generate's targets: in turn
+    assert [v for v, _ in dealt] == [0, 1, 4, 9, 16]
+    assert [pid == os.getpid() for _, pid in dealt] == [True, False, True, False, True]
+
+
+def test_an_error_in_shared_work_reaches_the_caller():
+    def work(i: int) -> int:
+        if i == 3:
+            raise ValueError("job 3")
+        return i
+
+    for alternate in (False, True):
+        with pytest.raises(ValueError, match="job 3"):
+            workers.share(5, work, alternate)
+
+
+def test_one_process_and_two_write_the_same_files(tmp_path, monkeypatch):
+    monkeypatch.chdir(REPO)
+    for jobs in ("1", "2"):
+        monkeypatch.setenv("RAPIDGEN_JOBS", jobs)
+        res = rapidgen("generate", "specs/assets/k10.yaml", "--lang", "python,cpp,rust,qos",
+                       "-o", str(tmp_path / jobs))
+        assert res.code == 0, res.err
+    assert _tree(tmp_path / "1") == _tree(tmp_path / "2") and _tree(tmp_path / "1")
+
+
+@pytest.mark.parametrize("source", ["specs/assets/k10.yaml", "specs/assets/robonaut2.yaml",
+                                    "specs/rapid/PositionSample.idl"])
+def test_the_handed_over_model_is_the_same_model(source, monkeypatch):
+    monkeypatch.chdir(REPO)
+    inputs = load_inputs([source], ["specs/rapid"], DiagnosticSink())
+    assert inputs is not None
+    data = pickling.dumps(inputs)
+    back = pickle.loads(data)
+    assert back.model == inputs.model and back.source == inputs.source
+    assert [type(d) for d in back.model.declarations] == [type(d) for d in inputs.model.declarations]
+    assert back.model.get(inputs.model.declarations[-1].scoped_name) is not None  # the lookup rebuilt
+    struct = next(d for d in back.model.declarations if isinstance(d, ir.Struct))
+    assert struct.kind == "struct" and struct.loc == next(
+        d for d in inputs.model.declarations if d.scoped_name == struct.scoped_name).loc
+    # each IR object goes as its constructor's call, not through dataclasses' __getstate__
+    assert b"_dataclass_setstate" not in data and len(data) < len(pickle.dumps(inputs, protocol=5))
+
+
+def _generate(paths: list[str], out: Path, langs: list[str] = LANGS) -> tuple[bool, DiagnosticSink]:
+    sink = DiagnosticSink()
+    ok = generate_command(paths, [], {}, langs, str(out), None, sink)
+    return ok, sink
+
+
+@TWO
+def test_a_large_model_is_rendered_here_and_the_worker_ends(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(REPO)
+    handed = []
+    real = workers.Ahead.hand_over
+    monkeypatch.setattr(workers.Ahead, "hand_over", lambda self, *a: handed.append(1) or real(self, *a))
+    monkeypatch.setattr(workers.Ahead, "MAX_DECLARATIONS", 0)  # every model counts as large
+    assert _generate(["specs/assets/k10.yaml"], tmp_path / "here")[0]
+    assert handed == [] and _no_children_left()
+    monkeypatch.setattr(workers.Ahead, "MAX_DECLARATIONS", 10_000)
+    assert _generate(["specs/assets/k10.yaml"], tmp_path / "worker")[0]
+    assert handed == [1] and _no_children_left()
+    monkeypatch.setenv("RAPIDGEN_JOBS", "1")
+    assert _generate(["specs/assets/k10.yaml"], tmp_path / "one")[0]
+    one = _tree(tmp_path / "one")
+    assert one and _tree(tmp_path / "here") == one and _tree(tmp_path / "worker") == one
+    printed = capsys.readouterr().out.splitlines()
+    assert [line.split(": ", 1)[1] for line in printed[:4]] == [line.split(": ", 1)[1] for line in printed[8:]]
+
+
+@TWO
+def test_an_input_error_stops_the_worker_and_writes_nothing(tmp_path):
+    bad = tmp_path / "bad.idl"
+    bad.write_text("module m { struct S { long x } ; };\n", encoding="utf-8")
+    started = time.monotonic()
+    ok, sink = _generate([str(bad)], tmp_path / "out")
+    assert not ok and [d.code for d in sink.diagnostics] == ["RG0201"]
+    assert sink.diagnostics[0].loc.line == 1
+    assert not (tmp_path / "out").exists() and _no_children_left()
+    assert time.monotonic() - started < 60  # (a bound on a hang, not a speed figure)
+
+
+@TWO
+def test_a_worker_lost_before_the_hand_over_leaves_the_work_here(tmp_path, monkeypatch):
+    monkeypatch.chdir(REPO)
+    monkeypatch.setattr(workers, "prepare", lambda *a, **k: os._exit(9))  # the worker dies at once
+    assert _generate(["specs/assets/k10.yaml"], tmp_path / "out")[0]
+    monkeypatch.setenv("RAPIDGEN_JOBS", "1")
+    assert _generate(["specs/assets/k10.yaml"], tmp_path / "one")[0]
+    assert _tree(tmp_path / "out") == _tree(tmp_path / "one") and _no_children_left()
+
+
+@TWO
+def test_a_worker_lost_after_the_hand_over_is_an_internal_error_not_a_success(tmp_path, monkeypatch):
+    monkeypatch.chdir(REPO)
+    monkeypatch.setattr(workers, "generate_in_two", lambda *a: os._exit(9))  # dies with the inputs
+    with pytest.raises(RuntimeError, match="ended without its results"):
+        _generate(["specs/assets/k10.yaml"], tmp_path / "out")
+    assert not (tmp_path / "out").exists() and _no_children_left()
+    res = rapidgen("generate", "specs/assets/k10.yaml", "--lang", "python,cpp", "-o", str(tmp_path / "cli"))
+    assert res.code == 3 and "internal error" in res.err
+
+
+@TWO
+def test_a_refused_target_in_the_worker_is_reported_here(tmp_path, monkeypatch):
+    from rapidgen.backends import rust
+    from rapidgen.diagnostics import SourceLoc
+
+    monkeypatch.chdir(REPO)
+
+    def refuse(*a, **k):
+        raise rust.UnsupportedInput([("no rust today", SourceLoc("specs/assets/k10.yaml", 1, 1))])
+    monkeypatch.setattr(rust, "generate", refuse)
+    ok, sink = _generate(["specs/assets/k10.yaml"], tmp_path / "out")
+    assert not ok and any("no rust today" in d.message for d in sink.diagnostics)
+    assert not (tmp_path / "out").exists() and _no_children_left()
