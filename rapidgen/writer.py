@@ -23,10 +23,10 @@ fails with RG0824. The kernel drops the lock of a killed run.
 All or nothing, by a write-ahead journal replayed forward:
 1. under the lock, replay an interrupted run's journal (step 4), or delete the staging
    folder of a run killed before its commit (the lock proves no live run owns it);
-2. stage every new or changed file, the new manifest last, in `<root>/.rapidgen-staging/`
-   (each fsync'ed);
-3. commit: write `journal.json` there (the files to remove with their digests, the
-   renames), as a temporary file renamed into place after fsync;
+2. stage every new or changed file, the new manifest last, in `<root>/.rapidgen-staging/`,
+   and beside them the journal as a temporary file (the files to remove with their
+   digests, the renames); fsync them all, and the root (the staging folder's entry);
+3. commit: rename the journal to `journal.json`, fsync the staging folder;
 4. apply: remove the stale files that still hold what rapidgen wrote, rename each staged
    file over its target (manifest last), remove the folders emptied by the removals,
    fsync the folders, delete the journal, then the staging folder. Every step is
@@ -466,7 +466,6 @@ def _fsync_path(path: str) -> None:
 def _commit(root: str, writes: list[tuple[str, bytes]], removes: list[tuple[str, str]]) -> None:
     staging = os.path.join(root, STAGING)
     os.mkdir(staging, 0o700)
-    _fsync_dir(root)
     renames = []
     try:
         for i, (rel, data) in enumerate(writes):
@@ -477,11 +476,12 @@ def _commit(root: str, writes: list[tuple[str, bytes]], removes: list[tuple[str,
                 mode = 0o644
             _write_new(os.path.join(staging, f"{i}.tmp"), data, mode)
             renames.append([rel, f"{i}.tmp"])
-        _fsync_all([os.path.join(staging, name) for _, name in renames])  # all durable before the commit
         journal = json.dumps({"version": 1, "removes": [list(r) for r in removes],
                               "renames": renames}).encode("utf-8")
         _write_new(os.path.join(staging, "journal.tmp"), journal, 0o600)
-        _fsync_path(os.path.join(staging, "journal.tmp"))
+        # The staging folder's entry, every staged file and the journal durable in one round
+        # (concurrent fsyncs), all before the commit: the journal's rename.
+        _fsync_all([root, *(os.path.join(staging, name) for _, name in renames), os.path.join(staging, "journal.tmp")])
         os.replace(os.path.join(staging, "journal.tmp"), os.path.join(staging, JOURNAL))  # the commit
     except BaseException:  # not committed: the old output is untouched, drop what was staged
         shutil.rmtree(staging, ignore_errors=True)
