@@ -25,7 +25,10 @@ All or nothing, by a write-ahead journal replayed forward:
    folder of a run killed before its commit (the lock proves no live run owns it);
 2. stage every new or changed file, the new manifest last, in `<root>/.rapidgen-staging/`,
    and beside them the journal as a temporary file (the files to remove with their
-   digests, the renames); fsync them all, and the root (the staging folder's entry);
+   digests, the renames); fsync the journal, the manifest, the user's files created once
+   and the root (the staging folder's entry). The generated files need no fsync: after a
+   power cut the next run finds one that came out short by its digest and rewrites it
+   (the manifest lists it), as `check` reports it;
 3. commit: rename the journal to `journal.json`, fsync the staging folder;
 4. apply: remove the stale files that still hold what rapidgen wrote, rename each staged
    file over its target (manifest last), remove the folders emptied by the removals,
@@ -463,7 +466,9 @@ def _fsync_path(path: str) -> None:
         os.close(fd)
 
 
-def _commit(root: str, writes: list[tuple[str, bytes]], removes: list[tuple[str, str]]) -> None:
+def _commit(root: str, writes: list[tuple[str, bytes]], removes: list[tuple[str, str]],
+            once: frozenset[str] = frozenset()) -> None:
+    """Stage, commit and apply (steps 2-4 above); `once`: the user's files among the writes."""
     staging = os.path.join(root, STAGING)
     os.mkdir(staging, 0o700)
     renames = []
@@ -479,9 +484,12 @@ def _commit(root: str, writes: list[tuple[str, bytes]], removes: list[tuple[str,
         journal = json.dumps({"version": 1, "removes": [list(r) for r in removes],
                               "renames": renames}).encode("utf-8")
         _write_new(os.path.join(staging, "journal.tmp"), journal, 0o600)
-        # The staging folder's entry, every staged file and the journal durable in one round
-        # (concurrent fsyncs), all before the commit: the journal's rename.
-        _fsync_all([root, *(os.path.join(staging, name) for _, name in renames), os.path.join(staging, "journal.tmp")])
+        # Durable before the commit (the journal's rename), in one round of concurrent fsyncs:
+        # the staging folder's entry, the journal, and the files no later run would rewrite
+        # (the manifest, the user's files created once). The other files are checked against
+        # the manifest by the next run: one a power cut left short is rewritten.
+        lasting = [os.path.join(staging, name) for rel, name in renames if rel == MANIFEST or rel in once]
+        _fsync_all([root, *lasting, os.path.join(staging, "journal.tmp")])
         os.replace(os.path.join(staging, "journal.tmp"), os.path.join(staging, JOURNAL))  # the commit
     except BaseException:  # not committed: the old output is untouched, drop what was staged
         shutil.rmtree(staging, ignore_errors=True)
@@ -610,7 +618,7 @@ def write_tree(out_dir: str, files: list[GeneratedFile]) -> WriteReport:
                              problems=plan.problems, recovered=recovered)
         if plan.failed or not (plan.writes or plan.removes):
             return report
-        _commit(root, plan.writes, plan.removes)
+        _commit(root, plan.writes, plan.removes, frozenset(f.path for f in files if f.user_owned))
     report.written = [rel for rel, _ in plan.writes if rel != MANIFEST]
     report.removed = [rel for rel, _ in plan.removes]
     return report

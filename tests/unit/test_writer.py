@@ -80,3 +80,42 @@ def test_write_text_atomic_keeps_mode_and_skips_identical(tmp_path):
     assert not writer.write_text_atomic(str(p), "echo 1\n")
     assert writer.write_text_atomic(str(p), "echo 2\n")
     assert os.stat(p).st_mode & 0o777 == 0o755
+
+
+def test_what_the_next_run_relies_on_is_fsynced_before_the_commit(tmp_path, monkeypatch):
+    """Before the journal's rename: the journal, the manifest, a user's file created once and
+    the staging folder's entry are durable; a generated file need not be (test below)."""
+    synced: list[str] = []
+    at_commit: dict = {}
+    real_fsync, real_replace = os.fsync, os.replace
+
+    def fsync(fd):
+        synced.append(os.readlink(f"/proc/self/fd/{fd}"))
+        real_fsync(fd)
+
+    def replace(a, b):
+        if os.path.basename(a) == "journal.tmp":
+            at_commit["synced"] = list(synced)
+            at_commit["renames"] = dict(json.loads(open(a, encoding="utf-8").read())["renames"])
+        real_replace(a, b)
+    monkeypatch.setattr(os, "fsync", fsync)
+    monkeypatch.setattr(os, "replace", replace)
+    writer.write_tree(str(tmp_path), [F("gen.py", "g\n"), F("handlers.py", "edit me\n", user_owned=True)])
+    staging = str(tmp_path / writer.STAGING)
+    staged = at_commit["renames"]  # path -> its staged name
+    assert set(staged) == {"gen.py", "handlers.py", writer.MANIFEST}
+    before = set(at_commit["synced"])
+    assert {os.path.join(staging, staged["handlers.py"]), os.path.join(staging, staged[writer.MANIFEST]),
+            os.path.join(staging, "journal.tmp"), str(tmp_path)} <= before
+    assert os.path.join(staging, staged["gen.py"]) not in before
+    assert read(tmp_path / "gen.py") == "g\n" and not os.path.exists(staging)
+
+
+def test_a_generated_file_a_power_cut_left_short_is_rewritten(tmp_path):
+    files = [F("a/x.py", "x = 1\n"), F("b.txt", "b\n")]
+    writer.write_tree(str(tmp_path), files)
+    (tmp_path / "a" / "x.py").write_bytes(b"")  # its data never reached the disk
+    assert writer.compare_tree(str(tmp_path), files).differs == ["a/x.py"]
+    report = writer.write_tree(str(tmp_path), files)
+    assert report.written == ["a/x.py"] and not report.problems
+    assert read(tmp_path / "a" / "x.py") == "x = 1\n"
