@@ -124,7 +124,10 @@ def check_output(files: list[GeneratedFile], asset: "LoadedAsset | None" = None)
     Raises UnwritableCharacter, located at the descriptor field holding the character
     when there is one."""
     for f in files:
-        m = (XML_FORBIDDEN if f.path.endswith(".xml") else UNENCODABLE).search(f.content)
+        xml = f.path.endswith(".xml")
+        if not xml and f.content.isascii():  # (a flag of the string: no scan) no surrogate in ASCII
+            continue
+        m = (XML_FORBIDDEN if xml else UNENCODABLE).search(f.content)
         if m:
             line = f.content.count("\n", 0, m.start()) + 1
             col = m.start() - (f.content.rfind("\n", 0, m.start()) + 1) + 1

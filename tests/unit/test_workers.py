@@ -159,3 +159,21 @@ def test_a_refused_target_in_the_worker_is_reported_here(tmp_path, monkeypatch):
     ok, sink = _generate(["specs/assets/k10.yaml"], tmp_path / "out")
     assert not ok and any("no rust today" in d.message for d in sink.diagnostics)
     assert not (tmp_path / "out").exists() and _no_children_left()
+
+
+def test_prepare_loads_the_templates_until_the_inputs_arrive():
+    from rapidgen.backends import templating
+
+    names = templating.names("qos")
+    assert "fastdds.xml.j2" in names and all(n.endswith(".j2") for n in names)
+    read, write = os.pipe()
+    with os.fdopen(read, "rb") as until, os.fdopen(write, "wb") as arrived:
+        templating.environment.cache_clear()
+        workers.prepare(["qos"], until=until)
+        assert len(templating.environment("qos").cache or {}) == len(names)  # nothing to read: all
+        arrived.write(b"x")
+        arrived.flush()
+        templating.environment.cache_clear()
+        workers.prepare(["qos"], until=until)
+        assert len(templating.environment("qos").cache or {}) == 0  # the inputs came first
+    templating.environment.cache_clear()
