@@ -36,6 +36,9 @@ MAX_EXPANDED_TOTAL = 64 * 1024 * 1024
 MAX_MACRO_DEPTH = 32  # a macro naming itself (directly or not) stops expanding here
 
 _DIRECTIVE = re.compile(r"^\s*#\s*([A-Za-z_]\w*)?(.*)$")
+# What a line needs looking at for: a directive's '#', a comment's '/', a literal's quote, a
+# CR to strip. Lines with none of them are passed on as they are, many at once.
+_NOT_PLAIN = re.compile("[#/\"'\r]")
 _IDENT = re.compile(r"[A-Za-z_]\w*")
 
 
@@ -240,6 +243,16 @@ class Preprocessor:
                     chunk = text[pos:stop - 1] if text[stop - 1] == "\n" else text[pos:stop]
                     count = chunk.count("\n") + 1
                     self._emit(chunk if active else "\n" * (count - 1), file, lineno + 1, count)
+                    lineno += count
+                    pos = stop
+                    continue
+            if active and not self._valued:  # no macro to expand: plain lines go on in one piece
+                special = _NOT_PLAIN.search(text, pos)
+                stop = n if special is None else text.rfind("\n", pos, special.start()) + 1
+                if stop > pos:  # whole lines with no directive, comment, literal or CR
+                    chunk = text[pos:stop - 1] if text[stop - 1] == "\n" else text[pos:stop]
+                    count = chunk.count("\n") + 1
+                    self._emit(chunk, file, lineno + 1, count)
                     lineno += count
                     pos = stop
                     continue

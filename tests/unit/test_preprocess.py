@@ -2,6 +2,8 @@
 import os
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from rapidgen.diagnostics import DiagnosticSink
 from rapidgen.idl.preprocess import preprocess
@@ -180,3 +182,34 @@ def test_include_cycle_is_an_error(tmp_path, monkeypatch):
 def test_if_expressions_follow_c(expr, value):
     from rapidgen.idl.ifexpr import evaluate
     assert evaluate(expr, {"A": "6", "C": "A * 2", "EMPTY": ""}) == value
+
+
+# -- plain lines in one piece (issue 26) ------------------------------------------------------
+_LINES = ["struct S { long x; };", "  module m {", "};", "", "   ", "#define N 3", "#define E",
+          "#ifdef E", "#ifndef N", "#else", "#endif", "#undef N", "long a[N];", "/* open", "still */ long b;",
+          "// note", "long k; //@key", 'const string s = "a/b";', "char c = '#';", "x\r", "\f# define F 1",
+          "#if 0", "typedef long T; /* c */ typedef T U;"]
+
+
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.lists(st.sampled_from(_LINES), max_size=40), st.booleans())
+def test_plain_lines_in_one_piece_are_what_line_by_line_makes(tmp_path, picked, final_newline):
+    import re
+
+    from rapidgen.idl import preprocess as module
+
+    text = "\n".join(picked) + ("\n" if final_newline else "")
+    (tmp_path / "main.idl").write_text(text, encoding="utf-8", newline="")
+
+    def run_with(pattern):
+        old = module._NOT_PLAIN
+        module._NOT_PLAIN = pattern
+        try:
+            pre, sink = run(tmp_path, {}, "main.idl")
+        finally:
+            module._NOT_PLAIN = old
+        lines = [pre.line_map[i] for i in range(len(pre.line_map))]
+        return pre.text, lines, dict(pre.key_comments), [(d.code, d.message, d.loc) for d in sink.diagnostics]
+
+    fast = run_with(module._NOT_PLAIN)
+    assert fast == run_with(re.compile(r"[\s\S]"))  # every line looked at, one by one
