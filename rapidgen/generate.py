@@ -169,12 +169,14 @@ def _call_writer(function, folder: str, files: list[GeneratedFile], sink: Diagno
 def generate_command(paths: list[str], include: list[str], defines: dict[str, str], langs: list[str],
                      out_dir: str, package: str | None, sink: DiagnosticSink) -> bool:
     """Several targets go over two processes (rapidgen.workers): by the worker forked ahead
-    of the front end, or for a large model, by this process and a child."""
+    of the front end, or for a large model (large files: no worker forked at all), by this
+    process and a child."""
     from rapidgen import workers
 
     wanted, problem = backends.parse_langs(langs)
     two = not problem and len(wanted) >= 2 and workers.jobs() >= 2
-    with _no_cyclic_gc(), (workers.Ahead(wanted) if two else contextlib.nullcontext()) as ahead:
+    ahead_too = two and workers.Ahead.likely(paths)
+    with _no_cyclic_gc(), (workers.Ahead(wanted) if ahead_too else contextlib.nullcontext()) as ahead:
         inputs = load_inputs(paths, include, sink, defines)
         if inputs is None:
             return False

@@ -169,14 +169,24 @@ class Ahead:
     a child of its own render and write the targets) and sends back what was printed; this
     process only waits for it. Handing over costs ~0.07 ms per declaration (pickling the
     model: rapidgen.model.pickling), more than the worker saves from a few hundred on:
-    a larger model is rendered here as before (the caller decides: worth()), and a worker
-    not handed anything ends by itself."""
+    a larger model is rendered here as before (the caller decides: worth()) and the worker
+    is stopped; for large input files none is forked (likely())."""
 
     MAX_DECLARATIONS = 400
+    MAX_INPUT_BYTES = 256 * 1024  # given files larger than this make a model over the limit
 
     def __init__(self, langs: list[str]) -> None:
         self.langs = langs
         self.pid, self.down, self.up = 0, -1, -1
+
+    @classmethod
+    def likely(cls, paths: list[str]) -> bool:
+        """Whether the inputs may make a model small enough to hand over: no worker is forked
+        for large files (its preparing would only take a CPU from this process's parsing)."""
+        try:
+            return sum(os.path.getsize(p) for p in paths) <= cls.MAX_INPUT_BYTES
+        except OSError:  # the front end reports it
+            return True
 
     @classmethod
     def worth(cls, inputs: Inputs) -> bool:

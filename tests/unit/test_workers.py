@@ -105,12 +105,19 @@ def test_a_large_model_is_rendered_here_and_the_worker_ends(tmp_path, monkeypatc
     monkeypatch.setattr(workers.Ahead, "MAX_DECLARATIONS", 10_000)
     assert _generate(["specs/assets/k10.yaml"], tmp_path / "worker")[0]
     assert handed == [1] and _no_children_left()
+    forked = []
+    enter = workers.Ahead.__enter__
+    monkeypatch.setattr(workers.Ahead, "__enter__", lambda self: forked.append(1) or enter(self))
+    monkeypatch.setattr(workers.Ahead, "MAX_INPUT_BYTES", 10)  # large files: no worker at all
+    assert _generate(["specs/assets/k10.yaml"], tmp_path / "none")[0]
+    assert forked == [] and handed == [1] and _no_children_left()
     monkeypatch.setenv("RAPIDGEN_JOBS", "1")
     assert _generate(["specs/assets/k10.yaml"], tmp_path / "one")[0]
     one = _tree(tmp_path / "one")
     assert one and _tree(tmp_path / "here") == one and _tree(tmp_path / "worker") == one
+    assert _tree(tmp_path / "none") == one
     printed = capsys.readouterr().out.splitlines()
-    assert [line.split(": ", 1)[1] for line in printed[:4]] == [line.split(": ", 1)[1] for line in printed[8:]]
+    assert [line.split(": ", 1)[1] for line in printed[:4]] == [line.split(": ", 1)[1] for line in printed[12:]]
 
 
 @TWO
