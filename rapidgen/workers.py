@@ -26,6 +26,7 @@ from rapidgen.diagnostics import Diagnostic, DiagnosticSink
 if TYPE_CHECKING:
     from rapidgen.generate import Inputs, Renderer
 
+
 def jobs() -> int:
     """How many processes to use: 2 where fork exists, the process may run on two CPUs or
     more and runs no other Python thread (a forked child would get only this one), else 1."""
@@ -126,8 +127,7 @@ def share(count: int, work, alternate: bool = False) -> list:
     finally:
         queue.close()
         if pid:  # interrupted: stop the child we started, then reap it
-            import signal
-            os.kill(pid, signal.SIGTERM)
+            stop(pid)
             os.waitpid(pid, 0)
     if error is not None:
         raise error
@@ -249,7 +249,7 @@ def _ahead_worker(langs: list[str], down_r: int, up_w: int) -> None:
     import signal
 
     def idle(signum: int, frame: object) -> None:
-        os._exit(0)  # nothing written, no child, nothing to save (classes half made by an import)
+        os._exit(0)  # nothing written, no child; nothing saved (an import may be half done)
 
     def busy(signum: int, frame: object) -> None:
         raise KeyboardInterrupt  # generate_in_two then stops its own child too
@@ -261,8 +261,8 @@ def _ahead_worker(langs: list[str], down_r: int, up_w: int) -> None:
             prepare(langs, until=down)
             try:
                 inputs, package, out_dir, silenced, werror = pickle.load(down)
-            except EOFError:  # not handed over
-                return
+            except EOFError:  # not handed over: this process renders, and keeps the code cache
+                os._exit(0)  # (a save here could be cut short by the stop that follows the EOF)
         signal.signal(signal.SIGTERM, busy)
         from rapidgen.generate import Renderer
         with os.fdopen(up_w, "wb") as to_parent:
