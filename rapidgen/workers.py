@@ -132,8 +132,8 @@ def share(count: int, work, alternate: bool = False) -> list:
     if error is not None:
         raise error
     if not data:
-        raise RuntimeError(f"a rapidgen worker process ended without its results "
-                           f"(exit status {os.waitstatus_to_exitcode(status)})")
+        raise WorkerLost(f"a rapidgen worker process ended without its results "
+                         f"(exit status {os.waitstatus_to_exitcode(status)})")
     for i, ok, value in pickle.loads(data):
         if not ok:
             raise value
@@ -170,7 +170,8 @@ class Ahead:
     process only waits for it. Handing over costs ~0.07 ms per declaration (pickling the
     model: rapidgen.model.pickling), more than the worker saves from a few hundred on:
     a larger model is rendered here as before (the caller decides: worth()) and the worker
-    is stopped; for large input files none is forked (likely())."""
+    is stopped; for large input files none is forked (likely()). So is a model the worker
+    could not take or did not answer for (killed): the output is the same either way."""
 
     MAX_DECLARATIONS = 400
     MAX_INPUT_BYTES = 256 * 1024  # given files larger than this make a model over the limit
@@ -223,7 +224,9 @@ class Ahead:
 
     def hand_over(self, inputs: Inputs, package: str | None, out_dir: str, sink: DiagnosticSink) -> bool | None:
         """What generate_in_two returns, the work done by the worker, what it printed printed
-        here; None when the inputs do not pickle (then the worker ends with nothing done)."""
+        here; None when the inputs do not pickle (then the worker ends with nothing done) or
+        the worker is lost before it answers: the caller renders the targets itself. An error
+        the worker raised is raised here."""
         from rapidgen.model import pickling
         try:
             data = pickling.dumps((inputs, package, out_dir, sink.silenced, sink.warnings_as_errors))
@@ -237,7 +240,10 @@ class Ahead:
             return None
         with os.fdopen(self.up, "rb") as up:
             self.up = -1
-            _, (ok, out, err, diags) = receive(up)
+            try:
+                _, (ok, out, err, diags) = receive(up)
+            except WorkerLost:  # killed, or it died, before it answered: rendered here again
+                return None  # (the same files; each folder's lock and journal see to a half write)
         sys.stdout.write(out)
         sys.stderr.write(err)
         sink.extend(diags)
@@ -404,13 +410,17 @@ def generate_in_two(renderer: Renderer, langs: list[str], out_dir: str, sink: Di
         os.waitpid(pid, 0)
 
 
+class WorkerLost(RuntimeError):
+    """A worker process ended without sending its results (killed, or it died)."""
+
+
 def receive(up: IO[bytes]) -> tuple[str, list]:
-    """The child's next message; raises what it raised, or when it sent nothing."""
+    """The child's next message; raises what it raised, or WorkerLost when it sent nothing."""
     import pickle
     try:
         kind, value = pickle.load(up)
     except EOFError:
-        raise RuntimeError("a rapidgen worker process ended without its results") from None
+        raise WorkerLost("a rapidgen worker process ended without its results") from None
     if kind == "error":
         raise value
     return kind, value
