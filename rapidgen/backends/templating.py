@@ -118,10 +118,10 @@ def render(target: str, template: str, **context: object) -> str:
     return environment(target).get_template(template).render(**context)
 
 
-def names(target: str) -> list[str]:
+def names(target: str, root: Path = TEMPLATE_ROOT) -> list[str]:
     """The target's templates, as render() names them."""
-    folder = TEMPLATE_ROOT / target
-    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*.j2"))
+    folder = root / target
+    return [path.relative_to(folder).as_posix() for path in sorted(folder.rglob("*.j2"))]
 
 
 # -- precompiled templates ----------------------------------------------------------------
@@ -172,11 +172,8 @@ def module_text(target: str, name: str, source: str) -> str:
 
 
 def _templates(root: Path = TEMPLATE_ROOT) -> list[tuple[str, str, Path]]:
-    out = []
-    for folder in sorted(p for p in root.iterdir() if p.is_dir()):
-        for path in sorted(folder.rglob("*.j2")):
-            out.append((folder.name, path.relative_to(folder).as_posix(), path))
-    return out
+    return [(folder.name, name, folder / name)
+            for folder in sorted(p for p in root.iterdir() if p.is_dir()) for name in names(folder.name, root)]
 
 
 def stale(root: Path = TEMPLATE_ROOT, folder: Path = PRECOMPILED_DIR) -> tuple[list[str], list[str]]:
