@@ -3,7 +3,7 @@
 same run.
 
     .venv/bin/python bench/cpp_bridge.py [--latency 2000] [--flood 10000] [--rss 100000]
-                                         [--build /tmp/rapidgen-bench-cpp] [--domain 135]
+                                         [--build /tmp/rapidgen-bench-cpp] [--domain 93]
                                          [--ddsperf-domain D] [--floor-domain D]
 
 Builds what it needs once in --build (kept: later runs are incremental): the runtime, K10's
@@ -208,7 +208,7 @@ def main() -> int:
     p.add_argument("--flood", type=int, default=10000, help="commands sent back to back (default 10000)")
     p.add_argument("--rss", type=int, default=100000, help="commands for the memory figure (default 100000)")
     p.add_argument("--build", type=Path, default=Path("/tmp/rapidgen-bench-cpp"))
-    p.add_argument("--domain", type=int, default=135, help="the bridge's DDS domain (default 135)")
+    p.add_argument("--domain", type=int, default=93, help="the bridge's DDS domain (default 93)")
     p.add_argument("--ddsperf-domain", type=int, help="ddsperf's (default: --domain + 1)")
     p.add_argument("--floor-domain", type=int, help="fastdds_ping's (default: --domain + 2)")
     p.add_argument("--ddsperf-seconds", type=float, default=5, help="0 skips ddsperf")

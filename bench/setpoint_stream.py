@@ -4,7 +4,7 @@ stream `setpoints` at 1 kHz, Arm64 reading it as an input stream (bench/setpoint
 each with a few lines of bench code in its handlers.cpp (bench/setpoint/code.py) and a
 per-thread heap allocation counter linked in (bench/setpoint/alloc_count.cpp).
 
-    python bench/setpoint_stream.py [--samples 10000] [--domain 141]
+    python bench/setpoint_stream.py [--samples 10000] [--domain 96]
 
 Prints, after a warm-up of 1000 samples:
   period jitter    |arrival interval - 1 ms| at the reader: p50, p99, max
@@ -54,7 +54,7 @@ def read(path: Path) -> tuple[int, list[list[int]]]:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--samples", type=int, default=10000)
-    ap.add_argument("--domain", type=int, default=141)
+    ap.add_argument("--domain", type=int, default=96)
     args = ap.parse_args()
     missing = harness.toolchain_missing()
     if missing:

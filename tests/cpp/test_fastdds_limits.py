@@ -24,8 +24,8 @@ import pytest
 
 from tests.cpp.conftest import K10, ROOT
 
-DOMAIN_FLOOD = 150
-DOMAIN_LOAD = 151
+DOMAIN_FLOOD = 88
+DOMAIN_LOAD = 90
 XML = K10 / "qos" / "fastdds" / "rapid_qos_profiles.xml"
 COMMANDS = 30  # per batch: three times Fast DDS's default instance limit
 WAIT = 10.0  # seconds any one answer may take (a bound on waiting, never asserted on)

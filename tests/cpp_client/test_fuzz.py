@@ -3,7 +3,7 @@ ASan/UBSan (K10's bridge built with the runtime's core and the types' codec sani
 build.py client_programs): tests/cpp_client/fuzz.py writes RAPIDGEN_FUZZ_COUNT samples
 (default 1500) as raw CDR through cyclonedds. The bridge never crashes (no sanitizer
 report, clean exit), answers every well-formed command and still completes Admin/echo.
-Domain 130."""
+Domain 24."""
 from __future__ import annotations
 
 import json
@@ -17,7 +17,7 @@ from tests.cpp_runtime import build as B
 from tests.runtime.live import SEEDS, env_for, python_dir
 
 pytest.importorskip("cyclonedds")
-DOMAIN = 130
+DOMAIN = 24
 COUNT = int(os.environ.get("RAPIDGEN_FUZZ_COUNT", "1500"))
 
 

@@ -3,7 +3,7 @@ drives K10's generated C++ bridge (Fast DDS), and the C++ client program (rapid_
 runtime's dds::Client) drives K10's Python bridge, through the same scenario (drive.py:
 valid, invalid, queued with APPEND/INSERT/REPLACE/DELETE, cancelled). Every command gets
 the same acks both ways, and they are the ones the protocol asks for (EXPECTED). Both
-directions run at once; domains 131 and 132 (and 86 for the partition test)."""
+directions run at once; domains 25 and 26 (and 86 for the partition test)."""
 from __future__ import annotations
 
 import subprocess
@@ -17,7 +17,7 @@ from tests.runtime.live import SEEDS, BridgeProcess, python_dir
 
 pytest.importorskip("cyclonedds")
 
-CPP_BRIDGE_DOMAIN, PY_BRIDGE_DOMAIN = 131, 132
+CPP_BRIDGE_DOMAIN, PY_BRIDGE_DOMAIN = 25, 26
 ACCESS = "RAPID access violation: RapidWorkbench does not have control (send requestControl)"
 EXPECTED = {
     "requestControl": (0, ["  EXECUTING", "  COMPLETED OK  control granted to RapidWorkbench"]),
@@ -72,7 +72,7 @@ def test_cmd_program_refuses_bad_input_with_a_clear_error(programs):
     """Checked before anything is sent (no asset needed); exit 2 for usage, 1 for a command
     the dictionary refuses; every name from the command line escaped."""
     def run(*args: str) -> subprocess.CompletedProcess:
-        return subprocess.run([str(programs["cmd"]), *args, "--domain", "139", "--discover", "0.1", "--timeout",
+        return subprocess.run([str(programs["cmd"]), *args, "--domain", "27", "--discover", "0.1", "--timeout",
                                "0.5"], capture_output=True, text=True, timeout=60, env=B.dds_env())
     res = run("--help")
     assert res.returncode == 0 and "--action" in res.stdout
@@ -89,8 +89,8 @@ def test_cmd_program_refuses_bad_input_with_a_clear_error(programs):
     assert res.returncode == 1 and "pan: 9 not in [-3.05, 3.05]" in res.stderr
     res = run("PanCam", "pointCamera", "--action", "INSERT")
     assert res.returncode == 1 and "QUEUE_INSERT needs a target cmdId" in res.stderr
-    res = run("Admin", "echo", "text=hi")  # the dictionary's, but no asset on domain 139
-    assert res.returncode == 1 and "no asset K10Red reads commands on domain 139" in res.stderr
+    res = run("Admin", "echo", "text=hi")  # the dictionary's, but no asset on domain 27
+    assert res.returncode == 1 and "no asset K10Red reads commands on domain 27" in res.stderr
 
 
 PARTITION_DOMAIN = 86

@@ -2,17 +2,17 @@
 session's shared C++ build (tests/cpp_runtime/build.py stream_bridges(): the seeds' bridges
 and tests/streams/rig.yaml's, one more bridge in the seeds' build):
 
-- the loss actions (domain 150): tests/streams/pilot.py (Cyclone DDS) writes the rig's three
+- the loss actions (domain 29): tests/streams/pilot.py (Cyclone DDS) writes the rig's three
   input streams, the rig runs --simulate (its simulated robot consumes them). Setpoints move
   the simulated body, arm joints and mast; the writer paused (alive, no samples: DEADLINE)
   and then gone (LIVELINESS): each stream is lost with its cause in a TextMessage and its
   state in AgentState; stop halts the body (and Mobility/stopAllMotion runs, acked by the
   simulator), hold keeps the arm moving to its last setpoint, none only reports;
-- the seeds (domain 151): X-Arm-2 --simulate streams its hand pose, Robonaut 2's generated
+- the seeds (domain 19): X-Arm-2 --simulate streams its hand pose, Robonaut 2's generated
   bridge (stub handlers) reads it: active, lost with the writer frozen (SIGSTOP, on_loss
   stop), recovered (SIGCONT), in AgentState and TextMessages.
 
-RAPIDGEN_STREAMS_E2E=1 adds the long version (domain 140, its own build of three bridges
+RAPIDGEN_STREAMS_E2E=1 adds the long version (domain 28, its own build of three bridges
 whose handlers.cpp carry test code, tests/streams/code.py): R2's typed callback gets the
 writer's values, its on_state hook runs, a rover's loss runs stopAllMotion on its stub.
 """
@@ -36,9 +36,9 @@ from tests.runtime.live import BridgeProcess
 from tests.streams import code, harness
 
 ROOT = Path(__file__).resolve().parents[2]
-DOMAIN = 140
-RIG_DOMAIN = 150
-SEED_DOMAIN = 151
+DOMAIN = 28
+RIG_DOMAIN = 29
+SEED_DOMAIN = 19
 RIG = Path(__file__).resolve().parent / "rig.yaml"
 R2 = ROOT / "specs" / "assets" / "robonaut2.yaml"
 XARM2 = ROOT / "specs" / "assets" / "xarm2.yaml"

@@ -2,7 +2,13 @@
 #include "rapid_runtime/dds/security.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+
+#include <rapid_runtime/ports.hpp>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
@@ -28,6 +34,16 @@ void drop_endpoint_partitions(eprosima::fastrtps::rtps::PropertyPolicy& properti
     auto& all = properties.properties();
     all.erase(std::remove_if(all.begin(), all.end(), [](const auto& p) { return p.name() == "partitions"; }),
               all.end());
+}
+
+// Once per process: a domain whose ports the kernel may give out as ephemeral ones (ports.hpp).
+void warn_of_ephemeral_ports(int domain) {
+    static std::atomic<bool> warned{false};
+    std::ifstream in("/proc/sys/net/ipv4/ip_local_port_range");
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string clash = ephemeral_clash(domain, parse_port_range(text));
+    if (clash.empty() || warned.exchange(true)) return;
+    std::cerr << "rapid_runtime: warning: " << clash << std::endl;
 }
 
 }  // namespace
@@ -57,6 +73,7 @@ Node::Node(const NodeOptions& options) : partition_(options.partition) {
         if (property.name() == "rapid.link") link_ = property.value();
     const std::string enclave = security_enclave(partition_);  // DDS Security hook (security.hpp)
     if (!enclave.empty()) apply_security(pqos, enclave);
+    warn_of_ephemeral_ports(options.domain);
     participant_ = factory->create_participant(options.domain, pqos);
     if (participant_ == nullptr)
         throw DdsError(!enclave.empty() ? security_refusal(enclave)
