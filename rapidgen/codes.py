@@ -182,6 +182,8 @@ _CODES = (
     Code("RG1317", "warning", "descriptor", 'input-only stream setting on an output stream'),
     Code("RG1401", "warning", "descriptor", 'DDS partition differs from the asset name'),
     Code("RG1402", "error", "descriptor", 'malformed access pattern'),
+    Code("RG1403", "warning", "descriptor",
+         "DDS domain whose RTPS ports lie in Linux's default ephemeral port range (domains 102-214)"),
     Code("RG1501", "error", "descriptor", 'ros2: unknown ROS 2 message type'),
     Code("RG1502", "error", "descriptor", 'ros2: a message has no such field'),
     Code("RG1503", "error", "descriptor", 'ros2: a value, argument or message that does not fit its target'),

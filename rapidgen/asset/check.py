@@ -19,6 +19,8 @@ from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 if TYPE_CHECKING:
     from rapidgen.asset.resolved import LoadedAsset
 
+EPHEMERAL = (32768, 60999)  # Linux's default net.ipv4.ip_local_port_range
+
 
 class Checker:
     def __init__(self, loaded: "LoadedAsset", sink: DiagnosticSink) -> None:
@@ -69,12 +71,26 @@ class Checker:
                               f"'{spec.name}'", spec.at("dds", "partition"),
                               "RAPID assets publish in a partition named after themselves; "
                               "ground tools subscribe by asset name")
+        self.domain_ports()
         self.subsystem_types()
         self.subsystems()
         self.native()
         self.access_control()
         check_telemetry(self)
         check_streams(self)
+
+    def domain_ports(self) -> None:
+        """Fast DDS 2.9 announces no domain id and Cyclone DDS reads its ephemeral send
+        socket: a domain whose well-known ports (RAPID's mapping, the first 20 participant
+        indices) the kernel also hands out as ephemeral ones lets other domains in
+        (docs/qos.md, "Domain ids on one host"; the C++ runtime warns too, ports.hpp)."""
+        d = self.spec.domain
+        first, last = 7400 + 250 * d, 7400 + 250 * d + 11 + 2 * 19
+        if first <= EPHEMERAL[1] and last >= EPHEMERAL[0]:
+            self.sink.warning("RG1403", f"DDS domain {d}'s RTPS ports ({first}-{last}) lie in Linux's default "
+                              f"ephemeral port range ({EPHEMERAL[0]}-{EPHEMERAL[1]})", self.spec.at("dds", "domain"),
+                              "a C++ (Fast DDS) participant on it can be discovered by a Cyclone DDS participant of "
+                              "another domain on the same host; use 0-101 or 215-232")
 
     # -- subsystem types and commands -------------------------------------------------------
     def subsystem_types(self) -> None:

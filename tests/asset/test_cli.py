@@ -66,6 +66,19 @@ def test_warnings_can_be_silenced_or_promoted(monkeypatch):
     assert rapidgen("validate", "-W", "error", case).code == 1
 
 
+@pytest.mark.parametrize("domain, warned", [(0, False), (101, False), (102, True), (214, True), (215, False),
+                                            (232, False)])
+def test_domain_in_the_ephemeral_port_band_is_warned_of(domain, warned, tmp_path, monkeypatch):
+    """RG1403 exactly for the domains whose first 20 participants' ports meet 32768-60999
+    (docs/qos.md, "Domain ids on one host"; runtime/cpp ports.hpp draws the same line)."""
+    monkeypatch.chdir(ROOT)
+    desc = tmp_path / "probe.yaml"
+    desc.write_text(f"version: 1\nasset: {{name: Probe, kind: rover}}\ndds: {{domain: {domain}}}\n"
+                    "subsystems: [{name: Admin}]\n", encoding="utf-8")
+    res = rapidgen("validate", str(desc))
+    assert res.code == 0 and ("warning[RG1403]" in res.err) == warned, res.err
+
+
 def test_rapid_option_shipped_idl_and_missing_rapid_idl(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "a.yaml").write_text("version: 1\nasset: {name: A, kind: rover}\n")
