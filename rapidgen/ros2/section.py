@@ -230,7 +230,7 @@ class _Reader:
 
     # -- the ground side: RAPID telemetry -> ROS 2 topics --------------------------------
     def ground(self, value: object, path: tuple, node: str) -> dict | None:
-        """Which ROS 2 topics the asset's joint, position and agent telemetry goes to."""
+        """Which ROS 2 topics the asset's joint, position, agent, image and text telemetry goes to."""
         if value is True:
             value = {}
         if not self.mapping(value, path, _GROUND_KEYS, ()):
@@ -249,7 +249,7 @@ class _Reader:
         entries = []
         counts: dict[str, int] = {}
         for t in self.loaded.spec.telemetry:
-            if t.kind not in ("joint", "position", "agent", "text"):
+            if t.kind not in ("joint", "position", "agent", "image", "text"):
                 continue
             index = counts.get(t.kind, 0)
             counts[t.kind] = index + 1
@@ -260,13 +260,15 @@ class _Reader:
             elif t.kind == "position":
                 entries.append({"kind": "position", "index": index, "topic": f"{ns}{sub}/pose", "frame": t.frame,
                                 "encoding": t.pose_encoding})
+            elif t.kind == "image":
+                entries.append({"kind": "image", "index": index, "topic": f"{ns}{sub}/image/compressed"})
             elif t.kind == "text":
                 entries.append({"kind": "text", "index": index, "topic": "/rosout"})
             else:
                 entries.append({"kind": "agent", "index": index, "topic": diagnostics,
                                 "values": [[v.name, v.type, v.unit or "", _levels(v.warning), _levels(v.critical)]
                                            for v in t.values]})
-        return {"node": gnode, "entries": entries}
+        return {"node": gnode, "namespace": ns, "entries": entries}
 
     def unfed(self, fed: set[tuple[str, int]]) -> None:
         """Warn of telemetry the ROS 2 bridge will never publish (conform's TEL-01 would fail)."""

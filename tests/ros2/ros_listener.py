@@ -1,9 +1,11 @@
 """A plain rclpy subscriber for the tests: prints one JSON line per topic (its first
 message), then exits. usage: ros_listener.py TOPIC=pkg/msg/Type ...
 /rosout is read as rqt_console does (transient local), keeping the first Log whose name
-starts with ROSOUT_NAME (environment)."""
+starts with ROSOUT_NAME (environment); a topic with /config/ in its name is read transient
+local too (ros2_ground's latched configs, std_msgs/String holding JSON)."""
 from __future__ import annotations
 
+import hashlib
 import importlib
 import json
 import os
@@ -25,6 +27,11 @@ def plain(msg) -> dict:
     if kind == "DiagnosticArray":
         return {"status": [{"name": s.name, "level": s.level[0], "message": s.message, "hardware_id": s.hardware_id,
                             "values": {kv.key: kv.value for kv in s.values}} for s in msg.status]}
+    if kind == "CompressedImage":
+        return {"format": msg.format, "frame": msg.header.frame_id, "sha256": hashlib.sha256(bytes(msg.data)).hexdigest(),
+                "stamp": msg.header.stamp.sec}
+    if kind == "String":  # a config (ros2_ground): its JSON
+        return json.loads(msg.data)
     if kind == "Log":
         return {"name": msg.name, "level": msg.level, "msg": msg.msg, "stamp": msg.stamp.sec}
     raise TypeError(kind)
@@ -45,7 +52,9 @@ def main() -> int:
                 t, wanted[t] or (plain(m) if m.name.startswith(prefix) else None)),
                 QoSProfile(depth=1000, durability=DurabilityPolicy.TRANSIENT_LOCAL))
             continue
-        node.create_subscription(cls, topic, lambda m, t=topic: wanted.__setitem__(t, wanted[t] or plain(m)), 10)
+        latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)  # ros2_ground's configs
+        node.create_subscription(cls, topic, lambda m, t=topic: wanted.__setitem__(t, wanted[t] or plain(m)),
+                                 latched if "/config/" in topic else 10)
     while any(v is None for v in wanted.values()):
         rclpy.spin_once(node, timeout_sec=0.5)
     for topic, got in wanted.items():

@@ -252,3 +252,36 @@ def test_a_stream_mapping_error_is_located(tmp_path, monkeypatch, old, new, code
     errors, line = _stream_errors(tmp_path, monkeypatch, old, new)
     assert [(e.code, e.loc.line) for e in errors] == [(code, line)], errors  # at the replaced key's line
     assert words in errors[0].message
+
+
+@pytest.fixture(scope="module")
+def example_ground(example_bridge):
+    """The example's generated rapid_r2ros.ros2_ground, imported (rclpy only in its main)."""
+    import importlib
+    return importlib.import_module("rapid_r2ros.ros2_ground")
+
+
+def test_ground_config_topics_and_json(example_ground):
+    """Configs go to ROS 2 as JSON on NS/config/<name>: the name from the RAPID topic, the
+    JSON the sample's members (enums by name, unions as discriminator and value): each config
+    built from the tables reads back as the tables' computed value."""
+    import importlib
+    import json
+
+    from rapid_runtime import messages
+    from rapid_runtime.tables import Tables
+
+    g = example_ground
+    assert g.config_topic("/r2ros", "rapid_agent_config") == "/r2ros/config/agent"
+    assert g.config_topic("/r2ros", "rapid_position_config-rightArm") == "/r2ros/config/position/rightArm"
+    assert g.config_topic("", "rapid_ext_arc_gps_config") == "/config/ext_arc_gps"
+    assert g.config_topic("/r", "rapid_joint_config-a.b") == "/r/config/joint/a_b"
+    assert g.plain(float("nan")) == "nan" and g.plain(b"\x00\xff") == [0, 255]
+    tables = Tables(importlib.import_module("rapid_r2ros.asset_tables"))
+    rapid = importlib.import_module("rapid_r2ros.rapid")
+    assert set(tables.configs) >= {"rapid_command_config", "rapid_agent_config", "rapid_joint_config"}
+    for topic, (type_name, value) in tables.configs.items():
+        sample = messages.config(rapid, type_name, value, messages.header(rapid, "R2Ros", "R2Ros", 7))
+        got = json.loads(json.dumps(g.plain(sample)))
+        assert got["hdr"]["assetName"] == "R2Ros" and got["hdr"]["serial"] == 7, topic
+        assert {k: v for k, v in got.items() if k != "hdr"} == value, topic

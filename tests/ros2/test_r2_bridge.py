@@ -230,10 +230,13 @@ def test_service_calls_answer_with_their_response(scene):
 def test_rapid_telemetry_comes_back_to_ros2_as_standard_messages(scene):
     """RAPID -> ROS 2: the ground node republishes R2Ros's RAPID telemetry; a plain rclpy
     subscriber sees joint states named as the JointConfig, the pose, diagnostics whose
-    levels follow the descriptor's thresholds and the asset's text on /rosout."""
+    levels follow the descriptor's thresholds, the head camera's picture, the configs
+    (latched JSON) and the asset's text on /rosout."""
     res = subprocess.run([*scene.ns, str(scene.python), str(ROOT / "tests/ros2/ros_listener.py"),
                           "/r2ros/joint_states=sensor_msgs/msg/JointState",
                           "/r2ros/rightArm/pose=geometry_msgs/msg/PoseStamped",
+                          "/r2ros/headCam/image/compressed=sensor_msgs/msg/CompressedImage",
+                          "/r2ros/config/joint=std_msgs/msg/String", "/r2ros/config/command=std_msgs/msg/String",
                           "/diagnostics=diagnostic_msgs/msg/DiagnosticArray", "/rosout=rcl_interfaces/msg/Log"],
                          capture_output=True, text=True, timeout=WAIT, env={**os.environ, "ROSOUT_NAME": "R2Ros"})
     assert res.returncode == 0, res.stderr
@@ -252,6 +255,16 @@ def test_rapid_telemetry_comes_back_to_ros2_as_standard_messages(scene):
     assert float(force["values"]["value"]) == pytest.approx(FORCE) and force["values"]["unit"] == "N"
     assert status["R2Ros/rightWristForce"]["level"] == 0  # no thresholds: OK
     assert all(s["hardware_id"] == "R2Ros" for s in status.values())
+    # the picture went ROS 2 -> RAPID -> ROS 2: the same bytes the ROS 2 camera published
+    image = got["/r2ros/headCam/image/compressed"]
+    assert f"head image sha256={image['sha256']}" in (scene.tmp / "sim.log").read_text()
+    assert (image["format"], image["frame"]) == ("png", "HeadCamLeft") and image["stamp"] > 1_700_000_000
+    # the configs, latched, as the JSON of what the asset published
+    joint_config = got["/r2ros/config/joint"]
+    assert [j["frameName"] for j in joint_config["jointDefinitions"]] == JOINTS
+    assert joint_config["hdr"]["assetName"] == "R2Ros" and joint_config["hdr"]["serial"] > 0
+    subsystems = {s["name"]: s["subsystemTypeName"] for s in got["/r2ros/config/command"]["availableSubsystems"]}
+    assert "RightArm" in subsystems, subsystems
     # the asset's TextMessage (durable, written at the bridge's start) on /rosout, as rqt_console reads it
     log = got["/rosout"]
     assert log == {"name": "R2Ros/system", "level": 20, "msg": "R2Ros served from ROS 2 node r2_rapid_bridge",
