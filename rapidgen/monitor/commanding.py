@@ -6,8 +6,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from types import SimpleNamespace
 
-ACTIONS = ("BYPASS", "APPEND")  # what the page offers (DELETE etc. need a target: `rapidgen cmd`)
+ACTIONS = ("BYPASS", "APPEND", "INSERT", "REPLACE", "DELETE")
+TARGETED = ("INSERT", "REPLACE", "DELETE")  # act on a queued command: its cmdId is the targetCmdId
 MAX_SOURCE = 31  # Command.cmdSrc is a String32
+MAX_TARGET = 63  # Command.targetCmdId is a String64
 
 
 class Refused(ValueError):
@@ -22,12 +24,14 @@ class Request:
     command: str
     args: tuple  # ((DataType, value), ...)
     source: str
-    action: str  # QUEUE_BYPASS | QUEUE_APPEND
+    action: str  # QUEUE_BYPASS | QUEUE_APPEND | QUEUE_INSERT | QUEUE_REPLACE | QUEUE_DELETE
+    target: str = ""  # targetCmdId: INSERT after it, REPLACE or DELETE it
 
 
 def check(msg: dict, commands: dict, asset_name: str) -> Request:
-    """The page's {partition, subsystem, command, args: {name: text}, source, action} as a
-    Request, or Refused with the reason."""
+    """The page's {partition, subsystem, command, args: {name: text}, source, action, target}
+    as a Request, or Refused with the reason. A DELETE carries its target's subsystem and
+    command, and no arguments (the asset checks it as its sender sending the target)."""
     from rapid_runtime.values import coerce, limit_error, parse_text, shape_error
 
     source = msg.get("source")
@@ -37,7 +41,16 @@ def check(msg: dict, commands: dict, asset_name: str) -> Request:
         raise Refused(f"the source must be printable and at most {MAX_SOURCE} bytes")
     action = msg.get("action", "BYPASS")
     if action not in ACTIONS:
-        raise Refused(f"unknown queue action {action!r}")
+        raise Refused(f"unknown queue action {str(action)[:20]!r}")
+    target = msg.get("target") or ""
+    if not isinstance(target, str):
+        raise Refused("the target must be a cmdId")
+    if action in TARGETED and not target.strip():
+        raise Refused(f"{action} acts on a queued command: choose it in the queue first")
+    if action not in TARGETED and target:
+        raise Refused(f"{action} takes no target")
+    if len(target.encode("utf-8")) > MAX_TARGET or not target.isprintable():
+        raise Refused(f"the target cmdId must be printable and at most {MAX_TARGET} bytes")
     sub, name = msg.get("subsystem"), msg.get("command")
     if not isinstance(sub, str) or not isinstance(name, str):
         raise Refused("a command needs a subsystem and a name")
@@ -51,7 +64,7 @@ def check(msg: dict, commands: dict, asset_name: str) -> Request:
     if not isinstance(given, dict):
         raise Refused("arguments must be an object")
     out = []
-    for p in params:
+    for p in params if action != "DELETE" else ():
         text = given.get(p["name"])
         if text is None or (isinstance(text, str) and text.strip() == "" and p["type"] != "RAPID_STRING"):
             if not p["has_default"]:
@@ -66,4 +79,5 @@ def check(msg: dict, commands: dict, asset_name: str) -> Request:
         if why:
             raise Refused(f"{p['name']}: {why}")
         out.append((p["type"], value))
-    return Request(msg.get("partition", ""), asset_name, sub, name, tuple(out), source.strip(), "QUEUE_" + action)
+    return Request(msg.get("partition", ""), asset_name, sub, name, tuple(out), source.strip(), "QUEUE_" + action,
+                   target)

@@ -126,6 +126,6 @@ class LiveFeed:
                 keep.append((deadline, req, cmd_id))  # the asset's reader not matched yet
                 continue
             cmd = Cmd(cmd_id=cmd_id, cmd_src=req.source, subsystem=req.subsystem, name=req.command, args=req.args,
-                      action=req.action, src_name=req.source, asset_name=req.asset)
+                      action=req.action, target=req.target, src_name=req.source, asset_name=req.asset)
             writer.write(M.command_out(rapid, cmd))
         self._pending = keep

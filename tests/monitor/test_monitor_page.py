@@ -143,6 +143,58 @@ def test_command_from_the_page_completes(live, driven):
     assert "pan" in answer.text and "3.05" in answer.text
 
 
+def _queued(d) -> list[str]:
+    """The cmdIds of the queue view's active and pending records, in order."""
+    return d.execute_script("return [...document.querySelectorAll('#queue [data-record]')].map(e => e.dataset.record)")
+
+
+def _click_record(d, cmd_id: str, button: str) -> None:
+    from selenium.webdriver.common.by import By
+    H.until(lambda: cmd_id in _queued(d), 15, what=f"{cmd_id} in the queue view")
+    d.find_element(By.CSS_SELECTOR, f"#queue [data-record='{cmd_id}'] button.{button}").click()
+
+
+def _final(d, cmd_id: str) -> str:
+    return H.wait_completed(d, cmd_id)[-1]
+
+
+def test_queue_actions_from_the_page(live, driven):
+    """DELETE, REPLACE and INSERT from the queue view (K10 has control from `driven`): a long
+    drive runs, two echoes wait; the last is deleted, the first replaced, a third inserted
+    after the replacement; then the drive itself is deleted and the queue runs in that order."""
+    from selenium.webdriver.common.by import By
+    d = live["driver"]
+    H.select(d, "K10Red", "commands")
+    H.until(lambda: H.texts(d, "#queue [data-queue]") == ["state: idle"], 20, what="the queue idle")
+    drive = H.send(d, "Mobility/simpleMove", {"frame": "site", "xyt": "300000,0,0", "queue-action": "APPEND"})
+    H.until(lambda: "EXECUTING" in H.ack_chips(d, drive), 15, what="the drive running")
+    second = H.send(d, "Admin/echo", {"text": "second", "queue-action": "APPEND"})
+    third = H.send(d, "Admin/echo", {"text": "third", "queue-action": "APPEND"})
+    H.until(lambda: _queued(d) == [drive, second, third], 15, what="drive, second, third queued")
+    # DELETE the last: its own answer, and the target's
+    _click_record(d, third, "delete")
+    gone = H.until(lambda: d.find_element(By.ID, "queue-answer").get_attribute("data-cmdid"), 15, what="DELETE sent")
+    assert _final(d, gone).startswith("COMPLETED OK: ") and _final(d, gone).endswith(" canceled")  # (ids shortened)
+    assert _final(d, third).startswith("COMPLETED CANCELED: deleted by "), H.ack_chips(d, third)
+    # REPLACE the second, chosen as the target in the queue view
+    _click_record(d, second, "target")
+    H.until(lambda: d.find_element(By.ID, "queue-target").get_attribute("data-target") == second, 5, what="target")
+    replaced = H.send(d, "Admin/echo", {"text": "replaced", "queue-action": "REPLACE"})
+    assert _final(d, second).startswith("COMPLETED CANCELED"), H.ack_chips(d, second)
+    H.until(lambda: _queued(d) == [drive, replaced], 15, what="the replacement queued in its place")
+    # INSERT after the replacement (the target went with the second command it named)
+    assert d.find_element(By.ID, "queue-target").get_attribute("data-target") == ""
+    _click_record(d, replaced, "target")
+    inserted = H.send(d, "Admin/echo", {"text": "inserted", "queue-action": "INSERT"})
+    H.until(lambda: _queued(d) == [drive, replaced, inserted], 15, what="inserted after the replacement")
+    # the running drive deleted (abortable): the queue goes on in order
+    _click_record(d, drive, "delete")
+    assert _final(d, drive).startswith("COMPLETED CANCELED"), H.ack_chips(d, drive)
+    assert _final(d, replaced) == "COMPLETED OK: replaced"
+    assert _final(d, inserted) == "COMPLETED OK: inserted"
+    H.until(lambda: H.texts(d, "#queue [data-queue]") == ["state: idle"], 20, what="the queue idle again")
+
+
 def test_value_past_threshold_turns_the_declared_colour(live):
     d = live["driver"]
     levels = live["levels"]

@@ -69,12 +69,30 @@ def test_a_good_request_is_typed_and_defaults_fill_the_rest():
     assert _request(args={"tiles": "2"}).args == (("RAPID_FLOAT", 0.0), ("RAPID_STRING", "a"), ("RAPID_INT", 2))
 
 
+def test_queue_actions_name_their_target_and_delete_carries_no_arguments():
+    """INSERT and REPLACE are checked as any command, with the queued cmdId they act on;
+    a DELETE names its target's command and sends no arguments (nothing to check)."""
+    req = _request(action="INSERT", target="RapidWorkbench-7")
+    assert (req.action, req.target, len(req.args)) == ("QUEUE_INSERT", "RapidWorkbench-7", 3)
+    assert _request(action="REPLACE", target="x").action == "QUEUE_REPLACE"
+    with pytest.raises(Refused, match="pan: 4 not in"):
+        _request(action="REPLACE", target="x", args={"pan": "4"})
+    gone = _request(action="DELETE", target="RapidWorkbench-7", args={"pan": "4"})
+    assert (gone.action, gone.target, gone.args, gone.command) == ("QUEUE_DELETE", "RapidWorkbench-7", (),
+                                                                   "pointCamera")
+    assert _request().target == ""
+
+
 @pytest.mark.parametrize("kw,why", [
     ({"source": ""}, "choose a command source"), ({"source": "x" * 40}, "at most 31 bytes"),
     ({"source": "bad\x1bsource"}, "printable"), ({"command": "nope"}, "not in the asset's command dictionary"),
     ({"args": {"pan": "4"}}, "pan: 4 not in [-3.05, 3.05]"), ({"args": {"pan": "x", "tiles": "1"}}, "not a RAPID_FLOAT"),
     ({"args": {"mode": "c", "tiles": "1"}}, "not one of a|b"), ({"args": {}}, "tiles: a value is needed"),
-    ({"action": "DELETE"}, "unknown queue action"), ({"args": ["x"]}, "arguments must be an object"),
+    ({"action": "SWAP"}, "unknown queue action"), ({"args": ["x"]}, "arguments must be an object"),
+    ({"action": "DELETE"}, "DELETE acts on a queued command: choose it in the queue first"),
+    ({"action": "REPLACE", "target": " "}, "REPLACE acts on a queued command"),
+    ({"action": "APPEND", "target": "K10-1"}, "APPEND takes no target"), ({"action": "INSERT", "target": 5}, "a cmdId"),
+    ({"action": "INSERT", "target": "x" * 64}, "at most 63 bytes"), ({"action": "DELETE", "target": "a\nb"}, "printable"),
 ])
 def test_bad_requests_are_refused_with_the_reason(kw, why):
     with pytest.raises(Refused) as exc:

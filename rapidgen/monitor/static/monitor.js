@@ -29,7 +29,8 @@ function fmtValue(v) {
 
 function stateOf(p) {
   if (!assets.has(p)) assets.set(p, { partition: p, status: { name: p }, commands: null, values: [], position: null,
-    traverse: [], points: new Map(), log: [], images: [], acks: [], queue: null, access: null, answers: {} });
+    traverse: [], points: new Map(), log: [], images: [], acks: [], queue: null, access: null, answers: {},
+    target: "" });  // target: the queued cmdId INSERT and REPLACE act on, chosen in the queue
   return assets.get(p);
 }
 
@@ -197,7 +198,7 @@ function commandForm(a, sub, c, queue) {
   let action = null;
   if (queue) {
     action = el("select", { name: "queue-action" });
-    for (const v of ["BYPASS", "APPEND"]) action.append(el("option", { value: v, text: v }));
+    for (const v of ["BYPASS", "APPEND", "INSERT", "REPLACE"]) action.append(el("option", { value: v, text: v }));
     f.append(el("label", {}, el("span", { class: "sub", text: "queue" }), action));
   }
   const send = el("button", { type: "submit", class: "send", disabled: !source, text: "send" });
@@ -208,13 +209,36 @@ function commandForm(a, sub, c, queue) {
     if (!source) { answer.textContent = "choose a command source first"; answer.className = "answer refused"; return; }
     const args = {};
     for (const i of f.querySelectorAll("[data-type]")) args[i.name] = i.value;
-    const ref = ++refs;
-    a.answers[ref] = answer;
-    answer.textContent = "sending..."; answer.className = "answer";
-    ws.send(JSON.stringify({ type: "command", ref, partition: a.partition, subsystem: sub.subsystem, command: c.name,
-      args, source, action: action ? action.value : "BYPASS" }));
+    const act = action ? action.value : "BYPASS";
+    sendCommand(a, answer, sub.subsystem, c.name, args, act, act === "INSERT" || act === "REPLACE" ? a.target : "");
   });
   return f;
+}
+
+// The server checks everything again (commanding.py) and answers `ref` with the cmdId or why not.
+function sendCommand(a, answer, subsystem, command, args, action, target) {
+  const ref = ++refs;
+  a.answers[ref] = answer;
+  answer.textContent = "sending..."; answer.className = "answer";
+  delete answer.dataset.cmdid;  // (the last command's, from this form)
+  ws.send(JSON.stringify({ type: "command", ref, partition: a.partition, subsystem, command, args, source, action,
+    target }));
+}
+
+// A queued (or running) record: choose it as INSERT/REPLACE's target, or DELETE it.
+function queueRecord(a, r) {
+  const row = el("div", { class: "record", "data-record": r.cmdId },
+    el("span", { text: r.command + " " + r.status + " " }), el("span", { class: "sub", text: "[" + r.cmdId + "] " }));
+  const pick = el("button", { type: "button", class: "target", text: a.target === r.cmdId ? "target" : "as target" });
+  pick.addEventListener("click", () => { a.target = a.target === r.cmdId ? "" : r.cmdId; drawAll(false); });
+  const del = el("button", { type: "button", class: "delete", disabled: !source || mode !== "live", text: "delete" });
+  del.addEventListener("click", () => {
+    const slash = r.command.indexOf("/");
+    sendCommand(a, document.getElementById("queue-answer"), r.command.slice(0, slash), r.command.slice(slash + 1), {},
+      "DELETE", r.cmdId);
+  });
+  row.append(pick, del);
+  return row;
 }
 
 function ackItem(x) {
@@ -248,10 +272,27 @@ function drawCommands(view, a, rebuild) {
   for (const b of view.querySelectorAll("button.send")) b.disabled = !source || mode !== "live";
   document.getElementById("acks").replaceChildren(el("ul", {}, ...a.acks.map(ackItem)));
   const q = a.queue;
-  const qrows = q ? ["active", "pending", "completed"].map(k => el("div", {}, el("span", { class: "sub", text: k + ": " }),
-    el("span", { text: q[k].length ? q[k].map(r => r.command + " " + r.status).join("; ") : "none" }))) : [];
-  document.getElementById("queue").replaceChildren(...(q ? [el("div", { "data-queue": q.state, text: "state: " + q.state }), ...qrows]
+  const queued = q ? [...q.active, ...q.pending] : [];
+  if (a.target && !queued.some(r => r.cmdId === a.target)) a.target = "";  // it ran, or left the queue
+  // redrawn only when it changed: a button replaced under the pointer would lose its click
+  const key = JSON.stringify([q, a.target, source, mode]);
+  const box = document.getElementById("queue");
+  if (box.dataset.key === key) return drawAccess(a);
+  box.dataset.key = key;
+  const qrows = q ? [el("div", {}, el("span", { class: "sub", text: "active and pending: " }),
+    queued.length ? null : el("span", { text: "none" })), ...queued.map(r => queueRecord(a, r)),
+  el("div", {}, el("span", { class: "sub", text: "completed: " }),
+    el("span", { text: q.completed.length ? q.completed.map(r => r.command + " " + r.status).join("; ") : "none" })),
+  el("div", { id: "queue-target", "data-target": a.target, text: "INSERT after / REPLACE: " + (a.target || "choose a target") }),
+  el("span", { id: "queue-answer", class: "answer" })] : [];
+  const kept = document.getElementById("queue-answer");  // an answer still to come keeps its span
+  box.replaceChildren(...(q ? [el("div", { "data-queue": q.state, text: "state: " + q.state }), ...qrows]
     : [el("span", { class: "muted", text: "no QueueState" })]));
+  if (kept && q) document.getElementById("queue-answer").replaceWith(kept);
+  drawAccess(a);
+}
+
+function drawAccess(a) {
   const ac = a.access;
   document.getElementById("access").replaceChildren(ac ? el("div", {},
     el("div", { "data-controller": ac.controller, text: "controller: " + (ac.controller || "none") }),
