@@ -130,9 +130,9 @@ def _schema_finder(models):
     return schema_of
 
 
-def _sha256(path: str) -> str:
+def _read(path: str) -> bytes:
     with open(path, "rb") as fh:
-        return hashlib.sha256(fh.read()).hexdigest()
+        return fh.read()
 
 
 def _record(args, bindings, models, domain: int, partitions: set[str] | None, output: str) -> int:
@@ -150,11 +150,13 @@ def _record(args, bindings, models, domain: int, partitions: set[str] | None, ou
                      "partitions": ",".join(sorted(partitions)) if partitions else "*"},
         "assets": {b.tables["ASSET"]["name"]: b.tables["ASSET"].get("partition", b.tables["ASSET"]["name"])
                    for b in bindings[1:]},
-        "descriptors": {os.path.basename(f): _sha256(f) for f in args.asset},
+        "descriptors": {os.path.basename(f): hashlib.sha256(_read(f)).hexdigest() for f in args.asset},
     }
+    # the descriptors themselves (loaded and checked above, so bounded), as attachments
+    attachments = tuple((os.path.basename(f), "application/yaml", _read(f)) for f in args.asset)
     stop = threading.Event()
     old = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
-    sink = Sink(output, metadata, f"rapidgen {__version__}", args.split_size, args.split_seconds)
+    sink = Sink(output, metadata, f"rapidgen {__version__}", args.split_size, args.split_seconds, attachments)
     try:
         rec = Recorder(domain, bindings, partitions, _schema_finder(models), sink, roles)
         for b in bindings[1:]:

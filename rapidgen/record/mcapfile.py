@@ -39,8 +39,10 @@ class Sink:
     ...: each file is whole, with its own schemas, channels and metadata)."""
 
     def __init__(self, path: str, metadata: dict[str, dict[str, str]], library: str,
-                 split_bytes: int | None = None, split_seconds: float | None = None) -> None:
+                 split_bytes: int | None = None, split_seconds: float | None = None,
+                 attachments: tuple[tuple[str, str, bytes], ...] = ()) -> None:
         self.path, self.metadata, self.library = path, metadata, library
+        self.attachments = attachments  # (name, media type, bytes): the descriptors, in every file
         self.split_bytes, self.split_seconds = split_bytes, split_seconds
         self.files: list[str] = []
         self._schemas: dict[str, bytes] = {}  # type name -> IDL text, registered per file
@@ -71,6 +73,9 @@ class Sink:
         writer.start(profile=PROFILE, library=self.library)
         for key, values in self.metadata.items():
             writer.add_metadata(key, values)
+        now = time.time_ns()
+        for name, media_type, data in self.attachments:
+            writer.add_attachment(create_time=now, log_time=now, name=name, media_type=media_type, data=data)
         self._ids.clear()
         self._channels.clear()
         self._opened = self._flushed = time.monotonic()
@@ -153,6 +158,7 @@ class Recording:
     schemas: dict[int, Schema] = field(default_factory=dict)
     channels: dict[int, Channel] = field(default_factory=dict)
     metadata: dict[str, dict[str, str]] = field(default_factory=dict)
+    attachments: list[tuple[str, str, int]] = field(default_factory=list)  # (name, media type, size): a complete file's
     library: str = ""
     cut_reason: str = ""  # why reading stopped early (a cut file)
     statistics: Statistics | None = None  # a complete file's
@@ -200,6 +206,7 @@ def _summary(fh: IO[bytes], path: str) -> Recording | None:
                         statistics=summary.statistics)
         for m in reader.iter_metadata():
             rec.metadata[m.name] = dict(m.metadata)
+        rec.attachments = [(a.name, a.media_type, a.data_size) for a in summary.attachment_indexes]
         return rec
     except (McapError, ValueError, EOFError, OSError, KeyError, IndexError) as exc:
         if isinstance(exc, OSError):

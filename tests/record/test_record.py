@@ -214,6 +214,19 @@ def test_metadata_and_info(job):
     assert meta["rapidgen"]["version"]
     res = subprocess.run([*RAPIDGEN, "record", "--info", str(job["main"][0])], cwd=ROOT, capture_output=True, text=True)
     assert res.returncode == 0 and "complete" in res.stdout and "[K10Red] rapid_agent_state" in res.stdout, res.stderr
+    size = len(Path(K10).read_bytes())
+    assert f"attachment k10.yaml (application/yaml, {size} bytes)" in res.stdout, res.stdout
+
+
+def test_every_file_of_a_series_carries_the_descriptor(job):
+    """The descriptor itself is attached (not only its hash), to each file of a rotated
+    series: a file names the asset it was recorded against, alone."""
+    from mcap.reader import make_reader
+    assert len(job["main"]) > 1, job["main"]  # --split-size 16K: a series
+    for path in job["main"]:
+        with open(path, "rb") as fh:
+            got = [(a.name, a.media_type, a.data) for a in make_reader(fh).iter_attachments()]
+        assert got == [("k10.yaml", "application/yaml", Path(K10).read_bytes())], path
 
 
 def test_killed_recorder_leaves_a_readable_file(job):
