@@ -28,6 +28,26 @@ def _in_namespace(script: str, timeout: float) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, timeout=timeout)
 
 
+def test_the_suites_fast_dds_processes_on_the_host_use_domains_below_102():
+    """Every Fast DDS participant the suite starts on the host's loopback (C++ bridges, tools
+    and peers) is on a domain whose ports Linux's default range never hands out, so no Cyclone
+    process of another test finds it (the CI failure this file is about)."""
+    from tests.conformance.test_cpp_asset import DOMAINS as CPP_ASSETS
+    from tests.cpp import test_fastdds_limits as limits, test_interop as cpp_interop
+    from tests.cpp_client import test_broken as broken, test_fuzz as fuzz, test_interop as client
+    from tests.cpp_runtime import test_cpp_runtime as runtime, test_restart as restart
+    from tests.field import test_restart as field_restart
+    from tests.rust import test_interop_cpp as rust_cpp
+    from tests.streams import test_setpoint_stream as streams
+    used = {*broken.DOMAINS, fuzz.DOMAIN, client.CPP_BRIDGE_DOMAIN, client.PY_BRIDGE_DOMAIN, client.PARTITION_DOMAIN,
+            limits.DOMAIN_FLOOD, limits.DOMAIN_LOAD, *CPP_ASSETS.values(), runtime.DOMAIN, restart.KILL_DOMAIN,
+            restart.CROSS_DOMAIN, restart.CROSS_DOMAIN + 1, field_restart.CPP_RESEND_DOMAIN,
+            cpp_interop.DOMAIN_CPP_TO_PY, cpp_interop.DOMAIN_PY_TO_CPP, rust_cpp.DOMAIN_RUST_TO_CPP,
+            rust_cpp.DOMAIN_CPP_TO_RUST, streams.DOMAIN, streams.RIG_DOMAIN, streams.SEED_DOMAIN,
+            27}  # (27: the bridge that refuses --break and rapid_cmd with no asset)
+    assert sorted(d for d in used if d >= 102) == []
+
+
 @pytest.mark.parametrize("ports, warned", [("40662 40679", True), ("50000 60999", False)])
 def test_bridge_warns_of_a_domain_in_the_ephemeral_range(programs, ports, warned, tmp_path):
     res = _in_namespace(f"sysctl -qw net.ipv4.ip_local_port_range='{ports}'\n"

@@ -33,7 +33,7 @@ TEST(Ports, LinuxDefaultRangeClashesWithDomains102To214) {
     EXPECT_NE(text.find("(32768-60999"), std::string::npos) << text;
 }
 
-TEST(Ports, NoRangeNoWarning) {
+TEST(Ports, TheHostsRangeDecides) {
     EXPECT_EQ(ephemeral_clash(133, PortRange{}), "");
     EXPECT_EQ(ephemeral_clash(13, parse_port_range("1024 65535")).empty(), false);  // a wide range reaches 13 too
 }
