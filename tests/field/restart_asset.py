@@ -19,7 +19,7 @@ asset:
   kind: rover
   description: a test asset for kill -9 and restart
 dds:
-  domain: 193
+  domain: 99  # (a default: each test names its own)
 idl:
   rapid: {rapid}
 subsystem_types:
