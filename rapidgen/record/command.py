@@ -145,15 +145,16 @@ def _record(args, bindings, models, domain: int, partitions: set[str] | None, ou
         for t in b.tables.get("PUBLICATIONS", ()) or ():
             if isinstance(t, dict) and "topic" in t and "role" in t:
                 roles.setdefault(t["topic"], t["role"])
+    descriptors = [(f, _read(f)) for f in args.asset]
     metadata = {
         "rapidgen": {"version": __version__, "domain": str(domain), "started": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
                      "partitions": ",".join(sorted(partitions)) if partitions else "*"},
         "assets": {b.tables["ASSET"]["name"]: b.tables["ASSET"].get("partition", b.tables["ASSET"]["name"])
                    for b in bindings[1:]},
-        "descriptors": {os.path.basename(f): hashlib.sha256(_read(f)).hexdigest() for f in args.asset},
+        "descriptors": {os.path.basename(f): hashlib.sha256(data).hexdigest() for f, data in descriptors},
     }
-    # the descriptors themselves (loaded and checked above, so bounded), as attachments
-    attachments = tuple((os.path.basename(f), "application/yaml", _read(f)) for f in args.asset)
+    # the descriptors themselves too (loaded and checked above, so bounded), as attachments
+    attachments = tuple((os.path.basename(f), "application/yaml", data) for f, data in descriptors)
     stop = threading.Event()
     old = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
     sink = Sink(output, metadata, f"rapidgen {__version__}", args.split_size, args.split_seconds, attachments)
