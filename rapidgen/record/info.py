@@ -44,8 +44,8 @@ def print_info(path: str) -> int:
     for name, values in sorted(rec.metadata.items()):
         shown = ", ".join(f"{visible(k)}={visible(v)[:80]}" for k, v in sorted(values.items()))
         out.write(f"metadata {visible(name)}: {shown}\n")
-    for name, media_type, size in rec.attachments:
-        out.write(f"attachment {visible(name)} ({visible(media_type)}, {size} bytes)\n")
+    for name, media_type, length in rec.attachments:
+        out.write(f"attachment {visible(name)} ({visible(media_type)}, {length} bytes)\n")
     seconds = (last - first) / 1e9 if first is not None and last is not None else 0.0
     out.write(f"messages: {sum(counts.values())} over {seconds:.1f} s, {len(rec.channels)} channel(s), "
               f"{len(rec.schemas)} schema(s)\n")
