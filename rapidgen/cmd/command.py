@@ -135,7 +135,9 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
         report(sink, line)
         return 1
     domain = tables.domain if args.domain is None else args.domain
-    commander = Commander(asset.rapid, qos, tables.name, args.source, domain)
+    # a DELETE/INSERT/REPLACE target's acks kept from the start (its history comes on match)
+    commander = Commander(asset.rapid, qos, tables.name, args.source, domain,
+                          follow=(args.target,) if args.target else ())
     try:
         origin = "descriptor"
         if not args.from_descriptor:
@@ -156,8 +158,6 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
             report(sink, line)
             return 1
         shown = " ".join(f"{p.name}={_shown(v)}" for p, (_t, v) in zip(payload[0].params, payload[1]))
-        if args.target:
-            commander.follow(args.target)
         watch = AssetWatch(commander, args.rtt, time.monotonic())  # before the send: who the asset is now
         cmd_id = commander.send(args.subsystem, args.command_name, payload[1], action="QUEUE_" + action,
                                 target=args.target or "", cmd_id=args.id)

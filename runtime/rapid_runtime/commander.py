@@ -13,6 +13,7 @@ import itertools
 import os
 import threading
 import time
+from collections.abc import Iterable
 
 from rapid_runtime import messages as M
 from rapid_runtime.acks import BYPASS, COMPLETED
@@ -26,7 +27,10 @@ WRITE_BLOCKING = 10.0  # s a command write may wait for room in the writer's his
 
 
 class Commander:
-    def __init__(self, rapid, qos, asset: str, source: str, domain: int) -> None:
+    def __init__(self, rapid, qos, asset: str, source: str, domain: int, follow: Iterable[str] = ()) -> None:
+        """follow: cmdIds whose acks to keep from the start. A late joiner reading the ack
+        history must name them here: history that arrives before a later follow() is dropped
+        (seen: a joiner's first 23 of 60 finals lost when the reader took them first)."""
         self.rapid, self.asset, self.source = rapid, asset, source
         self.node = Node(rapid, qos, domain)
         # a burst of commands over a slow link fills the writer's history until the asset
@@ -41,6 +45,8 @@ class Commander:
         self.ack_reader = self.node.reader(ACK_TOPIC, rapid.Ack, keep_all=True)
         self.dropped: list[str] = []  # what the ack reader dropped (undecodable), one line per writer
         self._followed: list[bytes] = []  # their encodings, to skip others' acks undecoded
+        for cmd_id in follow:  # before the reader thread takes anything
+            self.follow(cmd_id)
         self._reader = ReaderThread(self.node, self.ack_reader, rapid.Ack, self._on_ack, "rapid-acks",
                                     log=self.dropped.append, wanted=self._wanted, batch=256).start()
 

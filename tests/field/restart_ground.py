@@ -172,9 +172,7 @@ def run(pydir: Path, work: Path, domain: int, commands: int, kills: int, seed: i
     c.close()
 
     # a late joiner: a new participant whose ack reader reads the history
-    late = Commander(rapid, qos, ASSET, "LateGround", domain)
-    for cid in plan:
-        late.follow(cid)
+    late = Commander(rapid, qos, ASSET, "LateGround", domain, follow=plan)  # followed before any history arrives
     deadline = time.monotonic() + 20
     while time.monotonic() < deadline:
         with late.cond:
