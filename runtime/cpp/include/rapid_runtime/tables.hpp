@@ -33,6 +33,7 @@ struct CommandSpec {
     bool suspendable = false;
     bool standard = false;  // a standard RAPID subsystem type's command (built-ins apply)
     std::string description;
+    int stop_timeout_ms = 0;  // 0: the bridge's default (--stop-timeout)
 };
 
 struct SubsystemType {
