@@ -225,6 +225,7 @@ _CODES = (
     Code("RG1909", "error", "cmd", '`rapidgen cmd`: cyclonedds or the runtime (rapid_runtime) is not installed'),
     Code("RG1910", "error", "init", '`rapidgen init`: not an asset name, the file exists (never overwritten), or it cannot be written'),
     Code("RG2001", "error", "secure", '`rapidgen secure`: a deployment file that is malformed or names an unknown asset, a duplicate name, a grant the asset\'s access_control refuses, or a partition with a DDS wildcard'),
+    Code("RG2002", "error", "secure", '`rapidgen secure`: two assets of a deployment share a DDS partition on a domain they both use'),
 )
 
 REGISTRY: dict[str, Code] = {c.code: c for c in _CODES}

@@ -28,6 +28,12 @@ from rapidgen.diagnostics import DiagnosticSink, Severity, SourceLoc, did_you_me
 from rapidgen.idl.preprocess import display_path
 
 NAME = re.compile(r"[A-Za-z0-9_.-]{1,64}\Z")  # a file name and a certificate CN, never a path
+
+
+def plain_name(name: object) -> bool:
+    """A name that is one folder of the keystore and a certificate CN: 1-64 of A-Z a-z 0-9
+    _ . - and not dots only ("." and ".." are the folder itself and its parent)."""
+    return isinstance(name, str) and NAME.match(name) is not None and name.strip(".") != ""
 TOP_KEYS = ("version", "assets", "domains", "validity_days", "ground")
 TOOL_KEYS = ("source", "command", "watch", "audit", "description")
 MAX_DOMAIN = 230  # what both DDS Security implementations parse in governance and permissions
@@ -131,6 +137,10 @@ def load_deployment(path: str, sink: DiagnosticSink, load_asset) -> Deployment |
             r.err(p, f"the descriptor '{name}' has errors (above)", "rapidgen validate it")
             continue
         asset_name = loaded.spec.name
+        if not plain_name(asset_name):
+            r.err(p, f"asset name {asset_name!r} is not a plain name (1-64 of A-Z a-z 0-9 _ . -, not dots only)",
+                  "the name is also its folder and certificate name in the keystore")
+            continue
         if any(ch in partition_of(loaded) for ch in "*?[]\\"):
             r.err(p, f"{asset_name}'s partition '{partition_of(loaded)}' holds a DDS wildcard (* ? [ ] \\)",
                   "DDS Security reads partitions in permissions as patterns: a grant for it would cover other "
@@ -142,6 +152,16 @@ def load_deployment(path: str, sink: DiagnosticSink, load_asset) -> Deployment |
             continue
         if asset_name in dep.assets:
             r.err(p, f"asset '{asset_name}' is listed twice", "each asset once")
+            continue
+        other = next((a for a in dep.assets.values() if partition_of(a) == partition_of(loaded) and
+                      set(dep.domains_of(a)) & set(dep.domains_of(loaded))), None)
+        if other is not None:
+            shared = sorted(set(dep.domains_of(other)) & set(dep.domains_of(loaded)))
+            r.sink.error("RG2002", f"{asset_name} uses partition '{partition_of(loaded)}', which is "
+                         f"{other.spec.name}'s, on domain {', '.join(map(str, shared))}",
+                         r.doc.loc(p), f"a grant in that partition would cover {other.spec.name}'s commands, acks "
+                         f"and configs too: give {asset_name} a partition of its own (dds.partition in "
+                         f"{display_path(loaded.spec.file)}), or another domain")
             continue
         dep.assets[asset_name] = loaded
     if not dep.assets and not sink.has_errors:
@@ -181,10 +201,11 @@ def _read_tools(r: _Reader, tools: object, dep: Deployment) -> None:
             continue
         assert isinstance(entry, dict)
         source = entry.get("source")
-        if not isinstance(source, str) or not NAME.match(source):
+        if not plain_name(source):
             r.err((*path, "source") if "source" in entry else path,
-                  "a ground tool needs a source: its Command.cmdSrc, 1-64 of A-Z a-z 0-9 _ . -",
-                  "the name is also its folder and certificate name in the keystore")
+                  "a ground tool needs a source: its Command.cmdSrc, 1-64 of A-Z a-z 0-9 _ . -, not dots only",
+                  "the name is also its folder and certificate name in the keystore: a plain name, no slash, "
+                  "no control character, not '.' or '..'")
             continue
         if source in seen or source in dep.assets:
             r.err((*path, "source"), f"'{source}' names two participants",

@@ -162,6 +162,11 @@ def test_check_reports_an_expired_certificate(keystores, tmp_path):
     (("{source: Outsider,", "{source: RapidWorkbench,"), "RapidWorkbench, watch",
      "'RapidWorkbench' names two participants"),
     (("{source: Outsider,", "{source: ../evil,"), "../evil", "a ground tool needs a source"),
+    (("{source: Outsider,", "{source: '..',"), "'..'", "a ground tool needs a source"),
+    (("{source: Outsider,", "{source: .,"), "., watch", "a ground tool needs a source"),
+    (("{source: Outsider,", "{source: '...',"), "'...'", "a ground tool needs a source"),
+    (("{source: Outsider,", "{source: 'a/b',"), "'a/b'", "a ground tool needs a source"),
+    (("{source: Outsider,", "{source: '',"), "'',", "a ground tool needs a source"),
     (("domains: [124]", "domains: [999]"), "[999]", "domains must be a non-empty list"),
 ])
 def test_deployment_errors_are_located(tmp_path, edit, at, message):
@@ -225,6 +230,55 @@ def test_the_teams_own_ca_is_used(tmp_path):
     assert Path(ks / "enclaves" / "K10Red" / "identity_ca.cert.pem").read_bytes() == \
         (theirs / "public" / "identity_ca.cert.pem").read_bytes()
 
+
+
+@pytest.mark.parametrize("escape", ["\\t", "\\x01", "\\n", "\\x7f"])
+def test_a_source_with_a_control_character_is_refused_where_it_is(tmp_path, escape):
+    dep = write_deployment(tmp_path, DEPLOYMENT.replace("{source: Outsider,", f'{{source: "Out{escape}sider",'))
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert res.returncode == 1 and "deploy.yaml:8:14: error[" in res.stderr, res.stderr
+    assert "Traceback" not in res.stderr and not (tmp_path / "ks").exists()
+
+
+def _variant(tmp_path: Path, name: str, **dds) -> Path:
+    """K10's descriptor under another asset name, its dds section changed."""
+    import yaml
+    k10 = ROOT / "specs" / "assets" / "k10.yaml"
+    data = yaml.safe_load(k10.read_text(encoding="utf-8"))
+    data["idl"] = {"rapid": str(k10.parent / data["idl"]["rapid"]), "files": [str(k10.parent / f) for f in data["idl"]["files"]]}
+    data["asset"]["name"] = name
+    data["dds"].update(dds)
+    path = tmp_path / f"{name.lower()}.yaml"
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    return path
+
+
+def test_two_assets_sharing_a_partition_on_a_domain_are_refused(tmp_path):
+    """Issue 35 item 2: Evil's descriptor says partition K10Red; a grant to command Evil
+    would be one to command K10 (and Evil's enclave would read K10's commands)."""
+    evil = _variant(tmp_path, "Evil", partition="K10Red")
+    k10 = ROOT / "specs" / "assets" / "k10.yaml"
+    dep = tmp_path / "deploy.yaml"
+    dep.write_text(f"version: 1\nassets: [{k10}, {evil}]\ndomains: [{DOMAIN}]\n"
+                   "ground:\n  - {source: Mallory, command: [Evil]}\n")
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert res.returncode == 1
+    col = dep.read_text().index(str(evil)) - dep.read_text().index("assets") + 1
+    assert f"deploy.yaml:2:{col}: error[RG2002]: Evil uses partition 'K10Red', which is K10Red's, on domain " \
+        f"{DOMAIN}" in res.stderr, res.stderr
+    assert "^ a grant in that partition would cover K10Red's commands" in res.stderr
+    assert "Traceback" not in res.stderr and not (tmp_path / "ks").exists()
+    # each on its own domain (no domains: each asset's dds.domain): they never meet
+    k10_domain = yaml_domain(k10)
+    other = _variant(tmp_path, "Evil", partition="K10Red", domain=k10_domain + 1)
+    dep.write_text(f"version: 1\nassets: [{k10}, {other}]\n")
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert res.returncode == 0, res.stderr
+
+
+def yaml_domain(descriptor: Path) -> int:
+    import yaml
+    return int(yaml.safe_load(descriptor.read_text(encoding="utf-8"))["dds"]["domain"])
 
 
 def test_a_partition_that_is_a_pattern_is_refused(tmp_path):
