@@ -21,6 +21,7 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, field
+from typing import TypeGuard
 
 from rapidgen.asset.resolved import LoadedAsset
 from rapidgen.asset.yamlread import YamlDoc, load_yaml
@@ -30,7 +31,7 @@ from rapidgen.idl.preprocess import display_path
 NAME = re.compile(r"[A-Za-z0-9_.-]{1,64}\Z")  # a file name and a certificate CN, never a path
 
 
-def plain_name(name: object) -> bool:
+def plain_name(name: object) -> TypeGuard[str]:
     """A name that is one folder of the keystore and a certificate CN: 1-64 of A-Z a-z 0-9
     _ . - and not dots only ("." and ".." are the folder itself and its parent)."""
     return isinstance(name, str) and NAME.match(name) is not None and name.strip(".") != ""
