@@ -56,7 +56,8 @@ class _Builder:
                        for i, p in enumerate(obj.get("parameters", ())))
         return S.CommandSpec(name=obj["name"], description=obj.get("description", ""),
                              abortable=obj.get("abortable", False), suspendable=obj.get("suspendable", False),
-                             parameters=params, **self.locs(path, obj))
+                             parameters=params, stop_timeout_ms=obj.get("stop_timeout_ms"),
+                             **self.locs(path, obj))
 
     def subsystem_type(self, path: tuple, obj: dict) -> S.SubsystemTypeSpec:
         cmds = tuple(self.command(path + ("commands", i), c) for i, c in enumerate(obj.get("commands", ())))

@@ -70,6 +70,7 @@ class CommandSpec(Located):
     abortable: bool = False
     suspendable: bool = False
     parameters: tuple[Parameter, ...] = ()
+    stop_timeout_ms: int | None = None  # the handler's stop bound; None: the bridge's default
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

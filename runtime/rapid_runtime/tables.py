@@ -39,6 +39,8 @@ class CommandEntry:
     suspendable: bool = False
     standard: bool = False  # a standard RAPID subsystem type's command
     description: str = ""
+    # how long [ms] the handler may run on after it was told to stop; None: the bridge's default
+    stop_timeout_ms: int | None = None
 
 
 @dataclass(frozen=True)
@@ -89,7 +91,8 @@ class Tables:
                        for p in c["parameters"])
         return CommandEntry(subsystem_type=type_name, name=name, method=c["method"], params=params,
                             abortable=c.get("abortable", False), suspendable=c.get("suspendable", False),
-                            standard=c.get("standard", False), description=c.get("description", ""))
+                            standard=c.get("standard", False), description=c.get("description", ""),
+                            stop_timeout_ms=c.get("stop_timeout_ms"))
 
     def type_of(self, subsystem: str) -> str | None:
         return self.subsystems.get(subsystem)

@@ -269,8 +269,10 @@ def _tables(loaded: "LoadedAsset", qos_of: dict[str, str]) -> list[str]:
         for c in t.commands:
             out.append(f"        {{{text(c.name)}, {{")
             out += [param_expr(p, " " * 12) for p in c.parameters]
+            # stop_timeout_ms only when declared (0, the member's default: the bridge's --stop-timeout)
+            bound = "" if c.stop_timeout_ms is None else f", /* stop_timeout_ms */ {int(c.stop_timeout_ms)}"
             out.append(f"        }}, {_bool(c.abortable)}, {_bool(c.suspendable)}, {_bool(t.standard)}, "
-                       f"{text(c.description or '')}}},")
+                       f"{text(c.description or '')}{bound}}},")
         out.append("    }},")
     out.append("};")
     acc = spec.access_control

@@ -102,6 +102,8 @@ def tables(loaded) -> dict:
                 "description": c.description, "abortable": c.abortable, "suspendable": c.suspendable,
                 "standard": t.standard,
                 "parameters": [_typed(p, _unique(snake(p.name), args)) for p in c.parameters]}
+            if c.stop_timeout_ms is not None:  # declared only: absent means the bridge's default
+                cmds[c.name]["stop_timeout_ms"] = c.stop_timeout_ms
         commands[t.name] = cmds
     access = None
     if spec.access_control is not None:

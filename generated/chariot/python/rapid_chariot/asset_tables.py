@@ -6,7 +6,8 @@ ASSET         name, kind, description, tags, DDS domain and partition
 SUBSYSTEMS    subsystem -> subsystem type, in CommandConfig order
 COMMANDS      subsystem type -> command -> handler method, flags, parameters (in the
               order arguments are sent: name, handler keyword, DataType, unit, range,
-              allowed values, default)
+              allowed values, default) and, when the descriptor declares it, the
+              handler's stop bound stop_timeout_ms [ms]
 ACCESS        the command-source allow-list (None: any source may command)
 CONFIGS       topic -> the computed config (IDL member names; hdr is set at run time)
 PUBLICATIONS  every topic the asset publishes: role, type, QoS profile, rate [Hz]
