@@ -97,9 +97,15 @@ def grants(dep: Deployment, name: str) -> tuple[xmldocs.Rule, ...]:
     C = xmldocs.Criterion
     if name in dep.assets:
         a = dep.assets[name]
-        part = (partition_of(a),)
-        return (xmldocs.Rule(dep.domains_of(a), (C(tuple(sorted({p.topic for p in a.publications})), part),),
-                             (C((a.command_topic,), part),) if a.command_topic else ()),)
+        part = partition_of(a)
+        # setpoint streams (docs/realtime.md), as the runtime opens them: an output stream is
+        # written in the asset's own partition, an input stream read in its source's
+        pub: dict[str, set[str]] = {part: {p.topic for p in a.publications}}
+        sub: dict[str, set[str]] = {part: {a.command_topic}} if a.command_topic else {}
+        for s in a.streams:
+            (pub if s.direction == "output" else sub).setdefault(s.partition, set()).add(s.topic)
+        return (xmldocs.Rule(dep.domains_of(a), tuple(C(tuple(sorted(t)), (p,)) for p, t in sorted(pub.items())),
+                             tuple(C(tuple(sorted(t)), (p,)) for p, t in sorted(sub.items()))),)
     tool = next(t for t in dep.tools if t.source == name)
     by_domains: dict[tuple[int, ...], list[str]] = {}
     for asset in tool.watch:

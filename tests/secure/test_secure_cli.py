@@ -296,3 +296,26 @@ def test_a_partition_that_is_a_pattern_is_refused(tmp_path):
     res = secure(str(dep), "-k", str(tmp_path / "ks"))
     assert res.returncode == 1 and "deploy.yaml:2:10: error[RG2001]: Wild's partition 'K*' holds a DDS wildcard" \
         in res.stderr, res.stderr
+
+
+def test_streams_are_granted_as_the_descriptors_declare(tmp_path):
+    """Issue 35 item 5, seed 001: X-Arm-2 writes handPose (an output stream, its own
+    partition), Robonaut 2 reads it (an input stream from XArm2's partition); nobody else."""
+    dep = tmp_path / "deploy.yaml"
+    dep.write_text(f"version: 1\nassets: [{ROOT / 'specs/assets/xarm2.yaml'}, {ROOT / 'specs/assets/robonaut2.yaml'}]\n"
+                   f"domains: [{DOMAIN}]\nground:\n  - {{source: XArm2Span, command: [XArm2], watch: ['*'], "
+                   "audit: ['*']}\n")
+    res = secure(str(dep), "-k", str(tmp_path / "ks"))
+    assert res.returncode == 0, res.stderr
+
+    def grants(name):
+        return xmldocs.read_grants((tmp_path / "ks" / "enclaves" / name / "permissions.xml").read_bytes())
+    hand = (str(DOMAIN), "rapid_position_sample-handPose", "XArm2")
+    xarm, r2, tool = grants("XArm2"), grants("Robonaut2"), grants("XArm2Span")
+    assert hand in xarm["publish"] and hand not in xarm["subscribe"]
+    assert hand in r2["subscribe"] and hand not in r2["publish"]
+    assert hand not in tool["publish"] and hand not in tool["subscribe"]  # a stream is not a publication
+    # and nothing else moved: Robonaut 2 still publishes only in its own partition
+    assert {p for _, _, p in r2["publish"]} == {"Robonaut2"}
+    assert {(t, p) for _, t, p in r2["subscribe"]} == {("rapid_command", "Robonaut2"),
+                                                       ("rapid_position_sample-handPose", "XArm2")}
