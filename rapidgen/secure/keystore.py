@@ -10,6 +10,7 @@
         cert.pem key.pem identity_ca.cert.pem permissions_ca.cert.pem
         governance.p7s permissions.xml permissions.p7s
         cyclonedds-security.xml        the same for Cyclone DDS (its <Security> section)
+        identities.txt                 an asset's: the ground sources' subject digests (identities.py)
 
 A participant needs only its enclave folder. Everything is owner-only (0600/0700). A run
 keeps what is still right: the CAs, a participant's key and certificate while they are
@@ -21,7 +22,7 @@ import datetime
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from rapidgen.secure import pki, xmldocs
+from rapidgen.secure import identities, pki, xmldocs
 from rapidgen.secure.deploy import Deployment, partition_of
 
 CAS = ("identity_ca", "permissions_ca")
@@ -146,6 +147,7 @@ def build(dep: Deployment, root: Path, rotate: bool = False) -> Outcome:
         grant = xmldocs.Grant(name, grants(dep, name), pair.cert.not_valid_before_utc, pair.cert.not_valid_after_utc)
         _signed(folder / "permissions.xml", xmldocs.permissions(grant), permissions_ca, new_permissions, out,
                 f"{name}/permissions")
+    identities.write(root, list(dep.assets), [t.source for t in dep.tools])  # cmdSrc's binding
     known = set(dep.names())
     out.strangers = sorted(p.name for p in (root / "enclaves").iterdir() if p.is_dir() and p.name not in known)
     return out
@@ -203,4 +205,7 @@ def check(root: Path, dep: Deployment | None, warn_days: int) -> list[Finding]:
             if (folder / "permissions.xml").read_bytes() != want:
                 found.append(Finding("error", f"enclaves/{name}/permissions.xml",
                                      "not what the deployment and descriptors grant now (run rapidgen secure)"))
+    if dep is not None:
+        sources = [t.source for t in dep.tools]
+        found += [Finding("error", f, m) for f, m in identities.check(root, list(dep.assets), sources)]
     return found
