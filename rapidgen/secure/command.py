@@ -71,6 +71,13 @@ def run(args: argparse.Namespace) -> int:
             print(f"{what}: {escaped(item)}")
     for name in out.strangers:
         print(f"left alone: enclaves/{escaped(name)} (not in the deployment)")
+    for what in out.withdrawn:
+        print(f"withdrawn: {escaped(what)}")
+    if out.new_cas:
+        why = "--rotate" if args.rotate else "grants withdrawn"
+        print(f"new {' and '.join(out.new_cas)} ({why}): every enclave handed out before now fails against the new "
+              "ones; hand out every participant's enclave folder again (docs/secure.md, \"Rotation and withdrawn "
+              "grants\")")
     print(f"keystore {escaped(str(root))}: {len(dep.assets)} asset(s), {len(dep.tools)} ground tool(s); "
           f"{len(out.created)} created, {len(out.updated)} updated, {len(out.kept)} kept")
     return 0

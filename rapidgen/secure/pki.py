@@ -5,8 +5,11 @@ PKI-DH plugins of Fast DDS and Cyclone accept). Every file is written owner-only
 folders 0700) by a rename, so a reader never sees half a key."""
 from __future__ import annotations
 
+import base64
 import datetime
+import hashlib
 import os
+import re
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -15,6 +18,7 @@ from cryptography import x509
 from cryptography.exceptions import InvalidSignature
 from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec
+from cryptography.hazmat.primitives.asymmetric.utils import Prehashed
 from cryptography.hazmat.primitives.serialization import pkcs7
 from cryptography.x509.oid import NameOID
 
@@ -74,6 +78,91 @@ def sign_smime(data: bytes, signer: Pair) -> bytes:
     """`data` signed as the DDS Security plugins read it: S/MIME, detached, text (as SROS2)."""
     return (pkcs7.PKCS7SignatureBuilder().set_data(data).add_signer(signer.cert, signer.key, hashes.SHA256())
             .sign(serialization.Encoding.SMIME, [pkcs7.PKCS7Options.DetachedSignature, pkcs7.PKCS7Options.Text]))
+
+
+_MESSAGE_DIGEST = bytes.fromhex("06092a864886f70d010904")  # OID 1.2.840.113549.1.9.4, DER
+_TEXT_HEADER = b"Content-Type: text/plain\r\n\r\n"
+
+
+def _tlv(der: bytes, at: int) -> tuple[int, int, int]:
+    """The DER element at `at`: (tag, start of its value, end of its value)."""
+    tag, n = der[at], der[at + 1]
+    at += 2
+    if n & 0x80:
+        width = n & 0x7F
+        if not 1 <= width <= 4:
+            raise ValueError("DER length")
+        n = int.from_bytes(der[at:at + width], "big")
+        at += width
+    if at + n > len(der):
+        raise ValueError("DER truncated")
+    return tag, at, at + n
+
+
+def _children(der: bytes, start: int, end: int) -> list[tuple[int, int, int, int]]:
+    """The elements inside [start, end): (tag, element start, value start, value end)."""
+    out = []
+    while start < end:
+        tag, v0, v1 = _tlv(der, start)
+        out.append((tag, start, v0, v1))
+        start = v1
+    return out
+
+
+def smime_content(signed: bytes, ca: x509.Certificate) -> bytes | None:
+    """The document a detached, text S/MIME file (sign_smime's, SROS2's) carries when its
+    signature verifies with `ca`'s key, as the DDS Security plugins read it (the text/plain
+    header dropped, CRLF as LF); None when it is not signed by that key, was altered, or is
+    not such a file. What OpenSSL's PKCS7_verify checks for a file signed by the CA itself:
+    the signed attributes' message digest is the SHA-256 of the content as sent, and the
+    signature over those attributes verifies with the CA's public key."""
+    try:
+        m = re.search(rb'boundary="([^"]+)"', signed)
+        if m is None:
+            return None
+        delim = b"\r\n--" + m.group(1)
+        start = signed.index(b"--" + m.group(1) + b"\r\n") + len(m.group(1)) + 4
+        end = signed.index(delim, start)
+        part = signed[start:end]
+        sig_start = end + len(delim) + 2
+        sig_part = signed[sig_start:signed.index(delim, sig_start)]
+        der = base64.b64decode(sig_part.split(b"\r\n\r\n", 1)[1], validate=False)
+        _, c0, c1 = _tlv(der, 0)  # ContentInfo
+        info = _children(der, c0, c1)
+        _, sd0, sd1 = _tlv(der, info[1][2])  # [0] EXPLICIT SignedData
+        signer_infos = _children(der, sd0, sd1)[-1]
+        if signer_infos[0] != 0x31:
+            return None
+        ok = False
+        for _, _, si0, si1 in _children(der, signer_infos[2], signer_infos[3]):
+            fields = _children(der, si0, si1)
+            attrs = next((f for f in fields if f[0] == 0xA0), None)
+            sig = fields[-1]
+            if attrs is None or sig[0] != 0x04:
+                continue
+            digest = None
+            for _, _, a0, a1 in _children(der, attrs[2], attrs[3]):
+                oid, values = _children(der, a0, a1)[:2]
+                if der[oid[1]:oid[3]] == _MESSAGE_DIGEST:
+                    value = _children(der, values[2], values[3])[0]
+                    digest = der[value[2]:value[3]]
+            if digest != hashlib.sha256(part).digest():
+                continue
+            to_verify = b"\x31" + der[attrs[1] + 1:attrs[3]]  # [0] IMPLICIT re-tagged as the SET signed
+            key = ca.public_key()
+            if not isinstance(key, ec.EllipticCurvePublicKey):
+                return None
+            try:
+                key.verify(der[sig[2]:sig[3]], hashlib.sha256(to_verify).digest(), ec.ECDSA(Prehashed(hashes.SHA256())))
+                ok = True
+                break
+            except InvalidSignature:
+                continue
+        if not ok or not part.startswith(_TEXT_HEADER):
+            return None
+        return part[len(_TEXT_HEADER):].replace(b"\r\n", b"\n")
+    except (ValueError, IndexError):
+        return None
 
 
 def cert_pem(cert: x509.Certificate) -> bytes:

@@ -12,7 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from rapidgen.secure import xmldocs
+from cryptography import x509
+
+from rapidgen.secure import pki, xmldocs
 from tests.secure.conftest import DEPLOYMENT, DOMAIN, ROOT, secure, secure_process, write_deployment
 
 SEEDS = ["k10", "chariot", "athlete", "xarm2", "robonaut2", "eva-suit"]
@@ -118,11 +120,21 @@ def test_second_run_keeps_everything_and_check_passes(tmp_path):
     assert check.returncode == 0 and "0 error(s), 0 warning(s)" in check.stdout
     for out in (first, again, check):  # keys are never printed
         assert "PRIVATE KEY" not in out.stdout + out.stderr
-    # rotation: new keys and certificates, re-signed permissions, the CAs kept
+    # rotation: a new trust generation: new CAs, keys and certificates, everything re-signed
     rot = secure(str(dep), "-k", str(ks), "--rotate")
     assert rot.returncode == 0 and "updated: RapidWorkbench/cert.pem" in rot.stdout
+    assert "new identity_ca and permissions_ca (--rotate): every enclave handed out before now fails" in rot.stdout
     assert (ks / "enclaves" / "K10Red" / "key.pem").read_bytes() != before[ks / "enclaves" / "K10Red" / "key.pem"]
-    assert (ks / "private" / "identity_ca.key.pem").read_bytes() == before[ks / "private" / "identity_ca.key.pem"]
+    for ca in ("identity_ca", "permissions_ca"):
+        assert (ks / "private" / f"{ca}.key.pem").read_bytes() != before[ks / "private" / f"{ca}.key.pem"]
+    new_ca = pki.load_pair(ks / "public" / "identity_ca.cert.pem", ks / "private" / "identity_ca.key.pem").cert
+    old_cert = x509.load_pem_x509_certificate(before[ks / "enclaves" / "RapidWorkbench" / "cert.pem"])
+    assert not pki.issued_by(old_cert, new_ca)  # the old enclave no longer authenticates
+    perm_ca = pki.load_pair(ks / "public" / "permissions_ca.cert.pem", ks / "private" / "permissions_ca.key.pem").cert
+    assert pki.smime_content(before[ks / "enclaves" / "RapidWorkbench" / "permissions.p7s"], perm_ca) is None
+    check = secure(str(dep), "-k", str(ks), "--check")
+    assert check.returncode == 0 and "0 error(s), 0 warning(s)" in check.stdout, check.stderr
+    assert "0 created, 0 updated" in secure(str(dep), "-k", str(ks)).stdout  # and it stays
 
 
 def test_check_warns_before_expiry_and_fails_when_stale(tmp_path):
@@ -320,3 +332,96 @@ def test_streams_are_granted_as_the_descriptors_declare(tmp_path):
     assert {p for _, _, p in r2["publish"]} == {"Robonaut2"}
     assert {(t, p) for _, t, p in r2["subscribe"]} == {("rapid_command", "Robonaut2"),
                                                        ("rapid_position_sample-handPose", "XArm2")}
+
+
+def test_smime_content_verifies_as_openssl_does(keystores, tmp_path):
+    """pki.smime_content (what --check and every run use) against OpenSSL's own verdict:
+    the keystore's files, another CA's, and one edited after signing."""
+    ks, other = keystores["main"], keystores["other"]
+    ca_file = ks / "public" / "permissions_ca.cert.pem"
+    ca = x509.load_pem_x509_certificate(ca_file.read_bytes())
+    edited = tmp_path / "edited.p7s"
+    edited.write_bytes((ks / "enclaves" / "Outsider" / "permissions.p7s").read_bytes()
+                       .replace(b"<partition>K10Red</partition>", b"<partition>Chariot</partition>"))
+    cases = [ks / "enclaves" / "Outsider" / "permissions.p7s", ks / "enclaves" / "governance.p7s",
+             other / "enclaves" / "Outsider" / "permissions.p7s", edited]
+    verdicts = []
+    for f in cases:
+        res = subprocess.run(["openssl", "smime", "-verify", "-in", str(f), "-CAfile", str(ca_file), "-text"],
+                             capture_output=True)
+        ours = pki.smime_content(f.read_bytes(), ca)
+        assert (ours is not None) == (res.returncode == 0), f
+        if ours is not None:
+            assert ours == res.stdout.replace(b"\r\n", b"\n")
+        verdicts.append(ours is not None)
+    assert verdicts == [True, True, False, False]
+
+
+def test_withdrawn_grant_replaces_the_permissions_ca_and_check_reports_the_old_file(tmp_path):
+    """Issue 35 item 3: ScienceBackroom's command grant withdrawn. The run makes a new
+    permissions CA (Fast DDS 2.9 takes any permissions the CA it has signed while their
+    validity lasts), so the old, validly signed permissions.p7s is refused everywhere;
+    put back into the keystore, --check reports it and the next run replaces it."""
+    dep = write_deployment(tmp_path)
+    ks = tmp_path / "ks"
+    assert secure(str(dep), "-k", str(ks)).returncode == 0
+    sb = ks / "enclaves" / "ScienceBackroom"
+    old_p7s, old_xml = (sb / "permissions.p7s").read_bytes(), (sb / "permissions.xml").read_bytes()
+    old_ca = (ks / "public" / "permissions_ca.cert.pem").read_bytes()
+    old_identity = (ks / "public" / "identity_ca.cert.pem").read_bytes()
+    old_cert = (sb / "cert.pem").read_bytes()
+    # a change that only adds grants keeps the CA
+    write_deployment(tmp_path, DEPLOYMENT.replace("{source: Outsider, watch: [K10Red]}",
+                                                  "{source: Outsider, watch: [K10Red, Chariot]}"))
+    grown = secure(str(dep), "-k", str(ks))
+    assert grown.returncode == 0 and "withdrawn:" not in grown.stdout and "new permissions_ca" not in grown.stdout
+    assert (ks / "public" / "permissions_ca.cert.pem").read_bytes() == old_ca
+    # the withdrawal
+    write_deployment(tmp_path, DEPLOYMENT.replace("{source: ScienceBackroom, command: [\"*\"]}",
+                                                  "{source: ScienceBackroom, watch: [\"*\"]}"))
+    res = secure(str(dep), "-k", str(ks))
+    assert res.returncode == 0, res.stderr
+    assert "withdrawn: ScienceBackroom (publish rapid_command in K10Red on domain" in res.stdout
+    assert "withdrawn: Outsider" in res.stdout  # Chariot again taken from it
+    assert "new permissions_ca (grants withdrawn)" in res.stdout
+    assert (ks / "public" / "permissions_ca.cert.pem").read_bytes() != old_ca
+    assert (ks / "public" / "identity_ca.cert.pem").read_bytes() == old_identity  # certificates kept
+    assert (sb / "cert.pem").read_bytes() == old_cert
+    new_ca = x509.load_pem_x509_certificate((ks / "public" / "permissions_ca.cert.pem").read_bytes())
+    assert pki.smime_content(old_p7s, new_ca) is None  # the old grant: another CA's now
+    assert secure(str(dep), "-k", str(ks), "--check").returncode == 0
+    # the old, validly signed file put back (with its XML, or without)
+    for xml in (old_xml, None):
+        (sb / "permissions.p7s").write_bytes(old_p7s)
+        if xml is not None:
+            (sb / "permissions.xml").write_bytes(xml)
+        check = secure(str(dep), "-k", str(ks), "--check")
+        assert check.returncode == 1
+        assert "enclaves/ScienceBackroom/permissions.p7s: error: not signed by public/permissions_ca.cert.pem" \
+            in check.stderr, check.stderr
+        again = secure(str(dep), "-k", str(ks))
+        assert again.returncode == 0 and "updated: ScienceBackroom/permissions" in again.stdout
+        assert "withdrawn:" not in again.stdout  # no second new CA: the old file was another CA's
+        assert pki.smime_content((sb / "permissions.p7s").read_bytes(), new_ca) == (sb / "permissions.xml").read_bytes()
+        assert secure(str(dep), "-k", str(ks), "--check").returncode == 0
+
+
+def test_check_reports_a_stale_signed_file_of_the_same_ca(tmp_path):
+    """A permissions.p7s the current CA signed, but for other XML (an older grant put back
+    before any withdrawal), and a governance.p7s that is not the governance: both reported,
+    both replaced by the next run."""
+    dep = write_deployment(tmp_path)
+    ks = tmp_path / "ks"
+    assert secure(str(dep), "-k", str(ks)).returncode == 0
+    outsider, k10 = ks / "enclaves" / "Outsider", ks / "enclaves" / "K10Red"
+    (outsider / "permissions.p7s").write_bytes((ks / "enclaves" / "Conformance" / "permissions.p7s").read_bytes())
+    (k10 / "governance.p7s").write_bytes((k10 / "permissions.p7s").read_bytes())
+    check = secure(str(dep), "-k", str(ks), "--check")
+    assert check.returncode == 1
+    assert "enclaves/Outsider/permissions.p7s: error: signed by the CA but not what enclaves/Outsider/permissions.xml " \
+        "says" in check.stderr, check.stderr
+    assert "enclaves/K10Red/governance.p7s: error: signed by the CA but not what enclaves/governance.xml says" \
+        in check.stderr
+    again = secure(str(dep), "-k", str(ks))
+    assert "updated: Outsider/permissions" in again.stdout
+    assert secure(str(dep), "-k", str(ks), "--check").returncode == 0
