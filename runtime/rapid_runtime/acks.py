@@ -1,6 +1,8 @@
 """Ack and queue-status vocabulary (enumerator names, as in the RAPID IDL) and Ack text."""
 from __future__ import annotations
 
+import re
+
 QUEUED, EXECUTING, REQUEUED, COMPLETED = "ACK_QUEUED", "ACK_EXECUTING", "ACK_REQUEUED", "ACK_COMPLETED"
 NOT, OK, BAD_SYNTAX, EXEC_FAILED, CANCELED = ("ACK_COMPLETED_NOT", "ACK_COMPLETED_OK", "ACK_COMPLETED_BAD_SYNTAX",
                                               "ACK_COMPLETED_EXEC_FAILED", "ACK_COMPLETED_CANCELED")
@@ -17,12 +19,33 @@ HEAD = "head"  # INSERT's target naming the front of the queue (rapid-protocol.m
 MESSAGE_BYTES = 127
 
 
-def clip(text: object, limit: int = MESSAGE_BYTES) -> str:
-    """text as an Ack.message: its first `limit` UTF-8 bytes, never cut inside a character;
-    what UTF-8 cannot encode (a lone surrogate, e.g. from bytes decoded with
-    surrogateescape) becomes '?'; anything but a string is str() of it."""
-    data = (text if isinstance(text, str) else str(text)).encode("utf-8", "replace")
-    return data[:limit].decode("utf-8", "ignore")
+# What no IDL string may carry: a lone surrogate (UTF-8 cannot encode it: Python's str of bytes
+# decoded with surrogateescape, or half a pair) and NUL (it ends a C string: the C++ side of
+# the wire and cyclonedds would cut or refuse it). Each becomes U+FFFD.
+_INVALID = re.compile("[\x00\ud800-\udfff]")
+REPLACEMENT = "\ufffd"
+
+
+def valid(text: object) -> str:
+    """text made valid for an IDL string: each lone surrogate and each NUL becomes U+FFFD;
+    anything but a string is str() of it (one that cannot print says so)."""
+    if not isinstance(text, str):
+        try:
+            text = str(text)
+        except Exception as exc:
+            text = f"<unprintable {type(text).__name__}: {type(exc).__name__}>"
+    return _INVALID.sub(REPLACEMENT, text)
+
+
+def clip(text: object, limit: int | None = MESSAGE_BYTES) -> str:
+    """text as an Ack.message (or any bounded IDL string, `limit` its bound in bytes less the
+    terminator; None: unbounded): made valid (valid()), then its first `limit` UTF-8 bytes,
+    never cut inside a character."""
+    text = valid(text)
+    if limit is None:
+        return text
+    data = text.encode("utf-8")
+    return text if len(data) <= limit else data[:limit].decode("utf-8", "ignore")
 
 
 # Ack -> QueueState record status (rapid-protocol.md 5b), and the record's result.

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import copy
+import os
 import signal
 import struct
 import sys
@@ -19,13 +20,13 @@ from cyclonedds.util import duration
 
 from rapid_runtime import messages as M
 from rapid_runtime.ack_writers import AckWriters
-from rapid_runtime.acks import COMPLETED, NOT
+from rapid_runtime.acks import COMPLETED, NOT, clip, valid
 from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
 from rapid_runtime.images import describe as describe_image
 from rapid_runtime.intake import Intake
 from rapid_runtime.journal import Journal, Recovered, default_dir
-from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
+from rapid_runtime.manager import COMMAND_WINDOW, SHUTDOWN_TIMEOUT_MS, STOP_TIMEOUT_MS, CommandManager
 from rapid_runtime.tables import Tables
 from rapid_runtime.telemetry import TelemetryError, ordered_values, typed_values
 from rapid_runtime.untrusted import visible
@@ -50,8 +51,11 @@ ACK_GENERATION_MIN = 256
 # Commands the DDS reader holds before the intake thread takes them: past this, DDS holds a
 # reliable writer back (the flood waits in the flooder's own history, not in the bridge).
 COMMAND_CACHE = 4096
-# How long a second stop() waits for the first to finish (its acks delivered, journal closed).
-STOP_WAIT = 15.0
+# How long a second stop() waits for the first to finish (its acks delivered, journal closed),
+# beyond the shutdown bound: the first waits at most that bound for the handlers, then at most
+# ACK_DELIVERY for the last acks to be acknowledged by their readers.
+STOP_WAIT = 5.0
+ACK_DELIVERY = 2.0
 # Log lines per second; past that they are counted and the count logged (a flood of bad
 # commands would otherwise become a flood of log lines).
 LOG_RATE = 50
@@ -83,9 +87,13 @@ class Log:
 class Bridge:
     def __init__(self, tables: Tables, rapid, handlers, qos, domain: int | None = None,
                  log=None, serial: int | None = None, command_window: int = COMMAND_WINDOW,
-                 journal: str | None = None) -> None:
+                 journal: str | None = None, stop_timeout_ms: int = STOP_TIMEOUT_MS,
+                 shutdown_timeout_ms: int = SHUTDOWN_TIMEOUT_MS) -> None:
         """journal: the restart journal's folder (journal.py; None: no journal, nothing in
-        flight survives a crash)."""
+        flight survives a crash). stop_timeout_ms: a told-to-stop handler's bound when its
+        command declares none; shutdown_timeout_ms: how long stop() waits for the handlers
+        (docs/runtime.md, "Handler faults")."""
+        self.shutdown_timeout = shutdown_timeout_ms / 1000.0
         self.tables, self.rapid, self.handlers = tables, rapid, handlers
         self.name = tables.name
         domain = tables.domain if domain is None else domain
@@ -103,7 +111,7 @@ class Bridge:
         self.stopped = threading.Event()
         self._stop_done = threading.Event()
         self.manager = CommandManager(tables, handlers, self, on_shutdown=self.stop, window=command_window,
-                                      journal=self.journal)
+                                      journal=self.journal, stop_timeout_ms=stop_timeout_ms)
         self.telemetry = TelemetryPublisher(self)
         self._reader: ReaderThread | None = None
         self.intake = Intake(self.manager, self.log)
@@ -164,7 +172,7 @@ class Bridge:
         """Publish a config (the computed one by default); a changed content gets a new
         serial. Returns the serial."""
         type_name, computed = self.tables.configs[topic]
-        value = computed if value is None else value
+        value = computed if value is None else _valid_strings(value)
         serial, changed = self.serials.update(topic, value)
         if changed:
             hdr = M.header(self.rapid, self.name, self.name, serial)
@@ -201,24 +209,28 @@ class Bridge:
         self.intake.offer(cmd, sample.sample_info.publication_handle)
 
     def stop(self) -> None:
-        """Stop taking commands, answer the unfinished, deliver the last acks, close the journal.
-        A second caller (main() after Admin/shutdown's thread began) waits for the first."""
+        """Stop taking commands, tell the running handlers to stop and wait for them at most the
+        shutdown bound, answer every command still in flight, deliver the last acks, close the
+        journal. A second caller (main() after Admin/shutdown's thread began, a signal) waits for
+        the first, at most as long as the first may take."""
         if self.stopped.is_set():
-            self._stop_done.wait(STOP_WAIT)
+            self._stop_done.wait(self.shutdown_timeout + ACK_DELIVERY + STOP_WAIT)
             return
         self.stopped.set()
+        end = time.monotonic() + self.shutdown_timeout
         try:
-            self.handlers.on_stop()
+            self._on_stop(end)
             if self.tables.subsystems:  # no new command; the unfinished answered, then their acks delivered
                 if self._reader is not None and threading.current_thread() is not self._reader.thread:
                     self._reader.stop()
                 self.intake.stop()
-                abandoned = self.manager.abandon()
-                if abandoned:
-                    self.log(f"stopping: {abandoned} unfinished command(s) answered")
+                in_flight, stuck = self.manager.shutdown(max(0.0, end - time.monotonic()))
+                if in_flight:
+                    self.log(f"stopping: {in_flight} unfinished command(s) answered"
+                             + (f", {stuck} of them \"handler did not stop\"" if stuck else ""))
                 for writer in self._acks().writers():
                     try:
-                        writer.wait_for_acks(duration(seconds=2))
+                        writer.wait_for_acks(duration(seconds=ACK_DELIVERY))
                     except Exception:  # a reader that left without acknowledging; cyclonedds 11 raises oddly here
                         pass
                 self._acks().close()
@@ -228,6 +240,20 @@ class Bridge:
             self.intake.stop()
             self._close_journal()
             self._stop_done.set()
+
+    def _on_stop(self, end: float) -> None:
+        """handlers.on_stop() on a thread of its own, waited for until `end` at most (user code:
+        it may hang; the stop goes on without it)."""
+        def call() -> None:
+            try:
+                self.handlers.on_stop()
+            except BaseException as exc:
+                self.log(f"handlers' on_stop raised {type(exc).__name__}: {exc}")
+        t = threading.Thread(target=call, daemon=True, name="rapid-on-stop")
+        t.start()
+        t.join(max(0.0, end - time.monotonic()))
+        if t.is_alive():
+            self.log("handlers' on_stop did not return within the shutdown bound; stopping without it")
 
     def _close_journal(self) -> None:
         """A clean stop: every command answered, the next start begins afresh."""
@@ -309,7 +335,14 @@ class TelemetryPublisher:
         e = self.of("text", index)
         r = self.b.rapid
         self._write(e, "sample", "rapid::TextMessage", r.TextMessage(
-            hdr=self._hdr(e), level=r.MessageLevel[level], category=category, message=message))
+            hdr=self._hdr(e), level=r.MessageLevel[level], category=self._clip("rapid::TextMessage", "category", category),
+            message=self._clip("rapid::TextMessage", "message", message)))
+
+    def _clip(self, type_name: str, member: str, text: object) -> str:
+        """text made valid for the member's string type (acks.clip): U+FFFD for a lone
+        surrogate or NUL, cut to its bound (less the terminator) on a character boundary."""
+        bound = self._bound(type_name, member)
+        return clip(text, None if bound is None else max(0, bound - 1))
 
     # ---- images ------------------------------------------------------------------------------
     def _meta(self, e: dict, width: int | None, height: int | None, offset, extras: dict | None):
@@ -409,6 +442,17 @@ def _positive(text: str) -> int:
     return value
 
 
+def _valid_strings(value):
+    """A config's value from a handler with every string made valid (acks.valid)."""
+    if isinstance(value, str):
+        return valid(value)
+    if isinstance(value, dict):
+        return {k: _valid_strings(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return type(value)(_valid_strings(v) for v in value)
+    return value
+
+
 def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
     tables = Tables(asset_tables)
     p = argparse.ArgumentParser(prog=f"python -m {package}.bridge",
@@ -427,6 +471,13 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
                    help=f"the restart journal's folder: commands accepted and not finished are answered after a "
                         f"crash (default {default_dir()}, or $RAPID_STATE_DIR)")
     p.add_argument("--no-journal", action="store_true", help="no restart journal (a crash leaves commands unanswered)")
+    p.add_argument("--stop-timeout", type=_positive, default=STOP_TIMEOUT_MS, metavar="MS",
+                   help=f"how long a handler told to stop may run on before its command is answered "
+                        f"EXEC_FAILED 'handler did not stop', when the command declares no stop_timeout_ms "
+                        f"(default {STOP_TIMEOUT_MS})")
+    p.add_argument("--shutdown-timeout", type=_positive, default=SHUTDOWN_TIMEOUT_MS, metavar="MS",
+                   help=f"how long a shutdown (Admin/shutdown, SIGTERM, SIGINT) waits for the running handlers "
+                        f"(default {SHUTDOWN_TIMEOUT_MS})")
     args = p.parse_args(argv)
     qos_mod = __import__(f"{package}.qos", fromlist=["RapidQos"])
     try:
@@ -442,7 +493,8 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
         handlers = make_handlers()
     journal = None if args.no_journal else (args.journal or str(default_dir()))
     bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain, command_window=args.command_window,
-                    journal=journal).start()
+                    journal=journal, stop_timeout_ms=args.stop_timeout,
+                    shutdown_timeout_ms=args.shutdown_timeout).start()
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: bridge.stop())
     print(f"bridge ready: asset {tables.name}, domain {tables.domain if args.domain is None else args.domain}, "
@@ -455,4 +507,9 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
         bridge.wait(0.5 if left is None else min(0.5, left))
     bridge.stop()
     print("bridge stopped", flush=True)
+    left = bridge.manager.handlers_running()
+    if left:  # handler threads that never returned: answered and journaled, not waited for
+        print(f"bridge: {left} handler thread(s) still running; exiting without them", file=sys.stderr, flush=True)
+        sys.stderr.flush()
+        os._exit(0)
     return 0

@@ -25,6 +25,7 @@ import contextlib
 import functools
 import threading
 import time
+import traceback
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple, Protocol
 
@@ -61,8 +62,14 @@ VIOLATION = "RAPID access violation: "
 # "Restarts": a command never re-run, since a half-done motion run again is not safe).
 RESTARTED_QUEUED = "asset restarted before it ran"
 RESTARTED_RUNNING = "asset restarted while it ran; outcome unknown"
-STOPPED_QUEUED = "asset stopped before it ran"
-STOPPED_RUNNING = "asset stopped while it ran; outcome unknown"
+# Handler faults (issue 42; docs/runtime.md, "Handler faults"). The texts are the C++
+# runtime's too (shared contract).
+STOP_TIMEOUT_MS = 2000  # a told-to-stop handler's default bound (descriptor: stop_timeout_ms)
+SHUTDOWN_TIMEOUT_MS = 5000  # how long a stop waits for the handlers told to stop
+DID_NOT_STOP = "handler did not stop"
+SHUTTING_DOWN = "asset shutting down"
+NOT_IMPLEMENTED = "not implemented"  # the generated stub's CommandFailed
+NO_HARDWARE_STOP = "motion commands canceled; no hardware stop handler"
 
 
 class Outbox(Protocol):
@@ -81,19 +88,25 @@ class Run:
     queued: bool = False  # came through the queue (not BYPASS)
     ctx: CommandContext | None = None
     requeue: bool = False  # preempted: goes back to the queue's front when its handler returns
-    done: bool = False
+    done: bool = False  # its COMPLETED ack is written: nothing follows it
     record_status: str = "Q_STATUS_INLINE"
+    running: bool = False  # its handler method has been called and has not returned
+    stop_by: float | None = None  # told to stop: the handler's deadline (time.monotonic)
+    stopped: list = field(default_factory=list)  # stopAllMotion: the motion runs it told to stop
 
 
 class CommandManager:
     def __init__(self, tables: Tables, handlers: object, outbox: Outbox,
                  on_shutdown: Callable[[], None] | None = None, clock: Callable[[], float] = time.monotonic,
                  window: int = COMMAND_WINDOW, queue_limit: int = QUEUE_LIMIT,
-                 bypass_limit: int = BYPASS_LIMIT, journal=None) -> None:
+                 bypass_limit: int = BYPASS_LIMIT, journal=None, stop_timeout_ms: int = STOP_TIMEOUT_MS) -> None:
         if window < 1:
             raise ValueError(f"command window {window}: at least 1")
         if queue_limit < 1 or bypass_limit < 1:
             raise ValueError(f"queue limit {queue_limit}, bypass limit {bypass_limit}: at least 1 each")
+        if stop_timeout_ms < 1:
+            raise ValueError(f"stop timeout {stop_timeout_ms} ms: at least 1")
+        self.stop_timeout_ms = stop_timeout_ms
         self.queue_limit, self.bypass_limit = queue_limit, bypass_limit
         self.tables, self.handlers, self.out = tables, handlers, outbox
         self.on_shutdown = on_shutdown
@@ -116,6 +129,12 @@ class CommandManager:
         self._outgoing: list[Callable[[], None]] = []  # writes held until the journal is synced
         self._depth = 0
         self._sync_failed = False
+        # Told-to-stop handlers and their deadlines: one watchdog thread for all (made on first use)
+        self._stopping: set[Run] = set()
+        self._watch = threading.Condition(self.lock)
+        self._watchdog: threading.Thread | None = None
+        self.closing = False  # shutting down: nothing starts, nothing is requeued
+        self._handlers_running = 0
 
     # ---- batches: the journal synced before the acks that promise what it holds --------------
     @contextlib.contextmanager
@@ -158,7 +177,14 @@ class CommandManager:
                 self.out.log(f"ignored {cmd.cmd_id!r}: addressed to asset {cmd.asset_name!r}")
                 return
             if cmd.cmd_id in self.seen or self._live(cmd.cmd_id):
-                self.out.log(f"ignored {cmd.cmd_id!r}: repeated cmdId")
+                final = self.seen.final(cmd.cmd_id) if cmd.cmd_id in self.seen else None
+                if final is not None and final.src_name == cmd.src_name and not self._live(cmd.cmd_id):
+                    # answered already: nothing runs; the stored final ack is written again
+                    self._emit(functools.partial(self._write_ack, _entry_cmd(final), COMPLETED, final.completion,
+                                                 final.message))
+                    self.out.log(f"{cmd.cmd_id!r} sent again: answered already, its final ack written again")
+                else:
+                    self.out.log(f"ignored {cmd.cmd_id!r}: repeated cmdId")
                 return
             self.seen.add(cmd.cmd_id)
             reason = self._intake(cmd)
@@ -210,6 +236,8 @@ class CommandManager:
             return EXEC_FAILED, f"{self.bypass_limit} commands already running beside the queue; retry later"
         run = Run(cmd, entry, kwargs_of(entry, cmd), queued=action != BYPASS)
         if action == BYPASS:
+            if self.closing:
+                return EXEC_FAILED, SHUTTING_DOWN
             self._start(run)
             return None
         if action == REPLACE:
@@ -262,12 +290,14 @@ class CommandManager:
         if target in self.pending.items:
             self.pending.remove(target)
             self._finish_unstarted(target, "deleted by " + _short(cmd.cmd_id))
+            said = f"{_short(cmd.target)} canceled"
         elif not self._abortable(target):
             return EXEC_FAILED, f"target '{_short(cmd.target)}' is running and not abortable"
         else:
-            self._cancel(target)
+            self._cancel(target)  # its own final ack follows when its handler returns, or at its stop bound
+            said = f"{_short(cmd.target)} cancel requested; handler has not stopped yet"
         self._ack(cmd, EXECUTING, NOT, "")
-        self._ack(cmd, COMPLETED, OK, f"{_short(cmd.target)} canceled")
+        self._ack(cmd, COMPLETED, OK, said)
         self._service()
         return None
 
@@ -277,7 +307,7 @@ class CommandManager:
 
     def _service(self) -> None:
         """Start the queue's front command when nothing queued runs and the queue is not suspended."""
-        while self.active is None and not self.suspended:
+        while self.active is None and not self.suspended and not self.closing:
             run = self.pending.pop_ready(self._busy)
             if run is None:
                 break
@@ -294,12 +324,16 @@ class CommandManager:
         run.record_status = "Q_STATUS_INPROCESS"
         if builtin is not None:
             outcome = builtin(self, run)
+            if not run.queued:  # cancelAll, stopAllMotion: the queue changed (queued ones: _service says it)
+                self._publish_queue()
             if outcome is not None:  # done at once; None: continue with the handler
                 self._complete(run, *outcome)
                 return
         if not run.queued:
             self.bypass.append(run)
-        run.ctx = CommandContext(run.cmd, e, lambda text, r=run: self._progress(r, text))
+        ctx = run.ctx = CommandContext(run.cmd, e, None)
+        ctx._progress = lambda text, r=run, c=ctx: self._progress(r, c, text)
+        run.running = True
         # started with the acks, after the journal's sync: a handler never moves hardware for a
         # command whose "running" step a power cut could still erase
         self._emit(threading.Thread(target=self._execute, args=(run,), daemon=True,
@@ -314,32 +348,41 @@ class CommandManager:
             if other is None or other.done or other.cmd.subsystem != run.cmd.subsystem or other.ctx is None:
                 continue
             if other.queued and other.entry.suspendable:
+                self._tell_stop(other)
                 other.requeue = True
-                other.ctx.cancelled.set()
             elif self._abortable(other):
-                other.ctx.cancelled.set()
+                self._tell_stop(other)
 
     def _execute(self, run: Run) -> None:
         method = getattr(self.handlers, run.entry.method, None)
         ctx = run.ctx
         assert ctx is not None  # _start sets it before this thread starts
+        with self.lock:
+            self._handlers_running += 1
         try:
             if method is None:
-                raise CommandFailed("not implemented")
+                raise CommandFailed(NOT_IMPLEMENTED)
             result = method(ctx, **run.kwargs)
             outcome = (CANCELED, "canceled") if ctx.cancelled.is_set() else (OK, result if isinstance(result, str) else "")
         except Cancelled:
             outcome = CANCELED, "canceled"
         except CommandFailed as exc:
-            outcome = EXEC_FAILED, str(exc) or "failed"
-        except Exception as exc:  # a handler's bug must not stop the bridge; the commander hears of it
-            outcome = EXEC_FAILED, f"handler error: {type(exc).__name__}: {exc}"
+            outcome = EXEC_FAILED, _text(exc) or "failed"
+        except BaseException as exc:  # a handler's bug must not stop the bridge; the commander hears of it
+            # (BaseException: a SystemExit or KeyboardInterrupt raised in a handler ends the command, not the bridge)
+            outcome = EXEC_FAILED, f"handler error: {type(exc).__name__}: {_text(exc)}"
+            self._log_exception(run, exc)
         with self.batch():
+            self._handlers_running -= 1
+            run.running = False
+            self._stopping.discard(run)
             if run in self.bypass:
                 self.bypass.remove(run)
-            if run.done:  # answered already (the bridge stopping): nothing follows a COMPLETED
+            if run.done:  # answered already (its stop bound, the bridge stopping): nothing follows a COMPLETED
                 return
-            if run.requeue and outcome[0] == CANCELED:
+            if _is_stop_all_motion(run.entry):
+                outcome = self._stop_all_motion_outcome(run, outcome)
+            if run.requeue and outcome[0] == CANCELED and not self.closing:
                 run.requeue, run.done, run.ctx = False, False, None
                 self._ack(run.cmd, REQUEUED, NOT, "preempted; back in the queue")
                 run.record_status = "Q_STATUS_PAUSED"
@@ -349,13 +392,85 @@ class CommandManager:
                 self._complete(run, *outcome)
             self._service()
 
-    def _progress(self, run: Run, text: str) -> None:
+    def _progress(self, run: Run, ctx: CommandContext, text: object) -> None:
+        """ctx.progress: nothing once the command is done, or from a context of an earlier
+        run of a requeued command (a helper thread left behind), whatever the thread."""
         with self.batch():
-            if not run.done:
-                self._ack(run.cmd, EXECUTING, NOT, text)
+            if not run.done and run.ctx is ctx and run.running:
+                self._ack(run.cmd, EXECUTING, NOT, _text(text))
 
-    def _complete(self, run: Run, completion: str, message: str) -> None:
+    def _log_exception(self, run: Run, exc: BaseException) -> None:
+        """One log line for a handler's exception: the command, and where it was raised."""
+        where = ""
+        frames = traceback.extract_tb(exc.__traceback__)
+        if frames:
+            last = frames[-1]
+            where = f" (at {last.filename.rsplit('/', 1)[-1]}:{last.lineno} in {last.name})"
+        self.out.log(f"{run.cmd.cmd_id}: {run.cmd.subsystem}/{run.entry.name}: handler raised "
+                     f"{type(exc).__name__}: {_text(exc)[:300]}{where}")
+
+    # ---- told to stop: the stop bound ---------------------------------------------------------
+    def bound_ms(self, run: Run) -> int:
+        return run.entry.stop_timeout_ms or self.stop_timeout_ms
+
+    def _tell_stop(self, run: Run) -> None:
+        """Tell a running handler to stop (ctx.cancelled) and start its stop bound: if it has not
+        returned by then, _overdue answers the command. Told again: the first deadline stays."""
+        if run.ctx is None or run.done:
+            return
+        run.ctx.cancelled.set()
+        if not run.running or run.stop_by is not None:
+            return
+        run.stop_by = time.monotonic() + self.bound_ms(run) / 1000.0
+        self._stopping.add(run)
+        if self._watchdog is None:
+            self._watchdog = threading.Thread(target=self._watch_loop, daemon=True, name="rapid-stop-bound")
+            self._watchdog.start()
+        self._watch.notify_all()
+
+    def _watch_loop(self) -> None:
+        """The one watchdog thread: sleeps until the earliest stop deadline, answers what is overdue."""
+        while True:
+            with self.lock:
+                while True:
+                    now = time.monotonic()
+                    due = [r for r in self._stopping if r.stop_by is not None and r.stop_by <= now]
+                    if due:
+                        break
+                    nearest = min((r.stop_by for r in self._stopping if r.stop_by is not None), default=None)
+                    self._watch.wait(None if nearest is None else max(0.001, nearest - now))
+            with self.batch():
+                for run in sorted(due, key=lambda r: r.stop_by or 0.0):
+                    self._overdue(run)
+
+    def _overdue(self, run: Run) -> None:
+        """A told-to-stop handler still running at its bound: the command's final ack now, its
+        place in the queue freed; the handler's later return is ignored (run.done)."""
+        self._stopping.discard(run)
+        if run.done or not run.running:
+            return
+        run.requeue = False
+        if run in self.bypass:
+            self.bypass.remove(run)
+        self.out.log(f"{run.cmd.cmd_id}: {run.cmd.subsystem}/{run.entry.name}: handler did not stop within "
+                     f"{self.bound_ms(run)} ms of being told to; answered EXEC_FAILED \"{DID_NOT_STOP}\"; "
+                     f"the robot must stop it in hardware")
+        self._complete(run, EXEC_FAILED, DID_NOT_STOP, suspend=False)
+        self._service()
+
+    def _stop_all_motion_outcome(self, run: Run, outcome: tuple[str, str]) -> tuple[str, str]:
+        """stopAllMotion's answer: the generated stub (or no method) is no failure, the runtime
+        has canceled the motion commands; motion handlers still running are said."""
+        if outcome == (EXEC_FAILED, NOT_IMPLEMENTED):
+            outcome = OK, NO_HARDWARE_STOP
+        left = sum(1 for r in run.stopped if r.running and not r.done)
+        if left:
+            outcome = outcome[0], "; ".join(p for p in (outcome[1], f"{left} motion handler(s) not stopped yet") if p)
+        return outcome
+
+    def _complete(self, run: Run, completion: str, message: str, suspend: bool = True) -> None:
         run.done = True
+        self._stopping.discard(run)
         self._ack(run.cmd, COMPLETED, completion, message)
         if self.shutdown_after is run and self.on_shutdown is not None:  # once its COMPLETED ack is written
             self._emit(threading.Thread(target=self.on_shutdown, daemon=True, name="shutdown").start)
@@ -363,7 +478,7 @@ class CommandManager:
             if self.active is run:
                 self.active = None
             self._record_done(run, completion)
-            if completion == EXEC_FAILED:
+            if completion == EXEC_FAILED and suspend and not self.closing:
                 self.suspended = True  # a failed step stops the plan; Queue/cancelAll resumes
         if self.active is None:
             self.idle.notify_all()
@@ -386,7 +501,7 @@ class CommandManager:
     def _cancel(self, run: Run) -> None:
         if run.ctx is not None:
             run.requeue = False
-            run.ctx.cancelled.set()
+            self._tell_stop(run)
 
     # ---- state topics ------------------------------------------------------------------------
     def _ack(self, cmd: Cmd, status: str, completed: str, message: str, journal: bool = True) -> None:
@@ -404,7 +519,10 @@ class CommandManager:
         self._emit(lambda: self._write_ack(cmd, status, completed, message))
         if status == COMPLETED:  # each command's last ack: keep the last `window` commands' acks
             # the journal's entry for its outcome when there is one (the journal keeps it too)
-            self._keep(noted if noted is not None else _Kept(cmd.cmd_id, cmd.src_name, cmd.asset_name, cmd.serial))
+            kept = noted if noted is not None else _Kept(cmd.cmd_id, cmd.src_name, cmd.asset_name, cmd.serial,
+                                                         completed, message)
+            self._keep(kept)
+            self.seen.answered(kept)  # a resend of its cmdId gets this final ack again
 
     def _write_ack(self, cmd: Cmd, status: str, completed: str, message: str) -> None:
         try:
@@ -451,6 +569,7 @@ class CommandManager:
         with self.batch():
             for e in recovered.finished:
                 self.seen.add(e.cmd_id)
+                self.seen.answered(e)
                 self._emit(functools.partial(self._write_ack, _entry_cmd(e), COMPLETED, e.completion, e.message))
                 self._keep(e)
             for e in recovered.unfinished:
@@ -459,31 +578,61 @@ class CommandManager:
                 self._ack(_entry_cmd(e), COMPLETED, completion, why)
         return len(recovered.unfinished), len(recovered.finished)
 
-    def abandon(self) -> int:
-        """The bridge stops: answer every pending and running command now (their handlers' threads
-        end with the process). Returns how many."""
+    def shutdown(self, timeout: float) -> tuple[int, int]:
+        """The bridge stops (Admin/shutdown, a signal): nothing starts any more; every pending
+        command is answered COMPLETED/CANCELED "asset shutting down", every running handler told
+        to stop; their handlers get up to `timeout` seconds to return (their own outcome), then
+        each one still running is answered EXEC_FAILED "handler did not stop" (its thread ends
+        with the process). Returns (commands in flight at the start, handlers that did not stop)."""
+        end = time.monotonic() + max(0.0, timeout)
         with self.batch():
+            self.closing = True
             runs = [*self.pending, *([self.active] if self.active else []), *self.bypass]
             for r in list(self.pending):
                 self.pending.remove(r)
                 r.done = True
-                self._ack(r.cmd, COMPLETED, CANCELED, STOPPED_QUEUED)
-            for r in runs:
-                if not r.done:
-                    r.done = True
-                    if r.ctx is not None:
-                        r.ctx.cancelled.set()
-                    self._ack(r.cmd, COMPLETED, EXEC_FAILED, STOPPED_RUNNING)
+                self._ack(r.cmd, COMPLETED, CANCELED, SHUTTING_DOWN)
+                self._record_done(r, CANCELED)
+            for r in [*([self.active] if self.active else []), *self.bypass]:
+                r.requeue = False
+                if r.ctx is not None:
+                    r.ctx.cancelled.set()  # told to stop; the shutdown's bound, not the command's
+            self._publish_queue()
+        with self.lock:
+            while any(r.running and not r.done for r in runs):
+                left = end - time.monotonic()
+                if left <= 0:
+                    break
+                self.idle.wait(min(left, 0.05))
+        with self.batch():
+            stuck = [r for r in runs if not r.done]
+            for r in stuck:
+                if r in self.bypass:
+                    self.bypass.remove(r)
+                self.out.log(f"{r.cmd.cmd_id}: {r.cmd.subsystem}/{r.entry.name}: handler did not stop within the "
+                             f"shutdown bound ({timeout * 1000:.0f} ms); answered EXEC_FAILED \"{DID_NOT_STOP}\"; "
+                             f"the robot must stop it in hardware")
+                self._complete(r, EXEC_FAILED, DID_NOT_STOP, suspend=False)
             self.active = None
             self.bypass.clear()
+            self._publish_queue()
             self.idle.notify_all()
-            return len(runs)
+        return len(runs), len(stuck)
+
+    def abandon(self) -> int:
+        """Answer every pending and running command now, not waiting for any handler (shutdown(0))."""
+        return self.shutdown(0.0)[0]
+
+    def handlers_running(self) -> int:
+        """Handler methods called and not returned, answered or not (threads a stop leaves behind)."""
+        with self.lock:
+            return self._handlers_running
 
     def wait_idle(self, timeout: float) -> bool:
         """True once no queued or bypass command runs (tests, shutdown)."""
         end = time.monotonic() + timeout
         with self.lock:
-            while self.active is not None or self.bypass or len(self.pending):
+            while self.active is not None or self.bypass or len(self.pending) and not self.closing:
                 left = end - time.monotonic()
                 if left <= 0 or self.suspended and self.active is None and not self.bypass:
                     return not (self.active or self.bypass)
@@ -493,11 +642,13 @@ class CommandManager:
 
 class _Recent:
     """The last `size` cmdIds, the oldest forgotten first: `in` and len(). A dict and a deque
-    (about 60 bytes an id; an OrderedDict costs about 115)."""
+    (about 60 bytes an id; an OrderedDict costs about 115). The dict's value is the command's
+    final outcome once it has one (a _Kept or journal Entry, the object the window keeps
+    anyway): a resend of the cmdId is answered with it."""
     __slots__ = ("ids", "order", "size")
 
     def __init__(self, size: int) -> None:
-        self.ids: dict[str, None] = {}
+        self.ids: dict[str, object] = {}
         self.order: collections.deque[str] = collections.deque()
         self.size = size
 
@@ -511,6 +662,15 @@ class _Recent:
 
     def __contains__(self, cmd_id: object) -> bool:
         return cmd_id in self.ids
+
+    def answered(self, kept) -> None:
+        """The cmdId's final outcome (when the id is still among the last `size`)."""
+        if kept.cmd_id in self.ids:
+            self.ids[kept.cmd_id] = kept
+
+    def final(self, cmd_id: str):
+        """The stored final outcome (completion, message, header names), or None."""
+        return self.ids.get(cmd_id)
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -528,6 +688,22 @@ class _Kept(NamedTuple):
     src_name: str
     asset_name: str
     serial: int
+    completion: str  # the final ack, written again when the cmdId is sent again
+    message: str
+
+
+def _text(x: object) -> str:
+    """str(x) for a message, never raising (a handler's exception or result may not print)."""
+    if isinstance(x, str):
+        return x
+    try:
+        return str(x)
+    except Exception as exc:
+        return f"<unprintable {type(x).__name__}: {type(exc).__name__}>"
+
+
+def _is_stop_all_motion(entry: CommandEntry) -> bool:
+    return entry.standard and (entry.subsystem_type, entry.name) == ("Mobility", "stopAllMotion")
 
 
 def _entry_cmd(e) -> Cmd:
@@ -561,16 +737,19 @@ def _cancel_all(m: CommandManager, run: Run):
     for r in list(m.pending):
         m.pending.remove(r)
         m._finish_unstarted(r, "cancelAll")
-    kept = 0
+    kept = asked = 0
     for r in [m.active, *m.bypass]:
-        if r is None or r is run:
+        if r is None or r is run or r.done:
             continue
         if m._abortable(r):
             m._cancel(r)
+            asked += 1
         else:
             kept += 1
     m.suspended = False
-    return OK, f"{kept} non-abortable command(s) still running" if kept else ""
+    parts = [f"{asked} handler(s) asked to stop, not stopped yet" if asked else "",
+             f"{kept} non-abortable command(s) still running" if kept else ""]
+    return OK, "; ".join(p for p in parts if p)
 
 
 def _stop_all_motion(m: CommandManager, run: Run):
@@ -582,8 +761,9 @@ def _stop_all_motion(m: CommandManager, run: Run):
             m.pending.remove(r)
             m._finish_unstarted(r, "stopAllMotion")
     for r in [m.active, *m.bypass]:
-        if r is not None and r is not run and r.cmd.subsystem in mobility:
+        if r is not None and r is not run and r.cmd.subsystem in mobility and not r.done:
             m._cancel(r)
+            run.stopped.append(r)
     return None
 
 

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from cyclonedds.idl import IdlEnum, IdlStruct, IdlUnion
 from cyclonedds.idl import types as T
 
+from rapid_runtime.acks import valid
 from rapid_runtime.command import Cmd
 from rapid_runtime.values import MEMBER, coerce
 
@@ -310,6 +311,7 @@ def convert(tp, value, where: str = "value"):
     if s.kind == "string":
         if not isinstance(value, str):
             raise TypeError(f"{where}: a string, not {type(value).__name__}")
+        value = valid(value)  # a lone surrogate or a NUL: U+FFFD (acks.valid), before the bound is checked
         if s.bound is not None and len(value.encode("utf-8")) > s.bound:
             raise ValueError(f"{where}: {len(value.encode('utf-8'))} bytes, at most {s.bound}")
         return value
