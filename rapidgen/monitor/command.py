@@ -128,7 +128,7 @@ async def _serve(source, args, what: str) -> int:
     from aiohttp import web
 
     from rapidgen.monitor.server import make_app
-    runner = web.AppRunner(make_app(source, args.tick), access_log=None, handle_signals=False)
+    runner = web.AppRunner(make_app(source, args.tick, args.bind), access_log=None, handle_signals=False)
     await runner.setup()
     site = web.TCPSite(runner, args.bind, args.port)
     if not _loopback(args.bind):

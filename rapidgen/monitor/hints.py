@@ -33,6 +33,7 @@ class AssetHints:
     subsystems: dict  # subsystem -> type
     values: dict[str, dict] = field(default_factory=dict)  # value key -> unit, min, max, warning, critical
     sources: list[str] = field(default_factory=list)
+    config: dict | None = None  # the CommandConfig the descriptor's bridge publishes (plain form)
 
 
 class Hints:
@@ -47,13 +48,27 @@ class Hints:
             asset = tables["ASSET"]
             h = AssetHints(asset["name"], asset.get("partition") or asset["name"], tables["COMMANDS"],
                            tables["SUBSYSTEMS"],
-                           sources=[r["source"] for r in (tables.get("ACCESS") or {}).get("rules", ())])
+                           sources=[r["source"] for r in (tables.get("ACCESS") or {}).get("rules", ())],
+                           config=((tables.get("CONFIGS") or {}).get("rapid_command_config") or {}).get("value"))
             for entry in getattr(spec, "telemetry", ()):
                 for v in getattr(entry, "values", ()):
                     h.values[v.name] = {"unit": v.unit, "min": v.min, "max": v.max, "description": v.description,
                                         "warning": _threshold(v.warning), "critical": _threshold(v.critical)}
             out.append(h)
         return cls(out)
+
+    def declared(self, partition: str) -> bool:
+        """The partition is an --asset's."""
+        return partition in self.by_partition
+
+    def config_differs(self, partition: str, config: dict) -> str | None:
+        """How a live CommandConfig (plain form) differs from the --asset descriptor's (None:
+        the same, or no descriptor). RAPID arguments are positional: a parameter list in
+        another order sends each value into another parameter."""
+        a = self.by_partition.get(partition)
+        if a is None or a.config is None:
+            return None
+        return config_difference(a.config, config)
 
     def value(self, partition: str, key: str) -> dict | None:
         a = self.by_partition.get(partition)
@@ -106,3 +121,52 @@ class Hints:
                     if c["name"] == command:
                         return c["parameters"]
         return None
+
+
+def _config_shape(config: dict) -> tuple[dict, dict]:
+    subs = {str(x.get("name")): str(x.get("subsystemTypeName")) for x in config.get("availableSubsystems", ())}
+    types = {}
+    for t in config.get("availableSubsystemTypes", ()):
+        types[str(t.get("name"))] = {str(c.get("name")): (bool(c.get("abortable")), bool(c.get("suspendable")),
+                                                         [(str(p.get("key")), str(p.get("type")))
+                                                          for p in c.get("parameters", ())])
+                                     for c in t.get("commands", ())}
+    return subs, types
+
+
+def _params(ps: list) -> str:
+    return ", ".join(f"{k} ({t.removeprefix('RAPID_')})" for k, t in ps) or "none"
+
+
+def config_difference(expected: dict, live: dict, most: int = 3) -> str | None:
+    """The first differences (at most `most`) between two CommandConfigs in plain form, as
+    text for the operator; None when they say the same (order of subsystems, types and
+    commands aside; parameters in order)."""
+    want_subs, want_types = _config_shape(expected)
+    got_subs, got_types = _config_shape(live)
+    out: list[str] = []
+    for sub in sorted(set(want_subs) | set(got_subs)):
+        if sub not in got_subs:
+            out.append(f"subsystem {sub} missing")
+        elif sub not in want_subs:
+            out.append(f"subsystem {sub} not in the descriptor")
+        elif want_subs[sub] != got_subs[sub]:
+            out.append(f"subsystem {sub} has type {got_subs[sub]}, the descriptor says {want_subs[sub]}")
+    for tname in sorted(set(want_types) | set(got_types)):
+        want, got = want_types.get(tname), got_types.get(tname)
+        if want is None or got is None:
+            out.append(f"subsystem type {tname} {'missing' if got is None else 'not in the descriptor'}")
+            continue
+        for cmd in sorted(set(want) | set(got)):
+            if cmd not in got:
+                out.append(f"{tname}/{cmd} missing")
+            elif cmd not in want:
+                out.append(f"{tname}/{cmd} not in the descriptor")
+            elif got[cmd][2] != want[cmd][2]:
+                out.append(f"{tname}/{cmd} parameters are {_params(got[cmd][2])}; the descriptor says "
+                           f"{_params(want[cmd][2])}")
+            elif got[cmd][:2] != want[cmd][:2]:
+                out.append(f"{tname}/{cmd} abortable/suspendable differ from the descriptor")
+    if not out:
+        return None
+    return "; ".join(out[:most]) + (f" (and {len(out) - most} more)" if len(out) > most else "")

@@ -80,13 +80,14 @@ class LiveFeed:
 
     def _tap(self, st, rec) -> None:
         if rec.sample is not None:
-            self.hub.sample(st.partition, st.topic, st.type_name, rec.sample, rec.stamp)
+            self.hub.sample(st.partition, st.topic, st.type_name, rec.sample, rec.stamp, writer=rec.writer)
 
     def _notes(self, w) -> None:
         from rapidgen.textsafe import visible
         lines = [f"{d['count']} undecodable {visible(d['topic'])} sample(s) in [{visible(d['partition'])}] from "
                  f"{d['writer']}: {d['error']}" for d in w.dropped()] + w.limits()
-        self.hub.presence({p for e in w.discovery.endpoints.values() if e.kind == "writer" for p in e.partitions})
+        writers = [e for e in w.discovery.endpoints.values() if e.kind == "writer"]
+        self.hub.presence({p for e in writers for p in e.partitions}, {e.key for e in writers})
         with self.hub.lock:
             self.hub.notes = lines[:32]
             for part, a in self.hub.assets.items():  # a writer ready before the operator's first command

@@ -27,6 +27,8 @@ class LiveSource:
         try:
             if commands is None:
                 raise Refused("no such asset on the domain")
+            if commands.get("refused"):
+                raise Refused(str(commands["refused"]))
             req = check(msg, commands, name)
         except Refused as exc:
             return {"type": "refused", "partition": partition, "ref": ref, "reason": str(exc)}

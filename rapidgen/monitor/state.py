@@ -28,7 +28,10 @@ PLOT_STEP = 0.25  # seconds between two points of one series
 TRAVERSE = 5_000  # positions kept per asset
 TRAVERSE_STEP = 0.02  # metres moved before a new traverse point
 CUSTOM_FIELDS = 32  # scalar fields of an extension sample shown
-MAX_ASSETS = 64
+MAX_ASSETS = 64  # assets shown besides the --asset ones (which always get a place)
+MAX_NAMED_DROPPED = 1024  # partitions not shown, remembered by name up to this many, then counted
+MAX_ROWS = 256  # value rows kept per asset, whatever its configs declare
+CONFIG_WRITERS = 16  # writers of one config topic remembered per asset
 MAX_IMAGES = 16  # sensors per asset
 STALE = 5.0  # seconds without a sample: the asset is shown as quiet
 
@@ -76,6 +79,13 @@ class Asset:
     log: collections.deque = field(default_factory=lambda: collections.deque(maxlen=LOG_LINES))
     acks: collections.OrderedDict = field(default_factory=collections.OrderedDict)  # cmdId -> dict
     images: dict[str, dict] = field(default_factory=dict)  # sensor -> meta (bytes in Hub.pictures)
+    # rows: each group (agent, position, joint, an extension topic) keeps as many as its
+    # configs declare (else as many as one sample carries), the least recently updated go
+    group_rows: dict[str, dict[str, int]] = field(default_factory=dict)  # group -> topic -> declared rows
+    rows_dropped: int = 0
+    config_writers: dict[str, dict[str, float]] = field(default_factory=dict)  # config topic -> writer -> time
+    command_configs: dict[str, tuple[dict, str | None]] = field(default_factory=dict)  # writer -> (config, diff)
+    discovered: set[str] = field(default_factory=set)  # config writers discovery has listed
 
 
 class Hub:
@@ -88,8 +98,10 @@ class Hub:
         self.seq = 0
         self.assets: dict[str, Asset] = {}
         self.pictures: dict[tuple[str, str], tuple[str, bytes, int]] = {}  # (partition, sensor) -> mime, data, seq
-        self.dropped_assets = 0
+        self.dropped_assets = 0  # partitions not shown (MAX_ASSETS)
+        self.dropped_names: set[str] = set()
         self.notes: list[str] = []  # what the feeder says (undecodable samples, caps)
+        self._writer: str | None = None  # the writer of the sample being handled
 
     def _next(self) -> int:
         self.seq += 1
@@ -101,16 +113,22 @@ class Hub:
     def asset(self, partition: str) -> Asset | None:
         a = self.assets.get(partition)
         if a is None:
-            if len(self.assets) >= MAX_ASSETS:
-                self.dropped_assets += 1
+            if not self.hints.declared(partition) and \
+                    sum(1 for p in self.assets if not self.hints.declared(p)) >= MAX_ASSETS:
+                if partition not in self.dropped_names:
+                    self.dropped_assets += 1
+                    if len(self.dropped_names) < MAX_NAMED_DROPPED:
+                        self.dropped_names.add(partition)
                 return None
             a = self.assets[partition] = Asset(partition)
             self._set(a, "commands", self.hints.commands_for(partition, None))
         return a
 
     # ---- feeding -----------------------------------------------------------------------------
-    def sample(self, partition: str, topic: str, type_name: str, s, t: float | None = None) -> None:
-        """One decoded sample of `topic` in `partition` (t: its wall time, default now)."""
+    def sample(self, partition: str, topic: str, type_name: str, s, t: float | None = None,
+               writer: str | None = None) -> None:
+        """One decoded sample of `topic` in `partition` (t: its wall time, default now;
+        writer: its writer's GUID, when known)."""
         t = self.clock() if t is None else t
         kind = short(type_name)
         with self.lock:
@@ -122,6 +140,9 @@ class Hub:
             if name and kind not in ("Command", "Ack") and name != a.name:
                 a.name = name
             a.last = max(a.last, t)
+            if writer is not None and kind.endswith("Config"):
+                self._config_writer(a, topic, writer, t)
+            self._writer = writer
             handler = getattr(self, "_on_" + kind, None)
             if handler is not None:
                 handler(a, topic, s, t)
@@ -135,9 +156,48 @@ class Hub:
         if a.sections.get("status", (0, None))[1] != data:
             self._set(a, "status", data)
 
+    def _config_writer(self, a: Asset, topic: str, writer: str, t: float) -> None:
+        writers = a.config_writers.setdefault(topic, {})
+        if writer not in writers and len(writers) >= CONFIG_WRITERS:
+            return
+        new = writer not in writers
+        writers[writer] = t
+        if new:
+            self._alerts(a)
+
     def _on_CommandConfig(self, a: Asset, topic: str, s, t: float) -> None:
         from rapid_runtime.messages import config_plain
-        self._set(a, "commands", self.hints.commands_for(a.partition, config_plain(s)))
+        config = config_plain(s)
+        writer = self._writer or ""
+        if writer in a.command_configs or len(a.command_configs) < CONFIG_WRITERS:
+            a.command_configs[writer] = (config, self.hints.config_differs(a.partition, config))
+        self._commands(a, config)
+
+    def _commands(self, a: Asset, config: dict | None) -> None:
+        """The commands section: `config` as the page's dictionary, refused while any writer's
+        CommandConfig differs from the --asset descriptor's."""
+        out = self.hints.commands_for(a.partition, config)
+        bad = [(w, d) for w, (_c, d) in a.command_configs.items() if d]
+        if bad:
+            w, d = bad[0]
+            out["refused"] = (f"the live CommandConfig {'of writer ' + w[:40] + ' ' if w else ''}differs from the "
+                              f"--asset descriptor's: {d}. Commands to this asset are refused until that writer "
+                              "leaves (a rogue publisher, or the wrong descriptor)")
+        self._set(a, "commands", out)
+        self._alerts(a)
+
+    def _alerts(self, a: Asset) -> None:
+        """What the operator must know about an asset before trusting its page."""
+        out = []
+        commands = a.sections.get("commands", (0, {}))[1]
+        if isinstance(commands, dict) and commands.get("refused"):
+            out.append(commands["refused"])
+        for topic, writers in sorted(a.config_writers.items()):
+            if len(writers) > 1:
+                out.append(f"{len(writers)}{'+' if len(writers) >= CONFIG_WRITERS else ''} writers publish "
+                           f"{_text(topic, 128)} in this partition: " + ", ".join(sorted(writers)[:4]))
+        if a.sections.get("alerts", (0, []))[1] != out:
+            self._set(a, "alerts", out)
 
     def _keys(self, a: Asset, topic: str, s) -> None:
         a.value_keys[topic] = [(_text(k.key, 64), _union(k.value)[0]) for k in s.valueKeys]
@@ -152,8 +212,15 @@ class Hub:
     def _on_JointConfig(self, a: Asset, topic: str, s, t: float) -> None:
         a.joint_frames = [_text(j.frameName, 64) for j in s.jointDefinitions]
 
+    def _declare_rows(self, a: Asset, group: str, topic: str, n: int) -> None:
+        topics = a.group_rows.setdefault(group, {})
+        if topic in topics or len(topics) < 64:
+            topics[topic] = n
+
     def _values(self, a: Asset, group: str, topic: str, values, t: float) -> None:
         keys = a.value_keys.get(topic, [])
+        values = list(values)
+        self._declare_rows(a, group, topic, max(len(keys), len(values)))  # (keys: the config's declared count)
         for i, u in enumerate(values):
             dtype, v = _union(u)
             key = keys[i][0] if i < len(keys) else f"values[{i}]"
@@ -167,6 +234,8 @@ class Hub:
                "level": level_of(n, hint) if n is not None else "ok", "t": t,
                "warning": hint.get("warning") if hint else None, "critical": hint.get("critical") if hint else None}
         vid = f"{group}/{key}"
+        if vid not in a.values:
+            self._room(a, group)
         a.values[vid] = row
         self._set(a, "values", list(a.values.values()))
         if n is not None and math.isfinite(n) and t - a.last_point.get(vid, -1e18) >= PLOT_STEP:
@@ -188,7 +257,24 @@ class Hub:
                 a.traverse.append((self._next(), xyz[0], xyz[1], t))
         self._values(a, "position", topic, s.values, t)
 
+    def _room(self, a: Asset, group: str) -> None:
+        """Room for a new row of `group`: past the group's declared count (or MAX_ROWS for
+        the asset), the least recently updated row goes (counted)."""
+        cap = max(1, min(MAX_ROWS, sum(a.group_rows.get(group, {}).values()) or CUSTOM_FIELDS))
+        mine = [(r["t"], vid) for vid, r in a.values.items() if r["group"] == group]
+        drop = sorted(mine)[:max(0, len(mine) - cap + 1)]
+        if len(a.values) - len(drop) >= MAX_ROWS:
+            rest = sorted((r["t"], vid) for vid, r in a.values.items() if r["group"] != group)
+            drop += rest[:len(a.values) - len(drop) - MAX_ROWS + 1]
+        for _t, vid in drop:
+            del a.values[vid]
+            a.last_point.pop(vid, None)
+        if drop:
+            a.rows_dropped += len(drop)
+            self._set(a, "dropped", {"rows": a.rows_dropped, "cap": MAX_ROWS})
+
     def _on_JointSample(self, a: Asset, topic: str, s, t: float) -> None:
+        self._declare_rows(a, "joint", topic, min(64, len(a.joint_frames) or len(s.anglePos)))
         for i, v in enumerate(list(s.anglePos)[:64]):
             frame = a.joint_frames[i] if i < len(a.joint_frames) else f"joint[{i}]"
             self._value(a, "joint", frame, "RAPID_FLOAT", float(v), t)
@@ -264,16 +350,50 @@ class Hub:
         """An extension type's sample or state: its scalar fields as values."""
         flat: list[tuple[str, object]] = []
         _flatten(plain(s), "", flat)
+        self._declare_rows(a, topic, topic, len(flat))
         for key, v in flat[:CUSTOM_FIELDS]:
             self._value(a, topic, key, "", v, t)
 
-    def presence(self, partitions: set[str]) -> None:
-        """The partitions that have a writer now (from discovery): the others are gone."""
+    def presence(self, partitions: set[str], writers: set[str] | None = None) -> None:
+        """The partitions that have a writer now (from discovery): the others are gone; and
+        (writers: their GUIDs) config writers that left are forgotten."""
         with self.lock:
             for p, a in self.assets.items():
                 if a.present != (p in partitions):
                     a.present = p in partitions
                     self._status(a)
+                if writers is None:
+                    continue
+                # a writer is forgotten once discovery listed it and no longer does (one its
+                # full tables never listed stays: a flood of endpoints must not clear a warning)
+                mine = set(a.command_configs) | {w for ws in a.config_writers.values() for w in ws}
+                a.discovered |= mine & writers
+                left = a.discovered - writers
+                a.discovered -= left
+                gone = [w for w in a.command_configs if w in left]
+                for w in gone:
+                    del a.command_configs[w]
+                for ws in a.config_writers.values():
+                    for w in [w for w in ws if w in left]:
+                        del ws[w]
+                if gone:  # the dictionary shown: another writer's config, else the descriptor's
+                    others = list(a.command_configs.values())
+                    self._commands(a, others[-1][0] if others else None)
+                self._alerts(a)
+
+    def all_notes(self) -> list[str]:
+        """The feeder's notes and what the hub itself left out."""
+        out = list(self.notes)
+        with self.lock:
+            if self.dropped_assets:
+                names = ", ".join(repr(p[:40]) for p in sorted(self.dropped_names)[:3])
+                out.append(f"{self.dropped_assets} partition(s) not shown (cap {MAX_ASSETS} besides the --asset ones, "
+                           f"which always get a place), e.g. {names}")
+            rows = sum(a.rows_dropped for a in self.assets.values())
+            if rows:
+                out.append(f"{rows} value row(s) dropped (rows per asset: as many as its configs declare, at most "
+                           f"{MAX_ROWS}; the least recently updated go)")
+        return out
 
     # ---- reading (the server) ------------------------------------------------------------------
     def delta(self, cursor: int, now: float | None = None) -> tuple[int, list[dict]]:
@@ -286,7 +406,7 @@ class Hub:
                 for name, (seq, data) in a.sections.items():
                     if seq > cursor:
                         msg[name] = data
-                pts = [p[1:] for p in _after(a.points, cursor)]
+                pts = [p[1:] for p in _after(a.points, cursor) if p[1] in a.values]  # rows dropped: their points too
                 if pts:
                     msg["points"] = pts
                 trav = [p[1:] for p in _after(a.traverse, cursor)]

@@ -24,7 +24,8 @@ def available() -> str | None:
     return None
 
 
-def chromium(width: int = 1360, height: int = 900):
+def chromium(width: int = 1360, height: int = 900, extra: tuple[str, ...] = ()):
+    """extra: more command-line flags (e.g. --host-resolver-rules for the rebinding test)."""
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
 
@@ -34,6 +35,8 @@ def chromium(width: int = 1360, height: int = 900):
                 f"--window-size={width},{height}", "--hide-scrollbars", "--no-first-run",
                 "--disable-extensions", "--disable-background-networking", "--disable-sync",
                 "--disable-component-update", "--disable-default-apps", "--metrics-recording-only"):
+        opts.add_argument(arg)
+    for arg in extra:
         opts.add_argument(arg)
     service = Service(executable_path=_first(DRIVER) or shutil.which("chromedriver"))
     return webdriver.Chrome(service=service, options=opts)

@@ -7,6 +7,7 @@ cross-origin WebSocket, a picture whose MIME type is not a picture's) and usage 
 from __future__ import annotations
 
 import json
+import re
 from urllib.parse import quote
 import subprocess
 import sys
@@ -279,7 +280,9 @@ def test_server_refuses_cross_origin_sockets_and_foreign_picture_types(live):
             with pytest.raises(aiohttp.WSServerHandshakeError) as exc:
                 await s.ws_connect(url + "ws", origin="http://evil.example")
             assert exc.value.status == 403
-            async with s.ws_connect(url + "ws", origin=url.rstrip("/")) as ws:
+            async with s.get(url) as r:  # the page carries the token its WebSocket needs
+                token = re.search(r'<meta name="monitor-token" content="([0-9a-f.]+)">', await r.text()).group(1)
+            async with s.ws_connect(url + "ws?token=" + token, origin=url.rstrip("/")) as ws:
                 hello = json.loads((await ws.receive()).data)
                 assert hello["type"] == "hello" and hello["mode"] == "live"
                 await ws.send_json({"type": "command", "partition": "K10Red", "subsystem": "Admin", "command": "noOp"})

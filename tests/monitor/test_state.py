@@ -8,8 +8,8 @@ from types import SimpleNamespace as NS
 import pytest
 
 from rapidgen.monitor.commanding import Refused, check
-from rapidgen.monitor.hints import AssetHints, Hints, level_of
-from rapidgen.monitor.state import LOG_LINES, Hub
+from rapidgen.monitor.hints import AssetHints, Hints, config_difference, level_of
+from rapidgen.monitor.state import LOG_LINES, MAX_ASSETS, MAX_ROWS, Hub
 
 pytest.importorskip("rapid_runtime")  # values are checked by the runtime's rules, as `rapidgen cmd` does
 
@@ -125,3 +125,115 @@ def test_deltas_by_cursor_and_bounded_log():
                    NS(hdr=NS(assetName="K10Red"), level=NS(name="MSG_INFO"), category="c", message=f"line {i}"), 4.0)
     _, (k10,) = hub.delta(0)
     assert len(k10["log"]) == LOG_LINES and k10["log"][-1][3] == f"line {LOG_LINES + 49}"
+
+
+# ---- issue 34: a rogue CommandConfig, decoy partitions, churning telemetry keys ------------------
+SWAPPED = {**LIVE, "availableSubsystemTypes": [{"name": "PanTiltCamera", "commands": [
+    {**LIVE["availableSubsystemTypes"][0]["commands"][0],
+     "parameters": LIVE["availableSubsystemTypes"][0]["commands"][0]["parameters"][::-1]}]}]}
+
+
+def _command_config(plain: dict):
+    """A CommandConfig sample (attribute access, as decoded) from its plain form."""
+    return NS(hdr=NS(assetName="K10Red"), availableSubsystemTypes=[
+        NS(name=t["name"], commands=[NS(name=c["name"], abortable=c["abortable"], suspendable=c["suspendable"],
+                                        parameters=[NS(key=p["key"], type=NS(name=p["type"])) for p in c["parameters"]])
+                                     for c in t["commands"]]) for t in plain["availableSubsystemTypes"]],
+        availableSubsystems=[NS(name=s["name"], subsystemTypeName=s["subsystemTypeName"])
+                             for s in plain["availableSubsystems"]])
+
+
+def _declared_hints() -> Hints:
+    return Hints([AssetHints("K10Red", "K10Red", COMMANDS, {"PanCam": "PanTiltCamera"}, {}, ["RapidWorkbench"],
+                             config=LIVE)])
+
+
+def test_config_difference_names_the_parameters_in_their_order():
+    assert config_difference(LIVE, LIVE) is None
+    why = config_difference(LIVE, SWAPPED)
+    assert why == ("PanTiltCamera/pointCamera parameters are tiles (INT), mode (STRING), pan (FLOAT); "
+                   "the descriptor says pan (FLOAT), mode (STRING), tiles (INT)")
+    moved = {**LIVE, "availableSubsystems": [{"name": "PanCam", "subsystemTypeName": "Other"}]}
+    assert "subsystem PanCam has type Other" in config_difference(LIVE, moved)
+
+
+class _Feed:
+    def __init__(self) -> None:
+        self.sent: list = []
+
+    def send(self, req) -> str:
+        self.sent.append(req)
+        return "1-x"
+
+
+def test_a_command_config_unlike_the_descriptor_refuses_every_send_until_its_writer_leaves():
+    from rapidgen.monitor.sources import LiveSource
+    hub, feed = Hub(_declared_hints()), _Feed()
+    source = LiveSource(hub, feed, 0)  # type: ignore[arg-type]
+    msg = {"type": "command", "ref": 1, "partition": "K10Red", "subsystem": "PanCam", "command": "pointCamera",
+           "source": "RapidWorkbench", "args": {"pan": "1", "tiles": "3"}}
+    hub.sample("K10Red", "rapid_command_config", "rapid::CommandConfig", _command_config(LIVE), 1.0, writer="real")
+    assert source.handle(msg)["type"] == "sent" and len(feed.sent) == 1
+    assert hub.delta(0)[1][0].get("alerts", []) == []
+    hub.sample("K10Red", "rapid_command_config", "rapid::CommandConfig", _command_config(SWAPPED), 2.0, writer="rogue")
+    got = source.handle(msg)
+    assert got["type"] == "refused" and "pointCamera parameters are tiles (INT), mode (STRING), pan (FLOAT)" in \
+        got["reason"] and "of writer rogue" in got["reason"], got
+    assert len(feed.sent) == 1  # nothing written
+    # the real writer republishing its own does not clear it
+    hub.sample("K10Red", "rapid_command_config", "rapid::CommandConfig", _command_config(LIVE), 3.0, writer="real")
+    assert source.handle(msg)["type"] == "refused"
+    (k10,) = hub.delta(0)[1]
+    assert k10["commands"]["refused"] and k10["alerts"][0] == k10["commands"]["refused"]
+    assert k10["alerts"][1] == "2 writers publish rapid_command_config in this partition: real, rogue"
+    hub.presence({"K10Red"}, {"real"})  # the rogue never listed by discovery (its tables full?): kept
+    assert source.handle(msg)["type"] == "refused"
+    hub.presence({"K10Red"}, {"real", "rogue"})
+    hub.presence({"K10Red"}, {"real"})  # listed, then gone
+    assert source.handle(msg)["type"] == "sent" and len(feed.sent) == 2
+    assert hub.delta(0)[1][0].get("alerts", []) == []
+
+
+def test_declared_assets_always_get_a_place_and_the_dropped_are_counted():
+    hub = Hub(_declared_hints())
+    for i in range(MAX_ASSETS + 5):
+        hub.sample(f"Decoy{i:02d}", "rapid_agent_state", "rapid::AgentState", _agent_state(1.0, f"Decoy{i:02d}"), 1.0)
+    hub.sample("Decoy00", "rapid_agent_state", "rapid::AgentState", _agent_state(1.0, "Decoy00"), 1.0)
+    assert len(hub.assets) == MAX_ASSETS and hub.dropped_assets == 5
+    hub.sample("K10Red", "rapid_agent_state", "rapid::AgentState", _agent_state(50.0), 2.0)
+    assert "K10Red" in hub.assets and len(hub.assets) == MAX_ASSETS + 1
+    assert any(n.startswith(f"5 partition(s) not shown (cap {MAX_ASSETS} besides the --asset ones")
+               for n in hub.all_notes()), hub.all_notes()
+
+
+def _churn(hub: Hub, gen: int, keys: int = 64, partition: str = "Churn") -> None:
+    hub.sample(partition, "rapid_agent_config", "rapid::AgentConfig", NS(hdr=NS(assetName=partition), valueKeys=[
+        NS(key=f"k{gen}_{i}", value=NS(discriminator=NS(name="RAPID_FLOAT"), value=0.0)) for i in range(keys)]),
+        float(gen))
+    union = NS(discriminator=NS(name="RAPID_FLOAT"), value=1.0)
+    hub.sample(partition, "rapid_agent_state", "rapid::AgentState",
+               NS(hdr=NS(assetName=partition, statusCode=0), values=[union] * keys), float(gen))
+
+
+def test_churning_keys_keep_the_rows_the_config_declares():
+    hub = Hub()
+    for gen in range(200):
+        _churn(hub, gen)
+    a = hub.assets["Churn"]
+    assert len(a.values) == 64 and a.rows_dropped == 199 * 64 and len(a.last_point) == 64
+    assert {r["key"] for r in a.values.values()} == {f"k199_{i}" for i in range(64)}  # the newest stay
+    (first,) = hub.delta(0)[1]  # a new page's first update
+    assert len(first["values"]) == 64 and first["dropped"] == {"rows": 199 * 64, "cap": MAX_ROWS}
+    assert {p[0] for p in first["points"]} <= {f"agent/{r['key']}" for r in first["values"]}
+    assert any(n.startswith(f"{199 * 64} value row(s) dropped") for n in hub.all_notes())
+    # a steady asset loses nothing
+    for t in range(50):
+        hub.sample("K10Red", "rapid_agent_state", "rapid::AgentState", _agent_state(float(t)), float(t))
+    assert hub.assets["K10Red"].rows_dropped == 0
+
+
+def test_rows_have_a_ceiling_whatever_the_configs_declare():
+    hub = Hub()
+    _churn(hub, 0, keys=400)
+    a = hub.assets["Churn"]
+    assert len(a.values) == MAX_ROWS and a.rows_dropped == 400 - MAX_ROWS

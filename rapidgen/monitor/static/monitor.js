@@ -30,13 +30,19 @@ function fmtValue(v) {
 function stateOf(p) {
   if (!assets.has(p)) assets.set(p, { partition: p, status: { name: p }, commands: null, values: [], position: null,
     traverse: [], points: new Map(), log: [], images: [], acks: [], queue: null, access: null, answers: {},
-    target: "" });  // target: the queued cmdId INSERT and REPLACE act on, chosen in the queue
+    target: "", alerts: [], dropped: null });  // target: the queued cmdId INSERT and REPLACE act on, chosen in the queue
   return assets.get(p);
 }
 
 function merge(msg) {
   const a = stateOf(msg.partition);
-  for (const k of ["status", "values", "position", "images", "acks", "queue", "access"]) if (k in msg) a[k] = msg[k];
+  for (const k of ["status", "values", "position", "images", "acks", "queue", "access", "alerts", "dropped"]) {
+    if (k in msg) a[k] = msg[k];
+  }
+  if ("values" in msg) {  // the server drops rows past the asset's cap: their series go too
+    const kept = new Set(a.values.map(r => r.group + "/" + r.key));
+    for (const vid of [...a.points.keys()]) if (!kept.has(vid)) a.points.delete(vid);
+  }
   if ("commands" in msg && JSON.stringify(msg.commands) !== JSON.stringify(a.commands)) {
     a.commands = msg.commands; a.formsDirty = true;  // forms redrawn only when the dictionary changed
   }
@@ -67,6 +73,7 @@ function drawAssets() {
     const sub = [gone ? "gone (no writer left)" : quiet ? "quiet" : "live"];
     if (a.status.partition && a.status.partition !== a.status.name) sub.push("partition " + a.status.partition);
     if (a.status.statusCode !== null && a.status.statusCode !== undefined) sub.push("status " + a.status.statusCode);
+    if (a.alerts.length) sub.push("warning: see its page");
     b.replaceChildren(el("span", { class: "dot" + (quiet ? " quiet" : "") }), el("span", { class: "name", text: a.status.name }),
       el("div", { class: "sub", text: sub.join(" · ") }));
     b.classList.toggle("selected", p === selected);
@@ -83,6 +90,7 @@ function drawHead(a) {
   if (a.access) bits.push("controller: " + (a.access.controller || "none"));
   if (a.queue) bits.push("queue " + a.queue.state);
   parts.push(el("div", { class: "sub", text: bits.join(" · ") }));
+  if (a.alerts.length) parts.push(el("div", { id: "alerts" }, ...a.alerts.map(t => el("div", { class: "alert", text: t }))));
   head.replaceChildren(...parts);
   const tabs = document.getElementById("tabs");
   if (!tabs.childElementCount) {
@@ -111,7 +119,8 @@ function limitsText(r) {
 function drawTelemetry(view, a, rebuild) {
   if (rebuild || !view.querySelector("#values")) {
     view.replaceChildren(el("div", { class: "split" },
-      el("div", { class: "card" }, el("h3", { text: "values" }), el("table", { id: "values" })),
+      el("div", { class: "card" }, el("h3", { text: "values" }), el("table", { id: "values" }),
+        el("div", { id: "rows-dropped", class: "sub" })),
       el("div", { class: "card" }, el("h3", { text: "last " + WINDOW / 60 + " minutes" }), el("div", { id: "plots" }))));
   }
   const order = { agent: 0, position: 1, joint: 3 };
@@ -125,6 +134,10 @@ function drawTelemetry(view, a, rebuild) {
       el("td", { text: r.unit || "" }), el("td", { class: "limits", text: limitsText(r) })));
   }
   document.getElementById("values").replaceChildren(...rows);
+  const dropped = document.getElementById("rows-dropped");
+  dropped.dataset.rows = a.dropped ? String(a.dropped.rows) : "0";
+  dropped.textContent = a.dropped ? a.dropped.rows + " row(s) dropped: an asset keeps as many rows as its configs " +
+    "declare (at most " + a.dropped.cap + "), the least recently updated go" : "";
   const plots = document.getElementById("plots");
   const wanted = values.filter(r => r.group !== "joint" && typeof r.value === "number").slice(0, 8);
   const joints = values.filter(r => r.group === "joint").slice(0, 4);
@@ -260,6 +273,7 @@ function drawCommands(view, a, rebuild) {
     forms.append(el("div", { class: "sub", text: cmds.origin === "live" ? "from the live CommandConfig" +
       (cmds.subsystems.length ? "" : " (no subsystems)") : cmds.origin === "descriptor" ?
       "from the descriptor (no live CommandConfig yet: not sendable)" : "no command dictionary" }));
+    if (cmds.refused) forms.append(el("div", { id: "commands-refused", class: "alert", text: "not sendable: " + cmds.refused }));
     for (const s of cmds.subsystems) {
       const box = el("div", { class: "subsystem" }, el("h3", { text: s.subsystem + "  (" + s.type + ")" }));
       for (const c of s.commands) box.append(commandForm(a, s, c, queue));
@@ -358,10 +372,14 @@ function showReplay(r) {
 }
 
 function connect() {
-  ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws");
+  // the token this page was served with: the server accepts no WebSocket without it
+  const token = document.querySelector('meta[name="monitor-token"]').content;
+  ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws?token=" +
+    encodeURIComponent(token));
   ws.onopen = () => { const c = document.getElementById("conn"); c.textContent = "connected"; c.className = "conn-up"; };
   ws.onclose = () => {
-    const c = document.getElementById("conn"); c.textContent = "disconnected: retrying"; c.className = "conn-down";
+    const c = document.getElementById("conn"); c.className = "conn-down";
+    c.textContent = "disconnected: retrying (reload the page if the monitor was restarted)";
     setTimeout(connect, 1000);
   };
   ws.onmessage = ev => {
