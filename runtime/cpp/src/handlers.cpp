@@ -18,6 +18,6 @@ void CommandContext::cancel() {
     wake_.notify_all();
 }
 
-Result Handlers::execute(CommandContext&) { return Result::failed("not implemented"); }
+Result Handlers::execute(CommandContext&) { return Result::not_implemented(); }
 
 }  // namespace rapid_runtime

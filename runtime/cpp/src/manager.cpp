@@ -102,8 +102,13 @@ CommandManager::CommandManager(const Tables& tables, Handlers& handlers, Outbox&
     if (options_.queue_limit < 1 || options_.bypass_limit < 1)
         throw std::invalid_argument("queue limit and bypass limit: at least 1 each");
     if (!options_.clock) options_.clock = steady_seconds;
+    if (options_.stop_timeout_ms < 1 || options_.shutdown_timeout_ms < 0)
+        throw std::invalid_argument("stop timeout: at least 1 ms; shutdown timeout: at least 0 ms");
     has_queue_ = tables_.has_type("Queue");
     has_control_ = tables_.has_type("AccessControl");
+    alive_ = std::make_shared<Alive>();
+    alive_->manager = this;
+    watchdog_ = std::thread([this] { watch(); });
 #ifdef RAPID_RUNTIME_TEST_BREAKS
     if (options_.breaks.queue_lifo)  // soraCore's 10 Hz executive tick starts queued commands
         workers_.spawn([this] {
@@ -119,15 +124,20 @@ CommandManager::CommandManager(const Tables& tables, Handlers& handlers, Outbox&
 
 CommandManager::~CommandManager() {
     {
+        // a context's progress() under way ends first; later ones reach nothing
+        std::unique_lock<std::shared_mutex> gone(alive_->mutex);
+        alive_->manager = nullptr;
+    }
+    {
         Lock lock(mutex_);
         suspended_ = true;  // nothing new starts from the queue
-#ifdef RAPID_RUNTIME_TEST_BREAKS
         closing_ = true;
-#endif
         for (const auto& r : bypass_)
             if (r->ctx) r->ctx->cancel();
         if (active_ && active_->ctx) active_->ctx->cancel();
     }
+    watch_.notify_all();
+    if (watchdog_.joinable()) watchdog_.join();
     workers_.join_all();
 }
 
@@ -171,7 +181,20 @@ void CommandManager::receive(const Cmd& in) {
         out_.log("ignored '" + in.cmd_id + "': addressed to asset '" + in.asset_name + "'");
         return;
     }
+    if (closed_) return;  // shut down: the intake is closed
     if ((seen_.count(in.cmd_id) != 0 && !BROKEN(no_dedup)) || live(in.cmd_id)) {
+        auto f = finals_.find(in.cmd_id);
+        // (same cmdSrc; a final restored from the journal knows its sender's srcName only)
+        const bool same = f != finals_.end() && (f->second.key.cmd_src == in.cmd_src ||
+                                                 (f->second.key.cmd_src.empty() && f->second.key.src_name == in.src_name));
+        if (!live(in.cmd_id) && same) {
+            // answered already: nothing runs; its final ack once more (a tool that missed it)
+            out_.log("'" + in.cmd_id + "' sent again: answered already, its final ack written again");
+            emit([this, final = f->second] {
+                write_ack(final.key, AckStatus::Completed, final.completion, final.message);
+            });
+            return;
+        }
         out_.log("ignored '" + in.cmd_id + "': repeated cmdId");
         return;
     }
@@ -322,16 +345,21 @@ std::optional<CommandManager::Refusal> CommandManager::remove_target(const std::
     // The DELETE's sender must be allowed to send the target's command.
     if (auto denied = authorize(cmd->cmd_src, target->cmd->subsystem, target->ref))
         return Refusal{Completion::BadSyntax, *denied};
+    bool running = false;
     if (pending_.contains(target)) {
         pending_.remove(target);
         finish_unstarted(target, "deleted by " + shorten(cmd->cmd_id));
     } else if (!target->abortable()) {
         return Refusal{Completion::ExecFailed, "target " + quoted(cmd->target) + " is running and not abortable"};
     } else {
+        running = !target->done;
         cancel(target);
     }
     send_ack(*cmd, AckStatus::Executing, Completion::Not, "");
-    send_ack(*cmd, AckStatus::Completed, Completion::Ok, shorten(cmd->target) + " canceled");
+    // a running target's handler is only asked: its own final ack follows when it returns
+    // (CANCELED) or when its stop bound passes (EXEC_FAILED "handler did not stop")
+    send_ack(*cmd, AckStatus::Completed, Completion::Ok,
+             shorten(cmd->target) + (running ? " cancel requested; handler has not stopped yet" : " canceled"));
     service();
     return std::nullopt;
 }
@@ -367,9 +395,14 @@ void CommandManager::start(const RunPtr& run) {
     }
     if (!run->queued) bypass_.push_back(run);
     std::weak_ptr<Run> weak = run;
-    run->ctx = std::make_shared<CommandContext>(run->cmd, run->ref, [this, weak](const std::string& text) {
-        if (auto r = weak.lock()) progress(r, text);
+    if (run->ctx) run->past.push_back(run->ctx);  // (a preempted run's: a helper may still hold it)
+    run->ctx = std::make_shared<CommandContext>(run->cmd, run->ref, [alive = alive_, weak](const std::string& text) {
+        std::shared_lock<std::shared_mutex> hold(alive->mutex);  // the manager stays while this runs
+        if (alive->manager == nullptr) return;
+        if (auto r = weak.lock()) alive->manager->progress(r, text);
     });
+    run->handling = true;
+    ++handling_;
     // started with the acks, after the journal's sync: a handler never moves hardware for a
     // command whose "running" step a power cut could still erase
     emit([this, run] { workers_.spawn([this, run, ctx = run->ctx] { execute(run); }); });
@@ -383,9 +416,9 @@ void CommandManager::preempt(const RunPtr& run) {
         if (other->done || other->cmd->subsystem != run->cmd->subsystem || !other->ctx) continue;
         if (other->queued && other->ref.spec->suspendable) {
             other->requeue = true;
-            other->ctx->cancel();
+            tell_stop(other);
         } else if (other->abortable()) {
-            other->ctx->cancel();
+            tell_stop(other);
         }
     }
 }
@@ -398,8 +431,11 @@ void CommandManager::execute(const RunPtr& run) {
     }
     Completion completion = Completion::Ok;
     std::string message;
+    std::string error;  // a handler's exception, for the log
+    bool unwritten = false;  // the handler is the stub (stopAllMotion's answer says so)
     try {
         Result result = handlers_.execute(*ctx);
+        unwritten = result.is_not_implemented();
         switch (result.completion) {
             case Completion::Ok:
                 if (ctx->cancelled()) {
@@ -432,17 +468,37 @@ void CommandManager::execute(const RunPtr& run) {
     } catch (const std::exception& e) {  // a handler's bug must not stop the bridge; the commander hears of it
         completion = Completion::ExecFailed;
         message = "handler error: " + type_name(e) + ": " + e.what();
+        error = message;
     } catch (...) {
         completion = Completion::ExecFailed;
         message = "handler error: unknown exception";
+        error = message;
     }
     Batch batch(*this);
+    run->handling = false;
+    --handling_;
+    stopping_.erase(std::remove(stopping_.begin(), stopping_.end(), run), stopping_.end());
     bypass_.erase(std::remove(bypass_.begin(), bypass_.end(), run), bypass_.end());
-    if (run->done) return;  // answered already (the bridge stopping): nothing follows a COMPLETED
+    idle_.notify_all();
+    if (closed_) return;  // shut down: nothing is written any more
+    if (!error.empty()) out_.log(what(run) + ": " + visible(error));  // once, with the command
+    if (run->done) return;  // answered already (its stop bound passed, the bridge stopping): nothing follows a COMPLETED
+    if (is(run, "Mobility", "stopAllMotion") && builtin_command(run->ref)) {
+        // the runtime has canceled the motion commands; the handler stops the hardware
+        if (unwritten) {
+            completion = Completion::Ok;
+            message = NO_STOP_HANDLER;
+        }
+        std::size_t moving = 0;
+        for (const auto& weak : run->stopped)
+            if (auto r = weak.lock(); r && !r->done) ++moving;
+        if (moving) message += "; " + std::to_string(moving) + " motion handler(s) not stopped yet";
+    }
     if (run->requeue && completion == Completion::Canceled) {
         run->requeue = false;
         run->done = false;
-        run->ctx.reset();
+        run->stopping = false;
+        run->ctx->close();
         send_ack(*run->cmd, AckStatus::Requeued, Completion::Not, "preempted; back in the queue");
         run->record_status = RecordStatus::Paused;
         if (active_ == run) active_.reset();
@@ -455,18 +511,25 @@ void CommandManager::execute(const RunPtr& run) {
 
 void CommandManager::progress(const RunPtr& run, const std::string& text) {
     Batch batch(*this);
-    if (!run->done) send_ack(*run->cmd, AckStatus::Executing, Completion::Not, text);
+    if (!run->done && !closed_ && run->ctx && !run->ctx->done())
+        send_ack(*run->cmd, AckStatus::Executing, Completion::Not, text);
 }
 
-void CommandManager::complete(const RunPtr& run, Completion completion, const std::string& message) {
+void CommandManager::complete(const RunPtr& run, Completion completion, const std::string& message, bool suspend) {
     run->done = true;
+    if (run->ctx) {  // calls on it from now on are no-ops; it stays valid a while (FINAL_ACKS_KEPT)
+        run->ctx->close();
+        contexts_kept_.push_back(run->ctx);
+        while (contexts_kept_.size() > FINAL_ACKS_KEPT) contexts_kept_.pop_front();
+    }
     send_ack(*run->cmd, AckStatus::Completed, completion, message);
     if (shutdown_after_ == run && options_.on_shutdown)  // once its COMPLETED ack is written
         emit([this] { workers_.spawn(options_.on_shutdown); });
     if (run->queued) {
         if (active_ == run) active_.reset();
         record_done(run, completion);
-        if (completion == Completion::ExecFailed) suspended_ = true;  // a failed step stops the plan; cancelAll resumes
+        // a failed step stops the plan (cancelAll resumes); not one the operator told to stop
+        if (completion == Completion::ExecFailed && suspend) suspended_ = true;
     }
     idle_.notify_all();
 }
@@ -485,15 +548,70 @@ void CommandManager::record_done(const RunPtr& run, Completion completion) {
 void CommandManager::cancel(const RunPtr& run) {
     if (run->ctx) {
         run->requeue = false;
-        run->ctx->cancel();
+        tell_stop(run);
     }
+}
+
+int CommandManager::stop_bound_ms(const RunPtr& run) const {
+    int declared = run->ref.spec != nullptr ? run->ref.spec->stop_timeout_ms : 0;
+    return declared > 0 ? declared : options_.stop_timeout_ms;
+}
+
+void CommandManager::tell_stop(const RunPtr& run) {
+    if (!run->ctx || run->done) return;
+    run->ctx->cancel();
+    if (run->stopping || !run->handling) return;  // (its bound runs already)
+    run->stopping = true;
+    run->stop_by = std::chrono::steady_clock::now() + std::chrono::milliseconds(stop_bound_ms(run));
+    stopping_.push_back(run);
+    watch_.notify_all();
+}
+
+std::string CommandManager::what(const RunPtr& run) const {
+    return "'" + visible(run->id()) + "' (" + visible(run->cmd->subsystem) + "/" + visible(run->cmd->name) + ")";
+}
+
+void CommandManager::watch() {
+    using Clock = std::chrono::steady_clock;
+    Lock lock(mutex_);
+    while (!closing_ && !closed_) {
+        auto next = Clock::time_point::max();
+        std::vector<RunPtr> late;
+        const auto now = Clock::now();
+        for (const auto& r : stopping_) {
+            if (r->stop_by <= now) late.push_back(r);
+            else next = std::min(next, r->stop_by);
+        }
+        if (!late.empty()) {
+            Batch batch(*this);  // (the journal synced before these acks)
+            for (const auto& r : late) {
+                stopping_.erase(std::remove(stopping_.begin(), stopping_.end(), r), stopping_.end());
+                if (!r->done && r->handling) give_up(r);
+            }
+            continue;
+        }
+        if (next == Clock::time_point::max()) watch_.wait(lock);
+        else watch_.wait_until(lock, next);
+    }
+}
+
+void CommandManager::give_up(const RunPtr& run) {
+    // The handler runs on (a thread cannot be stopped from outside); the command is answered
+    // and leaves the queue, and whatever the handler returns later is ignored.
+    out_.log(what(run) + ": handler did not stop within " + std::to_string(stop_bound_ms(run)) +
+             " ms of being told to stop; answered EXEC_FAILED \"" + DID_NOT_STOP +
+             "\". Its handler still runs: the robot must stop it in hardware");
+    run->requeue = false;
+    bypass_.erase(std::remove(bypass_.begin(), bypass_.end(), run), bypass_.end());
+    complete(run, Completion::ExecFailed, DID_NOT_STOP, false);
+    service();
 }
 
 // ---- state topics -------------------------------------------------------------------------
 
 void CommandManager::send_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message,
                               bool journal) {
-    std::string text = clip(message);
+    std::string text = outgoing(message);  // valid UTF-8, no NUL, within Ack.message's bound
     if (journal_ != nullptr && journal) {  // the step the ack promises, recorded first
         char step = status == AckStatus::Queued      ? 'q'
                     : status == AckStatus::Executing ? 'x'
@@ -509,11 +627,24 @@ void CommandManager::send_ack(const Cmd& cmd, AckStatus status, Completion compl
         outgoing_.push_back([this, key = key_of(cmd), status, completion, text] { write_ack(key, status, completion, text); });
     else
         write_ack(cmd, status, completion, text);
-    if (status == AckStatus::Completed) keep(key_of(cmd));  // each command's last ack
+    if (status == AckStatus::Completed) {
+        keep(key_of(cmd));  // each command's last ack
+        if (journal) store_final(cmd, completion, text);
+    }
 }
 
 void CommandManager::write_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message) {
     out_.ack(cmd, status, completion, message);
+}
+
+void CommandManager::store_final(const Cmd& cmd, Completion completion, const std::string& message) {
+    auto [it, added] = finals_.insert_or_assign(cmd.cmd_id, Final{key_of(cmd), completion, message});
+    (void)it;
+    if (added) finals_order_.push_back(cmd.cmd_id);
+    while (finals_order_.size() > FINAL_ACKS_KEPT) {
+        finals_.erase(finals_order_.front());
+        finals_order_.pop_front();
+    }
 }
 
 void CommandManager::keep(Cmd key) {
@@ -560,6 +691,7 @@ std::pair<std::size_t, std::size_t> CommandManager::restore(const JournalRecover
         emit([this, key, completion = completion_named(e.completion), message = e.message] {
             write_ack(key, AckStatus::Completed, completion, message);
         });
+        store_final(key, completion_named(e.completion), e.message);
         keep(std::move(key));
     }
     for (const auto& e : recovered.unfinished) {
@@ -571,27 +703,62 @@ std::pair<std::size_t, std::size_t> CommandManager::restore(const JournalRecover
     return {recovered.unfinished.size(), recovered.finished.size()};
 }
 
-std::size_t CommandManager::abandon() {
-    Batch batch(*this);
-    std::vector<RunPtr> runs(pending_.items().begin(), pending_.items().end());
-    if (active_) runs.push_back(active_);
-    runs.insert(runs.end(), bypass_.begin(), bypass_.end());
-    std::vector<RunPtr> waiting(pending_.items().begin(), pending_.items().end());
-    for (const auto& r : waiting) {
-        pending_.remove(r);
-        r->done = true;
-        send_ack(*r->cmd, AckStatus::Completed, Completion::Canceled, STOPPED_QUEUED);
+std::size_t CommandManager::abandon() { return shut_down().answered; }
+
+CommandManager::ShutDown CommandManager::shut_down(int timeout_ms) {
+    using Clock = std::chrono::steady_clock;
+    ShutDown out;
+    auto running = [this] {
+        std::vector<RunPtr> runs(bypass_);
+        if (active_) runs.insert(runs.begin(), active_);
+        runs.erase(std::remove_if(runs.begin(), runs.end(), [](const RunPtr& r) { return r->done; }), runs.end());
+        return runs;
+    };
+    {
+        Batch batch(*this);
+        if (closed_) return {0, handling_};
+        suspended_ = true;  // nothing starts any more
+        std::vector<RunPtr> waiting(pending_.items().begin(), pending_.items().end());
+        for (const auto& r : waiting) {
+            pending_.remove(r);
+            r->done = true;
+            send_ack(*r->cmd, AckStatus::Completed, Completion::Canceled, SHUTTING_DOWN);
+            ++out.answered;
+        }
+        for (const auto& r : running()) {
+            ++out.answered;  // (answered when its handler returns, or below)
+            r->requeue = false;
+            if (r->ctx) r->ctx->cancel();  // (the shutdown bound, not each command's stop bound)
+        }
+        publish_queue();
     }
-    for (const auto& r : runs) {
-        if (r->done) continue;
-        r->done = true;
-        if (r->ctx) r->ctx->cancel();
-        send_ack(*r->cmd, AckStatus::Completed, Completion::ExecFailed, STOPPED_RUNNING);
+    const int bound = timeout_ms < 0 ? options_.shutdown_timeout_ms : timeout_ms;
+    const auto end = Clock::now() + std::chrono::milliseconds(bound);
+    {
+        Lock lock(mutex_);
+        while (!running().empty() && Clock::now() < end)
+            idle_.wait_until(lock, std::min(end, Clock::now() + std::chrono::milliseconds(50)));
+    }
+    Batch batch(*this);
+    for (const auto& r : running()) {
+        out_.log(what(r) + ": handler did not stop within the shutdown bound (" + std::to_string(bound) +
+                 " ms); answered EXEC_FAILED \"" + DID_NOT_STOP + "\". The robot must stop it in hardware");
+        complete(r, Completion::ExecFailed, DID_NOT_STOP, false);
     }
     active_.reset();
     bypass_.clear();
+    stopping_.clear();
+    publish_queue();
+    closed_ = true;  // (what this batch holds back still goes out at its end, after the journal's sync)
+    watch_.notify_all();
     idle_.notify_all();
-    return runs.size();
+    out.running = handling_;
+    return out;
+}
+
+std::size_t CommandManager::handlers_running() const {
+    Lock lock(mutex_);
+    return handling_;
 }
 
 Journal* CommandManager::release_journal() {
@@ -663,13 +830,22 @@ Result CommandManager::cancel_all(const RunPtr& run) {
     std::vector<RunPtr> running(bypass_);
     if (active_) running.insert(running.begin(), active_);
     int kept = 0;
+    int asked = 0;
     for (const auto& r : running) {
-        if (r == run) continue;
-        if (r->abortable()) cancel(r);
-        else ++kept;
+        if (r == run || r->done) continue;
+        if (r->abortable()) {
+            if (r->ctx && r->handling) ++asked;  // (each still running: its handler holds the lock's next turn)
+            cancel(r);
+        } else {
+            ++kept;
+        }
     }
     suspended_ = false;
-    return Result::ok(kept ? std::to_string(kept) + " non-abortable command(s) still running" : "");
+    publish_queue();  // whatever the queue's state was (a suspended one included)
+    std::string text;
+    if (asked) text = std::to_string(asked) + " handler(s) asked to stop, not stopped yet";
+    if (kept) text += (text.empty() ? "" : "; ") + std::to_string(kept) + " non-abortable command(s) still running";
+    return Result::ok(text);
 }
 
 void CommandManager::stop_all_motion(const RunPtr& run) {
@@ -687,8 +863,12 @@ void CommandManager::stop_all_motion(const RunPtr& run) {
     }
     std::vector<RunPtr> running(bypass_);
     if (active_) running.insert(running.begin(), active_);
-    for (const auto& r : running)
-        if (r != run && moving(r)) cancel(r);
+    for (const auto& r : running) {
+        if (r == run || !moving(r) || r->done) continue;
+        cancel(r);
+        run->stopped.push_back(r);  // (its answer says how many have not stopped when it completes)
+    }
+    publish_queue();
 }
 
 #ifdef RAPID_RUNTIME_TEST_BREAKS

@@ -70,6 +70,60 @@ std::string clip(std::string_view text, std::size_t limit) {
     return std::string(text.substr(0, cut));
 }
 
+std::string valid_utf8(std::string_view text) {
+    static constexpr char REPLACEMENT[] = "\xef\xbf\xbd";  // U+FFFD
+    const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+    const std::size_t n = text.size();
+    std::string out;
+    out.reserve(n);
+    std::size_t i = 0;
+    while (i < n) {
+        const unsigned char c = p[i];
+        if (c == 0) {
+            out += REPLACEMENT;
+            ++i;
+            continue;
+        }
+        if (c < 0x80) {
+            out += static_cast<char>(c);
+            ++i;
+            continue;
+        }
+        // The lead byte's sequence length and the range its second byte must be in (Unicode
+        // Table 3-7, well-formed UTF-8: no overlong form, no surrogate, nothing past U+10FFFF).
+        int need = 0;
+        unsigned char lo = 0x80, hi = 0xbf;
+        if (c >= 0xc2 && c <= 0xdf) need = 1;
+        else if (c == 0xe0) need = 2, lo = 0xa0;
+        else if (c >= 0xe1 && c <= 0xec) need = 2;
+        else if (c == 0xed) need = 2, hi = 0x9f;
+        else if (c >= 0xee && c <= 0xef) need = 2;
+        else if (c == 0xf0) need = 3, lo = 0x90;
+        else if (c >= 0xf1 && c <= 0xf3) need = 3;
+        else if (c == 0xf4) need = 3, hi = 0x8f;
+        if (need == 0) {  // a continuation byte alone, or a byte never in UTF-8
+            out += REPLACEMENT;
+            ++i;
+            continue;
+        }
+        std::size_t j = i + 1;
+        int got = 0;
+        while (got < need && j < n) {
+            const unsigned char b = p[j];
+            const bool ok = got == 0 ? (b >= lo && b <= hi) : (b >= 0x80 && b <= 0xbf);
+            if (!ok) break;
+            ++j;
+            ++got;
+        }
+        if (got == need) out.append(text.data() + i, j - i);
+        else out += REPLACEMENT;  // the maximal subpart i..j, one U+FFFD; go on at the byte that broke it
+        i = j;
+    }
+    return out;
+}
+
+std::string outgoing(std::string_view text, std::size_t limit) { return clip(valid_utf8(text), limit); }
+
 bool printable(std::string_view text) {
     std::vector<char32_t> cps;
     if (!decode(text, cps)) return false;

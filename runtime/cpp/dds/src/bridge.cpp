@@ -9,6 +9,7 @@
 #include <rapid_runtime/text.hpp>
 
 #include "rapid_runtime/dds/breaks.hpp"
+#include "rapid_runtime/dds/security.hpp"
 
 namespace rapid_runtime {
 namespace dds {
@@ -65,6 +66,14 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
     node.transport = options.transport;
     node.partition = tables.partition.empty() ? tables.name : tables.partition;
     node_ = std::make_unique<Node>(node);
+    // Secured (the node's enclave): cmdSrc is bound to the writer's certificate; the
+    // enclave's identities.txt (rapidgen secure) says whose certificate a GUID comes from.
+    const std::string enclave = security_enclave(node.partition);
+    if (!enclave.empty()) {
+        identities_ = std::make_unique<Identities>(Identities::load(enclave + "/" + IDENTITIES_FILE));
+        log("DDS Security: cmdSrc bound to the writer's certificate (" + std::to_string(identities_->sources().size()) +
+            " ground source(s) in " + enclave + "/" + IDENTITIES_FILE + ")");
+    }
     ManagerOptions m;
     m.window = options.command_window;
     m.on_shutdown = [this] { request_stop(); };
@@ -130,6 +139,7 @@ void Bridge::read_commands(DataReader* reader) {
     while (reading_ && reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
         if (!info.valid_data) continue;  // (samples that do not decode are dropped by the topic type)
         try {
+            if (identities_ && refused_source(sample, info.publication_handle)) continue;
             if (!breaks_->any()) {
                 intake_->offer(command_in(sample), writer_id(info.publication_handle));
             } else if (auto cmd = breaks_->intake(command_in(sample), *this)) {
@@ -139,6 +149,16 @@ void Bridge::read_commands(DataReader* reader) {
             log("command '" + sample.cmdId + "' not read: " + e.what());
         }
     }
+}
+
+bool Bridge::refused_source(const ::rapid::Command& sample, const InstanceHandle_t& writer) {
+    GuidPrefix prefix{};
+    for (std::size_t i = 0; i < prefix.size(); ++i) prefix[i] = writer.value[i];  // (the handle is the writer's GUID)
+    auto why = identities_->refusal(sample.cmdSrc, prefix);
+    if (!why) return false;
+    log("refused '" + visible(sample.cmdId) + "' from writer " + writer_id(writer) + ": " + *why);
+    manager_->refuse(command_in(sample), *why);  // COMPLETED/EXEC_FAILED, its cmdId not remembered
+    return true;
 }
 
 void Bridge::request_stop() {

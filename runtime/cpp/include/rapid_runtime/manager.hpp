@@ -5,7 +5,9 @@
 //     CommandManager manager(tables, handlers, outbox);
 //     manager.receive(cmd);        // every Command read from the asset's partition
 //
-// Dropped without an ack (logged): a command for another asset, a repeated cmdId.
+// Dropped without an ack (logged): a command for another asset, a repeated cmdId still
+// running or sent by another source. A repeated cmdId already answered (same cmdSrc) gets
+// its stored final ack again (the last FINAL_ACKS_KEPT finished commands' are kept).
 // Everything else gets exactly one final COMPLETED ack. Acks go out through the Outbox,
 // always under the manager's lock, so the acks of one command keep their order.
 //
@@ -30,6 +32,9 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <shared_mutex>
+#include <thread>
+#include <unordered_map>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -53,12 +58,21 @@ inline constexpr std::size_t QUEUE_LIMIT = 1024;
 inline constexpr std::size_t BYPASS_LIMIT = 64;
 inline constexpr double COMPLETED_KEEP_S = 20.0;  // finished commands stay in QueueState this long (soraCore)
 inline constexpr std::size_t RECORDS = 64;  // QueueState's SingleQueue holds at most 64 records
-// What a command left unfinished by a restart or a stop is answered (docs/runtime.md,
-// "Restarts": never run again, since a half-done motion run again is not safe).
+// What a command left unfinished by a restart is answered (docs/runtime.md, "Restarts":
+// never run again, since a half-done motion run again is not safe); a stop answers
+// SHUTTING_DOWN and DID_NOT_STOP (shut_down()).
 inline constexpr const char* RESTARTED_QUEUED = "asset restarted before it ran";
 inline constexpr const char* RESTARTED_RUNNING = "asset restarted while it ran; outcome unknown";
-inline constexpr const char* STOPPED_QUEUED = "asset stopped before it ran";
-inline constexpr const char* STOPPED_RUNNING = "asset stopped while it ran; outcome unknown";
+// Handlers that do not stop (issue 42, docs/runtime.md "The handler contract"): how long a
+// handler told to stop may still run (a command's CommandSpec::stop_timeout_ms overrides
+// it), how long a shutdown waits for the handlers, and what the commands are answered then.
+inline constexpr int DEFAULT_STOP_TIMEOUT_MS = 2000;
+inline constexpr int DEFAULT_SHUTDOWN_TIMEOUT_MS = 5000;
+inline constexpr const char* DID_NOT_STOP = "handler did not stop";
+inline constexpr const char* SHUTTING_DOWN = "asset shutting down";
+inline constexpr const char* NO_STOP_HANDLER = "motion commands canceled; no hardware stop handler";
+// Final acks kept to answer a cmdId sent again (and contexts kept valid after their command).
+inline constexpr std::size_t FINAL_ACKS_KEPT = 1024;
 
 // One QueueState record: the command and its result and status.
 struct Record {
@@ -128,6 +142,8 @@ struct ManagerOptions {
     std::size_t bypass_limit = BYPASS_LIMIT;
     std::function<void()> on_shutdown;  // after Admin/shutdown's COMPLETED ack, on a thread of its own
     std::function<double()> clock;  // seconds, monotonic (default: steady_clock)
+    int stop_timeout_ms = DEFAULT_STOP_TIMEOUT_MS;  // the stop bound of commands declaring none (>= 1)
+    int shutdown_timeout_ms = DEFAULT_SHUTDOWN_TIMEOUT_MS;  // shut_down()'s default bound
 #ifdef RAPID_RUNTIME_TEST_BREAKS
     ManagerBreaks breaks;
 #endif
@@ -154,9 +170,22 @@ public:
     // (never run again), write the last outcomes' final acks again, remember their cmdIds.
     // Before the first command is read. Returns (commands answered now, final acks again).
     std::pair<std::size_t, std::size_t> restore(const JournalRecovered& recovered);
-    // The bridge stops: answer every pending and running command now (a handler still
-    // running is canceled, its outcome no longer answered). Returns how many.
+    // The bridge stops: shut_down() with the options' bound; returns the commands answered.
     std::size_t abandon();
+    // The asset shuts down (Admin shutdown, SIGTERM): nothing starts any more; pending
+    // commands are answered CANCELED "asset shutting down"; every running handler is told
+    // to stop and waited for at most timeout_ms (-1: the options' shutdown bound); those
+    // still running then are answered EXEC_FAILED "handler did not stop". The journal is
+    // synced, and from then on the manager writes nothing (a handler returning later is
+    // ignored). Returns (commands in flight it answered or saw answered: the pending
+    // and the running ones, handler calls still running). With
+    // handler calls still running the manager must not be destroyed (its destructor waits
+    // for them): the bridge ends the process instead.
+    struct ShutDown {
+        std::size_t answered = 0;
+        std::size_t running = 0;
+    };
+    ShutDown shut_down(int timeout_ms = -1);
     // No journal from now on (the bridge closes it); returns the one there was.
     Journal* release_journal();
 
@@ -172,6 +201,7 @@ public:
     std::string controller() const;
     std::vector<std::string> requestors() const;
     std::size_t remembered() const;  // cmdIds in the duplicate window
+    std::size_t handlers_running() const;  // handler calls not returned (those given up on included)
     std::vector<std::string> acks_kept() const;  // completed commands whose acks are kept, oldest first
     const Tables& tables() const { return tables_; }
 
@@ -209,10 +239,17 @@ private:
     void preempt(const RunPtr& run);
     void execute(const RunPtr& run);
     void progress(const RunPtr& run, const std::string& text);
-    void complete(const RunPtr& run, Completion completion, const std::string& message);
+    // suspend: a queued command's EXEC_FAILED suspends the queue (not when it was told to stop)
+    void complete(const RunPtr& run, Completion completion, const std::string& message, bool suspend = true);
     void finish_unstarted(const RunPtr& run, const std::string& why);
     void record_done(const RunPtr& run, Completion completion);
     void cancel(const RunPtr& run);
+    void tell_stop(const RunPtr& run);  // cancel its context and start its stop bound
+    int stop_bound_ms(const RunPtr& run) const;
+    void watch();  // the stop bound's thread
+    void give_up(const RunPtr& run);  // its bound passed: answered "handler did not stop"
+    std::string what(const RunPtr& run) const;  // "cmdId (Subsystem/command)" for logs
+    void store_final(const Cmd& cmd, Completion completion, const std::string& message);
     // journal: false for answers not remembered (a refusal at the door)
     void send_ack(const Cmd& cmd, AckStatus status, Completion completion, const std::string& message,
                   bool journal = true);
@@ -252,15 +289,38 @@ private:
     Control control_;
     RunPtr shutdown_after_;
     Journal* journal_;
+    // Handlers told to stop, each until it returns or its bound passes (watch()).
+    std::vector<RunPtr> stopping_;
+    std::condition_variable_any watch_;
+    bool closing_ = false;  // the manager goes: the watchdog ends
+    bool closed_ = false;  // shut down: nothing is written any more
+    std::size_t handling_ = 0;  // handler calls not returned
+    // The final acks of the last FINAL_ACKS_KEPT commands answered, by cmdId (a resent
+    // cmdId's answer), and the contexts of as many finished commands (kept valid).
+    struct Final {
+        Cmd key;
+        Completion completion;
+        std::string message;
+    };
+    std::unordered_map<std::string, Final> finals_;
+    std::deque<std::string> finals_order_;
+    std::deque<std::shared_ptr<CommandContext>> contexts_kept_;
+    // What a context's progress() reaches: the manager while it lives (its destructor
+    // clears it, waiting for a call under way).
+    struct Alive {
+        std::shared_mutex mutex;
+        CommandManager* manager = nullptr;
+    };
+    std::shared_ptr<Alive> alive_;
     int depth_ = 0;  // nested batches
     std::vector<std::function<void()>> outgoing_;  // held until the journal is synced
 #ifdef RAPID_RUNTIME_TEST_BREAKS
     void broken_service(bool tick);  // queue-lifo's tick, queue-parallel's start-all
     // The AccessControl command's outcome when a break changes it, else nothing.
     std::optional<Result> broken_control(const std::string& src, const std::string& name);
-    bool closing_ = false;  // (queue-lifo's tick ends)
 #endif
-    Workers workers_;  // last: joined first when the manager goes
+    Workers workers_;  // joined when the manager goes
+    std::thread watchdog_;  // watch(): joined first
 };
 
 }  // namespace rapid_runtime

@@ -2,7 +2,9 @@
 #ifndef RAPID_RUNTIME_RUN_HPP
 #define RAPID_RUNTIME_RUN_HPP
 
+#include <chrono>
 #include <memory>
+#include <vector>
 
 #include "command.hpp"
 #include "handlers.hpp"
@@ -19,6 +21,11 @@ struct Run {
     bool requeue = false;  // preempted: back to the queue's front when its handler returns
     bool done = false;
     RecordStatus record_status = RecordStatus::Inline;
+    bool handling = false;  // its handler was called and has not returned
+    bool stopping = false;  // told to stop; answered "handler did not stop" at stop_by
+    std::chrono::steady_clock::time_point stop_by{};
+    std::vector<std::weak_ptr<Run>> stopped;  // stopAllMotion: the Mobility commands it told to stop
+    std::vector<std::shared_ptr<CommandContext>> past;  // contexts of earlier runs (preempted, requeued)
 
     const std::string& id() const { return cmd->cmd_id; }
     bool abortable() const { return ref.spec != nullptr && ref.spec->abortable; }

@@ -16,6 +16,16 @@ inline constexpr std::size_t MESSAGE_BYTES = 127;
 // text cut to at most `limit` UTF-8 bytes, never inside a character.
 std::string clip(std::string_view text, std::size_t limit = MESSAGE_BYTES);
 
+// text as valid UTF-8 without NUL: each maximal invalid subsequence (the Unicode standard's
+// "maximal subpart", as Python's bytes.decode(errors="replace") does) and each NUL becomes
+// U+FFFD. Valid text comes back unchanged.
+std::string valid_utf8(std::string_view text);
+
+// What the runtime writes into a bounded IDL string (Ack.message, a progress text, a
+// TextMessage): valid_utf8(text) clipped to `limit` bytes on a character boundary. Every
+// ground tool decodes it, and no NUL cuts it short or stops it from being written.
+std::string outgoing(std::string_view text, std::size_t limit = MESSAGE_BYTES);
+
 // A name from the wire, readable within 127 bytes: when any character is not printable
 // (or the bytes are not UTF-8), the whole name is escaped as Python's unicode_escape does;
 // then cut to n characters, the last three "...".

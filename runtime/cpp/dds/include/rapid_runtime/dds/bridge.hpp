@@ -21,6 +21,7 @@
 #include <type_traits>
 #include <vector>
 
+#include <rapid_runtime/identity.hpp>
 #include <rapid_runtime/intake.hpp>
 #include <rapid_runtime/journal.hpp>
 #include <rapid_runtime/log.hpp>
@@ -125,6 +126,9 @@ private:
     // Fast DDS's receive thread, when commands came: each is offered to the intake (which
     // never blocks: its own thread runs the manager, the handlers run on theirs).
     void read_commands(eprosima::fastdds::dds::DataReader* reader);
+    // Secured: a command whose cmdSrc is not the identity of the writer's certificate is
+    // answered COMPLETED/EXEC_FAILED and logged here, never offered (identity.hpp).
+    bool refused_source(const ::rapid::Command& sample, const eprosima::fastdds::dds::InstanceHandle_t& writer);
     // A test build's config breaks: what publish_config does instead (breaks.hpp).
     ConfigBreak config_break(const std::string& topic, std::function<void()> republish);
     template <class T>
@@ -161,6 +165,7 @@ private:
     ::rapid::Ack ack_;  // one sample, reused for every ack
     std::unique_ptr<CommandManager> manager_;
     std::unique_ptr<Intake> intake_;
+    std::unique_ptr<Identities> identities_;  // secured only: the ground sources' subject digests
     std::unique_ptr<CommandListener> listener_;  // (outlives the reader: node_ goes first in stop())
     eprosima::fastdds::dds::DataReader* commands_ = nullptr;
     std::mutex reading_mutex_;  // a callback under way; stop() waits for it
