@@ -37,7 +37,7 @@ def subject_digest(cert: x509.Certificate) -> bytes:
 
 def guid_prefix_head(digest: bytes) -> bytes:
     """The first 6 bytes of the GUID prefix a participant with this subject digest gets:
-    bit 1, then the digest's first 47 bits (DDS Security 1.1, 9.3.3)."""
+    bit 1, then the digest's first 47 bits (DDS Security 1.1's PKI-DH)."""
     bits = int.from_bytes(digest[:6], "big") >> 1
     return (bits | 1 << 47).to_bytes(6, "big")
 

@@ -7,6 +7,7 @@
 //     Admin/echo commands (cmdId PREFIX-i, text "plaintext PREFIX-i") whether or not the
 //     asset was discovered, then waits up to WAIT_S for their COMPLETED acks.
 //     Prints "participant: ok|refused: why", "writer: ok|refused", "matched: N",
+//     "failed CMDID: ack message" for each command (control too) completed not OK,
 //     "completed: K of COUNT". Exit 0 when every command completed OK, 4 when not, 1 when
 //     the participant or the writer could not be made.
 //   secure_ground watch PROFILES DOMAIN PARTITION WAIT_S PREFIX...
@@ -157,7 +158,7 @@ int command(int argc, char** argv) {
     ctl.subsysName = "AccessControl";
     ctl.cmdName = "grabControl";
     w->write(&ctl);
-    std::set<std::string> done;
+    std::set<std::string> done, failed;
     int ok = 0;
     for (int i = 0; i < count; ++i) {
         rapid::Command c;
@@ -175,9 +176,10 @@ int command(int argc, char** argv) {
     while (Clock::now() < deadline && static_cast<int>(done.size()) < count) {
         if (acks != nullptr)
             take_acks(acks, [&](const rapid::Ack& a) {
-                if (a.cmdId.rfind(prefix + "-", 0) != 0 || a.cmdId == ctl.cmdId ||
-                    a.status != rapid::AckStatus::ACK_COMPLETED)
-                    return;
+                if (a.cmdId.rfind(prefix + "-", 0) != 0 || a.status != rapid::AckStatus::ACK_COMPLETED) return;
+                if (a.completedStatus != rapid::AckCompletedStatus::ACK_COMPLETED_OK && failed.insert(a.cmdId).second)
+                    say("failed ", a.cmdId, ": ", a.message);
+                if (a.cmdId == ctl.cmdId) return;
                 if (done.insert(a.cmdId).second && a.completedStatus == rapid::AckCompletedStatus::ACK_COMPLETED_OK)
                     ++ok;
             });
