@@ -30,7 +30,8 @@ DURABLE = ("TransientLocal", "Transient", "Persistent")
 # ---- caps (docs/spy.md, "Limits") ------------------------------------------------------------
 MAX_PARTITIONS = 64  # partitions read, besides those named by --partition or an --asset
 MAX_PARTITIONS_PER_WRITER = 16  # of one writer's partitions, the first 16 are read
-MAX_STREAMS = 256  # our readers, in all
+MAX_STREAMS = 256  # our readers, in all, besides those of the declared partitions...
+MAX_DECLARED_STREAMS = 256  # ...which have as many each, of their own (a flood elsewhere cannot take them)
 MAX_WRITERS_PER_STREAM = 16  # writers kept apart per reader; samples of later ones share one pool
 KEEP_PER_WRITER = 256  # arrival records kept per writer (and for the pool) per reader: the newest
 BIG_SAMPLE = 256 << 10  # a sample larger than this on the wire is big...
@@ -233,7 +234,11 @@ class Watcher:
             if len(self.undecodable) < 4096:
                 self.undecodable.add((ep.topic, ep.type_name))
             return None
-        if len(self.streams) >= MAX_STREAMS:
+        if partition in self.declared:
+            if sum(1 for k in self.streams if k[1] == partition) >= MAX_DECLARED_STREAMS:
+                self.capped[f"readers (topic, QoS) of the declared partition {partition!r} not opened"] += 1
+                return None
+        elif sum(1 for k in self.streams if k[1] not in self.declared) >= MAX_STREAMS:
             self.capped["readers (topic, partition, QoS) not opened"] += 1
             return None
         config = durable and ep.type_name.endswith("Config")
