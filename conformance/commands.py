@@ -135,7 +135,12 @@ def repeated(s):
     s.pause(QUIET)
     s.silent_since(since)
     after = s.client.acks_of(cid)
-    expect(len(after) == before, "no new ack for the repeated cmdId", describe(after[before:]))
+    # Not run again. The asset may answer a resent, already answered cmdId with its stored final
+    # ack (same status, completion and message: the runtimes do, issue 42); nothing else.
+    first = s.final(after[:before])
+    again = [a for a in after[before:]
+             if first is None or (a.status, a.completed, a.message) != (first.status, first.completed, first.message)]
+    expect(not again, "no new ack for the repeated cmdId but its stored final ack", describe(again))
 
 
 @check("CMD-13", REQUIRED, "Acks are durable: a late-joining ack reader gets a command's acks",

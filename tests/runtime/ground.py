@@ -116,7 +116,7 @@ def malformed(rapid, tables, qos, domain: int) -> dict:
     ask("control", "AccessControl", "requestControl")
     ask("wrong asset", "Admin", "echo", [("RAPID_STRING", "x")], asset="SomeOtherRover", expect_none=True)
     first = ask("first of a repeated id", "Admin", "echo", [("RAPID_STRING", "x")])
-    ask("repeated cmdId", "Admin", "echo", [("RAPID_STRING", "y")], cmd_id=first, expect_none=True)
+    ask("repeated cmdId", "Admin", "echo", [("RAPID_STRING", "y")], cmd_id=first, expect_none=True)  # its acks in 0.5 s
     ask("unknown subsystem", "Arm9", "echo", [])
     ask("unknown command", "Admin", "selfDestruct", [])
     ask("too few arguments", "PanCam", "pointCamera", [(F, 0.1)])

@@ -91,7 +91,7 @@ def test_a_queued_command_cancelled_by_delete(bridge):
     delete = cmd("Admin", "noOp", "--action", "DELETE", "--target", "test-long-drive")
     assert delete.returncode == 0, delete.stderr
     out = delete.stdout.splitlines()
-    assert out[1:3] == ["  EXECUTING", "  COMPLETED OK  test-long-drive canceled"]
+    assert out[1:3] == ["  EXECUTING", "  COMPLETED OK  test-long-drive cancel requested; handler has not stopped yet"]
     assert out[3] == "target test-long-drive:" and out[-1] == "  COMPLETED CANCELED  canceled"
 
 
