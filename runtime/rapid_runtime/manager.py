@@ -92,7 +92,7 @@ class Run:
     record_status: str = "Q_STATUS_INLINE"
     running: bool = False  # its handler method has been called and has not returned
     stop_by: float | None = None  # told to stop: the handler's deadline (time.monotonic)
-    stopped: list = field(default_factory=list)  # stopAllMotion: the motion runs it told to stop
+    stopped: tuple = ()  # stopAllMotion: the motion runs it told to stop
 
 
 class CommandManager:
@@ -234,10 +234,10 @@ class CommandManager:
             return EXEC_FAILED, f"queue full ({self.queue_limit} pending); retry later"
         if action == BYPASS and len(self.bypass) >= self.bypass_limit:
             return EXEC_FAILED, f"{self.bypass_limit} commands already running beside the queue; retry later"
+        if self.closing:  # the bridge is stopping: nothing new starts or waits
+            return EXEC_FAILED, SHUTTING_DOWN
         run = Run(cmd, entry, kwargs_of(entry, cmd), queued=action != BYPASS)
         if action == BYPASS:
-            if self.closing:
-                return EXEC_FAILED, SHUTTING_DOWN
             self._start(run)
             return None
         if action == REPLACE:
@@ -324,8 +324,8 @@ class CommandManager:
         run.record_status = "Q_STATUS_INPROCESS"
         if builtin is not None:
             outcome = builtin(self, run)
-            if not run.queued:  # cancelAll, stopAllMotion: the queue changed (queued ones: _service says it)
-                self._publish_queue()
+            if not run.queued and builtin in (_cancel_all, _stop_all_motion):
+                self._publish_queue()  # the queue changed (a queued one: _service publishes it)
             if outcome is not None:  # done at once; None: continue with the handler
                 self._complete(run, *outcome)
                 return
@@ -383,7 +383,7 @@ class CommandManager:
             if _is_stop_all_motion(run.entry):
                 outcome = self._stop_all_motion_outcome(run, outcome)
             if run.requeue and outcome[0] == CANCELED and not self.closing:
-                run.requeue, run.done, run.ctx = False, False, None
+                run.requeue, run.done, run.ctx, run.stop_by = False, False, None, None
                 self._ack(run.cmd, REQUEUED, NOT, "preempted; back in the queue")
                 run.record_status = "Q_STATUS_PAUSED"
                 self.active = None
@@ -763,7 +763,7 @@ def _stop_all_motion(m: CommandManager, run: Run):
     for r in [m.active, *m.bypass]:
         if r is not None and r is not run and r.cmd.subsystem in mobility and not r.done:
             m._cancel(r)
-            run.stopped.append(r)
+            run.stopped += (r,)
     return None
 
 

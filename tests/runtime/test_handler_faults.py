@@ -109,6 +109,7 @@ class Faulty:
         self.added = threading.Condition(self.lock)  # a context appended to ctxs
         self.helper_done = threading.Event()
         self.stop_handler = None  # Mobility/stopAllMotion's body, or None: no method (the stub)
+        self.runs: dict[str, int] = {}  # simpleMove: runs per cmdId
         self.faults: list[str] = []  # takePicture's next faults, in order (its mode is left, right or stereo)
 
     def pan_tilt_camera_point_camera(self, ctx, pan, tilt):
@@ -127,7 +128,10 @@ class Faulty:
             self.ctxs.append(ctx)
             self.added.notify_all()
         self.started.set()
-        if frame == "stubborn":
+        with self.lock:
+            self.runs[ctx.cmd.cmd_id] = self.runs.get(ctx.cmd.cmd_id, 0) + 1
+            nth = self.runs[ctx.cmd.cmd_id]
+        if frame == "stubborn" or frame == "stubborn-second-time" and nth == 2:
             self.gate.wait(WAIT)
             self.returned.set()
             return "arrived"
@@ -313,6 +317,24 @@ def test_stop_all_motion_without_a_handler_is_ok_and_says_what_still_runs():
         r.close()
 
 
+def test_a_requeued_command_gets_a_new_stop_bound_when_it_runs_again():
+    r = Rig(k10_tables(Mobility__simpleMove=BOUND_MS), stop_timeout_ms=60_000)
+    try:
+        out = r.out
+        a = r.send("Mobility", "simpleMove", [(S, "stubborn-second-time"), MOVE[1]], "QUEUE_APPEND")
+        out.until(a, "EXECUTING")
+        b = r.send("Mobility", "simpleMove", MOVE)  # preempts a (told to stop: its first bound)
+        out.until(a, "REQUEUED")  # it stopped in time
+        r.send("Admin", "noOp", [], "QUEUE_DELETE", target=b)
+        assert r.final(b)[1] == "CANCELED"
+        with out.cond:
+            assert out.cond.wait_for(lambda: [s for s, *_ in out.acks[a]].count("EXECUTING") == 2, WAIT)
+        r.send("Admin", "noOp", [], "QUEUE_DELETE", target=a)  # told to stop again: it does not
+        assert r.final(a) == ("COMPLETED", "EXEC_FAILED", DID_NOT_STOP)
+    finally:
+        r.close()
+
+
 # ---- 1. progress after the command is done ------------------------------------------------------
 
 def test_progress_after_a_bypass_handler_returned_does_nothing(rig):
@@ -420,6 +442,8 @@ def test_shutdown_answers_everything_in_flight_within_its_bound_and_the_journal_
         assert r.m.handlers_running() == 1  # the stuck thread, left behind
         late = r.send("Admin", "noOp")  # nothing starts once shutting down
         assert r.final(late) == ("COMPLETED", "EXEC_FAILED", SHUTTING_DOWN)
+        queued = r.send("PanCam", "takePicture", [(S, "left"), (F, 0.0)], "QUEUE_APPEND")  # nor waits
+        assert r.final(queued) == ("COMPLETED", "EXEC_FAILED", SHUTTING_DOWN)
         # the journal holds every outcome: a crash now (no clean close) is answered right at restart
         j.sync()
         r.h.gate.set()
