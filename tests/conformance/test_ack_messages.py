@@ -81,7 +81,8 @@ class Odd:
 def test_clip_bytes_surrogates_and_other_types():
     assert clip("x" * 200) == "x" * MESSAGE_BYTES
     assert clip("\u00e9" * 64) == "\u00e9" * 63  # never half a character
-    assert clip("\udcffok") == "?ok"
+    assert clip("\udcffok") == "\ufffdok"  # a lone surrogate (and a NUL) becomes U+FFFD (issue 42)
+    assert clip("a\x00b") == "a\ufffdb"
     assert clip(12) == "12" and clip("") == ""
     assert len(clip(ODD).encode()) <= MESSAGE_BYTES
 
@@ -102,9 +103,9 @@ def test_every_message_is_encodable(rapid):
         texts = [t for s, t in acks if t]
         assert len(texts) == 2, acks  # the progress text and the final message, both written
         assert all(len(t.encode()) <= MESSAGE_BYTES for t in texts)
-        assert texts[0].startswith("?\u00fc") and "\u00fc" in texts[1]
+        assert texts[0].startswith("\ufffd\u00fc") and "\u00fc" in texts[1]
     echo = send("Admin", "echo", [("RAPID_STRING", ODD[:60])])  # a built-in's result
-    assert echo[-1][1].startswith("?\u00fc") and len(echo[-1][1].encode()) <= MESSAGE_BYTES
+    assert echo[-1][1].startswith("\ufffd\u00fc") and len(echo[-1][1].encode()) <= MESSAGE_BYTES
     refused = send(ODD, ODD)  # the runtime's own reason, quoting wire text
     assert refused[-1][0] == "ACK_COMPLETED" and len(refused[-1][1].encode()) <= MESSAGE_BYTES
 

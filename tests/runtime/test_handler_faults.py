@@ -487,3 +487,37 @@ def test_the_stop_bound_outcome_is_journaled_once(tmp_path):
     recs = [J._parse(line) for line in j.path.read_bytes().splitlines(keepends=True)]
     assert [(x["k"], x.get("m")) for x in recs if x and x.get("id") == a] == [("q", None), ("x", None),
                                                                            ("c", DID_NOT_STOP)]
+
+
+# ---- strings the runtime writes besides acks -------------------------------------------------
+
+def test_text_message_and_config_strings_are_made_valid_and_fit_their_type():
+    pytest.importorskip("cyclonedds")
+    import sys
+    from types import SimpleNamespace
+
+    from rapid_runtime import messages as M
+    from rapid_runtime.acks import clip, valid
+    from rapid_runtime.bridge import TelemetryPublisher, _valid_strings
+    sys.path.insert(0, str(python_dir("k10")))
+    try:
+        rapid = importlib.import_module(f"{SEEDS['k10']}.rapid")
+    finally:
+        sys.path.remove(str(python_dir("k10")))
+    assert valid("a\x00b\udcffc") == "a\ufffdb\ufffdc" and clip("\udcff" * 100) == "\ufffd" * 42  # 126 bytes
+    pub = TelemetryPublisher.__new__(TelemetryPublisher)
+    pub.b = SimpleNamespace(rapid=rapid)
+    bound = pub._bound("rapid::TextMessage", "message")
+    text = pub._clip("rapid::TextMessage", "message", "\udcff\x00" + "\u00fc" * 2000)
+    assert text.startswith("\ufffd\ufffd\u00fc") and (bound is None or len(text.encode()) < bound)
+    category = pub._clip("rapid::TextMessage", "category", "cat\x00")
+    hdr = M.header(rapid, "K10Red", "K10Red", 1)
+    sample = rapid.TextMessage(hdr=hdr, level=rapid.MessageLevel["MSG_INFO"], category=category, message=text)
+    back = type(sample).deserialize(sample.serialize())  # what cyclonedds writes: it encodes, nothing is lost
+    assert (back.message, back.category) == (text, "cat\ufffd")
+    # a config's value from a handler: every string made valid, the rest as it was
+    value = {"frameName": "site\x00", "valueKeys": [{"key": "k\udcff", "n": 1}], "t": ("a\x00",)}
+    assert _valid_strings(value) == {"frameName": "site\ufffd", "valueKeys": [{"key": "k\ufffd", "n": 1}],
+                                     "t": ("a\ufffd",)}
+    # a custom message's string member (telemetry.custom builds through convert)
+    assert M.convert(str, "x\udcff\x00") == "x\ufffd\ufffd"
