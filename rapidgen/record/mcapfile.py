@@ -4,8 +4,11 @@ one back whole or cut (a file without its summary is read record by record up to
 damaged or missing byte, as `mcap recover` does)."""
 from __future__ import annotations
 
+import io
 import os
+import struct
 import time
+import zlib
 from dataclasses import dataclass, field
 from typing import IO, TYPE_CHECKING, Generator
 
@@ -150,6 +153,46 @@ class Sink:
 
 
 # ---- reading ------------------------------------------------------------------------------
+# A recording is a file from anywhere: what reading one may hold is capped (docs/record.md,
+# "Hostile recordings"). The mcap library reads the file's records and the summary; a
+# chunk's records are read here instead, because the library inflates a chunk whole
+# (zstandard or lz4 up to whatever the data says, not the chunk's declared size) and makes
+# a list of every record in it (3 million empty messages: hundreds of MiB).
+MAX_CHUNK = 64 << 20  # a chunk's declared uncompressed_size, and what it may inflate to
+MAX_RECORD = MAX_CHUNK + (1 << 20)  # one read: a record outside chunks, a chunk's compressed bytes
+MAX_DEFINITIONS = 64 << 20  # schemas, channels and metadata held, bytes plus PER_DEFINITION each
+PER_DEFINITION = 512
+
+
+class LimitError(RecordingError):
+    """A recording past one of the reading caps: refused (exit 1), never taken for a cut."""
+
+
+class _Bounded:
+    """The file, for the mcap library: no single read past MAX_RECORD (a record's length
+    fields are the file's word: 2**63 bytes asked would be allocated before the short read)."""
+
+    def __init__(self, fh: IO[bytes], path: str) -> None:
+        self.fh, self.path = fh, path
+
+    def read(self, n: int = -1) -> bytes:
+        if n is None or n < 0 or n > MAX_RECORD:
+            raise LimitError(f"{self.path}: a record at byte {self.fh.tell()} is "
+                             f"{'unbounded' if n is None or n < 0 else f'{n} bytes long'}, over the "
+                             f"{MAX_RECORD >> 20} MiB a record may have (the file is damaged or hostile; "
+                             f"a recording of larger records must be rewritten with smaller ones)")
+        return self.fh.read(n)
+
+    def seek(self, offset: int, whence: int = 0) -> int:
+        return self.fh.seek(offset, whence)
+
+    def tell(self) -> int:
+        return self.fh.tell()
+
+    def seekable(self) -> bool:
+        return True
+
+
 @dataclass
 class Recording:
     """What a file holds, read through the mcap library."""
@@ -162,6 +205,15 @@ class Recording:
     library: str = ""
     cut_reason: str = ""  # why reading stopped early (a cut file)
     statistics: Statistics | None = None  # a complete file's
+    held: dict[tuple[str, object], int] = field(default_factory=dict, repr=False)  # definition -> bytes counted
+
+    def hold(self, kind: str, key: object, size: int) -> None:
+        """Count a schema, channel or metadata record kept (replacing one of the same key)."""
+        self.held[(kind, key)] = size + PER_DEFINITION
+        if len(self.held) * PER_DEFINITION > MAX_DEFINITIONS or sum(self.held.values()) > MAX_DEFINITIONS:
+            raise LimitError(f"{self.path}: its schemas, channels and metadata take more than "
+                             f"{MAX_DEFINITIONS >> 20} MiB (counting {PER_DEFINITION} bytes for each), the most "
+                             "a reader holds: refused (a recording's definitions are a few KiB each)")
 
 
 def _check_magic(fh: IO[bytes], path: str) -> None:
@@ -172,8 +224,10 @@ def _check_magic(fh: IO[bytes], path: str) -> None:
 
 
 def open_recording(path: str) -> tuple[Recording, Generator[Item, None, None]]:
-    """(what the file holds, an iterator of (schema, channel, message) in log-time order for
-    a complete file, file order for a cut one). Raises RecordingError."""
+    """(what the file holds, an iterator of (schema, channel, message) in file order: a
+    complete file's schemas and channels are known from its summary, a cut one's are filled
+    as it is read). Raises RecordingError; iterating raises LimitError past a cap (a damaged
+    or cut file ends the iteration, with rec.cut_reason)."""
     try:
         fh = open(path, "rb")
     except OSError as exc:
@@ -184,11 +238,10 @@ def open_recording(path: str) -> tuple[Recording, Generator[Item, None, None]]:
     except RecordingError:
         fh.close()
         raise
-    if rec is not None:
-        return rec, _complete_messages(fh, rec)
     fh.seek(0)
-    rec = Recording(path, complete=False)
-    return rec, _stream_messages(fh, rec)
+    if rec is None:
+        rec = Recording(path, complete=False)
+    return rec, _messages(fh, rec)
 
 
 def _summary(fh: IO[bytes], path: str) -> Recording | None:
@@ -197,55 +250,145 @@ def _summary(fh: IO[bytes], path: str) -> Recording | None:
     from mcap.reader import SeekingReader
     try:
         fh.seek(0)
-        reader = SeekingReader(fh, validate_crcs=True)
+        reader = SeekingReader(_Bounded(fh, path), validate_crcs=True)  # type: ignore[arg-type]
         summary = reader.get_summary()
         if summary is None:
             return None
         header = reader.get_header()
-        rec = Recording(path, True, dict(summary.schemas), dict(summary.channels), library=header.library,
-                        statistics=summary.statistics)
+        rec = Recording(path, True, library=header.library, statistics=summary.statistics)
+        for sid, schema in summary.schemas.items():
+            rec.hold("schema", sid, len(schema.data) + len(schema.name))
+            rec.schemas[sid] = schema
+        for cid, ch in summary.channels.items():
+            rec.hold("channel", cid, _channel_size(ch))
+            rec.channels[cid] = ch
         for m in reader.iter_metadata():
+            rec.hold("metadata", m.name, sum(len(k) + len(v) for k, v in m.metadata.items()))
             rec.metadata[m.name] = dict(m.metadata)
         rec.attachments = [(a.name, a.media_type, a.data_size) for a in summary.attachment_indexes]
         return rec
-    except (McapError, ValueError, EOFError, OSError, KeyError, IndexError) as exc:
+    except LimitError:
+        raise
+    except (McapError, ValueError, EOFError, OSError, KeyError, IndexError, struct.error) as exc:
         if isinstance(exc, OSError):
             raise RecordingError(f"cannot read {path}: {exc}") from None
         return None  # no usable summary: read it as a cut file
 
 
-def _complete_messages(fh: IO[bytes], rec: Recording) -> Generator[Item, None, None]:
-    from mcap.reader import SeekingReader
-    try:
-        fh.seek(0)
-        reader = SeekingReader(fh, validate_crcs=True)
-        yield from reader.iter_messages(log_time_order=True)
-    except Exception as exc:  # a damaged chunk inside a file with a summary
-        rec.cut_reason = f"{type(exc).__name__}: {exc}"[:200]
-    finally:
-        fh.close()
+def _channel_size(ch: Channel) -> int:
+    return len(ch.topic) + sum(len(k) + len(v) for k, v in ch.metadata.items())
 
 
-def _stream_messages(fh: IO[bytes], rec: Recording) -> Generator[Item, None, None]:
-    from mcap.records import Channel, Footer, Header, Message, Metadata, Schema
+def _messages(fh: IO[bytes], rec: Recording) -> Generator[Item, None, None]:
+    """Every message, record by record (chunks through _chunk_records), up to the footer or
+    to the first damaged or missing byte (rec.cut_reason). LimitError goes through."""
+    from mcap.exceptions import RecordLengthLimitExceeded
+    from mcap.records import Channel, Chunk, Footer, Header, Message, Metadata, Schema
     from mcap.stream_reader import StreamReader
+    bounded = _Bounded(fh, rec.path)
     try:
-        for r in StreamReader(fh, validate_crcs=True).records:
-            if isinstance(r, Header):
-                rec.library = r.library
-            elif isinstance(r, Schema):
-                rec.schemas[r.id] = r
-            elif isinstance(r, Channel):
-                rec.channels[r.id] = r
-            elif isinstance(r, Metadata):
-                rec.metadata[r.name] = dict(r.metadata)
-            elif isinstance(r, Message):
-                ch = rec.channels.get(r.channel_id)
-                if ch is not None:
-                    yield rec.schemas.get(ch.schema_id), ch, r
-            elif isinstance(r, Footer):
-                return
+        reader = StreamReader(bounded, emit_chunks=True, validate_crcs=True,  # type: ignore[arg-type]
+                              record_size_limit=MAX_RECORD)
+        end = fh.tell()  # where the next record starts (after the magic)
+        for record in reader.records:
+            at, end = end, fh.tell()
+            for r in _chunk_records(record, rec.path, at) if isinstance(record, Chunk) else (record,):
+                if isinstance(r, Message):
+                    ch = rec.channels.get(r.channel_id)
+                    if ch is not None:
+                        yield rec.schemas.get(ch.schema_id), ch, r
+                elif isinstance(r, Schema):
+                    rec.hold("schema", r.id, len(r.data) + len(r.name))
+                    rec.schemas[r.id] = r
+                elif isinstance(r, Channel):
+                    rec.hold("channel", r.id, _channel_size(r))
+                    rec.channels[r.id] = r
+                elif isinstance(r, Header):
+                    rec.library = r.library
+                elif isinstance(r, Metadata):
+                    rec.hold("metadata", r.name, sum(len(k) + len(v) for k, v in r.metadata.items()))
+                    rec.metadata[r.name] = dict(r.metadata)
+                elif isinstance(r, Footer):
+                    return
+    except LimitError:
+        raise
+    except RecordLengthLimitExceeded as exc:
+        raise LimitError(f"{rec.path}: {exc}: over the {MAX_RECORD >> 20} MiB a record may have (the file is "
+                         "damaged or hostile)") from None
     except Exception as exc:  # the end of what a killed recorder wrote (or damage)
         rec.cut_reason = f"{type(exc).__name__}: {exc}"[:200] or type(exc).__name__
     finally:
         fh.close()
+
+
+_MESSAGE = struct.Struct("<BQHIQQ")  # opcode, record length, channel id, sequence, log time, publish time
+_RECORD = struct.Struct("<BQ")
+
+
+def _chunk_records(chunk, path: str, at: int):
+    """A chunk's schemas, channels and messages, one at a time, from its data inflated to at
+    most its declared uncompressed_size (itself at most MAX_CHUNK) and checked against its
+    CRC before any record is given. A record that runs past the chunk is damage (ValueError)."""
+    from mcap.data_stream import ReadDataStream
+    from mcap.opcode import Opcode
+    from mcap.records import Channel, Message, Schema
+    from mcap.stream_reader import CRCValidationError
+    size = chunk.uncompressed_size
+    if size > MAX_CHUNK:
+        raise LimitError(f"{path}: the chunk at byte {at} declares {size} bytes uncompressed, over the "
+                         f"{MAX_CHUNK >> 20} MiB limit on a chunk: refused (a small file that inflates to that "
+                         "much is a decompression bomb; a recording of larger chunks must be rewritten with "
+                         "smaller ones)")
+    data = _inflate(chunk.compression, chunk.data, size, path, at)
+    if len(data) != size:
+        raise ValueError(f"the chunk at byte {at} inflates to {len(data)} bytes, not the {size} it declares")
+    if chunk.uncompressed_crc != 0 and zlib.crc32(data) != chunk.uncompressed_crc:
+        raise CRCValidationError(expected=chunk.uncompressed_crc, actual=zlib.crc32(data), record=chunk)
+    view = memoryview(data)
+    pos, n = 0, len(data)
+    while pos < n:
+        if n - pos < 9:
+            raise ValueError(f"a record cut short at the end of the chunk at byte {at}")
+        opcode, length = _RECORD.unpack_from(data, pos)
+        end = pos + 9 + length
+        if end > n:
+            raise ValueError(f"a record runs past the end of the chunk at byte {at}")
+        if opcode == Opcode.MESSAGE:
+            if length < 22:
+                raise ValueError(f"a message record of {length} bytes in the chunk at byte {at}")
+            _op, _len, channel_id, sequence, log_time, publish_time = _MESSAGE.unpack_from(data, pos)
+            yield Message(channel_id=channel_id, log_time=log_time, data=bytes(view[pos + 31:end]),
+                          publish_time=publish_time, sequence=sequence)
+        elif opcode in (Opcode.SCHEMA, Opcode.CHANNEL):
+            stream = ReadDataStream(io.BytesIO(view[pos + 9:end]))
+            yield Schema.read(stream) if opcode == Opcode.SCHEMA else Channel.read(stream)
+        pos = end  # other records inside a chunk: skipped, as the library does
+
+
+def _inflate(compression: str, data: bytes, size: int, path: str, at: int) -> bytes | bytearray:
+    """The chunk's data inflated, never past `size` bytes (LimitError when there is more)."""
+    out: bytes | bytearray
+    if compression == "":
+        out = data
+    elif compression == "zstd":
+        import zstandard
+        out = bytearray(size + 1)  # one byte more than declared: there must be none
+        got = 0
+        with zstandard.ZstdDecompressor().stream_reader(io.BytesIO(data), read_across_frames=True) as reader, \
+                memoryview(out) as view:
+            while got <= size:
+                n = reader.readinto(view[got:])
+                if not n:
+                    break
+                got += n
+        del out[got:]
+    elif compression == "lz4":
+        import lz4.frame  # type: ignore[import-untyped]  # (mcap's dependency, no type information)
+        out = lz4.frame.LZ4FrameDecompressor().decompress(data, max_length=size + 1)
+    else:
+        from mcap.exceptions import UnsupportedCompressionError
+        raise UnsupportedCompressionError(compression)
+    if len(out) > size:
+        raise LimitError(f"{path}: the chunk at byte {at} inflates past the {size} bytes it declares "
+                         "(uncompressed_size): refused (a decompression bomb, or damage)")
+    return out

@@ -15,6 +15,10 @@ from typing import Any, Callable
 
 CONFIG_DEPTH = 8  # a durable writer's history per instance (RAPID's ack writer keeps 8 too)
 SAMPLE_DEPTH = 64
+# The configs of the window are read first and held until they are sent: their bytes plus
+# PER_CONFIG each (the key, the message object and its tuple: about 600 bytes measured).
+MAX_CONFIG_BYTES = 64 << 20
+PER_CONFIG = 1024
 
 
 @dataclass

@@ -92,11 +92,14 @@ def run(args) -> int:
 
 def _first_pass(files: list[str]):
     """(the recordings, their configs in publish order, the first log time of the other
-    messages). A config carried into each file of a series (same sequence) counts once."""
-    from rapidgen.record.mcapfile import open_recording
-    from rapidgen.record.replay import is_config
+    messages). A config carried into each file of a series (same sequence) counts once.
+    The configs are held until the replay starts: at most MAX_CONFIG_BYTES, counting
+    PER_CONFIG bytes for each besides its own (LimitError past it)."""
+    from rapidgen.record.mcapfile import LimitError, open_recording
+    from rapidgen.record.replay import MAX_CONFIG_BYTES, PER_CONFIG, is_config
     recs: list = []
     configs: dict[tuple, tuple] = {}
+    held = 0
     start = first_config = None
     for path in files:
         rec, messages = open_recording(path)
@@ -104,7 +107,15 @@ def _first_pass(files: list[str]):
         for _schema, channel, msg in messages:
             if is_config(channel):
                 key = (channel.topic, channel.metadata.get("partition", ""), msg.sequence, msg.data)
-                configs.setdefault(key, (channel, msg))
+                if key not in configs:
+                    held += len(msg.data) + PER_CONFIG
+                    if held > MAX_CONFIG_BYTES:
+                        messages.close()
+                        raise LimitError(f"{path}: its config messages take more than {MAX_CONFIG_BYTES >> 20} "
+                                         f"MiB (counting {PER_CONFIG} bytes for each), the most replay holds to "
+                                         "send them first: refused (a robot publishes a few configs; this file holds over "
+                                         f"{len(configs)})")
+                    configs[key] = (channel, msg)
                 first_config = msg.log_time if first_config is None else min(first_config, msg.log_time)
             else:
                 start = msg.log_time if start is None else min(start, msg.log_time)
@@ -118,10 +129,10 @@ def _messages(files: list[str]):
     for path in files:
         try:
             _, messages = open_recording(path)
-        except RecordingError as exc:
+            yield from messages
+        except RecordingError as exc:  # (a cap the first pass met already)
             print(f"rapidgen replay: {exc}", file=sys.stderr)
             return
-        yield from messages
 
 
 def _replay(args, recs, configs, type_class, domain: int, plan) -> int:
