@@ -15,11 +15,13 @@ cmdSrc are set apart here; everything runs in a private network namespace (only 
 - A secured bridge whose enclave has no identities.txt refuses to start."""
 from __future__ import annotations
 
+import re
 import shutil
 from pathlib import Path
 
 import pytest
 
+from rapidgen.secure.identities import ground_certs, guid_prefix_head, subject_digest
 from tests.secure.conftest import ROOT, run_scenario, secure
 
 SECURED_DOMAIN = 87
@@ -109,7 +111,7 @@ def test_the_real_operator_runs_every_command(secured):
     assert case["rc"] == 0
 
 
-def test_a_tool_claiming_another_source_runs_nothing(secured):
+def test_a_tool_claiming_another_source_runs_nothing(secured, keystore):
     case = secured["cases"]["spoof"]
     assert "participant: ok (secured)" in case["stdout"] and "writer: ok" in case["stdout"], case  # DDS let it write
     assert "matched: 1" in case["stdout"], case
@@ -120,6 +122,12 @@ def test_a_tool_claiming_another_source_runs_nothing(secured):
     for cmd_id in ("spoof-control", *(f"spoof-{i}" for i in range(N))):
         assert f"refused '{cmd_id}' from writer " in bridge
     assert bridge.count(f": {SPOOFED}") == N + 1, bridge
+    # the writer's GUID is the one PKI-DH made from ScienceBackroom's certificate (Fast DDS's
+    # own derivation, independent of the bridge's check): bit 1 and 47 bits of its subject's digest
+    writer = re.search(r"refused 'spoof-0' from writer ([0-9a-f]{32}): ", bridge)
+    assert writer is not None, bridge
+    cert = ground_certs(keystore["keystore"], ["ScienceBackroom"])["ScienceBackroom"]
+    assert writer[1].startswith(guid_prefix_head(subject_digest(cert)).hex())
     assert case["rc"] == 4
 
 
