@@ -5,19 +5,28 @@ is the replay's position. The page's slider seeks: a new hub is filled with ever
 to that time (of each picture channel only the last picture is decoded), and the page
 starts over from it. Play and pause move the position at the recording's own pace.
 
-The messages are kept in memory (their bytes, at most MAX_BYTES); a message that does not
-decode as its channel's type is dropped and counted, like a guarded take."""
+The messages are kept in memory, compactly (their bytes in segments of a few MiB, and per
+message its time, channel and place in arrays: 24 bytes), up to MAX_BYTES counting
+PER_MESSAGE bytes for each message besides its own; past it the recording is refused
+(ReplayError), as it is past the reader's caps (rapidgen.record.mcapfile: a chunk's
+inflation). A message that does not decode as its channel's type is dropped and counted,
+like a guarded take."""
 from __future__ import annotations
 
 import bisect
 import threading
 import time
+from array import array
 from dataclasses import dataclass
 
 from rapidgen.monitor.hints import Hints
 from rapidgen.monitor.state import Hub, short
 
-MAX_BYTES = 1 << 30  # message bytes kept from one recording
+MAX_BYTES = 1 << 30  # what one recording may take: its messages' bytes, plus PER_MESSAGE each
+# A message costs 24 bytes in the arrays, and sorting a file that is not in time order
+# (a cut one) about 80 more for a moment: 3 million empty messages took 781 MiB before.
+PER_MESSAGE = 128
+SEGMENT = 4 << 20  # message bytes are appended to segments of this size (a larger message: its own)
 STEP = 0.05  # seconds between two advances while playing
 
 
@@ -45,14 +54,17 @@ class ReplaySource:
     def __init__(self, path: str, bindings: list, hints: Hints) -> None:
         from rapidgen.record.mcapfile import RecordingError, open_recording
         self.path, self.bindings, self.hints = path, bindings, hints
+        self.channels: list[Channel] = []
+        self.times = array("q")  # log times [ns], in order
+        self._chan = array("I")  # per message: its channel's index
+        self._seg = array("I")  # per message: its segment, its offset there, its length
+        self._off = array("I")
+        self._len = array("I")
+        self._segs: list[bytearray] = []
         try:
             rec, items = open_recording(path)
-            self.channels: list[Channel] = []
             ids: dict[tuple[str, str, str], int] = {}
-            self.times: list[int] = []  # log times [ns], in order
-            self.msgs: list[tuple[int, bytes]] = []  # (channel index, bytes)
             kept = 0
-            self.truncated = False
             for _schema, ch, m in items:
                 if ch.message_encoding != "cdr":
                     continue
@@ -60,19 +72,26 @@ class ReplaySource:
                 if key not in ids:
                     ids[key] = len(self.channels)
                     self.channels.append(Channel(*key, self._type_class(key[2])))
-                if kept + len(m.data) > MAX_BYTES:
-                    self.truncated = True
-                    break
-                kept += len(m.data)
-                self.times.append(m.log_time)
-                self.msgs.append((ids[key], bytes(m.data)))
+                kept += len(m.data) + PER_MESSAGE
+                if kept > MAX_BYTES:
+                    items.close()
+                    raise ReplayError(f"{path}: its messages take more than {MAX_BYTES >> 20} MiB (their bytes "
+                                      f"plus {PER_MESSAGE} for each), the most a replay holds: refused (replay a "
+                                      "shorter recording: `rapidgen record --split-size` writes files of a chosen "
+                                      "size)")
+                c = ids[key]
+                self._add(c, m.log_time, m.data if self.channels[c].cls is not None else b"")
         except RecordingError as exc:
             raise ReplayError(str(exc)) from None
         if not self.times:
             raise ReplayError(f"{path} holds no cdr message to play")
-        order = sorted(range(len(self.times)), key=self.times.__getitem__)  # a cut file is in file order
-        self.times = [self.times[i] for i in order]
-        self.msgs = [self.msgs[i] for i in order]
+        if any(self.times[i] > self.times[i + 1] for i in range(len(self.times) - 1)):
+            order = sorted(range(len(self.times)), key=self.times.__getitem__)  # a cut file is in file order
+            for name in ("times", "_chan", "_seg", "_off", "_len"):
+                old = getattr(self, name)
+                setattr(self, name, array(old.typecode, (old[i] for i in order)))
+            del order
+        self._pictures = [short(c.type_name) == "ImageSensorSample" for c in self.channels]
         self.cut = "" if rec.complete else (rec.cut_reason or "no summary: read up to its last whole record")
         self.start, self.end = self.times[0] / 1e9, self.times[-1] / 1e9
         self.dropped = 0
@@ -85,17 +104,36 @@ class ReplaySource:
         self._thread = threading.Thread(target=self._play, name="monitor-replay", daemon=True)
         self._thread.start()
 
+    def _add(self, channel: int, log_time: int, data: bytes) -> None:
+        n = len(data)
+        if n > SEGMENT // 4:  # a large message: a segment of its own
+            self._segs.append(bytearray(data))
+        elif not self._segs or len(self._segs[-1]) + n > SEGMENT:
+            self._segs.append(bytearray())
+        seg = self._segs[-1]
+        self._seg.append(len(self._segs) - 1)
+        self._off.append(len(seg) if n <= SEGMENT // 4 else 0)
+        self._len.append(n)
+        if n <= SEGMENT // 4:
+            seg += data
+        self.times.append(log_time)
+        self._chan.append(channel)
+
+    def _data(self, i: int) -> bytes:
+        off = self._off[i]
+        return bytes(self._segs[self._seg[i]][off:off + self._len[i]])
+
     def _type_class(self, type_name: str):
         from rapidgen.live.bindings import find_type_class
         return find_type_class(self.bindings, type_name)
 
     # ---- feeding ---------------------------------------------------------------------------
     def _feed(self, hub: Hub, i: int) -> None:
-        ch = self.channels[self.msgs[i][0]]
+        ch = self.channels[self._chan[i]]
         if ch.cls is None:
             return
         try:
-            sample = ch.cls.deserialize(self.msgs[i][1])  # type: ignore[attr-defined]
+            sample = ch.cls.deserialize(self._data(i))  # type: ignore[attr-defined]
         except Exception:  # a message that does not decode: dropped alone
             self.dropped += 1
             return
@@ -106,14 +144,14 @@ class ReplaySource:
         hub = Hub(self.hints, clock=lambda: self.position)
         end = bisect.bisect_right(self.times, _ns(t))
         last_picture: dict[int, int] = {}
-        for i in range(end):
-            c = self.msgs[i][0]
-            if short(self.channels[c].type_name) == "ImageSensorSample":
-                last_picture[c] = i
+        chan, is_picture = self._chan, self._pictures
+        if any(is_picture):
+            for i in range(end):
+                if is_picture[chan[i]]:
+                    last_picture[chan[i]] = i
         pictures = set(last_picture.values())
         for i in range(end):
-            c = self.msgs[i][0]
-            if short(self.channels[c].type_name) != "ImageSensorSample" or i in pictures:
+            if not is_picture[chan[i]] or i in pictures:
                 self._feed(hub, i)
         self._notes(hub)
         return hub
@@ -122,8 +160,6 @@ class ReplaySource:
         notes = []
         if self.cut:
             notes.append(f"the recording is cut ({self.cut}): played up to its last whole message")
-        if self.truncated:
-            notes.append(f"only the first {MAX_BYTES >> 20} MiB of messages are played")
         unknown = sorted({c.type_name for c in self.channels if c.cls is None})
         if unknown:
             notes.append(f"no bindings for {', '.join(unknown[:5])} (give the asset's descriptor with --asset)")

@@ -137,3 +137,66 @@ def test_a_file_that_is_not_mcap_is_an_input_error(tmp_path):
     res = subprocess.run([sys.executable, "-m", "rapidgen", "monitor", "--replay", str(bad), "--port", "0"],
                          cwd=H.ROOT, capture_output=True, text=True, timeout=120, env=H.env({"k10": PYDIR}))
     assert res.returncode == 1 and "not an MCAP file" in res.stderr and "Traceback" not in res.stderr, res.stderr
+
+
+# ---- hostile recordings (issue 34, item 4): bounded memory, no traceback --------------------
+BOUND = 400  # MiB: the monitor's peak RSS (the bomb inflates to 900 MiB; 1.85 GiB before)
+
+
+def test_a_decompression_bomb_is_refused_in_bounded_memory(tmp_path):
+    pytest.importorskip("aiohttp")
+    pytest.importorskip("mcap")
+    from tests.record import bombs
+    path = tmp_path / "bomb.mcap"
+    assert bombs.zstd_bomb(path) < 64 * 1024  # one zstd chunk of 900 MiB
+    code, _out, err, rss = bombs.run_measured([sys.executable, "-m", "rapidgen", "monitor", "--replay", str(path),
+                                               "--port", "0"], timeout=300, cwd=H.ROOT, env=H.env({"k10": PYDIR}))
+    assert code == 1 and "Traceback" not in err, err
+    assert f"rapidgen monitor: {path}: the chunk at byte 297 declares 943718431 bytes uncompressed, over the 64 MiB " \
+        "limit on a chunk: refused" in err, err
+    assert rss < BOUND, rss
+
+
+def test_three_million_empty_messages_are_served_in_bounded_memory(tmp_path):
+    """781 MiB before (a list of tuples, a bytes object per message); now 24 bytes each."""
+    pytest.importorskip("aiohttp")
+    pytest.importorskip("mcap")
+    from tests.record import bombs
+    path = tmp_path / "empty.mcap"
+    assert bombs.empty_messages(path) < 64 * 1024
+    proc = subprocess.Popen([sys.executable, "-m", "rapidgen", "monitor", "--replay", str(path), "--port", "0"],
+                            cwd=H.ROOT, env=H.env({"k10": PYDIR}), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        first = proc.stdout.readline()  # once the recording is loaded and the page serves
+        rss = bombs.peak_rss_mib(proc.pid)
+        assert H.URL.search(first), first + proc.stderr.read()[-2000:]
+        assert 0 < rss < BOUND, rss
+    finally:
+        proc.terminate()
+        H.quietly(lambda: proc.communicate(timeout=20))
+        H.kill(proc)
+
+
+def test_each_message_counts_against_the_cap(tmp_path, monkeypatch):
+    """Empty messages are not free: their count times PER_MESSAGE is held against MAX_BYTES."""
+    pytest.importorskip("mcap")
+    from rapidgen.monitor import replay
+    from rapidgen.monitor.hints import Hints
+    from tests.record import bombs
+    monkeypatch.setattr(replay, "MAX_BYTES", 1 << 20)
+    fits, past = (1 << 20) // replay.PER_MESSAGE, (1 << 20) // replay.PER_MESSAGE + 1
+    for count in (fits, past):
+        path = tmp_path / f"empty-{count}.mcap"
+        bombs.empty_messages(path, count, complete=True)
+        if count == past:
+            with pytest.raises(replay.ReplayError) as err:
+                replay.ReplaySource(str(path), [], Hints())
+            assert str(err.value).startswith(f"{path}: its messages take more than 1 MiB (their bytes plus "
+                                             f"{replay.PER_MESSAGE} for each), the most a replay holds: refused")
+        else:
+            source = replay.ReplaySource(str(path), [], Hints())
+            try:
+                assert len(source.times) == count
+            finally:
+                source.close()
