@@ -157,3 +157,24 @@ def test_secured_bridge_without_identities_refuses_to_start(keystore, programs, 
     assert result["bridge"]["rc"] == 1, result["bridge"]
     assert f"cannot read {keystore['bare']}/identities.txt" in result["bridge"]["stderr"]
     assert "run rapidgen secure" in result["bridge"]["stderr"]
+
+
+def test_check_reports_identities_missing_or_stale(keystore, tmp_path):
+    ks = tmp_path / "ks"
+    shutil.copytree(keystore["keystore"], ks)
+    dep = keystore["keystore"].parent / "deploy.yaml"
+    assert secure(str(dep), "-k", str(ks), "--check").returncode == 0
+    ids = ks / "enclaves" / "K10Red" / "identities.txt"
+    text = ids.read_text(encoding="utf-8")
+    # ScienceBackroom's line naming another subject's digest
+    ids.write_text("".join(f"ScienceBackroom {'0' * 64} CN=Other\n" if ln.startswith("ScienceBackroom ") else ln
+                           for ln in text.splitlines(keepends=True)), encoding="utf-8")
+    res = secure(str(dep), "-k", str(ks), "--check")
+    assert res.returncode == 1 and "enclaves/K10Red/identities.txt" in res.stdout + res.stderr, res
+    assert "does not list the ground tools' certificates" in res.stdout + res.stderr
+    ids.unlink()
+    res = secure(str(dep), "-k", str(ks), "--check")
+    assert res.returncode == 1 and "identities.txt" in res.stdout + res.stderr
+    assert "missing" in res.stdout + res.stderr
+    assert secure(str(dep), "-k", str(ks)).returncode == 0  # a run writes it again
+    assert ids.read_text(encoding="utf-8") == text
