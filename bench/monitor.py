@@ -3,6 +3,7 @@
     python bench/monitor.py                       latency: sample published -> visible in the DOM
     python bench/monitor.py --samples 200 --ticks 0.1,0.05,0.02
     python bench/monitor.py --screenshots docs/images   one PNG per view (K10 driving, R2)
+    python bench/monitor.py --hostile 40          the page against issue 34's rogues (figures of docs/monitor.md)
 
 Latency: a publisher in this process writes AgentState samples of a test asset (one
 batteryCharge value each, a new value every 0.3 s, so a sample never waits behind another)
@@ -10,6 +11,11 @@ and notes the wall time just before each write; in Debian's headless chromium a
 MutationObserver notes the wall time at which the page's value cell first shows that value.
 Both clocks are this machine's. Everything on loopback (the generated `local` transport),
 DDS domain 108.
+
+--hostile S: K10 beside tests/monitor/hostile.py's rogues (DDS domain 38): the churning
+keys for S seconds (the Churn asset's rows on the page, the rows dropped, a new page's first
+update in bytes), then 66 decoy partitions and a 260-topic flood (the decoys shown, K10
+shown and its requestControl from the page completed, the page's notes).
 """
 from __future__ import annotations
 
@@ -172,11 +178,81 @@ def screenshots(folder: Path) -> list[Path]:
             H.stop_all(procs)
 
 
+def _first_update(url: str) -> str:
+    """A new page's first delta (its JSON text), with the page's token."""
+    import asyncio
+    import re
+
+    import aiohttp
+
+    async def get() -> str:
+        async with aiohttp.ClientSession() as s:
+            async with s.get(url) as r:
+                m = re.search(r'<meta name="monitor-token" content="([0-9a-f.]+)">', await r.text())
+            assert m is not None, "no token in the page"
+            async with s.ws_connect(url + "ws?token=" + m.group(1), origin=url.rstrip("/"),
+                                    max_msg_size=1 << 30) as ws:
+                while True:
+                    text = (await ws.receive()).data
+                    if '"type": "delta"' in text:
+                        return text
+    return asyncio.run(get())
+
+
+def hostile(seconds: float) -> None:
+    import json
+
+    from tests.monitor.test_monitor_hostile import Hostile
+    from tests.runtime.live import BridgeProcess
+    domain = 38
+    with tempfile.TemporaryDirectory(prefix="bench-monitor-") as tmp:
+        pydirs = H.generate(Path(tmp))
+        procs: list = []
+        driver = None
+        try:
+            procs.append(BridgeProcess(pydirs["k10"], H.ASSETS["k10"][1], domain, "--sim-speed", "20"))
+            procs[-1].wait_ready()
+            churn = Hostile(pydirs, domain, "churn", seconds=seconds + 60)
+            mon = H.Monitor(pydirs, domain)
+            procs.append(mon)
+            time.sleep(seconds)
+            first = _first_update(mon.url)
+            msg = json.loads(first)
+            c = next(a for a in msg["assets"] if a["partition"] == "Churn")
+            print(f"churn, {seconds:g} s (64 keys renamed 4 times a second): the page holds {len(c['values'])} rows "
+                  f"of Churn, {c.get('dropped', {}).get('rows', 0)} dropped; a new page's first update "
+                  f"{len(first)} bytes ({len(msg['assets'])} assets)", flush=True)
+            churn.stop()
+            flood = Hostile(pydirs, domain, "decoys,flood", seconds=300)
+            driver = browser.chromium()
+            driver.get(mon.url)
+            others = "return [...document.querySelectorAll('nav button')].filter(b => " \
+                     "!['K10Red', 'Robonaut2'].includes(b.dataset.partition)).length"  # (Churn holds one place)
+            H.until(lambda: driver.execute_script(others) == 64, 120, what="64 undeclared assets on the page")
+            flood.tell("flood")
+            H.until(lambda: any("not opened" in n for n in H.texts(driver, "#notes div")), 120, what="readers capped")
+            H.select(driver, "K10Red", "commands")
+            H.choose_source(driver, "RapidWorkbench")
+            final = H.wait_completed(driver, H.send(driver, "AccessControl/requestControl"))[-1]
+            names = driver.execute_script("return [...document.querySelectorAll('nav button')].map(b => b.dataset.partition)")
+            print(f"decoys: {sum(n.startswith('Decoy') for n in names)} decoy partitions on the page, K10Red "
+                  f"{'shown' if 'K10Red' in names else 'MISSING'}; requestControl from the page: {final}")
+            for n in H.texts(driver, "#notes div"):
+                print("  note:", n)
+            flood.stop()
+        finally:
+            if driver is not None:
+                H.quietly(driver.quit)
+            H.stop_all(procs)
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--samples", type=int, default=100)
     p.add_argument("--ticks", default="0.1,0.02", help="the monitor's --tick values to measure, comma-separated")
     p.add_argument("--screenshots", metavar="DIR", help="write the views' screenshots to DIR instead")
+    p.add_argument("--hostile", type=float, metavar="S", help="measure the page against issue 34's rogues instead "
+                   "(S seconds of churning keys)")
     args = p.parse_args()
     why = browser.available()
     if why:
@@ -185,6 +261,9 @@ def main() -> int:
     if args.screenshots:
         for path in screenshots(Path(args.screenshots)):
             print(path, H.check_png(path))
+        return 0
+    if args.hostile:
+        hostile(args.hostile)
         return 0
     latency(args.samples, [float(t) for t in args.ticks.split(",")])
     return 0
