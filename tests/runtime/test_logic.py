@@ -140,7 +140,10 @@ def test_bypass_preempts_a_suspendable_queued_command_which_is_requeued(k10):
     assert out.final(b)[-1] == ("COMPLETED", "CANCELED")
     # no handler method: not a failure, the runtime canceled the motion (issue 42; ACC-06)
     assert out.final(stop) == [("EXECUTING", "NOT"), ("COMPLETED", "OK")]
-    assert out.acks[stop][-1][2] == "motion commands canceled; no hardware stop handler"
+    # b's handler may not have returned yet when stopAllMotion completes (it is then said)
+    assert out.acks[stop][-1][2] in ("motion commands canceled; no hardware stop handler",
+                                     "motion commands canceled; no hardware stop handler; "
+                                     "1 motion handler(s) not stopped yet")
     assert out.seq(a)[:3] == [("QUEUED", "NOT"), ("EXECUTING", "NOT"), ("REQUEUED", "NOT")]
     assert out.final(a)[-1] == ("COMPLETED", "CANCELED")  # requeued, then stopAllMotion canceled it
 
