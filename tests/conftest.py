@@ -91,3 +91,12 @@ def rust_target(tmp_path_factory) -> Path:
 def rust_peer(rust_target) -> Path:
     """The RustDDS interop peer (tests/rust/peer)."""
     return build_rust_peer(rust_target)
+
+
+def pytest_collection_modifyitems(config, items):
+    """Each test marked with what it needs (tests/tiers.py), for `-m` and the fast tier."""
+    from tests.tiers import needs
+
+    for item in items:
+        for mark in sorted(needs(item.nodeid) or ()):
+            item.add_marker(getattr(pytest.mark, mark))
