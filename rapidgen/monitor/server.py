@@ -97,7 +97,8 @@ class Gate:
         if not token or token.count(".") != 1 or len(token) > 200:
             return False
         nonce, mac = token.split(".")
-        return hmac.compare_digest(mac, hmac.new(self.key, nonce.encode(), hashlib.sha256).hexdigest())
+        want = hmac.new(self.key, nonce.encode("utf-8", "replace"), hashlib.sha256).hexdigest()
+        return hmac.compare_digest(mac.encode("utf-8", "replace"), want.encode())  # (bytes: any text compares)
 
 
 def _served_port(request: web.Request) -> int | None:

@@ -237,3 +237,23 @@ def test_rows_have_a_ceiling_whatever_the_configs_declare():
     _churn(hub, 0, keys=400)
     a = hub.assets["Churn"]
     assert len(a.values) == MAX_ROWS and a.rows_dropped == 400 - MAX_ROWS
+
+
+def test_gate_answers_its_own_names_and_checks_tokens():
+    pytest.importorskip("aiohttp")
+    from rapidgen.monitor.server import Gate
+    g = Gate("127.0.0.1")
+    for host in ("127.0.0.1:8765", "localhost:8765", "LOCALHOST:8765", "[::1]:8765"):
+        assert g.host_ok(host, 8765), host
+    for host in ("rebind.example:8765", "localhost.rebind.example:8765", "127.0.0.1:8766", "127.0.0.1", "", None,
+                 "127.0.0.1:x", "[::1]x", "10.1.2.3:8765"):
+        assert not g.host_ok(host, 8765), host
+    assert g.host_ok("127.0.0.1", 80)  # no port: 80
+    wide = Gate("0.0.0.0")  # any IP literal (cannot be rebound), never a name
+    assert wide.host_ok("10.1.2.3:5", 5) and wide.host_ok("[fe80::1]:5", 5) and not wide.host_ok("evil.example:5", 5)
+    assert Gate("192.0.2.1").host_ok("192.0.2.1:5", 5) and not Gate("192.0.2.1").host_ok("10.1.2.3:5", 5)
+    token = g.token()
+    assert g.token_ok(token) and token != g.token() and not Gate().token_ok(token)  # a key per process
+    nonce, mac = token.split(".")
+    for bad in (None, "", nonce, f"{nonce}.{'0' * 64}", f"{nonce}.{mac}.x", "é.é", "\udcff.x", token + "0"):
+        assert not g.token_ok(bad), bad
