@@ -8,7 +8,10 @@ LIVELINESS 600 ms: what the rig's RapidStream_* reader profiles request).
 Setpoints: drive to x = 2 m, mast to z = 1 m, arm joints to (2, -2, 0.5) rad, reached at the simulator's
 speeds in a few seconds (the test stops the stream before). Commands on stdin, one a line:
 `pause NAME..` (stop writing those streams, the writers stay alive: only DEADLINE passes),
-`resume NAME..`, `quit` (writers deleted, a clean exit). Prints {"ready": true} once writing.
+`resume NAME..`, `nan NAME..` (those streams' samples carry NaN and Inf: for drive a new
+target x = -1 m with a NaN rotation and an infinite velocity, for arm and mast NaN positions),
+`finite NAME..` (back to the setpoints), `quit` (writers deleted, a clean exit). Prints
+{"ready": true} once writing.
 
 Run as its own process (CYCLONEDDS_URI is read when cyclonedds loads): the test sets it
 to the package's qos_files/cyclonedds/local.xml."""
@@ -49,6 +52,8 @@ def main() -> None:
     writers = {name: DataWriter(pub, Topic(dp, topic, rapid.JointSample if name == "arm" else rapid.PositionSample),
                                 qos=qos) for name, topic in STREAMS.items()}
     paused: set[str] = set()
+    poisoned: set[str] = set()  # writing samples with NaN and Inf
+    nan, inf = float("nan"), float("inf")
     stop = threading.Event()
 
     def commands() -> None:
@@ -58,6 +63,10 @@ def main() -> None:
                 paused.update(names)
             elif word == "resume":
                 paused.difference_update(names)
+            elif word == "nan":
+                poisoned.update(names)
+            elif word == "finite":
+                poisoned.difference_update(names)
             elif word == "quit":
                 break
         stop.set()
@@ -71,9 +80,16 @@ def main() -> None:
         for name, w in writers.items():
             if name in paused:
                 continue
+            bad = name in poisoned
             if name == "arm":
-                w.write(rapid.JointSample(hdr=header(n), anglePos=[2.0, -2.0, 0.5], angleVel=[], angleAcc=[],
-                                          current=[], torque=[], temperature=[], status=[], auxFloat=[]))
+                w.write(rapid.JointSample(hdr=header(n), anglePos=[nan, -2.0, 0.5] if bad else [2.0, -2.0, 0.5],
+                                          angleVel=[], angleAcc=[], current=[], torque=[], temperature=[], status=[],
+                                          auxFloat=[]))
+            elif bad and name == "drive":  # a target the simulator would follow, were it handed on
+                w.write(rapid.PositionSample(hdr=header(n), pose=rapid.Transform3D(xyz=[-1.0, 0, 0], rot=[nan] * 9),
+                                             velocity=pose(inf, 0, 0), values=[]))
+            elif bad:
+                w.write(rapid.PositionSample(hdr=header(n), pose=pose(0, 0, nan), velocity=zero, values=[]))
             else:
                 w.write(rapid.PositionSample(hdr=header(n), pose=pose(2.0, 0, 0) if name == "drive" else pose(0, 0, 1.0),
                                              velocity=zero, values=[]))

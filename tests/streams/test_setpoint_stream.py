@@ -38,6 +38,7 @@ from tests.streams import code, harness
 ROOT = Path(__file__).resolve().parents[2]
 DOMAIN = 28
 RIG_DOMAIN = 29
+NAN_DOMAIN = 81  # the non-finite samples' rig (its own: the tests may run side by side)
 SEED_DOMAIN = 19
 RIG = Path(__file__).resolve().parent / "rig.yaml"
 R2 = ROOT / "specs" / "assets" / "robonaut2.yaml"
@@ -201,9 +202,9 @@ RIG_STREAMS = {"drive": "motion stopped", "arm": "holding the last setpoint", "m
 class Pilot:
     """tests/streams/pilot.py: the rig's setpoints from partition RigPilot."""
 
-    def __init__(self, out: Path) -> None:
+    def __init__(self, out: Path, domain: int = RIG_DOMAIN) -> None:
         pkg, name, env = python_package(RIG, out)
-        self.proc = subprocess.Popen([sys.executable, "-m", "tests.streams.pilot", str(pkg), name, str(RIG_DOMAIN)],
+        self.proc = subprocess.Popen([sys.executable, "-m", "tests.streams.pilot", str(pkg), name, str(domain)],
                                      cwd=ROOT, env=env, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
         assert self.proc.stdout is not None
         line = self.proc.stdout.readline()
@@ -339,3 +340,57 @@ def test_seed_streams_x_arm_2_simulated_drives_robonaut_2(shared, tmp_path_facto
         if watcher is not None:
             watcher.stop()
         r2.stop()
+
+
+def test_non_finite_samples_never_reach_the_handler_and_the_loss_action_is_taken(shared, tmp_path_factory):
+    """Issue 35 item 6: drive's writer keeps writing, alive and on time, but every sample has
+    a NaN rotation and an infinite velocity around a new target x = -1 m that the simulated
+    robot would follow were it handed on (its handler uses only xyz). The samples are
+    dropped, reported once, and the stream is lost on its deadline: stopAllMotion runs and
+    the body stays; the other streams stay active; a finite sample brings it back."""
+    py = tmp_path_factory.mktemp("streams-nan")
+    rig = BridgeProcess.of_command([str(shared[B.STREAM_RIG]), "--simulate", "--sim-speed", "0.25", "--domain",
+                                    str(NAN_DOMAIN), "--seconds", "120", "--no-journal"], ROOT, B.dds_env())
+    watcher = pilot = None
+    try:
+        rig.wait_ready()
+        watcher = Watcher(NAN_DOMAIN, descriptor=RIG, out=py, topics=RIG_TOPICS)
+        pilot = Pilot(py, NAN_DOMAIN)
+        watcher.until(agent_all("active"), 15, "AgentState: every stream active")
+        watcher.until(lambda e: e.get("position") == "rapid_position_sample" and e["xyz"][0] > 0.05, 10,
+                      "the body moving toward x = 2")
+        pilot.send("nan drive")
+        dropped = texts_until(watcher, {"drive": "samples with NaN or Inf dropped"}, 10,
+                              "a TextMessage saying drive's non-finite samples are dropped")["drive"]
+        assert "WARN" in dropped["level"] and dropped["text"].endswith("lost without a finite one in 200 ms")
+        lost = texts_until(watcher, {"drive": "lost (no finite sample within its 200 ms deadline"}, 10,
+                           "a TextMessage saying drive is lost for want of a finite sample")["drive"]
+        assert lost["text"].endswith("motion stopped") and "WARN" in lost["level"], lost
+        stop = watcher.seen_or_until(lambda e: e.get("ack") == "stream-drive-stop-1" and "COMPLETED" in e["status"],
+                                     10, "Mobility/stopAllMotion run for the drive stream")
+        assert "OK" in stop["completed"]
+        agent = watcher.until(lambda e: "agent" in e and e["agent"].get("driveStream") == "lost", 10,
+                              "AgentState: drive lost")
+        assert agent["agent"]["driveMissed"] >= 1
+        assert agent["agent"]["armStream"] == "active" and agent["agent"]["mastStream"] == "active"
+        before = latest(watcher, 1.0)
+        after = latest(watcher, 4.0)  # NaN samples still arriving at 50 Hz with x = -1: none handed on
+        body0, body1 = before["rapid_position_sample"][0], after["rapid_position_sample"][0]
+        assert 0 < body1 and abs(body1 - body0) < 1e-6, (body0, body1)
+        texts = [e["text"] for e in watcher.history if "text" in e and "NaN or Inf dropped" in e["text"]
+                 and e["text"].startswith("stream drive:")]
+        assert len(texts) == 1, texts  # once for the run of them, not once per sample
+
+        pilot.send("finite drive")
+        texts_until(watcher, {"drive": "recovered"}, 10, "a TextMessage saying drive recovered")
+        watcher.until(agent_all("active"), 10, "AgentState: every stream active again")
+        log = rig.stop()
+        summary = re.search(r"stream drive: (\d+) samples, \d+ deadlines missed, (\d+) losses, (\d+) non-finite "
+                            r"dropped", log)
+        assert summary and int(summary.group(2)) >= 1 and int(summary.group(3)) >= 50, log[-2000:]
+        assert re.search(r"stream arm: \d+ samples, \d+ deadlines missed, \d+ losses, 0 non-finite dropped", log)
+    finally:
+        for p in (pilot, watcher):
+            if p is not None:
+                p.stop()
+        rig.stop()

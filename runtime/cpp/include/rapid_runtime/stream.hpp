@@ -5,12 +5,21 @@
 //
 //   waiting --sample--> active --deadline missed / writer lost--> lost --sample--> active
 //
+// A sample with a NaN or an infinity (dds/stream.hpp finite_sample) is not a sample: it never
+// reaches the handler, is counted (non_finite()), and does not keep the stream alive. DDS's
+// own DEADLINE is met by any sample, so the monitor keeps the time of the last finite one and
+// a non-finite sample that arrives after the deadline since then loses the stream as a
+// missed deadline would (cause NonFinite) (its on_loss action is taken while the writer writes only NaN).
+// The first non-finite sample of a run of them (after a finite one, or the first ever) is
+// flagged so the reporting thread says so once per run, not once per sample.
+//
 // Counters are atomics: samples arrive on the middleware's receive thread, deadlines on its
 // event thread, and the reporting thread reads them; nothing here allocates or locks.
 #ifndef RAPID_RUNTIME_STREAM_HPP
 #define RAPID_RUNTIME_STREAM_HPP
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <string>
 
@@ -20,7 +29,8 @@ enum class LossAction { Stop, Hold, None };
 enum class StreamState : int { Waiting = 0, Active = 1, Lost = 2 };
 // What made an active stream lost: its DEADLINE passed without a sample, or its writer's
 // LIVELINESS lapsed (the writer process is gone or frozen, or left the domain).
-enum class LossCause : int { Deadline = 0, Liveliness = 1 };
+// NonFinite: samples kept coming past the deadline, but none finite (NaN or Inf: dropped).
+enum class LossCause : int { Deadline = 0, Liveliness = 1, NonFinite = 2 };
 
 inline const char* state_name(StreamState s) {
     switch (s) {
@@ -56,10 +66,35 @@ struct StreamSpec {
 
 class StreamMonitor {
 public:
+    using Clock = std::chrono::steady_clock;
+
     // A valid sample arrived; true when the stream became active (first sample, recovery).
-    bool sample() {
+    bool sample(Clock::time_point now = Clock::now()) {
         samples_.fetch_add(1, std::memory_order_relaxed);
+        last_finite_.store(now.time_since_epoch().count(), std::memory_order_relaxed);
+        in_run_.store(false, std::memory_order_relaxed);
         return set(StreamState::Active, LossCause::Deadline);
+    }
+    // A sample with a NaN or an infinity arrived (dropped, not handed to anyone). Counted;
+    // when the stream is active and no finite sample came within `deadline_ms`, it is lost
+    // as a missed deadline (one more missed). lost: the stream was just lost; first_of_run:
+    // this sample begins a run of non-finite ones (worth one report).
+    struct NonFinite {
+        bool lost = false;
+        bool first_of_run = false;
+    };
+    NonFinite non_finite_sample(double deadline_ms, Clock::time_point now = Clock::now()) {
+        NonFinite out;
+        non_finite_.fetch_add(1, std::memory_order_relaxed);
+        out.first_of_run = !in_run_.exchange(true, std::memory_order_relaxed);
+        if (out.first_of_run) runs_.fetch_add(1, std::memory_order_relaxed);
+        auto last = Clock::time_point(Clock::duration(last_finite_.load(std::memory_order_relaxed)));
+        if (deadline_ms > 0 && now - last > std::chrono::duration<double, std::milli>(deadline_ms) &&
+            state() == StreamState::Active) {
+            missed_.fetch_add(1, std::memory_order_relaxed);
+            out.lost = lose(LossCause::NonFinite);
+        }
+        return out;
     }
     // The reader's DEADLINE passed without a sample (total_count_change of them); true when
     // the stream was active and is now lost.
@@ -81,6 +116,10 @@ public:
     // Why the stream was last lost (meaningful while state() is Lost).
     LossCause cause() const { return static_cast<LossCause>(state_.load(std::memory_order_acquire) >> CAUSE_SHIFT); }
     std::uint64_t samples() const { return samples_.load(std::memory_order_relaxed); }
+    // Samples dropped for a NaN or an infinity (never handed to the handler).
+    std::uint64_t non_finite() const { return non_finite_.load(std::memory_order_relaxed); }
+    // Runs of non-finite samples begun (see non_finite_sample): the reporting thread's cue.
+    std::uint64_t non_finite_runs() const { return runs_.load(std::memory_order_relaxed); }
     std::uint64_t missed() const { return missed_.load(std::memory_order_relaxed); }
     std::uint64_t losses() const { return losses_.load(std::memory_order_relaxed); }
     // Times the last alive writer went (LIVELINESS lapsed or the writer left).
@@ -111,6 +150,10 @@ private:
     std::atomic<std::uint64_t> missed_{0};
     std::atomic<std::uint64_t> losses_{0};
     std::atomic<std::uint64_t> gone_{0};
+    std::atomic<std::uint64_t> non_finite_{0};
+    std::atomic<std::uint64_t> runs_{0};
+    std::atomic<bool> in_run_{false};
+    std::atomic<Clock::rep> last_finite_{0};
 };
 
 }  // namespace rapid_runtime

@@ -24,6 +24,13 @@
 // lapses after a deadline already lost the stream is reported too. AgentState also goes
 // out at the agent entry's rate.
 //
+// A sample with a NaN or an infinity in it (finite_sample: every float of a PositionSample or
+// JointSample, their ParameterUnion values included; other message types are handed on as
+// they are) never reaches the callback: it is counted, the first of a run of them is
+// reported (log line and TextMessage, MSG_WARN), and it does not keep the stream alive: when
+// no finite sample came within the deadline the stream is lost and its on_loss action taken,
+// even though DDS's DEADLINE (met by any sample) never fires (stream.hpp StreamMonitor).
+//
 // Under --simulate, SimulatedStreams (below) runs the same set with the simulated robot
 // behind it: input setpoints move its joints or pose, output streams carry its state.
 #ifndef RAPID_RUNTIME_DDS_STREAM_HPP
@@ -80,6 +87,47 @@ struct StreamHooks {
 
 class StreamSet;
 
+// Whether every floating-point number of a setpoint is finite (NaN and infinities are not).
+inline bool finite_values(const float* v, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+inline bool finite_values(const double* v, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+inline bool finite_sample(const ::rapid::ParameterUnion& p) {
+    switch (p._d()) {
+    case ::rapid::DataType::RAPID_DOUBLE: return std::isfinite(p.d());
+    case ::rapid::DataType::RAPID_FLOAT: return std::isfinite(p.f());
+    case ::rapid::DataType::RAPID_VEC3d: return finite_values(p.vec3d().data(), p.vec3d().size());
+    case ::rapid::DataType::RAPID_MAT33f: return finite_values(p.mat33f().data(), p.mat33f().size());
+    default: return true;
+    }
+}
+inline bool finite_sample(const ::rapid::Transform3D& t) {
+    return finite_values(t.xyz.data(), t.xyz.size()) && finite_values(t.rot.data(), t.rot.size());
+}
+inline bool finite_sample(const ::rapid::PositionSample& s) {
+    if (!finite_sample(s.pose) || !finite_sample(s.velocity)) return false;
+    for (const auto& v : s.values)
+        if (!finite_sample(v)) return false;
+    return true;
+}
+inline bool finite_sample(const ::rapid::JointSample& s) {
+    for (const auto* seq : {&s.anglePos, &s.angleVel, &s.angleAcc, &s.current, &s.torque, &s.temperature})
+        if (!finite_values(seq->data(), seq->size())) return false;
+    for (const auto& aux : s.auxFloat)
+        if (!finite_values(aux.values.data(), aux.values.size())) return false;
+    return true;
+}
+template <class T>
+bool finite_sample(const T&) {
+    return true;  // another message type: its handler checks what it uses
+}
+
 namespace detail {
 
 class ReaderBase : public eprosima::fastdds::dds::DataReaderListener {
@@ -95,6 +143,7 @@ public:
 
 protected:
     void arrived();
+    void dropped();  // a sample with a NaN or an infinity
     StreamSet& set_;
     std::size_t index_;
 };
@@ -111,6 +160,10 @@ public:
     void on_data_available(eprosima::fastdds::dds::DataReader* r) override {
         while (r->read_next_sample(&sample_, &info_) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
             if (!info_.valid_data) continue;
+            if (!finite_sample(sample_)) {
+                dropped();  // never handed on, and not a sample that keeps the stream alive
+                continue;
+            }
             if (callback_) callback_(sample_);
             arrived();  // after the callback: a state hook never sees "active" before its sample
         }
@@ -206,7 +259,8 @@ public:
                 if (specs_[i].input)
                     bridge_.log("stream " + visible(specs_[i].name) + ": " + std::to_string(monitors_[i].samples()) +
                                 " samples, " + std::to_string(monitors_[i].missed()) + " deadlines missed, " +
-                                std::to_string(monitors_[i].losses()) + " losses");
+                                std::to_string(monitors_[i].losses()) + " losses, " +
+                                std::to_string(monitors_[i].non_finite()) + " non-finite dropped");
         }
         for (auto& r : readers_) {
             if (r->reader != nullptr) {
@@ -259,6 +313,7 @@ private:
         double rate = agent != nullptr && agent->rate ? *agent->rate : 1.0;
         auto period = std::chrono::duration<double>(1.0 / (rate > 0 ? rate : 1.0));
         std::vector<std::uint64_t> gone(specs_.size(), 0);  // writers gone, as reported
+        std::vector<std::uint64_t> runs(specs_.size(), 0);  // runs of non-finite samples, as reported
         std::unique_lock<std::mutex> lock(mutex_);
         while (!stopping_) {
             wake_.wait_for(lock, period, [this] { return stopping_ || poked_; });
@@ -270,6 +325,13 @@ private:
                 StreamState now = monitors_[i].state();
                 bool went = monitors_[i].writers_gone() != gone[i];
                 gone[i] = monitors_[i].writers_gone();
+                if (monitors_[i].non_finite_runs() != runs[i]) {
+                    runs[i] = monitors_[i].non_finite_runs();
+                    say("stream " + visible(specs_[i].name) + ": samples with NaN or Inf dropped (" +
+                            std::to_string(monitors_[i].non_finite()) + " so far); lost without a finite one in " +
+                            format_ms(specs_[i].deadline_ms),
+                        ::rapid::MessageLevel::MSG_WARN);
+                }
                 if (now != reported_[i]) {
                     StreamState was = reported_[i];
                     reported_[i] = now;
@@ -291,8 +353,12 @@ private:
         const StreamSpec& s = specs_[i];
         std::string text;
         if (now == StreamState::Lost) {
-            std::string why = monitors_[i].cause() == LossCause::Liveliness
+            LossCause cause = monitors_[i].cause();
+            std::string why = cause == LossCause::Liveliness
                                   ? "its writer is gone: no liveliness within " + format_ms(s.liveliness_ms)
+                              : cause == LossCause::NonFinite
+                                  ? "no finite sample within its " + format_ms(s.deadline_ms) + " deadline, " +
+                                        std::to_string(monitors_[i].non_finite()) + " with NaN or Inf dropped"
                                   : "no sample within its " + format_ms(s.deadline_ms) + " deadline";
             text = "stream " + visible(s.name) + " lost (" + why + "; " + std::to_string(monitors_[i].missed()) +
                    " deadlines missed): " + action_text(s.on_loss);
@@ -516,6 +582,11 @@ namespace detail {
 
 inline void ReaderBase::arrived() {
     if (set_.monitor_of(index_).sample()) set_.poke();
+}
+
+inline void ReaderBase::dropped() {
+    auto r = set_.monitor_of(index_).non_finite_sample(set_.spec(index_).deadline_ms);
+    if (r.lost || r.first_of_run) set_.poke();
 }
 
 inline void ReaderBase::on_requested_deadline_missed(eprosima::fastdds::dds::DataReader*,
