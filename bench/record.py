@@ -13,6 +13,11 @@ multicast). Prints figures, never passes or fails on time.
            (0: as fast as it can) for --seconds while `rapidgen record` records; the
            recording is read back with the mcap library and its messages counted against
            those sent (kept = recorded / sent), with the recorder's CPU per message
+  --bombs  no DDS traffic but replay's own participant (domain --domain): the hostile files of
+           issue 34 (tests/record/bombs.py: a 29 KB file whose zstd chunk inflates to 900
+           MiB, a 9 KB file of 3 million empty messages, the same as configs) given to
+           `record --info`, `replay` and `monitor --replay`; each tool's exit status, peak
+           RSS (wait4's rusage; the monitor's VmHWM once it serves or exits) and wall time
 """
 from __future__ import annotations
 
@@ -136,6 +141,61 @@ def count_live(path: Path):
     yield n
 
 
+def bombs(domain: int) -> int:
+    sys.path.insert(0, str(ROOT))
+    from tests.record import bombs as B
+    with tempfile.TemporaryDirectory(prefix="bench-bombs-") as tmpdir:
+        tmp = Path(tmpdir)
+        files = {"zstd bomb (cut)": tmp / "bomb.mcap", "zstd bomb (complete)": tmp / "bomb-complete.mcap",
+                 "zstd bomb, size a lie": tmp / "bomb-lie.mcap", "3M empty messages": tmp / "empty.mcap",
+                 "3M empty configs": tmp / "empty-cfg.mcap"}
+        B.zstd_bomb(files["zstd bomb (cut)"])
+        B.zstd_bomb(files["zstd bomb (complete)"], complete=True)
+        B.zstd_bomb(files["zstd bomb, size a lie"], declared=4096)
+        B.empty_messages(files["3M empty messages"], type_name="rapid::AgentState")
+        B.empty_messages(files["3M empty configs"], type_name="rapid::AgentConfig", role="config", numbered=True)
+        print(f"{'file':24} {'bytes':>8} {'tool':18} {'exit':>4} {'peak RSS':>9} {'wall':>7}  last line of stderr")
+        for what, path in files.items():
+            for tool in ("record --info", "replay", "monitor --replay"):
+                if tool == "record --info":
+                    args = [*RAPIDGEN, "record", "--info", str(path)]
+                elif tool == "replay":
+                    args = [*RAPIDGEN, "replay", str(path), "--domain", str(domain), "--rate", "1000",
+                            "--linger", "0", "--quiet"]
+                else:
+                    args = [*RAPIDGEN, "monitor", "--replay", str(path), "--port", "0"]
+                t = time.monotonic()
+                if tool == "monitor --replay":
+                    code, err, rss = _monitor(args)
+                else:
+                    code, _out, err, rss = B.run_measured(args, timeout=900, cwd=ROOT, env=ENV)
+                last = (err.strip().splitlines() or [""])[-1][:90]
+                print(f"{what:24} {path.stat().st_size:8d} {tool:18} {code:4d} {rss:6.0f} MiB {time.monotonic() - t:6.1f}s"
+                      f"  {last}", flush=True)
+    return 0
+
+
+def _monitor(args: list[str]) -> tuple[int, str, float]:
+    """(exit status, or 0 once it serves; stderr; peak RSS): stopped once its page serves."""
+    from tests.record import bombs as B
+    proc = subprocess.Popen(args, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stdout is not None
+    line = proc.stdout.readline()  # the page's address, or nothing when it exits
+    rss = B.peak_rss_mib(proc.pid)
+    if "http" in line:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.communicate()
+        return 0, "serves: " + line.strip(), rss
+    proc.communicate(timeout=900)
+    # It exited before it served: once more under the measuring parent, for its own rusage.
+    code, _out, err, rss = B.run_measured(args, timeout=900, cwd=ROOT, env=ENV)
+    return code, err, rss
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--rates", default="1000,5000,10000,20000,0", help="messages/s per step (0: flat out)")
@@ -144,7 +204,10 @@ def main() -> int:
     ap.add_argument("--parallel", type=int, default=3, help="publishers flat out together in the last step (default 3)")
     ap.add_argument("--publish", nargs=2, type=float, metavar=("RATE", "SECONDS"), help=argparse.SUPPRESS)
     ap.add_argument("--name", default="K10Red", help=argparse.SUPPRESS)
+    ap.add_argument("--bombs", action="store_true", help="the hostile files of issue 34 against each reading tool")
     args = ap.parse_args()
+    if args.bombs:
+        return bombs(args.domain)
     if args.publish:
         publish(args.domain, args.publish[0], args.publish[1], args.name)
         return 0
