@@ -17,7 +17,8 @@ multicast). Prints figures, never passes or fails on time.
            issue 34 (tests/record/bombs.py: a 29 KB file whose zstd chunk inflates to 900
            MiB, a 9 KB file of 3 million empty messages, the same as configs) given to
            `record --info`, `replay` and `monitor --replay`; each tool's exit status, peak
-           RSS (wait4's rusage; the monitor's VmHWM once it serves or exits) and wall time
+           RSS (its own rusage through a small measuring parent; the monitor's VmHWM once
+           it serves) and wall time
 """
 from __future__ import annotations
 
