@@ -20,7 +20,7 @@ def runtime_build(tmp_path_factory) -> Path:
         k10 = B.generated(tmp_path_factory, "k10")
         out = B.base(tmp_path_factory) / "tests"
         B.configure(B.HERE, out, f"-Drapid_runtime_cpp_DIR={runtime}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}")
-        B.build(out, "logic")
+        B.build(out, "logic", "faults")
         return out
     return B.once(tmp_path_factory, "runtime-tests", make)  # type: ignore[no-any-return]
 
@@ -43,6 +43,29 @@ def _tsan(runtime_build: Path, tmp_path_factory) -> Path:
            f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}"])
     B.build(base / "tests", "logic")
     return base / "tests" / "logic"
+
+
+@pytest.fixture(scope="session")
+def faults_under_sanitizers(runtime_build: Path, tmp_path_factory) -> Path:
+    """The fault-injecting handlers' suite (test_handler_faults.cpp) again, on a runtime
+    configured with -DRAPID_RUNTIME_SANITIZE=ON (ASan and UBSan, which reach the test through
+    rapid_runtime_cpp::core's flags). Built once per run, shared like the others."""
+    made = B.once(tmp_path_factory, "asan-faults", lambda: _sanitized(runtime_build, tmp_path_factory))
+    return made  # type: ignore[no-any-return]
+
+
+def _sanitized(runtime_build: Path, tmp_path_factory) -> Path:
+    base = runtime_build.parent / "asan"
+    # (GCC 12's -Wmaybe-uninitialized misfires on <regex> and <functional> under the sanitizers)
+    flags = [f"-DCMAKE_CXX_FLAGS={B.FLAGS} -Wno-maybe-uninitialized -g -O1"]
+    B.run(["cmake", "-S", str(B.ROOT / "runtime" / "cpp"), "-B", str(base / "runtime"), "-DCMAKE_BUILD_TYPE=Debug",
+           "-DRAPID_RUNTIME_SANITIZE=ON", *flags])
+    B.build(base / "runtime")
+    k10 = B.generated(tmp_path_factory, "k10")
+    B.run(["cmake", "-S", str(B.HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *flags,
+           f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}"])
+    B.build(base / "tests", "faults")
+    return base / "tests" / "faults"
 
 
 @pytest.fixture(scope="session")

@@ -76,6 +76,8 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
     }
     ManagerOptions m;
     m.window = options.command_window;
+    m.stop_timeout_ms = options.stop_timeout_ms;
+    m.shutdown_timeout_ms = options.shutdown_timeout_ms;
     m.on_shutdown = [this] { request_stop(); };
 #ifdef RAPID_RUNTIME_TEST_BREAKS
     m.breaks = breaks_->manager();
@@ -192,6 +194,11 @@ void Bridge::stop() {
     if (acks_ != nullptr) acks_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(2, 0));
     if (manager_ && manager_->release_journal() != nullptr)
         journal_->close(true);  // every command answered: the next start begins afresh
+    handlers_running_ = manager_ ? manager_->handlers_running() : 0;
+    if (handlers_running_ > 0) {  // threads still in a handler use the manager: never freed under them
+        log("stopping: " + std::to_string(handlers_running_) + " handler(s) still running after the shutdown bound");
+        (void)manager_.release();  // (shut down: it writes nothing more)
+    }
     manager_.reset();  // cancels what runs, joins the handlers
     intake_.reset();
     node_.reset();

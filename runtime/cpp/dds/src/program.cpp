@@ -9,6 +9,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <rapid_runtime/journal.hpp>
@@ -35,12 +36,15 @@ struct Args {
     std::string journal;  // --journal DIR (default: Journal::default_dir())
     bool no_journal = false;
     std::vector<std::string> breaks;  // --break KIND: test builds only (breaks.hpp)
+    int stop_timeout_ms = DEFAULT_STOP_TIMEOUT_MS;
+    int shutdown_timeout_ms = DEFAULT_SHUTDOWN_TIMEOUT_MS;
 };
 
 void usage(std::ostream& out, const char* prog, const Tables& t) {
     out << "usage: " << prog
         << " [--simulate] [--sim-speed X] [--domain N] [--transport local|lan|wan] [--qos PROFILES_XML]\n"
-           "       [--seconds S] [--command-window N] [--journal DIR | --no-journal]\n\n"
+           "       [--seconds S] [--command-window N] [--journal DIR | --no-journal]\n"
+           "       [--stop-timeout MS] [--shutdown-timeout MS]\n\n"
            "RAPID bridge of asset "
         << visible(t.name)
         << " (rapid_runtime_cpp on Fast DDS).\n"
@@ -62,7 +66,15 @@ void usage(std::ostream& out, const char* prog, const Tables& t) {
         << Journal::default_dir()
         << ",\n"
            "                      from $RAPID_STATE_DIR, else $XDG_STATE_HOME/rapid_runtime)\n"
-           "  --no-journal        no restart journal (a crash leaves commands unanswered)\n";
+           "  --no-journal        no restart journal (a crash leaves commands unanswered)\n"
+           "  --stop-timeout MS   how long a handler told to stop may run on before its command is\n"
+           "                      answered EXEC_FAILED \"handler did not stop\" (default "
+        << DEFAULT_STOP_TIMEOUT_MS
+        << "; a command's\n"
+           "                      stop_timeout_ms in the descriptor overrides it)\n"
+           "  --shutdown-timeout MS  how long shutdown (Admin shutdown, SIGTERM, SIGINT) waits for the\n"
+           "                      handlers before the process exits all the same (default "
+        << DEFAULT_SHUTDOWN_TIMEOUT_MS << ")\n";
 }
 
 bool number(const std::string& text, double& out) {
@@ -124,6 +136,12 @@ bool parse(int argc, char** argv, Args& a, bool& help) {
         } else if (key == "--journal") {
             ok = !value.empty();
             a.journal = value;
+        } else if (key == "--stop-timeout") {
+            ok = integer(value, n) && n >= 1 && n <= 86'400'000;
+            a.stop_timeout_ms = static_cast<int>(n);
+        } else if (key == "--shutdown-timeout") {
+            ok = integer(value, n) && n >= 0 && n <= 86'400'000;
+            a.shutdown_timeout_ms = static_cast<int>(n);
         } else if (key == "--command-window") {
             ok = integer(value, n) && n >= 1;
             a.command_window = static_cast<std::size_t>(n);
@@ -159,6 +177,8 @@ int run_bridge(int argc, char** argv, const Program& program) {
     options.transport = args.transport;
     options.command_window = args.command_window;
     options.breaks = args.breaks;
+    options.stop_timeout_ms = args.stop_timeout_ms;
+    options.shutdown_timeout_ms = args.shutdown_timeout_ms;
     if (!args.no_journal) options.journal = args.journal.empty() ? Journal::default_dir() : args.journal;
     if (args.qos.empty()) options.profiles_xml = std::string(program.profiles_xml);
     else options.profiles_file = args.qos;
@@ -197,10 +217,26 @@ int run_bridge(int argc, char** argv, const Program& program) {
                                                     std::chrono::duration<double>(args.seconds));
         while (!signalled && !bridge.wait(0.1) && std::chrono::steady_clock::now() < end) {
         }
+        // Shutdown ends the process within its bound whatever the handlers do: the commands
+        // are answered in bridge.stop(); should the user's on_stop() or anything else hang
+        // past the bound and a grace, the process exits anyway (the journal answers then).
+        const int bound = args.shutdown_timeout_ms;
+        std::thread([bound, prog] {
+            std::this_thread::sleep_for(std::chrono::milliseconds(bound) + std::chrono::seconds(10));
+            std::cerr << prog << ": still stopping " << bound / 1000.0 + 10 << " s after shutdown began; exiting"
+                      << std::endl;
+            std::_Exit(0);
+        }).detach();
         if (handlers) handlers->on_stop();
         streams.reset();
         if (telemetry) telemetry->stop();
         bridge.stop();
+        if (bridge.handlers_running() > 0) {
+            // every command is answered and the journal closed; the threads still in a handler
+            // use the handlers and the manager, so the process ends here, without freeing them
+            std::cout << "bridge stopped (" << bridge.handlers_running() << " handler(s) still running)" << std::endl;
+            std::_Exit(0);
+        }
     } catch (const std::exception& e) {
         std::cerr << prog << ": " << e.what() << std::endl;
         return 1;

@@ -52,6 +52,8 @@ struct BridgeOptions {
     std::string journal;  // the restart journal's folder (journal.hpp); empty: no journal
     std::function<void(const std::string&)> log;  // default: stderr, "[asset] text"
     std::vector<std::string> breaks;  // test builds only: rules broken on purpose (breaks.hpp)
+    int stop_timeout_ms = DEFAULT_STOP_TIMEOUT_MS;  // --stop-timeout (manager.hpp)
+    int shutdown_timeout_ms = DEFAULT_SHUTDOWN_TIMEOUT_MS;  // --shutdown-timeout: stop()'s bound
 };
 
 class Breaks;
@@ -102,9 +104,12 @@ public:
     // The test build's breaks (breaks.hpp; none in a plain bridge), for the telemetry helpers.
     const Breaks& breaks() const { return *breaks_; }
     void start();  // publishes the states, opens the command path; prints nothing
-    // idempotent: no command read any more, the pending and running ones answered, the last
-    // acks delivered (up to 2 s), the journal closed clean, threads joined
+    // idempotent: no command read any more, the pending and running ones answered (running
+    // handlers told to stop and waited for up to shutdown_timeout_ms), the last acks
+    // delivered (up to 2 s), the journal closed clean, threads joined. Handler calls that
+    // did not return are left running (handlers_running()): the caller ends the process.
     void stop();
+    std::size_t handlers_running() const { return handlers_running_; }
     void request_stop();  // from any thread (Admin/shutdown, a signal handler's flag)
     bool wait(double seconds);  // true once stopping was requested
     bool stopping() const { return stop_requested_.load(); }
@@ -173,6 +178,7 @@ private:
     std::atomic<bool> stop_requested_{false};
     std::atomic<bool> reading_{false};
     bool stopped_ = false;
+    std::size_t handlers_running_ = 0;  // after stop(): handler calls that never returned
     std::mutex wait_mutex_;
     std::condition_variable wake_;
 };
