@@ -169,22 +169,33 @@ class LimitError(RecordingError):
 
 
 class _Bounded:
-    """The file, for the mcap library: no single read past MAX_RECORD (a record's length
-    fields are the file's word: 2**63 bytes asked would be allocated before the short read)."""
+    """The file, for the mcap library: a read past the file's end is damage (EOFError: a cut
+    file, read up to there), and no single read may be larger than MAX_RECORD (LimitError).
+    Record lengths are the file's word: 2**63 bytes asked would be allocated before the short
+    read; the library's own record_size_limit is not used, it cannot tell the two apart."""
 
     def __init__(self, fh: IO[bytes], path: str) -> None:
         self.fh, self.path = fh, path
+        self.size = os.fstat(fh.fileno()).st_size
 
     def read(self, n: int = -1) -> bytes:
-        if n is None or n < 0 or n > MAX_RECORD:
-            raise LimitError(f"{self.path}: a record at byte {self.fh.tell()} is "
-                             f"{'unbounded' if n is None or n < 0 else f'{n} bytes long'}, over the "
-                             f"{MAX_RECORD >> 20} MiB a record may have (the file is damaged or hostile; "
-                             f"a recording of larger records must be rewritten with smaller ones)")
+        at = self.fh.tell()
+        if n is None or n < 0:
+            n = self.size - at
+        if n > self.size - at:
+            raise EOFError(f"a record at byte {at} runs past the end of the file ({n} bytes asked, "
+                           f"{self.size - at} left)")
+        if n > MAX_RECORD:
+            raise LimitError(f"{self.path}: a record at byte {at} is {n} bytes long, over the {MAX_RECORD >> 20} "
+                             "MiB a record may have: refused (a recording of larger records must be rewritten "
+                             "with smaller ones)")
         return self.fh.read(n)
 
     def seek(self, offset: int, whence: int = 0) -> int:
-        return self.fh.seek(offset, whence)
+        target = offset + (0 if whence == 0 else self.fh.tell() if whence == 1 else self.size)
+        if not 0 <= target <= self.size:  # an offset from the summary or footer that is damaged
+            raise EOFError(f"an offset ({target}) outside the file (of {self.size} bytes)")
+        return self.fh.seek(target)
 
     def tell(self) -> int:
         return self.fh.tell()
@@ -249,6 +260,8 @@ def _summary(fh: IO[bytes], path: str) -> Recording | None:
     from mcap.exceptions import McapError
     from mcap.reader import SeekingReader
     try:
+        if os.fstat(fh.fileno()).st_size < 8 + 29 + 8:  # magic, footer, magic: too short for a summary
+            return None
         fh.seek(0)
         reader = SeekingReader(_Bounded(fh, path), validate_crcs=True)  # type: ignore[arg-type]
         summary = reader.get_summary()
@@ -282,13 +295,12 @@ def _channel_size(ch: Channel) -> int:
 def _messages(fh: IO[bytes], rec: Recording) -> Generator[Item, None, None]:
     """Every message, record by record (chunks through _chunk_records), up to the footer or
     to the first damaged or missing byte (rec.cut_reason). LimitError goes through."""
-    from mcap.exceptions import RecordLengthLimitExceeded
     from mcap.records import Channel, Chunk, Footer, Header, Message, Metadata, Schema
     from mcap.stream_reader import StreamReader
     bounded = _Bounded(fh, rec.path)
     try:
         reader = StreamReader(bounded, emit_chunks=True, validate_crcs=True,  # type: ignore[arg-type]
-                              record_size_limit=MAX_RECORD)
+                              record_size_limit=None)  # (every read is bounded by _Bounded)
         end = fh.tell()  # where the next record starts (after the magic)
         for record in reader.records:
             at, end = end, fh.tell()
@@ -312,9 +324,6 @@ def _messages(fh: IO[bytes], rec: Recording) -> Generator[Item, None, None]:
                     return
     except LimitError:
         raise
-    except RecordLengthLimitExceeded as exc:
-        raise LimitError(f"{rec.path}: {exc}: over the {MAX_RECORD >> 20} MiB a record may have (the file is "
-                         "damaged or hostile)") from None
     except Exception as exc:  # the end of what a killed recorder wrote (or damage)
         rec.cut_reason = f"{type(exc).__name__}: {exc}"[:200] or type(exc).__name__
     finally:

@@ -87,6 +87,20 @@ def test_replay_refuses_more_configs_than_it_holds(files):
     assert rss < BOUND, rss
 
 
+def test_a_length_field_past_the_end_of_the_file_is_damage_not_a_read(tmp_path):
+    """A record claiming 3 GiB (under the library's own 4 GiB limit: the read would be allocated
+    first, and the library checks no length inside a record); now the file is cut
+    there (read up to it, as a killed recorder's), in bounded memory."""
+    import struct
+    path = tmp_path / "long.mcap"
+    bombs.empty_messages(path, 10, per_chunk=10)
+    path.write_bytes(path.read_bytes() + struct.pack("<BQ", 0x80, 3 << 30) + b"x" * 100)
+    code, out, err, rss = run("record", "--info", str(path))
+    assert code == 0, err
+    assert "cut: read up to its last whole chunk" in out and "runs past the end of the file" in out, out
+    assert "messages: 10 " in out and rss < BOUND, out
+
+
 def test_the_limits_leave_a_real_recording_alone(files, tmp_path):
     """A recording of messages as large as a chunk may be (60 MiB, one per chunk) reads back."""
     from mcap.writer import CompressionType, Writer
