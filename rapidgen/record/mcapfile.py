@@ -217,11 +217,13 @@ class Recording:
     cut_reason: str = ""  # why reading stopped early (a cut file)
     statistics: Statistics | None = None  # a complete file's
     held: dict[tuple[str, object], int] = field(default_factory=dict, repr=False)  # definition -> bytes counted
+    held_bytes: int = 0
 
     def hold(self, kind: str, key: object, size: int) -> None:
         """Count a schema, channel or metadata record kept (replacing one of the same key)."""
+        self.held_bytes += size + PER_DEFINITION - self.held.get((kind, key), 0)
         self.held[(kind, key)] = size + PER_DEFINITION
-        if len(self.held) * PER_DEFINITION > MAX_DEFINITIONS or sum(self.held.values()) > MAX_DEFINITIONS:
+        if self.held_bytes > MAX_DEFINITIONS:
             raise LimitError(f"{self.path}: its schemas, channels and metadata take more than "
                              f"{MAX_DEFINITIONS >> 20} MiB (counting {PER_DEFINITION} bytes for each), the most "
                              "a reader holds: refused (a recording's definitions are a few KiB each)")

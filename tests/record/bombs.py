@@ -134,6 +134,19 @@ def empty_messages(path: Path, count: int = 3_000_000, per_chunk: int = 1_000_00
     return f.close()
 
 
+def many_channels(path: Path, count: int = 65536, meta_bytes: int = 1024) -> int:
+    """`count` channel records (every id of the u16 space), each with `meta_bytes` of
+    metadata, in zstd chunks of at most 32 MiB; the file's size."""
+    from mcap.records import Channel
+    f = _File(path, "acme::Nothing", "state", False)
+    value = "v" * meta_bytes
+    per_chunk = (32 << 20) // (meta_bytes + 64)
+    for first in range(0, count, per_chunk):
+        f.chunk(_record(Channel(id=i % 65536, topic=f"t{i}", message_encoding="cdr", schema_id=1,
+                                metadata={"m": value})) for i in range(first, min(count, first + per_chunk)))
+    return f.close()
+
+
 def peak_rss_mib(pid: int) -> float:
     """A running process's peak resident set (VmHWM), in MiB; 0 when it is gone."""
     try:

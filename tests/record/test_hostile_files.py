@@ -87,6 +87,17 @@ def test_replay_refuses_more_configs_than_it_holds(files):
     assert rss < BOUND, rss
 
 
+def test_definitions_past_their_cap_are_refused(tmp_path):
+    """65 536 channels of 1 KiB metadata each (a 200 KB file): over the 64 MiB of schemas,
+    channels and metadata a reader holds."""
+    path = tmp_path / "channels.mcap"
+    bombs.many_channels(path)
+    code, _out, err, rss = run("record", "--info", str(path))
+    assert code == 1, err
+    assert f"{path}: its schemas, channels and metadata take more than 64 MiB (counting 512 bytes for each)" in err
+    assert rss < BOUND, rss
+
+
 def test_a_length_field_past_the_end_of_the_file_is_damage_not_a_read(tmp_path):
     """A record claiming 3 GiB (under the library's own 4 GiB limit: the read would be allocated
     first, and the library checks no length inside a record); now the file is cut
