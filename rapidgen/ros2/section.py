@@ -50,6 +50,12 @@ STREAM_TARGETS: dict[str, dict[str, str | None]] = {
     "rapid::PositionSample": {"geometry_msgs/msg/PoseStamped": "pose", "geometry_msgs/msg/Pose": ""},
     "rapid::JointSample": {JOINT_SOURCE: None}}
 STREAM_ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33")
+# Standard commands the runtime answers without a handler (docs/runtime.md), so without a
+# mapping too; stopAllMotion cancels the Mobility commands (and their `cancel` messages).
+RUNTIME_ANSWERS = frozenset({("Admin", "echo"), ("Admin", "noOp"), ("Admin", "shutdown"), ("Queue", "cancelAll"),
+                             ("AccessControl", "requestControl"), ("AccessControl", "grabControl"),
+                             ("AccessControl", "releaseControl"), ("AccessControl", "transferControl"),
+                             ("Mobility", "stopAllMotion")})
 
 
 class _NoParameters:
@@ -151,6 +157,7 @@ class _Reader:
                                    and all(f[1] == "const" for f in c["cancel"]["fields"])), None)
         if self.ok and ("telemetry" in section or "commands" in section):  # errors first
             self.unfed({(f["feeds"], f["index"]) for f, _ in feeds})
+            self.unmapped({c["command"] for c, _ in commands})
         ground = self.ground(section["ground"], root + ("ground",), node) if "ground" in section else None
         if not self.ok:
             return None
@@ -285,6 +292,22 @@ class _Reader:
                 hint = "the ROS 2 bridge feeds joint, position, agent and image entries (and writes one text line)"
             self.sink.warning("RG1507", f"no ROS 2 topic feeds {t.kind} telemetry entry {index}: the ROS 2 bridge "
                               "never publishes it", t.loc, hint)
+
+    def unmapped(self, mapped: set[str]) -> None:
+        """Warn of advertised commands the ROS 2 bridge would answer EXEC_FAILED "... has no ROS 2
+        mapping": every command but those the runtime answers itself (RUNTIME_ANSWERS)."""
+        for sub in self.loaded.subsystems:
+            t = self.loaded.types.get(sub.type)
+            for c in (t.commands if t else ()):
+                name = f"{sub.name}/{c.name}"
+                if name in mapped or (t is not None and t.standard and (sub.type, c.name) in RUNTIME_ANSWERS):
+                    continue
+                # a standard type's commands are not written in the descriptor: its subsystem entry is
+                loc = sub.loc if t is None or t.standard else c.loc
+                self.sink.warning("RG1508", f"command {name} has no ROS 2 mapping: the ROS 2 bridge answers it "
+                                  "EXEC_FAILED", loc,
+                                  f"map it: add '- {{command: {name}, publish: {{topic: ..., type: ..., fields: ...}}}}' "
+                                  "(or call:/action:) under ros2.commands, or leave the command out")
 
     def items(self, value: object, path: tuple, read) -> list[tuple[dict, tuple]]:
         if not isinstance(value, list):
