@@ -28,7 +28,7 @@ from rapid_runtime.intake import Intake
 from rapid_runtime.journal import Journal, Recovered, default_dir
 from rapid_runtime.manager import COMMAND_WINDOW, SHUTDOWN_TIMEOUT_MS, STOP_TIMEOUT_MS, CommandManager
 from rapid_runtime.tables import Tables
-from rapid_runtime.telemetry import TelemetryError, ordered_values, typed_values
+from rapid_runtime.telemetry import STALE_KEY, Freshness, TelemetryError, ordered_values, stale_after_ms, typed_values
 from rapid_runtime.untrusted import visible
 
 COMMAND_TOPIC = "rapid_command"
@@ -278,11 +278,82 @@ def _ack_key(cmd) -> tuple:
 class TelemetryPublisher:
     """Samples of the declared telemetry, headers filled (serial of the paired config,
     timeStamp in microseconds), values in declaration order and checked against their
-    DataTypes. `index` picks among entries of the same kind."""
+    DataTypes. `index` picks among entries of the same kind.
+
+    Stale telemetry (docs/runtime.md): a sample's stamp is its source's time (the caller's
+    `stamp`, else now). A position, joint, agent or image entry with a bound
+    (telemetry.stale_after_ms) refuses samples older than it (the call returns False), and once
+    its newest sample is older than it the entry is silent: logged, one TextMessage (first text
+    entry), the agent entry's stale_telemetry key; a current sample again says it is back."""
+
+    WATCHED = ("position", "joint", "agent", "image")
 
     def __init__(self, bridge: Bridge) -> None:
         self.b = bridge
         self.entries = bridge.tables.telemetry
+        self.freshness = Freshness()
+        for e in self.entries:
+            bound = stale_after_ms(e) if e["kind"] in self.WATCHED else None
+            if bound is not None:
+                self.freshness.watch(self._name(e), bound)
+        self._agent_values: dict[int, dict] = {}
+        self._watcher: threading.Thread | None = None
+        self._watcher_lock = threading.Lock()
+        self._stopped: threading.Event | None = getattr(bridge, "stopped", None)  # the watcher's end
+
+    @staticmethod
+    def _name(entry: dict) -> str:
+        """An entry as the stale messages name it: its sample topic (an agent's state topic)."""
+        topics = entry["topics"]
+        return topics.get("sample") or topics.get("state") or next(iter(topics.values()))
+
+    def _current(self, e: dict, stamp: int | None) -> int | None:
+        """The sample's stamp (now when not given), or None when it is older than its entry's bound."""
+        stamp = M.now_us() if stamp is None else int(stamp)
+        name = self._name(e)
+        if name not in self.freshness.bounds:
+            return stamp
+        ok, back = self.freshness.offer(name, stamp / 1e6)
+        self._watch()
+        if back:
+            self._announce(f"{name} source back", "MSG_INFO")
+        return stamp if ok else None
+
+    def _watch(self) -> None:
+        with self._watcher_lock:
+            if self._watcher is None and self._stopped is not None:
+                tick = min(0.5, max(0.05, min(self.freshness.bounds.values()) / 4))
+                self._watcher = threading.Thread(target=self._watch_loop, args=(tick,), daemon=True,
+                                                 name="rapid-stale-telemetry")
+                self._watcher.start()
+
+    def _watch_loop(self, tick: float) -> None:
+        assert self._stopped is not None
+        while not self._stopped.wait(tick):
+            self.check()
+
+    def check(self) -> None:
+        """Say which watched sources went silent since the last check (the watcher's tick)."""
+        for name, age in self.freshness.check():
+            self._announce(f"{name} source silent for {age:.1f} s: samples stopped", "MSG_WARN")
+
+    def _announce(self, text: str, level: str) -> None:
+        """A source gone silent or back: the log, one TextMessage, the agent entries' stale key."""
+        self.b.log(text)
+        try:
+            texts = [t for t in self.entries if t["kind"] == "text"]
+            if texts:
+                categories = texts[0].get("categories") or []
+                self.text(text, level=level, category="system" if "system" in categories else (categories or [""])[0])
+            for index, e in enumerate(t for t in self.entries if t["kind"] == "agent"):
+                if self._stale_key(e):
+                    self._agent(e, self._agent_values.get(index, {}), None)
+        except Exception as exc:  # a writer gone at shutdown: the log line is what is left
+            self.b.log(f"stale telemetry not published: {type(exc).__name__}: {exc}")
+
+    @staticmethod
+    def _stale_key(entry: dict) -> bool:
+        return any(k["name"] == STALE_KEY and k["type"] == "RAPID_STRING" for k in entry["values"])
 
     def of(self, kind: str, index: int = 0) -> dict:
         found = [t for t in self.entries if t["kind"] == kind]
@@ -301,15 +372,31 @@ class TelemetryPublisher:
     def _write(self, entry: dict, role: str, type_name: str, sample) -> None:
         self.b.node.writer(entry["topics"][role], type_class(self.b.rapid, type_name)).write(sample)
 
-    def agent_state(self, values: dict | None = None, index: int = 0, stamp: int | None = None) -> None:
+    def agent_state(self, values: dict | None = None, index: int = 0, stamp: int | None = None) -> bool:
+        """False: not published (older than the entry's stale bound)."""
         e = self.of("agent", index)
+        stamp = self._current(e, stamp)
+        if stamp is None:
+            return False
+        self._agent_values[index] = dict(values or {})
+        self._agent(e, values, stamp)
+        return True
+
+    def _agent(self, e: dict, values: dict | None, stamp: int | None) -> None:
+        values = dict(values or {})
+        if self._stale_key(e):
+            values[STALE_KEY] = ", ".join(self.freshness.silent_names())
         r = self.b.rapid
         self._write(e, "state", "rapid::AgentState", r.AgentState(hdr=self._hdr(e, stamp), values=self._values(e, values)))
 
     def position(self, xyz, rot=None, velocity_xyz=None, velocity_rot=None, values: dict | None = None,
-                 index: int = 0, stamp: int | None = None) -> None:
-        """rot and velocity_rot as the config's encodings say (9 floats; unused ones 0)."""
+                 index: int = 0, stamp: int | None = None) -> bool:
+        """rot and velocity_rot as the config's encodings say (9 floats; unused ones 0).
+        False: not published (older than the entry's stale bound)."""
         e = self.of("position", index)
+        stamp = self._current(e, stamp)
+        if stamp is None:
+            return False
         r = self.b.rapid
 
         def t3(a, b):
@@ -317,19 +404,25 @@ class TelemetryPublisher:
         self._write(e, "sample", "rapid::PositionSample", r.PositionSample(
             hdr=self._hdr(e, stamp), pose=t3(xyz, rot), velocity=t3(velocity_xyz or [0, 0, 0], velocity_rot),
             values=self._values(e, values)))
+        return True
 
     def joints(self, positions, velocities=None, torques=None, status=None, index: int = 0,
-               stamp: int | None = None) -> None:
+               stamp: int | None = None) -> bool:
+        """False: not published (older than the entry's stale bound)."""
         e = self.of("joint", index)
         n = len(e["joints"])
         for name, seq in (("positions", positions), ("velocities", velocities), ("torques", torques)):
             if seq is not None and len(seq) != n:
                 raise ValueError(f"{name}: {len(seq)} values for {n} joints")
+        stamp = self._current(e, stamp)
+        if stamp is None:
+            return False
         r = self.b.rapid
         f = [float(x) for x in positions]
         self._write(e, "sample", "rapid::JointSample", r.JointSample(
             hdr=self._hdr(e, stamp), anglePos=f, angleVel=[float(x) for x in velocities or []],
             torque=[float(x) for x in torques or []], status=[int(x) for x in status or []]))
+        return True
 
     def text(self, message: str, level: str = "MSG_INFO", category: str = "", index: int = 0) -> None:
         e = self.of("text", index)
@@ -352,8 +445,9 @@ class TelemetryPublisher:
 
     def image(self, data: bytes, mime: str | None = None, width: int | None = None, height: int | None = None,
               index: int = 0, stamp: int | None = None, offset=None, extras: dict | None = None,
-              state: bool = False) -> None:
-        """One picture on the index-th image entry's sample topic (ImageSensorSample).
+              state: bool = False) -> bool:
+        """One picture on the index-th image entry's sample topic (ImageSensorSample); False:
+        not published (older than the entry's stale bound).
         ImageMetadata names the declared sensor and sensor type; width, height and mimeType
         are the picture's own when its header says them (PNG, JPEG, GIF, BMP, PNM), else the
         arguments', else the declared ones. A mime, width or height given that contradicts the
@@ -376,12 +470,16 @@ class TelemetryPublisher:
         if bound is not None and len(data) > bound:
             raise TelemetryError(f"image {e.get('sensor')}: {len(data)} bytes, ImageSensorSample.data holds {bound}")
         meta = self._meta(e, width, height, offset, extras)
+        stamp = self._current(e, stamp)
+        if stamp is None:
+            return False
         hdr = self._hdr(e, stamp)
         r = self.b.rapid
         if state:
             self._write(e, "state", "rapid::ImageSensorState", M.image_state(r, hdr, meta))
         self._write(e, "sample", "rapid::ImageSensorSample",
                     M.image_sample(r, hdr, meta, mime or e.get("mime") or "", data))
+        return True
 
     def image_state(self, width: int | None = None, height: int | None = None, index: int = 0,
                     stamp: int | None = None, offset=None, extras: dict | None = None) -> None:

@@ -1,7 +1,9 @@
 """Telemetry helpers: each declared telemetry entry's values, in its config's order,
-checked against the declared DataTypes; rates; the config a sample pairs with."""
+checked against the declared DataTypes; rates; the config a sample pairs with; how long a
+source may be silent before its entry is stale."""
 from __future__ import annotations
 
+import threading
 import time
 
 from rapid_runtime.values import coerce, shape_error
@@ -84,3 +86,69 @@ class Rate:
             return False
         self.next = max(self.next + self.period, now)
         return True
+
+
+# ---- stale telemetry (docs/runtime.md, "Stale telemetry") ----------------------------------
+# An entry's bound: its descriptor's stale_after_ms, else STALE_PERIODS periods of its rate but
+# at least STALE_FLOOR_MS; an entry with neither (published on change) is not watched.
+STALE_PERIODS = 3
+STALE_FLOOR_MS = 1000.0
+# The agent value key the runtime fills with the silent entries' names (", "-separated; ""
+# when every watched source is current), when the agent entry declares it as RAPID_STRING.
+STALE_KEY = "stale_telemetry"
+
+
+def stale_after_ms(entry: dict) -> float | None:
+    """The entry's staleness bound in ms (None: not watched)."""
+    declared = entry.get("stale_after_ms")
+    if declared:
+        return float(declared)
+    rate = entry.get("rate")
+    if rate:
+        return max(STALE_PERIODS * 1000.0 / float(rate), STALE_FLOOR_MS)
+    return None
+
+
+class Freshness:
+    """Per watched entry (by name) its bound and the newest source time of a sample let out.
+    A sample older than its entry's bound is refused; an entry whose newest source time is older
+    than its bound is silent until a current sample comes. Times in seconds since the epoch
+    (the samples' stamps are wall-clock microseconds)."""
+
+    def __init__(self, clock=time.time) -> None:
+        self.clock = clock
+        self.bounds: dict[str, float] = {}
+        self.newest: dict[str, float] = {}
+        self.silent: set[str] = set()
+        self.lock = threading.Lock()
+
+    def watch(self, name: str, bound_ms: float) -> None:
+        self.bounds[name] = bound_ms / 1000.0
+
+    def offer(self, name: str, stamp: float) -> tuple[bool, bool]:
+        """(whether a sample of that source time may go out, whether its entry is back from
+        silence with it). Unwatched entries always may."""
+        bound = self.bounds.get(name)
+        if bound is None:
+            return True, False
+        with self.lock:
+            if self.clock() - stamp > bound:
+                return False, False
+            self.newest[name] = max(stamp, self.newest.get(name, stamp))
+            back = name in self.silent
+            self.silent.discard(name)
+            return True, back
+
+    def check(self) -> list[tuple[str, float]]:
+        """(name, seconds since its newest source time) of each entry newly silent."""
+        now, out = self.clock(), []
+        with self.lock:
+            for name, newest in self.newest.items():
+                if name not in self.silent and now - newest > self.bounds[name]:
+                    self.silent.add(name)
+                    out.append((name, now - newest))
+        return out
+
+    def silent_names(self) -> list[str]:
+        with self.lock:
+            return sorted(self.silent)
