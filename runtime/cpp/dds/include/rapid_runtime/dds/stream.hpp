@@ -217,22 +217,23 @@ public:
         if (participant->find_type(type).empty()) fd::TypeSupport(new rapidgen::dds::TopicType<T>()).register_type(participant);
         fd::TopicDescription* topic = participant->lookup_topicdescription(s.topic);
         if (topic == nullptr) topic = participant->create_topic(s.topic, type, fd::TOPIC_QOS_DEFAULT);
-        if (topic == nullptr) throw DdsError("cannot create topic " + s.topic + " of " + type);
-        auto reader = std::make_unique<detail::Reader<T>>(*this, index, std::move(callback));
+        if (topic == nullptr) fail("cannot create topic " + s.topic + " of " + type);
+        readers_.push_back(std::make_unique<detail::Reader<T>>(*this, index, std::move(callback)));
+        detail::ReaderBase& reader = *readers_.back();
         fd::SubscriberQos sq = participant->get_default_subscriber_qos();
         sq.partition().clear();
         sq.partition().push_back(s.partition.c_str());  // the writing asset's partition
-        reader->subscriber = participant->create_subscriber(sq);
+        reader.subscriber = participant->create_subscriber(sq);
         fd::DataReaderQos rq;
-        if (reader->subscriber == nullptr ||
-            reader->subscriber->get_datareader_qos_from_profile(s.profile, rq) !=
+        if (reader.subscriber == nullptr ||
+            reader.subscriber->get_datareader_qos_from_profile(s.profile, rq) !=
                 eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK)
-            throw DdsError("no reader profile " + s.profile + " in the loaded QoS profiles");
+            fail("no reader profile " + s.profile + " in the loaded QoS profiles");
         fd::StatusMask mask = fd::StatusMask::data_available() << fd::StatusMask::requested_deadline_missed()
                               << fd::StatusMask::liveliness_changed();
-        reader->reader = reader->subscriber->create_datareader(topic, rq, reader.get(), mask);
-        if (reader->reader == nullptr) throw DdsError("cannot create the reader of stream " + s.name);
-        readers_.push_back(std::move(reader));
+        reader.reader = reader.subscriber->create_datareader(topic, rq, &reader, mask);
+        // (under DDS Security: refused when the permissions do not grant the stream's topic in its partition)
+        if (reader.reader == nullptr) fail("cannot create the reader of stream " + s.name);
     }
 
     // The index-th stream's writer (an output stream), made on first use.
@@ -306,6 +307,16 @@ public:
     StreamMonitor& monitor_of(std::size_t index) { return monitors_.at(index); }
 
 private:
+    // A set that could not be made is stopped before the error leaves it: its readers and
+    // subscribers deleted while the bridge lives, so that whoever owns the set (the generated
+    // handlers, freed after the Bridge when on_start throws) destroys it without touching
+    // the bridge (it used to end the process with "pure virtual method called").
+    [[noreturn]] void fail(const std::string& why) {
+        summarized_ = true;  // nothing ran: no summary
+        stop();
+        throw DdsError(why);
+    }
+
     void report_loop() {
         const TelemetrySpec* agent = bridge_.tables().telemetry_of("agent");
         bool reports = false;
