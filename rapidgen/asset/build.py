@@ -67,6 +67,7 @@ class _Builder:
     def telemetry(self, path: tuple, obj: dict) -> S.Telemetry:
         kind = obj["kind"]
         common = dict(kind=kind, suffix=obj.get("suffix"), rate=obj.get("rate"),
+                      stale_after_ms=obj.get("stale_after_ms"),
                       qos=tuple(obj.get("qos", {}).items()), subsystem=obj.get("subsystem"),
                       description=obj.get("description", ""), **self.locs(path, obj))
         values = tuple(self.typed(S.ValueKey, path + ("values", i), v, "key")

@@ -112,6 +112,7 @@ class Telemetry(Located):
     kind: str
     suffix: str | None = None
     rate: Number | None = None
+    stale_after_ms: Number | None = None  # declared only (the runtime derives it from the rate otherwise)
     qos: tuple[tuple[str, str], ...] = ()  # (role, profile); locs at ("qos", role)
     subsystem: str | None = None
     description: str = ""

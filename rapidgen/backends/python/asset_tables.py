@@ -114,6 +114,8 @@ def tables(loaded) -> dict:
     for t, topics in zip(spec.telemetry, loaded.telemetry_topics):
         entry = {"kind": t.kind, "topics": topics, "rate": t.rate, "subsystem": t.subsystem,
                  "values": [_typed(v) for v in getattr(t, "values", ())]}
+        if t.stale_after_ms is not None:  # declared only: absent means derived from the rate (rapid_runtime.telemetry)
+            entry["stale_after_ms"] = t.stale_after_ms
         if isinstance(t, PositionTelemetry):
             entry.update(frame=t.frame, pose_encoding=t.pose_encoding, velocity_encoding=t.velocity_encoding)
         elif isinstance(t, JointTelemetry):
