@@ -39,6 +39,16 @@ EXPECTED = {
 }
 
 
+# stopAllMotion may complete before the cancelled drive's handler returned: its answer then
+# says so (issue 42), in either runtime; that suffix aside, the answer is the one above
+NOT_STOPPED_YET = "; 1 motion handler(s) not stopped yet"
+
+
+def _settled(got: dict) -> dict:
+    code, lines = got["stopAllMotion"]
+    return {**got, "stopAllMotion": (code, [ln.removesuffix(NOT_STOPPED_YET) for ln in lines])}
+
+
 def _python_drives_cpp_bridge(bridge) -> dict:
     proc = subprocess.Popen([str(bridge), "--simulate", "--domain", str(CPP_BRIDGE_DOMAIN), "--seconds", "240"],
                             env=B.dds_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -64,6 +74,7 @@ def test_same_acks_both_ways(programs):
         cpp_bridge = pool.submit(_python_drives_cpp_bridge, programs["k10"])
         py_bridge = pool.submit(_cpp_drives_python_bridge, programs["cmd"])
         by_python, by_cpp = cpp_bridge.result(), py_bridge.result()
+    by_python, by_cpp = _settled(by_python), _settled(by_cpp)
     assert by_python == EXPECTED, {k: v for k, v in by_python.items() if EXPECTED.get(k) != v}
     assert by_cpp == EXPECTED, {k: v for k, v in by_cpp.items() if EXPECTED.get(k) != v}
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <rapid_runtime/images.hpp>
+#include <rapid_runtime/text.hpp>
 
 #include "rapid_runtime/dds/breaks.hpp"
 
@@ -196,8 +197,9 @@ void Telemetry::text(const std::string& message, const std::string& category, ::
     const auto& name = topic(e, "sample", qos);
     ::rapid::TextMessage s;
     s.level = level;
-    s.category = category;
-    s.message = message;
+    // valid UTF-8 without NUL, within String64 / String2K (issue 42: a handler's text)
+    s.category = outgoing(category, 63);
+    s.message = outgoing(message, 2047);
     send(name, s, e, qos);
 }
 
