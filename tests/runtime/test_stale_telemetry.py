@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import copy
 import importlib
+import importlib.util
+import subprocess
 import sys
 import threading
 from types import SimpleNamespace
@@ -17,7 +19,7 @@ import pytest
 from rapid_runtime.bridge import TelemetryPublisher
 from rapid_runtime.configs import Serials
 from rapid_runtime.telemetry import STALE_KEY, stale_after_ms
-from tests.runtime.live import SEEDS, python_dir
+from tests.runtime.live import ROOT, SEEDS, python_dir
 from tests.runtime.tables_of import tables
 
 T0 = 1_800_000_000.0  # s since the epoch: the test's clock starts here
@@ -156,3 +158,40 @@ def test_the_agent_entry_itself_going_silent(tel):
     tel.check()
     assert texts(tel) == ["rapid_agent_state source silent for 1.5 s: samples stopped"]
     assert stale_values(tel) == ["", "rapid_agent_state"]
+
+
+# ---- the descriptor's bound ---------------------------------------------------------------------
+DESCRIPTOR = """version: 1
+asset: {{name: Bound, kind: rover, description: stale_after_ms}}
+subsystems: [{{name: Admin}}]
+telemetry:
+  - {{kind: position, frame: odom, rate: 10{position}}}
+  - {{kind: agent, rate: 2, values: [{{key: battery, type: RAPID_FLOAT}}]}}
+  - {{kind: text{text}}}
+"""
+
+
+def _generate(tmp_path, position: str = "", text: str = "") -> subprocess.CompletedProcess:
+    path = tmp_path / "bound.yaml"
+    path.write_text(DESCRIPTOR.format(position=position, text=text))
+    return subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(path), "--lang", "python", "-o",
+                           str(tmp_path / "gen")], cwd=ROOT, capture_output=True, text=True)
+
+
+def test_a_declared_bound_reaches_the_tables_and_only_there(tmp_path):
+    res = _generate(tmp_path, position=", stale_after_ms: 250")
+    assert res.returncode == 0, res.stdout + res.stderr
+    spec = importlib.util.spec_from_file_location("bound_tables", tmp_path / "gen/python/rapid_bound/asset_tables.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    position, agent, text = module.TELEMETRY
+    assert position["stale_after_ms"] == 250 and stale_after_ms(position) == 250
+    assert "stale_after_ms" not in agent and stale_after_ms(agent) == 1500  # derived: 3 periods of 2 Hz
+    assert stale_after_ms(text) is None
+
+
+@pytest.mark.parametrize("position, text", [(", stale_after_ms: 0", ""), (", stale_after_ms: -5", ""),
+                                            (", stale_after_ms: soon", ""), ("", ", stale_after_ms: 1000")])
+def test_a_bound_that_is_no_bound_is_refused(tmp_path, position, text):
+    res = _generate(tmp_path, position, text)
+    assert res.returncode != 0 and "stale_after_ms" in res.stdout + res.stderr, res.stdout + res.stderr
