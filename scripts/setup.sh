@@ -21,6 +21,22 @@ if [ ! -f "$STAMP" ] || [ "$(cat "$STAMP")" != "$WANT" ]; then
     "$VENV/bin/python" -m pip install --quiet -e "$ROOT/runtime" >&2
     echo "$WANT" > "$STAMP"
 fi
+# Foxglove's npm libraries (tests/node/package-lock.json), with which the tests read
+# recordings and the Foxglove WebSocket server as Foxglove does: `npm ci` only when the lock
+# changed since the last install (or node_modules is gone). Without npm the tests that need
+# them fail and say so.
+NODE_DIR="$ROOT/tests/node"
+NODE_STAMP="$NODE_DIR/node_modules/.rapidgen-installed"
+if command -v npm >/dev/null; then
+    NODE_WANT="$(sha256sum "$NODE_DIR/package-lock.json" | cut -d' ' -f1)"
+    if [ ! -f "$NODE_STAMP" ] || [ "$(cat "$NODE_STAMP")" != "$NODE_WANT" ]; then
+        echo "setup: installing tests/node (npm ci)" >&2
+        (cd "$NODE_DIR" && npm ci --ignore-scripts --no-audit --no-fund --silent >&2)
+        echo "$NODE_WANT" > "$NODE_STAMP"
+    fi
+else
+    echo "setup: npm not found: the tests that read with Foxglove's libraries (tests/node) will fail" >&2
+fi
 # Debian packages (scripts/apt-packages.txt), installed only when one is missing.
 # RAPIDGEN_SKIP_APT=1 skips this (e.g. a machine without root, for the pure-Python tiers).
 if [ -z "${RAPIDGEN_SKIP_APT:-}" ] && command -v dpkg-query >/dev/null; then
