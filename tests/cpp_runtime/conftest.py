@@ -41,7 +41,7 @@ def _tsan(runtime_build: Path, tmp_path_factory) -> Path:
     k10 = B.generated(tmp_path_factory, "k10")
     B.run(["cmake", "-S", str(B.HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *flags,
            f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}"])
-    B.build(base / "tests", "logic")
+    B.build(base / "tests", "logic", "faults")  # (the fault-injecting handlers' suite beside it)
     return base / "tests" / "logic"
 
 

@@ -7,7 +7,7 @@ loopback, a Python ground tool (`rapidgen cmd`, Cyclone DDS) commanding it.
 Live: a helper thread's progress after its BYPASS handler returned (no crash, the bridge
 answers on); a handler that ignores DELETE (the DELETE's answer says so, the target's own
 final ack at the bound, the next APPEND runs, the cmdId sent again gets its stored final
-ack); invalid UTF-8 and a NUL in a handler's answer (the tool decodes U+FFFD); Admin shutdown
+ack); invalid UTF-8 and a NUL in a handler's answer and TextMessage (the tools decode U+FFFD); Admin shutdown
 and SIGTERM with handlers that never return (every command answered, exit 0 within the
 shutdown bound, the journal closed clean). Domains 93 and 94 (50-55 are
 tests/runtime/test_simulate_telemetry.py's)."""
@@ -60,6 +60,9 @@ subsystems:
   - {{name: Admin}}
   - {{name: Queue}}
   - {{name: Belt, type: Worker, description: the queue's}}
+telemetry:
+  - kind: text
+    categories: [faults]
 """
 FFFD = "\ufffd"
 
@@ -78,6 +81,14 @@ def test_fault_suite_is_clean_under_address_and_undefined_behaviour_sanitizers(f
                          timeout=600, env=env)
     assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-6000:]
     assert "Sanitizer" not in res.stderr and "runtime error" not in res.stderr, res.stderr[-6000:]
+
+
+def test_fault_suite_is_clean_under_thread_sanitizer(logic_under_tsan):
+    """The stop bound's watchdog, helper threads calling a context, the manager going while
+    one does: no data race."""
+    res = subprocess.run([str(logic_under_tsan.parent / "faults"), "--gtest_brief=1"], capture_output=True,
+                         text=True, timeout=600, env=dict(os.environ, TSAN_OPTIONS="halt_on_error=1"))
+    assert res.returncode == 0 and "ThreadSanitizer" not in res.stderr, res.stdout[-3000:] + res.stderr[-6000:]
 
 
 # ---- live: the Faulty asset's C++ bridge, a Python ground tool --------------------------------------
@@ -144,11 +155,15 @@ class Bridge:
             self.proc.communicate()
 
 
+def tool_env() -> dict:
+    return {k: v for k, v in B.dds_env().items() if k != "CYCLONEDDS_URI"}  # the tools' local (loopback) profile
+
+
 def cmd(desc: Path, domain: int, *args: str, background: bool = False):
     """`rapidgen cmd` on the descriptor's dictionary (its stdout: the acks as the tool decodes them)."""
     argv = [sys.executable, "-m", "rapidgen", "cmd", str(desc), "--domain", str(domain), "--from-descriptor",
             "--timeout", "30", *args]
-    env = {k: v for k, v in B.dds_env().items() if k != "CYCLONEDDS_URI"}  # its local (loopback) profile
+    env = tool_env()
     if background:
         return subprocess.Popen(argv, cwd=B.ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                 text=True, encoding="utf-8")
@@ -167,10 +182,31 @@ def test_live_handler_faults_leave_the_bridge_answering_honestly(faulty, tmp_pat
         assert res.returncode == 0 and "COMPLETED OK  quick" in res.stdout, res.stdout + res.stderr
         assert bridge.proc.poll() is None
 
-        # invalid UTF-8 and a NUL from the handler: a final ack the Python tool decodes
-        res = cmd(desc, LIVE_DOMAIN, "Belt", "badText")
-        assert res.returncode == 0, res.stdout + res.stderr
-        assert f"COMPLETED OK  bad {FFFD}{FFFD} text {FFFD} nul[{FFFD}] end" in res.stdout, res.stdout
+        # invalid UTF-8 and a NUL from the handler, in its answer and in a TextMessage it
+        # publishes: a final ack the Python tool decodes, a TextMessage `rapidgen spy` decodes
+        # (the handler publishes one per run: sent again until the new reader has matched)
+        spy = subprocess.Popen([sys.executable, "-m", "rapidgen", "spy", "echo", "rapid_textmessage", "--domain",
+                                str(LIVE_DOMAIN), "--asset", str(desc), "--json", "--count", "1"], cwd=B.ROOT,
+                               env=tool_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               encoding="utf-8")
+        try:
+            for _ in range(20):
+                res = cmd(desc, LIVE_DOMAIN, "Belt", "badText")
+                assert res.returncode == 0, res.stdout + res.stderr
+                assert f"COMPLETED OK  bad {FFFD}{FFFD} text {FFFD} nul[{FFFD}] end" in res.stdout, res.stdout
+                try:
+                    spy.wait(timeout=1)
+                    break
+                except subprocess.TimeoutExpired:
+                    pass
+            said, err = spy.communicate(timeout=30)
+        finally:
+            if spy.poll() is None:
+                spy.kill()
+                spy.communicate()
+        assert spy.returncode == 0 and said.strip(), said + err
+        text = json.loads(said.splitlines()[0])["sample"]
+        assert (text["category"], text["message"]) == (f"faults{FFFD}", f"bad {FFFD}{FFFD} text {FFFD} nul[{FFFD}] end")
 
         # a handler that ignores DELETE: said so; its final ack at the bound; the queue goes on
         res = cmd(desc, LIVE_DOMAIN, "Belt", "stubborn", "--action", "APPEND", "--id", "s1", "--no-wait")

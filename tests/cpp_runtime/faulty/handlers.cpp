@@ -6,7 +6,9 @@
 //   Worker/stubborn  writes $FAULTY_DIR/started-<cmdId>, then ignores cancel: runs until
 //                    $FAULTY_DIR/release exists
 //   Worker/quick     answers at once
-//   Worker/badText   answers with invalid UTF-8 and a NUL
+//   Worker/badText   answers with invalid UTF-8 and a NUL, and publishes a TextMessage
+//                    carrying the same (the asset's text telemetry entry)
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -14,11 +16,15 @@
 #include <string>
 #include <thread>
 
+#include <rapid_runtime/dds/telemetry.hpp>
+
 #include "handlers.hpp"
 
 namespace rapid_faulty::bridge {
 
 namespace {
+
+const std::string BAD_TEXT = std::string("bad \xff\xfe text \xe2\x82 nul[") + '\0' + "] end";
 
 std::string in_dir(const std::string& name) {
     const char* dir = std::getenv("FAULTY_DIR");
@@ -64,8 +70,11 @@ public:
     }
 
     ::rapid_runtime::Result badText([[maybe_unused]] ::rapid_runtime::CommandContext& ctx) override {
-        return ::rapid_runtime::Result::ok(std::string("bad \xff\xfe text \xe2\x82 nul[") + '\0' + "] end");
+        if (auto* b = bridge.load()) ::rapid_runtime::dds::Telemetry(*b).text(BAD_TEXT, "faults\xc3");
+        return ::rapid_runtime::Result::ok(BAD_TEXT);
     }
+
+    std::atomic<::rapid_runtime::dds::Bridge*> bridge{nullptr};  // (set when the bridge has started)
 };
 
 }  // namespace
@@ -73,7 +82,10 @@ public:
 HandlerSet make_handlers() {
     HandlerSet set;
     set.queue = ::std::make_unique<Queue>();
-    set.worker = ::std::make_unique<Worker>();
+    auto worker = ::std::make_unique<Worker>();
+    Worker* w = worker.get();
+    set.worker = ::std::move(worker);
+    set.on_start = [w](::rapid_runtime::dds::Bridge& b) { w->bridge = &b; };
     return set;
 }
 
