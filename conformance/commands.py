@@ -7,7 +7,7 @@ import time
 from typing import Any
 
 from rapidgen.textsafe import visible
-from rapidgen.conform.asset import valid_args, wrong_type
+from rapidgen.conform.asset import is_motion, valid_args, wrong_type
 from rapidgen.conform.model import RECOMMENDED, REQUIRED, Blocked, Unsupported, check, expect
 from rapidgen.conform.session import COMPLETED, describe
 
@@ -88,7 +88,7 @@ def unknown_command(s):
 
 
 def _with_params(s):
-    c = s.facts.with_params()
+    c = s.with_params()  # a motion command only with --allow-motion: its arguments here are wrong or odd
     if c is None:
         raise Unsupported("no command takes arguments")
     return c
@@ -165,14 +165,21 @@ def late_acks(s):
 @check("CMD-15", RECOMMENDED, "A value outside its declared range is answered non-OK",
        "descriptor: parameter range and allowed values", needs=("CMD-01",))
 def out_of_range(s):
+    refused = None
     for c in s.facts.commands():
+        if is_motion(c) and not s.allow_motion:  # refused by a good asset, a drive by a bad one
+            ranged = [p for p in c.params if p["type"] in ("RAPID_FLOAT", "RAPID_DOUBLE", "RAPID_INT")
+                      and p.get("max") is not None]
+            if refused is None and ranged:
+                refused = s.refusal(c)
+            continue
         for i, p in enumerate(c.params):
             if p["type"] in ("RAPID_FLOAT", "RAPID_DOUBLE", "RAPID_INT") and p.get("max") is not None:
                 args = valid_args(c)
                 args[i] = (p["type"], p["max"] + 1 if p["type"] == "RAPID_INT" else float(p["max"]) * 2 + 1)
                 _refused(s, f"{c.subsystem}/{c.name} {p['name']}={args[i][1]}", c.subsystem, c.name, args)
                 return
-    raise Unsupported("no parameter declares a numeric range")
+    raise Unsupported(refused or "no parameter declares a numeric range")
 
 
 @check("CMD-11", REQUIRED, "Ack messages are at most 127 bytes", "rapid-protocol.md 5 and 5b: Ack.message String128",
@@ -275,7 +282,7 @@ def _judged(s) -> list[str]:
 def survives(s):
     c = _harmless(s)
     s.ensure_control()  # an access-control fault earlier in the run may have left control elsewhere
-    p = _with_params(s) if s.facts.with_params() else c
+    p = s.with_params() if s.facts.with_params(motion=s.allow_motion) else c
     odd: list[dict[str, Any]] = [  # keyword arguments of send()
         dict(args=[("RAPID_DOUBLE", float("nan"))] * 16), dict(args=[("RAPID_STRING", "\x01\x7f\u00e9" * 30)]),
         dict(args=[(t, v) for t, v in valid_args(p)], cmd_id=""), dict(args=[("RAPID_MAT33f", [float("inf")] * 9)]),

@@ -180,6 +180,8 @@ _CODES = (
     Code("RG1315", "error", "descriptor", 'stream topic taken by a publication or another stream'),
     Code("RG1316", "error", "descriptor", 'stream state or missed key not a value of the agent telemetry, or of the wrong type'),
     Code("RG1317", "warning", "descriptor", 'input-only stream setting on an output stream'),
+    Code("RG1318", "error", "descriptor",
+         'conformance: a motion command that names nothing or does not move the asset, or an argument that does not fit'),
     Code("RG1401", "warning", "descriptor", 'DDS partition differs from the asset name'),
     Code("RG1402", "error", "descriptor", 'malformed access pattern'),
     Code("RG1403", "warning", "descriptor",

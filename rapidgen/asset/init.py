@@ -85,6 +85,15 @@ telemetry:
 #   sources:
 #     - {{source: Operator, allow: ["*"]}}
 #     - {{source: Science, allow: [Mast/*, Admin/echo]}}
+
+# What `rapidgen conform` may send that moves the robot (docs/conformance.md). Without
+# this section (or `conform --allow-motion`) it sends nothing that moves it, and the checks
+# that need a drive (QUE-04, half of QUE-02) are UNSUPPORTED. The drive is cancelled
+# within seconds; choose a goal that is safe where the robot stands:
+# conformance:
+#   motion:
+#     - command: Mobility/simpleMove
+#       args: {{frame: site, xyt: [0.5, 0, 0]}}
 """
 
 

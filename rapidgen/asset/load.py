@@ -100,4 +100,7 @@ def load_asset(path: str, sink: DiagnosticSink, rapid_dir: str | None = None) ->
     if isinstance(doc.data, dict) and "ros2" in doc.data:
         from rapidgen.ros2.section import read_ros2  # only for descriptors that map onto ROS 2
         loaded = dataclasses.replace(loaded, ros2=read_ros2(doc, loaded, sink))
+    if isinstance(doc.data, dict) and "conformance" in doc.data:
+        from rapidgen.asset.conformance import read_conformance
+        loaded = dataclasses.replace(loaded, conformance=read_conformance(doc, loaded, sink))
     return loaded

@@ -40,6 +40,9 @@ class LoadedAsset:
     model: Model | None  # None when the IDL could not be loaded (errors are in the sink)
     # The checked `ros2:` section as plain data (rapidgen/ros2/section.py), None without one.
     ros2: dict | None = None
+    # The checked `conformance:` section (rapidgen/asset/conformance.py): {"motion": {"Sub/cmd":
+    # [(DataType, value), ...]}}, what `rapidgen conform` may send that moves the asset; None without one.
+    conformance: dict | None = None
 
     @cached_property
     def facts(self) -> Facts:

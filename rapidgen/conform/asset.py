@@ -89,16 +89,20 @@ class AssetFacts:
         cands = [c for c in self.commands() if c.type not in skip]
         return min(cands, key=lambda c: len(c.params)) if cands else None
 
-    def with_params(self) -> Cmd | None:
-        """A harmless command that takes arguments (for count/type checks)."""
+    def with_params(self, motion: bool = True) -> Cmd | None:
+        """A harmless command that takes arguments (for count/type checks); motion False: never
+        a command that moves the asset (is_motion)."""
         echo = self.command("Admin", "echo")
         if echo is not None and echo.params:
             return echo
-        cands = [c for c in self.commands() if c.params and c.type not in ("AccessControl", "Queue")]
+        cands = [c for c in self.commands() if c.params and c.type not in ("AccessControl", "Queue")
+                 and (motion or not is_motion(c))]
         return min(cands, key=lambda c: len(c.params)) if cands else None
 
-    def long_running(self) -> tuple[Cmd, list] | None:
-        """A command that runs for a while (a long drive), with its arguments."""
+    def long_running(self) -> list[tuple[Cmd, list]]:
+        """The commands that run for a while (long drives), each with the arguments sent without
+        a descriptor's conformance section (--allow-motion): 1000 m ahead (or the range's end)."""
+        out = []
         for name in ("simpleMove", "move"):
             c = self.command("Mobility", name)
             if c is not None:
@@ -109,8 +113,8 @@ class AssetFacts:
                         args.append((p["type"], [float(hi) if hi is not None else 1000.0, 0.0, 0.0]))
                     else:
                         args.append((p["type"], valid_value(p)))
-                return c, args
-        return None
+                out.append((c, args))
+        return out
 
     def sample_topics(self, paired: bool = True) -> list[dict]:
         """Publications that carry telemetry at a declared rate (role sample or state):
@@ -133,6 +137,13 @@ class AssetFacts:
 
     def entry_of(self, topic: str) -> dict | None:
         return next((t for t in self.telemetry if topic in t["topics"].values()), None)
+
+
+def is_motion(cmd: Cmd) -> bool:
+    """A command that moves the asset: sent only when allowed (the descriptor's conformance
+    section or --allow-motion). rapidgen.asset.conformance.is_motion says which."""
+    from rapidgen.asset.conformance import is_motion as moves
+    return moves(cmd.type, cmd.name)
 
 
 def _end(lo: float | None, hi: float | None) -> float:

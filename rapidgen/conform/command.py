@@ -31,6 +31,10 @@ def add_parser(sub) -> None:
     p.add_argument("--participant", action="append", default=[], type=_guid_prefix, metavar="GUID",
                    help="judge the participant(s) whose GUID starts with this (hex, 8 digits or more; default: the "
                         "participant with the most of the asset's endpoints in its partition)")
+    p.add_argument("--allow-motion", action="store_true",
+                   help="let the checks that need a long drive (QUE-02's second half, QUE-04) send one: "
+                        "Mobility/simpleMove or move 1000 m ahead, cancelled within seconds; without it (and without "
+                        "the descriptor's conformance section) nothing that moves the asset is sent")
     p.add_argument("--list", action="store_true", help="list the checks and exit")
 
 
@@ -69,17 +73,41 @@ def run_conform(args, sink, report) -> int:
         report(sink)
         return 1
     use_transport(bindings.transport_file(args.transport or "local"), keep_environment=args.transport is None)
-    return _run(args, bindings, chosen)
+    return _run(args, bindings, chosen, _motion(args.file))
 
 
-def _run(args, bindings, chosen) -> int:
+def _motion(descriptor: str) -> dict[str, list]:
+    """The descriptor's conformance.motion: "Subsystem/command" -> the arguments the runner may
+    send (checked when the bindings were generated: their errors stopped the run there)."""
+    from rapidgen.asset.load import load_asset
+    from rapidgen.diagnostics import DiagnosticSink
+
+    loaded = load_asset(descriptor, DiagnosticSink())
+    section = loaded.conformance if loaded is not None else None
+    return dict(section["motion"]) if section else {}
+
+
+def _motion_line(motion: dict[str, list], allow: bool) -> str:
+    if motion:
+        listed = "; ".join(f"{k}({', '.join(repr(v) for _t, v in a)})" for k, a in motion.items())
+        return f"motion: only {listed} (the descriptor's conformance section)" + \
+            ("; other motion commands with --allow-motion's arguments" if allow else "")
+    if allow:
+        return "motion: allowed (--allow-motion): a long drive QUE-02 and QUE-04 cancel within seconds"
+    return ("motion: none (no conformance section, no --allow-motion): the checks that would move the asset are "
+            "UNSUPPORTED")
+
+
+def _run(args, bindings, chosen, motion: dict[str, list] | None = None) -> int:
     from rapidgen.conform import report as R
     from rapidgen.conform.runner import passed, run_checks
     from rapidgen.conform.session import Session
 
     domain = bindings.tables["ASSET"].get("domain", 0) if args.domain is None else args.domain
     t0 = time.monotonic()
-    session = Session(bindings, domain, timeout=args.timeout, participants=tuple(args.participant), rtt=args.rtt)
+    allow = bool(getattr(args, "allow_motion", False))
+    session = Session(bindings, domain, timeout=args.timeout, participants=tuple(args.participant), rtt=args.rtt,
+                      motion=motion, allow_motion=allow)
     name, partition = visible(session.asset), visible(session.facts.partition)
     print(f"rapidgen conform: looking for asset {name} (partition {partition}) in domain {domain} "
           f"via {visible(os.environ.get('CYCLONEDDS_URI', 'Cyclone defaults'))}"
@@ -96,9 +124,16 @@ def _run(args, bindings, chosen) -> int:
     print(f"found {name}: {len(session.endpoints())} endpoints of participant "
           f"{', '.join(map(session.participant_text, sorted(session.asset_participants)))}; "
           f"running {len(chosen)} checks", flush=True)
+    if session.facts.has_type("Mobility"):
+        print(visible(_motion_line(session.motion, allow)), flush=True)
+    session.note_controller()
     total = len(chosen)
     counter = iter(range(1, total + 1))
     results = run_checks(session, chosen, lambda r: print(R.progress_line(r, next(counter), total), flush=True))
+    try:
+        session.hand_back()
+    except Exception as exc:  # DDS refusing something at the end: the report is written all the same
+        session.control = f"control: not handed back ({type(exc).__name__}: {exc})"
     seconds = time.monotonic() - t0
     session.close()
     notes = session.notes()

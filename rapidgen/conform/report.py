@@ -60,6 +60,8 @@ def notes_text(notes: dict | None) -> str:
     lines = [f"judged: {p}" for p in notes["asset_participants"]]
     if notes.get("identification"):
         lines.append(f"  ({notes['identification']})")
+    if notes.get("control"):
+        lines.append(notes["control"])
     if notes["strangers"]:
         lines.append("strangers in the asset's partition (not the asset: their samples are not judged):")
         for s in notes["strangers"]:
@@ -92,6 +94,8 @@ def junit(results: list[Result], asset: str, seconds: float, notes: dict | None 
         props = ET.SubElement(suite, "properties")
         for p in notes["asset_participants"]:
             ET.SubElement(props, "property", name="asset_participant", value=p)
+        if notes.get("control"):
+            ET.SubElement(props, "property", name="control", value=notes["control"])
         for s in notes["strangers"]:
             counts = ", ".join(f"{t} {v['count']}" for t, v in s["samples"].items())
             ET.SubElement(props, "property", name="stranger",

@@ -23,7 +23,7 @@ GRACE = 1.0
 
 class Session:
     def __init__(self, bindings, domain: int, timeout: float = 10.0, participants: tuple[str, ...] = (),
-                 rtt: float = 0.0) -> None:
+                 rtt: float = 0.0, motion: dict[str, list] | None = None, allow_motion: bool = False) -> None:
         from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant
         from cyclonedds.domain import DomainParticipant
 
@@ -51,6 +51,51 @@ class Session:
         # releaseControl answered OK: nobody known); None when not known. AccessControlState
         # is the asset's word, and a check judges it: taking control never relies on it.
         self.holder: str | None = None
+        # What the runner may send that moves the asset: "Subsystem/command" -> the arguments
+        # (the descriptor's conformance section); allow_motion (--allow-motion): any motion
+        # command, with the runner's own arguments (AssetFacts.long_running).
+        self.motion: dict[str, list] = dict(motion or {})
+        self.allow_motion = allow_motion
+        self.before: str | None = None  # AccessControlState's controller before the first check (None: no state)
+        self.control = ""  # what hand_back() did, for the report
+
+    # ---- motion --------------------------------------------------------------------------------
+    @staticmethod
+    def refusal(cmd: Cmd) -> str:
+        return (f"sends {cmd.subsystem}/{cmd.name}: allow it in the descriptor's conformance section or "
+                f"with --allow-motion")
+
+    def motion_args(self, cmd: Cmd, default: list) -> list:
+        """The arguments the runner may send motion command cmd with: the descriptor's, else
+        (--allow-motion) default; Unsupported with the reason when neither allows it."""
+        key = f"{cmd.subsystem}/{cmd.name}"
+        if key in self.motion:
+            return list(self.motion[key])
+        if self.allow_motion:
+            return default
+        raise Unsupported(self.refusal(cmd))
+
+    def long_running(self) -> tuple[Cmd, list] | None:
+        """A long drive the runner may send, with its arguments; None when the asset has none;
+        Unsupported (why) when it has one the runner may not send."""
+        refused: Unsupported | None = None
+        for c, default in self.facts.long_running():
+            try:
+                return c, self.motion_args(c, default)
+            except Unsupported as u:
+                refused = refused or u
+        if refused is not None:
+            raise refused
+        return None
+
+    def with_params(self) -> Cmd | None:
+        """AssetFacts.with_params, a motion command only with --allow-motion (the checks that use
+        it send wrong or odd arguments, never the descriptor's); Unsupported (why) when only a
+        motion command would do."""
+        c = self.facts.with_params(motion=self.allow_motion)
+        if c is None and (moving := self.facts.with_params(motion=True)) is not None:
+            raise Unsupported(self.refusal(moving))
+        return c
 
     # ---- the asset on the network ------------------------------------------------------------
     def topics(self) -> dict[str, str]:
@@ -305,6 +350,75 @@ class Session:
             return
         self.grab_control(self.source)
 
+    # ---- control before and after the run -------------------------------------------------------
+    def note_controller(self) -> None:
+        """Remember who held control before the run (AccessControlState, durable), so that
+        hand_back() can restore it."""
+        if self.facts.has_type("AccessControl") and self.client.command_writer is not None:
+            st = self.latest(ACCESS_TOPIC, timeout=3.0)
+            self.before = None if st is None else st.controller
+
+    def hand_back(self) -> str:
+        """At the end of the run: the runner's sources give up the control they took. Where
+        another source held control before the run, transferControl hands it back (5b: by the
+        controller, to any source); where that is refused, releaseControl, and the report says
+        the previous holder must request control again. Returns that sentence (also
+        Session.control); empty when the asset has no access control or nothing was sent."""
+        if not self.facts.has_type("AccessControl") or self.client.command_writer is None:
+            return ""
+        with self.client.lock:
+            ours = {str(getattr(c, "cmdSrc", "")) for c in self.client.sent.values()}
+        if not ours:
+            return ""
+        before = self.before
+        free = before is None or before in NO_CONTROLLER
+        was = "nobody held control before the run" if free else f"{before!r} held control before the run"
+        transfer = self.facts.command("AccessControl", "transferControl")
+        done: list[str] = []
+        refused = False
+        try:
+            for _ in range(6):  # each release may pass control to a queued requestor (ACC-07's, ours)
+                now = self.controller(1.0)
+                if now == before or (free and (now is None or now in NO_CONTROLLER)):
+                    how = f" ({'; '.join(done)})" if done else ""
+                    self.control = (f"control: {'nobody holds it' if free else f'{before!r} holds it'}, as before "
+                                    f"the run{how}")
+                    return self.control
+                if now not in ours:
+                    self.control = (f"control: {now!r} holds it (not a source the runner sent as): left as it is; "
+                                    f"{was}" + (f" ({'; '.join(done)})" if done else ""))
+                    return self.control
+                if not free and transfer is not None and len(transfer.params) == 1 and not refused:
+                    acks = self._send_final("transferControl", [("RAPID_STRING", before)], now)
+                    if self.controller(2.0, want=before) == before:
+                        done.append(f"transferControl from {now} to {before}")
+                        continue
+                    refused = True
+                    done.append(f"transferControl from {now} to {before} answered {describe(acks)}")
+                acks = self._send_final("releaseControl", [], now)
+                done.append(f"releaseControl by {now}: {describe(acks)}")
+                self._wait_controller_not(now, 2.0)
+        except Blocked as b:  # the asset's answers cannot be judged (CMD-12): say what is known
+            done.append(f"stopped: {b}")
+        now = self.controller(0.5)
+        again = "" if free or now == before else f"; {before!r} must request control again (requestControl)"
+        self.control = (f"control: {now!r} holds it after the run{again}; {was} ({'; '.join(done)})" if done
+                        else f"control: {now!r} holds it after the run{again}; {was}")
+        return self.control
+
+    def _send_final(self, name: str, args: list, source: str) -> list:
+        cid = self.client.send("AccessControl", name, args, source=source)
+        acks = self.wait_acks(cid, (COMPLETED,))
+        f = self.final(acks)
+        if f is not None and f.completed == OK:
+            self.holder = None
+        return acks
+
+    def _wait_controller_not(self, who: str, timeout: float) -> None:
+        end = time.monotonic() + self.allow(timeout)
+        while self.controller(0.0) == who and time.monotonic() < end:
+            time.sleep(0.02)
+
     def close(self) -> None:
         self.client.stop()
 
@@ -347,7 +461,7 @@ class Session:
                 "acks_for_runner": answered})
         more = len(set(in_partition) | set(tallies)) - len(strangers)
         return {"asset_participants": [self.participant_text(p) for p in sorted(self.asset_participants)],
-                "identification": visible(self.identification), "strangers": strangers, "more_strangers": max(0, more),
+                "identification": visible(self.identification), "control": visible(self.control), "strangers": strangers, "more_strangers": max(0, more),
                 "dropped": [visible(line) for line in [*self.client.dropped(), *discovery_notes]]}
 
 

@@ -306,8 +306,8 @@ class _Reader:
                 loc = sub.loc if t is None or t.standard else c.loc
                 self.sink.warning("RG1508", f"command {name} has no ROS 2 mapping: the ROS 2 bridge answers it "
                                   "EXEC_FAILED", loc,
-                                  f"map it: add '- {{command: {name}, publish: {{topic: ..., type: ..., fields: ...}}}}' "
-                                  "(or call:/action:) under ros2.commands, or leave the command out")
+                                  f"map it: add '- {{command: {name}, publish: {{topic: ..., type: ..., "
+                                  "fields: ...}}' (or call:/action:) under ros2.commands, or leave the command out")
 
     def items(self, value: object, path: tuple, read) -> list[tuple[dict, tuple]]:
         if not isinstance(value, list):
