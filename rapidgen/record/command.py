@@ -52,6 +52,9 @@ def add_parser(sub) -> None:
     p.add_argument("--seconds", type=positive_seconds, metavar="S", help="stop after S seconds (default: until Ctrl-C/SIGTERM)")
     p.add_argument("--split-size", type=size, metavar="SIZE", help="start a new file past SIZE (e.g. 500M)")
     p.add_argument("--split-seconds", type=positive_seconds, metavar="S", help="start a new file every S seconds")
+    p.add_argument("--foxglove", action="store_true",
+                   help="also write derived channels in Foxglove's well-known schemas (FrameTransform, "
+                   "PoseInFrame, LocationFix, CompressedImage, Log, JointStates; docs/foxglove.md)")
     p.add_argument("--quiet", action="store_true", help="no progress line")
 
 
@@ -160,6 +163,9 @@ def _record(args, bindings, models, domain: int, partitions: set[str] | None, ou
     sink = Sink(output, metadata, f"rapidgen {__version__}", args.split_size, args.split_seconds, attachments)
     try:
         rec = Recorder(domain, bindings, partitions, _schema_finder(models), sink, roles)
+        if getattr(args, "foxglove", False):
+            from rapidgen.record.derived import DerivedWriter
+            rec.derived = DerivedWriter(sink, bindings)
         for b in bindings[1:]:
             rec.declared(b.qos, b.tables["ASSET"].get("partition", b.tables["ASSET"]["name"]))
     except Exception as exc:  # Cyclone refused to start (a bad CYCLONEDDS_URI, no interface)
@@ -200,6 +206,10 @@ def _record(args, bindings, models, domain: int, partitions: set[str] | None, ou
         sys.stderr.write("\n")
     for (topic, type_name), why in sorted(rec.skipped.items()):
         print(f"rapidgen record: not recorded: {visible(topic)} ({visible(type_name)}): {why}", file=sys.stderr)
+    if rec.derived is not None:
+        print(f"rapidgen record: {rec.derived.messages} derived Foxglove messages"
+              + (f" ({rec.derived.undecodable} samples did not decode)" if rec.derived.undecodable else ""),
+              file=sys.stderr)
     files = ", ".join(sink.files)
     print(f"rapidgen record: {sink.messages} messages, {sink.bytes} bytes on {channels} channel(s) "
           f"in {time.monotonic() - started:.1f} s -> {files}", file=sys.stderr)

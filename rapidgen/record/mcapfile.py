@@ -35,6 +35,8 @@ class ChannelInfo:
     type_name: str
     partition: str
     metadata: dict[str, str]
+    # a derived channel of --foxglove (rapidgen.foxglove): ("jsonschema", "json"); RAPID's: omgidl, cdr
+    encodings: tuple[str, str] = (SCHEMA_ENCODING, MESSAGE_ENCODING)
 
 
 class Sink:
@@ -96,9 +98,12 @@ class Sink:
             if sid is None:
                 data = self._schemas.get(ch.type_name, b"")
                 sid = self._ids[ch.type_name] = self._writer.register_schema(
-                    ch.type_name, SCHEMA_ENCODING if data else "", data)
-            got = self._channels[key] = self._writer.register_channel(
-                ch.topic, MESSAGE_ENCODING, sid, dict(ch.metadata, dds_type=ch.type_name, partition=ch.partition))
+                    ch.type_name, ch.encodings[0] if data else "", data)
+            meta = dict(ch.metadata)
+            if ch.encodings[1] == MESSAGE_ENCODING:
+                meta["dds_type"] = ch.type_name
+            meta["partition"] = ch.partition
+            got = self._channels[key] = self._writer.register_channel(ch.topic, ch.encodings[1], sid, meta)
             self._known[key] = ch
         return got
 

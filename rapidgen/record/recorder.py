@@ -61,6 +61,7 @@ class Recorder:
         self._subscribers: dict[str, Any] = {}
         self._done: dict[str, object] = {}
         self._seq = 0
+        self.derived: Any = None  # rapidgen.record.derived.DerivedWriter with --foxglove
 
     def type_class(self, type_name: str):
         from rapidgen.live.bindings import find_type_class
@@ -176,6 +177,8 @@ class Recorder:
                         continue
                     self._seq += 1
                     self.sink.write(st.channel, now, int(info.source_timestamp or now), bytes(data), self._seq)
+                    if self.derived is not None:
+                        self.derived.take(st.channel, bytes(data), now, self.type_class)
                     st.count += 1
                     st.bytes += len(data)
                     written += 1

@@ -4,12 +4,13 @@
 // every json message of a derived channel (`rapidgen record --foxglove`) parsed and validated
 // with ajv against the JSON Schema that @foxglove/schemas publishes for its schema name.
 //
-//   node tests/node/read_mcap.js FILE.mcap [FILE.mcap ...]
+//   node tests/node/read_mcap.js [--all] FILE.mcap [FILE.mcap ...]
 //
 // Prints one JSON line: {"decoded": N, "failed": [[file, topic, schema, error], ...],
 // "schemas": N, "compression": [names of the chunks' compressions], "sample": {topic: first
 // decoded message}, "derived": {topic: [{"log_time": ns, "schema": name, "message": msg}]},
-// "invalid": [[topic, schema, ajv errors], ...]}. Used by tests/record/test_record.py and
+// "invalid": [[topic, schema, ajv errors], ...]}; with --all also "messages": {topic: [every
+// decoded RAPID message, in file order]} (byte arrays as lists of numbers). Used by tests/record/test_record.py and
 // tests/record/test_foxglove.py; scripts/setup.sh installs the packages (tests/node).
 "use strict";
 const fs = require("fs");
@@ -24,7 +25,10 @@ async function main() {
   const out = { decoded: 0, failed: [], schemas: 0, compression: [], sample: {}, derived: {}, invalid: [] };
   const compression = new Set();
   let schemaCount = 0;
-  for (const file of process.argv.slice(2)) {
+  const args = process.argv.slice(2);
+  const all = args[0] === "--all";
+  if (all) out.messages = {};
+  for (const file of all ? args.slice(1) : args) {
     const reader = new McapStreamReader({ includeChunks: true, decompressHandlers });
     reader.append(fs.readFileSync(file));
     const schemas = new Map(), channels = new Map(), readers = new Map();
@@ -39,6 +43,7 @@ async function main() {
           if (ch.messageEncoding === "cdr" && s.encoding === "omgidl") {
             if (!readers.has(s.id)) readers.set(s.id, new MessageReader(s.name, parseIDL(new TextDecoder().decode(s.data))));
             msg = readers.get(s.id).readMessage(rec.data);
+            if (all) (out.messages[ch.topic] ??= []).push(msg);
           } else if (ch.messageEncoding === "json" && s.encoding === "jsonschema") {
             msg = JSON.parse(new TextDecoder("utf-8", { fatal: true }).decode(rec.data));
             const validate = validator(s.name);
@@ -59,7 +64,8 @@ async function main() {
   }
   out.schemas = schemaCount;
   out.compression = [...compression].sort();
-  console.log(JSON.stringify(out, (k, v) => (typeof v === "bigint" ? v.toString() : v)));
+  console.log(JSON.stringify(out, (k, v) =>
+    typeof v === "bigint" ? v.toString() : ArrayBuffer.isView(v) ? Array.from(v) : v));
 }
 
 main().catch((e) => {

@@ -1,0 +1,2 @@
+"""RAPID in Foxglove (docs/foxglove.md): derived messages in Foxglove's well-known schemas
+(derive.py, schemas.py), written by `rapidgen record --foxglove` (rapidgen.record.derived)."""
