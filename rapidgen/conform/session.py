@@ -19,6 +19,7 @@ MAX_LISTED = 32  # strangers listed one by one in a report
 # An ack for a cmdId nobody sent arrived after ours was sent, and none carries ours this long
 # after it: the asset does not answer with the cmdIds it was sent (CMD-12's finding).
 GRACE = 1.0
+HAND_BACK_WAIT = 3.0  # s for each AccessControl answer when control is handed back at the end
 
 
 class Session:
@@ -402,15 +403,21 @@ class Session:
             done.append(f"stopped: {b}")
         now = self.controller(0.5)
         again = "" if free or now == before else f"; {before!r} must request control again (requestControl)"
-        self.control = (f"control: {now!r} holds it after the run{again}; {was} ({'; '.join(done)})" if done
-                        else f"control: {now!r} holds it after the run{again}; {was}")
+        self.control = (f"control: AccessControlState names {now!r} after the run{again}; {was}"
+                        + (f" ({'; '.join(done)})" if done else ""))
         return self.control
 
     def _send_final(self, name: str, args: list, source: str) -> list:
+        """Send an AccessControl command as source and wait for its final ack: HAND_BACK_WAIT s
+        (access control answers at once; an asset that crashed in the run must not cost a
+        timeout per step). Blocked when none came: the hand-back stops there."""
         cid = self.client.send("AccessControl", name, args, source=source)
-        acks = self.wait_acks(cid, (COMPLETED,))
+        acks = self.wait_acks(cid, (COMPLETED,), timeout=HAND_BACK_WAIT)
         f = self.final(acks)
-        if f is not None and f.completed == OK:
+        if f is None:
+            raise Blocked(f"{name} as {source} got no final ack within {self.allow(HAND_BACK_WAIT):g} s "
+                          f"({describe(acks)})")
+        if f.completed == OK:
             self.holder = None
         return acks
 
