@@ -50,9 +50,14 @@ def wrong_ack_order(a):
 
 @kind("ack-after-final", "CMD-04")
 def ack_after_final(a):
+    """An EXECUTING ack after a command's COMPLETED, once per cmdId: the stored final ack the
+    runtime sends again for a resent cmdId (issue 42; CMD-10 accepts it) goes out as it was."""
+    done: set[str] = set()
+
     def change(ack, cmd, status, completed, message):
         ack(cmd, status, completed, message)
-        if status == COMPLETED:
+        if status == COMPLETED and cmd.cmd_id not in done:
+            done.add(cmd.cmd_id)
             ack(cmd, EXECUTING, NOT, "")
     _wrap_ack(a, change)
 
