@@ -332,6 +332,21 @@ TEST_F(Faults, ADeleteOfAHandlerThatIgnoresItIsHonestThenTheBoundFreesTheQueue) 
     EXPECT_EQ(out.all(a), before);
 }
 
+TEST_F(Faults, AReplaceOfAHandlerThatIgnoresItRunsOnceTheBoundAnsweredIt) {
+    auto a = send("PanCam", "pointCamera", POINT, QueueAction::Append);
+    out.until(a, "EXECUTING");
+    auto r = send("PanCam", "takePicture", picture("left"), QueueAction::Replace, "", a);
+    out.until(r, "QUEUED");
+    EXPECT_EQ(out.final_(a), (Sent{"COMPLETED", "EXEC_FAILED", DID_NOT_STOP}));
+    EXPECT_EQ(out.final_(r), (Sent{"COMPLETED", "OK", "picture"}));
+    EXPECT_FALSE(manager->suspended());
+    // QueueState showed the replacement as the active command once the old one's slot was freed
+    std::lock_guard<std::mutex> lock(out.mutex);
+    bool shown = false;
+    for (const auto& [code, pending, active] : out.queue) shown = shown || active == std::vector<std::string>{r};
+    EXPECT_TRUE(shown);
+}
+
 TEST_F(Faults, CancelAllOfAHandlerThatIgnoresItSaysSoAndTheDefaultBoundAnswersIt) {
     auto m = send("Mobility", "simpleMove", MOVE, QueueAction::Append);
     out.until(m, "EXECUTING");
