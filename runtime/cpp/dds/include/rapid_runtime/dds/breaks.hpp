@@ -163,7 +163,9 @@ public:
         write(as, status, completed, message);
         if (on("wrong-ack-order") && status == AckStatus::Executing)
             write(as, AckStatus::Queued, Completion::Not, "");
-        if (on("ack-after-final") && status == AckStatus::Completed)
+        // once per cmdId: the stored final ack written again for a resent cmdId (issue 42,
+        // CMD-10 accepts it) goes out as it was
+        if (on("ack-after-final") && status == AckStatus::Completed && after_final_.insert(cmd.cmd_id).second)
             write(as, AckStatus::Executing, Completion::Not, "");
     }
 
@@ -282,6 +284,7 @@ private:
 
     Tables tables_;
     std::set<std::string> on_;
+    mutable std::set<std::string> after_final_;  // ack-after-final's cmdIds (under the Bridge's ack lock)
     std::int64_t start_us_;
     std::string position_config_;
     std::mutex mutex_;
