@@ -316,7 +316,9 @@ def _telemetry(t, topics: dict[str, str], qos_of: dict[str, str]) -> list[str]:
     lines.append(f"{pad}{strings(tx.categories if tx else ())},")
     types = ", ".join(f"{{{text(m.role)}, {text(m.type)}}}" for m in t.messages) if isinstance(t, CustomTelemetry) \
         else ""
-    lines.append(f"{pad}{{{types}}}}},")
+    # stale_after_ms only when declared (0, the member's default: derived from the rate, freshness.hpp)
+    bound = "" if t.stale_after_ms is None else f", /* stale_after_ms */ {double(t.stale_after_ms)}"
+    lines.append(f"{pad}{{{types}}}{bound}}},")
     return lines
 
 

@@ -99,6 +99,8 @@ struct TelemetrySpec {
     std::vector<std::string> categories;
     // custom: role -> DDS type name (the message types the generated code publishes)
     std::vector<std::pair<std::string, std::string>> types;
+    // the descriptor's stale_after_ms (ms); 0: not declared, derived from the rate (freshness.hpp)
+    double stale_after_ms = 0;
 
     // The topic of a role, or nullptr.
     const TelemetryTopic* topic(std::string_view role) const;
