@@ -14,6 +14,7 @@ import sys
 from typing import TYPE_CHECKING
 
 from rapidgen.argtypes import domain_id
+from rapidgen.record.command import size
 
 if TYPE_CHECKING:
     from rapidgen.monitor.server import Source
@@ -40,6 +41,12 @@ def add_parser(sub) -> None:
     p.add_argument("--replay", metavar="FILE", help="play an MCAP recording (rapidgen record) instead of the domain")
     p.add_argument("--tick", type=float, default=0.1, metavar="S", help="seconds between page updates (default 0.1)")
     p.add_argument("--seconds", type=float, metavar="S", help="stop after S seconds (default: until Ctrl-C)")
+    p.add_argument("--foxglove", type=int, metavar="PORT", help="serve the domain over Foxglove's WebSocket "
+                   "protocol on PORT (0: any free port) instead of the page (docs/foxglove.md)")
+    p.add_argument("--foxglove-origin", action="append", metavar="URL", help="a browser Origin allowed to "
+                   "connect to the Foxglove server, e.g. https://app.foxglove.dev (repeatable; default none)")
+    p.add_argument("--foxglove-queue", type=size, default=32 << 20, metavar="SIZE", help="bytes queued for one "
+                   "Foxglove client before it is dropped as too slow (default 32M)")
 
 
 def _usage(text: str) -> int:
@@ -50,6 +57,10 @@ def _usage(text: str) -> int:
 def _check_args(args) -> int | None:
     if not 0 <= args.port <= 65535:
         return _usage(f"--port {args.port} is outside 0..65535")
+    if args.foxglove is not None and not 0 <= args.foxglove <= 65535:
+        return _usage(f"--foxglove {args.foxglove} is outside 0..65535")
+    if args.foxglove is not None and args.replay is not None:
+        return _usage("--foxglove serves the live domain; open a recording in Foxglove itself instead of --replay")
     if not args.tick > 0 or args.tick > 10:
         return _usage("--tick must be in (0, 10] seconds")
     if args.seconds is not None and not args.seconds > 0:
@@ -83,6 +94,9 @@ def run(args) -> int:
         print(f"rapidgen monitor: needs {exc.name}, which is not installed; "
               "install it with: pip install 'rapidgen[monitor]' ./runtime", file=sys.stderr)
         return 1
+    if args.foxglove is not None:
+        from rapidgen.foxglove.live import run_live
+        return run_live(args)
     from rapidgen.diagnostics import DiagnosticSink
     from rapidgen.monitor.assets import load
     sink = DiagnosticSink()
