@@ -1,2 +1,3 @@
 """RAPID in Foxglove (docs/foxglove.md): derived messages in Foxglove's well-known schemas
-(derive.py, schemas.py), written by `rapidgen record --foxglove` (rapidgen.record.derived)."""
+(derive.py, schemas.py), written by `rapidgen record --foxglove` (rapidgen.record.derived) and
+served live with the RAPID channels by `rapidgen monitor --foxglove` (live.py, server.py)."""
