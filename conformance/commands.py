@@ -123,7 +123,7 @@ def other_asset(s):
     expect(not acks, f"no ack within {QUIET:g} s", describe(acks))
 
 
-@check("CMD-10", RECOMMENDED, "A repeated cmdId is ignored", "rapid-protocol.md 5 (5b: Astrobee does not check)",
+@check("CMD-10", RECOMMENDED, "A repeated cmdId is not run again", "rapid-protocol.md 5 (5b: Astrobee does not check)",
        needs=("CMD-02",))
 def repeated(s):
     cid = s.memo.get("valid")
