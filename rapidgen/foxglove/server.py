@@ -147,17 +147,21 @@ class FoxgloveServer:
             pass
 
     async def _writer(self, c: Client) -> None:
-        while True:
-            await c.wake.wait()
-            c.wake.clear()
-            while c.queue and c.dropped is None:
-                item = c.queue.popleft()
-                c.queued -= len(item)
-                if isinstance(item, str):
-                    await c.ws.send_str(item)
-                else:
-                    await c.ws.send_bytes(item)
-                    self.sent += 1
+        try:
+            while True:
+                await c.wake.wait()
+                c.wake.clear()
+                while c.queue and c.dropped is None:
+                    item = c.queue.popleft()
+                    c.queued -= len(item)
+                    if isinstance(item, str):
+                        await c.ws.send_str(item)
+                    else:
+                        await c.ws.send_bytes(item)
+                        self.sent += 1
+        except (ConnectionError, RuntimeError):  # the client went away: its handler ends too
+            c.queue.clear()
+            c.queued = 0
 
     def _subscribe(self, c: Client, msg: dict) -> None:
         op = msg.get("op")
