@@ -3,10 +3,11 @@
 messages, JSON objects valid against the schemas of rapidgen.foxglove.schemas.
 
 - PositionSample -> foxglove.FrameTransform (parent: the PositionConfig's frameName, else the
-  descriptor's `frame`; child: the asset's partition name) and foxglove.PoseInFrame (in that
+  descriptor's `frame`; child: the asset's partition name, PARTITION/SUFFIX for a suffixed
+  topic) and foxglove.PoseInFrame (in that
   frame). The rotation is read per the PositionConfig's poseEncoding (else the descriptor's
-  pose_encoding): QUAT (x, y, z, w), M33 (row-major), Euler XYZ/ZYX/ZYZ; NONE or unknown gives
-  the identity.
+  pose_encoding): QUAT (x, y, z, w), M33 (row-major; not a rotation, e.g. all zeros: identity),
+  Euler XYZ/ZYX/ZYZ; NONE or unknown gives the identity.
 - any sample with numeric `latitude` and `longitude` (K10's rapid::ext::arc::GpsSample) ->
   foxglove.LocationFix (`altitude` if present; covariance unknown).
 - ImageSensorSample -> foxglove.CompressedImage (image/jpeg, png, webp, avif) or
@@ -96,11 +97,27 @@ def _mul(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float, floa
             aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz)
 
 
+def is_rotation(m: list[float], tol: float = 1e-3) -> bool:
+    """A row-major 3x3 that is orthonormal with determinant +1 (float32 rounding allowed)."""
+    if len(m) < 9 or not all(math.isfinite(v) for v in m[:9]):
+        return False
+    rows = [m[0:3], m[3:6], m[6:9]]
+    for i in range(3):
+        for j in range(3):
+            dot = sum(rows[i][k] * rows[j][k] for k in range(3))
+            if abs(dot - (1.0 if i == j else 0.0)) > tol:
+                return False
+    (a, b, c), (d, e, f), (g, h, i2) = rows
+    return abs(a * (e * i2 - f * h) - b * (d * i2 - f * g) + c * (d * h - e * g) - 1.0) <= tol
+
+
 def rotation(encoding: str, rot: list[float]) -> tuple[float, float, float, float]:
     """A RAPID Transform3D.rot as a unit quaternion (x, y, z, w), per RotationEncoding."""
     if encoding == "RAPID_ROT_QUAT":
         q = tuple(rot[:4])
     elif encoding == "RAPID_ROT_M33":
+        if not is_rotation(rot):
+            return IDENTITY  # (a zero matrix: no pose filled in)
         q = quat_from_m33(rot)
     elif encoding in ("RAPID_ROT_XYZ", "RAPID_ROT_ZYX", "RAPID_ROT_ZYZ"):
         axes = encoding.rsplit("_", 1)[1]  # intrinsic rotations in this order
@@ -118,6 +135,13 @@ def rotation(encoding: str, rot: list[float]) -> tuple[float, float, float, floa
 
 def _suffix(topic: str) -> str:
     return topic.partition("-")[2]
+
+
+def child_frame(partition: str, topic: str) -> str:
+    """The frame a PositionSample places: the asset (its partition), or PARTITION/SUFFIX for a
+    suffixed topic (Robonaut 2's rapid_position_sample-leftArm: Robonaut2/leftArm)."""
+    suffix = _suffix(topic)
+    return f"{partition}/{suffix}" if suffix else partition
 
 
 class Deriver:
@@ -173,7 +197,7 @@ class Deriver:
         x, y, z, w = rotation(encoding, [_f(v) for v in s.pose.rot])
         q = {"x": x, "y": y, "z": z, "w": w}
         return [Derived(derived_topic(partition, topic, "transform"), "foxglove.FrameTransform",
-                        {"timestamp": t, "parent_frame_id": frame, "child_frame_id": partition,
+                        {"timestamp": t, "parent_frame_id": frame, "child_frame_id": child_frame(partition, topic),
                          "translation": xyz, "rotation": q}, topic),
                 Derived(derived_topic(partition, topic, "pose"), "foxglove.PoseInFrame",
                         {"timestamp": t, "frame_id": frame, "pose": {"position": dict(xyz), "orientation": dict(q)}},

@@ -3,7 +3,8 @@
 own libraries (tests/node/read_mcap.js: @mcap/core + @mcap/support, zstd as written): every
 RAPID message decoded, every derived message valid against the JSON Schema @foxglove/schemas
 publishes, and each derived message's values equal to its RAPID sample's as Foxglove's omgidl
-reader decodes it (not rapidgen's). The derivations with no K10 sample (joints, rotation
+reader decodes it (not rapidgen's). Robonaut 2 likewise (domain 95): joint states named by its
+JointConfig, hand poses in RAPID_ROT_M33. The derivations with no K10 sample (joints, rotation
 encodings, raw images, hostile samples) are checked on built samples; rapidgen's copy of
 Foxglove's schemas equals the npm package's."""
 from __future__ import annotations
@@ -163,6 +164,9 @@ def test_joint_states_need_a_joint_config_and_take_its_names():
     ("RAPID_ROT_NONE", [9.0] * 9, (0, 0, 0, 1)),
     ("RAPID_ROT_QUAT", [0, 0, 2, 0, 0, 0, 0, 0, 0], (0, 0, 1, 0)),  # normalised
     ("RAPID_ROT_M33", [0, -1, 0, 1, 0, 0, 0, 0, 1, ], (0, 0, math.sqrt(0.5), math.sqrt(0.5))),  # 90 deg about z
+    ("RAPID_ROT_M33", [-1, 0, 0, 0, -1, 0, 0, 0, 1], (0, 0, 1, 0)),  # 180 deg about z
+    ("RAPID_ROT_M33", [0.0] * 9, (0, 0, 0, 1)),  # not a rotation (nothing filled in): identity
+    ("RAPID_ROT_M33", [2, 0, 0, 0, 2, 0, 0, 0, 2], (0, 0, 0, 1)),  # a scale, not a rotation
     ("RAPID_ROT_XYZ", [math.pi / 2, 0, 0, 0, 0, 0, 0, 0, 0], (math.sqrt(0.5), 0, 0, math.sqrt(0.5))),
     ("RAPID_ROT_ZYX", [math.pi, 0, 0, 0, 0, 0, 0, 0, 0], (0, 0, 1, 0)),  # the first angle about z
     ("RAPID_ROT_QUAT", [0, 0, 0, 0, 0, 0, 0, 0, 0], (0, 0, 0, 1)),  # no rotation at all: identity
@@ -223,10 +227,10 @@ def test_built_messages_validate_under_node(tmp_path):
     assert run_json("validate.js", str(bad))["valid"] == 0
 
 
-def test_the_k10_layout_names_the_recorded_channels(recording):
-    """docs/foxglove/k10-layout.json opens on channels a K10 recording has (and its 3D panel
-    follows the frame the transforms name)."""
-    layout = json.loads((ROOT / "docs" / "foxglove" / "k10-layout.json").read_text(encoding="utf-8"))
+def _layout_check(name: str, derived: dict, frames: set[str]) -> None:
+    """docs/foxglove/NAME opens on channels the recording has, its panels all placed, its 3D
+    panel following a frame the transforms name."""
+    layout = json.loads((ROOT / "docs" / "foxglove" / name).read_text(encoding="utf-8"))
     names: list[str] = []
 
     def walk(v):
@@ -239,10 +243,9 @@ def test_the_k10_layout_names_the_recorded_channels(recording):
         elif isinstance(v, str) and v.startswith("/"):
             names.append(v.split(".", 1)[0])
     walk(layout["configById"])
-    derived = recording["read"]["derived"]
     assert names and set(names) <= set(derived), set(names) - set(derived)
-    assert layout["configById"]["3D!rapidk10"]["followTf"] == \
-        derived["/K10Red/rapid_position_sample/transform"][0]["message"]["child_frame_id"]
+    [follow] = [c["followTf"] for k, c in layout["configById"].items() if k.startswith("3D!")]
+    assert follow in frames, (follow, frames)
     panels = set()
 
     def leaves(node):
@@ -253,3 +256,87 @@ def test_the_k10_layout_names_the_recorded_channels(recording):
             leaves(node["second"])
     leaves(layout["layout"])
     assert panels == set(layout["configById"])
+
+
+def _frames(derived: dict) -> set[str]:
+    return {d["message"][k] for ds in derived.values() for d in ds if d["schema"] == "foxglove.FrameTransform"
+            for k in ("parent_frame_id", "child_frame_id")}
+
+
+def test_the_k10_layout_names_the_recorded_channels(recording):
+    derived = recording["read"]["derived"]
+    _layout_check("k10-layout.json", derived, _frames(derived))
+
+
+R2_DOMAIN = 95
+
+
+@pytest.fixture(scope="module")
+def r2_recording(tmp_path_factory):
+    """Robonaut 2's simulated bridge (joints at 50 Hz named by its JointConfig, two hand poses
+    in RAPID_ROT_M33) recorded with --foxglove for a few seconds, read under Node."""
+    pytest.importorskip("cyclonedds")
+    from tests.runtime.live import SEEDS, python_dir
+    out = tmp_path_factory.mktemp("foxglove-r2") / "r2.mcap"
+    r2 = str(ROOT / "specs" / "assets" / "robonaut2.yaml")
+    rec = Proc([*RAPIDGEN, "record", "--asset", r2, "--domain", str(R2_DOMAIN), "-o", str(out), "--foxglove",
+                "--quiet"])
+    bridge = None
+    try:
+        rec.wait_for("rapidgen record: recording domain")
+        bridge = BridgeProcess(python_dir("robonaut2"), SEEDS["robonaut2"], R2_DOMAIN)
+        bridge.wait_ready()
+        time.sleep(3)
+        bridge.stop()
+        bridge = None
+        time.sleep(0.5)
+        code = rec.end()
+    finally:
+        if bridge is not None:
+            bridge.stop()
+        if rec.proc.poll() is None:
+            rec.proc.kill()
+            rec.proc.wait()
+    assert code == 0, "".join(rec.err)[-3000:]
+    return run_json("read_mcap.js", "--all", str(out))
+
+
+def _m33(q: dict) -> list[float]:
+    """The row-major rotation matrix of a unit quaternion (to compare with RAPID_ROT_M33)."""
+    x, y, z, w = q["x"], q["y"], q["z"], q["w"]
+    return [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),
+            2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+            2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]
+
+
+def test_robonaut2_joints_named_by_its_joint_config_and_m33_hand_poses(r2_recording):
+    got = r2_recording
+    assert got["failed"] == [] and got["invalid"] == [], (got["failed"][:3], got["invalid"][:3])
+    [config] = got["messages"]["rapid_joint_config"]
+    names = [d["frameName"] for d in config["jointDefinitions"]]
+    assert len(names) == 18 and names[0] == "LeftArm/Joint0"
+    pairs = _pairs(got, "/Robonaut2/rapid_joint_sample/joints", "rapid_joint_sample")
+    assert len(pairs) >= 20
+    for r, d in pairs:
+        assert d["timestamp"] == _stamp(r["hdr"])
+        assert [j["name"] for j in d["joints"]] == names
+        assert [j["position"] for j in d["joints"]] == r["anglePos"]
+        for key, column in (("velocity", "angleVel"), ("effort", "torque")):  # given for every joint, or not at all
+            if len(r[column]) == len(names):
+                assert [j[key] for j in d["joints"]] == r[column]
+            else:
+                assert not any(key in j for j in d["joints"])
+    for arm in ("leftArm", "rightArm"):
+        poses = _pairs(got, f"/Robonaut2/rapid_position_sample-{arm}/transform", f"rapid_position_sample-{arm}")
+        for r, d in poses:
+            assert (d["parent_frame_id"], d["child_frame_id"]) == ("R2OriginFrame", f"Robonaut2/{arm}")
+            assert [d["translation"][k] for k in "xyz"] == r["pose"]["xyz"]
+            if any(r["pose"]["rot"]):
+                assert _m33(d["rotation"]) == pytest.approx(r["pose"]["rot"], abs=1e-5)  # float32 matrix
+            else:  # the simulator fills no matrix: not a rotation, the identity
+                assert d["rotation"] == {"x": 0, "y": 0, "z": 0, "w": 1}
+
+
+def test_the_robonaut2_layout_names_the_recorded_channels(r2_recording):
+    derived = r2_recording["derived"]
+    _layout_check("robonaut2-layout.json", derived, _frames(derived))
