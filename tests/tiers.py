@@ -48,6 +48,8 @@ NEEDS: dict[str, frozenset[str]] = {k: frozenset(v.split()) for k, v in {
     "tests/cpp/test_interop.py": "compiler dds",
     "tests/diff/test_live.py": "dds",
     "tests/diff/test_docs.py": "dds",
+    "tests/monitor/test_foxglove_live.py": "dds",
+    "tests/monitor/test_state.py": "",
     "tests/negative/test_corpus.py": "slow",
     "tests/python_backend/test_namer.py": "",
     "tests/python_backend/test_determinism.py": "",
