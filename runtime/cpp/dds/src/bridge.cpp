@@ -10,6 +10,7 @@
 
 #include "rapid_runtime/dds/breaks.hpp"
 #include "rapid_runtime/dds/security.hpp"
+#include "rapid_runtime/dds/telemetry.hpp"
 
 namespace rapid_runtime {
 namespace dds {
@@ -48,6 +49,7 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
         write = [prefix](const std::string& text) { std::cerr << prefix << text << std::endl; };
     }
     log_ = std::make_unique<Log>(write);
+    stale_ = std::make_unique<StaleWatch>(tables);
     const int domain = options.domain < 0 ? tables.domain : options.domain;
     if (!options.journal.empty())
         journal_ = Journal::open(options.journal, tables.name, domain, options.command_window,
@@ -180,6 +182,7 @@ void Bridge::stop() {
     if (stopped_) return;
     stopped_ = true;
     request_stop();
+    stale_->stop();  // (the stale-telemetry watcher: it writes through the node)
     breaks_->stop();  // (serial-drift's republications)
     {
         std::lock_guard<std::mutex> lock(reading_mutex_);  // (a callback under way ends first)

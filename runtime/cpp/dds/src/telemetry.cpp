@@ -1,5 +1,7 @@
 #include "rapid_runtime/dds/telemetry.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <rapid_runtime/images.hpp>
@@ -94,6 +96,56 @@ std::array<float, 9> rotation_about_z(const std::string& encoding, double headin
     return r;
 }
 
+// ---- StaleWatch ---------------------------------------------------------------------------------
+
+StaleWatch::StaleWatch(const Tables& tables) {
+    for (const auto& e : tables.telemetry)
+        if (auto bound = stale_after_ms(e)) freshness_.watch(stale_name(e), *bound);
+}
+
+StaleWatch::~StaleWatch() { stop(); }
+
+void StaleWatch::remember(std::size_t agent, const std::map<std::string, Value>& values) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    agents_[agent] = values;
+}
+
+std::map<std::string, Value> StaleWatch::last(std::size_t agent) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto found = agents_.find(agent);
+    return found == agents_.end() ? std::map<std::string, Value>{} : found->second;
+}
+
+void StaleWatch::start(Bridge& bridge) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (started_ || stopping_ || freshness_.empty()) return;
+    started_ = true;
+    double tick = std::min(0.5, std::max(0.05, freshness_.smallest_bound_ms() / 4000.0));
+    thread_ = std::thread([this, &bridge, tick] { run(bridge, tick); });
+}
+
+void StaleWatch::stop() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
+}
+
+void StaleWatch::run(Bridge& bridge, double tick) {
+    for (;;) {
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            if (wake_.wait_for(lock, std::chrono::duration<double>(tick), [this] { return stopping_; })) return;
+        }
+        for (const auto& [name, age] : freshness_.check())
+            Telemetry(bridge).announce(silent_text(name, age), ::rapid::MessageLevel::MSG_WARN);
+    }
+}
+
+// ---- Telemetry ----------------------------------------------------------------------------------
+
 Telemetry::Telemetry(Bridge& bridge)
     : b_(bridge), t_(bridge.tables()), breaks_(bridge.breaks().any() ? &bridge.breaks() : nullptr) {}
 
@@ -141,26 +193,84 @@ const std::string& config_topic(const TelemetrySpec& e) {
 }  // namespace
 
 template <class T>
-void Telemetry::send(const std::string& topic, T& sample, const TelemetrySpec& e, const std::string& qos) {
-    if (breaks_ == nullptr || !breaks_->samples_broken()) return b_.publish(topic, sample, config_topic(e), qos);
-    // Bridge::publish's header, then broken
+void Telemetry::send(const std::string& topic, T& sample, const TelemetrySpec& e, const std::string& qos,
+                     std::optional<std::int64_t> stamp) {
+    if ((breaks_ == nullptr || !breaks_->samples_broken()) && !stamp)
+        return b_.publish(topic, sample, config_topic(e), qos);
+    // Bridge::publish's header, stamped with the source's time, then broken
     sample.hdr = header(t_.name, t_.name, b_.serial_of(config_topic(e)));
-    breaks_->sample_header(sample.hdr);
+    if (stamp) sample.hdr.timeStamp = *stamp;
+    if (breaks_ != nullptr && breaks_->samples_broken()) breaks_->sample_header(sample.hdr);
     b_.node().writer<T>(topic, qos)->write(&sample);
 }
 
-void Telemetry::agent_state(const std::map<std::string, Value>& given, std::size_t index) {
-    const auto& e = entry("agent", index);
+std::optional<std::int64_t> Telemetry::current(const TelemetrySpec& e, std::optional<std::int64_t> stamp) {
+    const std::int64_t when = stamp ? *stamp : now_us();
+    const std::string name = stale_name(e);
+    StaleWatch& watch = b_.stale();
+    if (!watch.freshness().watched(name)) return when;
+    auto offer = watch.freshness().offer(name, when);
+    watch.start(b_);
+    if (offer.back) announce(back_text(name), ::rapid::MessageLevel::MSG_INFO);
+    if (!offer.ok) return std::nullopt;
+    return when;
+}
+
+namespace {
+bool declares_stale_key(const TelemetrySpec& e) {
+    for (const auto& k : e.values)
+        if (k.name == STALE_KEY && k.type == DataType::String) return true;
+    return false;
+}
+}  // namespace
+
+void Telemetry::announce(const std::string& text, ::rapid::MessageLevel level) {
+    b_.log(text);
+    try {
+        if (const TelemetrySpec* texts = t_.telemetry_of("text")) {
+            const auto& c = texts->categories;
+            std::string category = std::find(c.begin(), c.end(), "system") != c.end() ? "system"
+                                   : c.empty()                                        ? ""
+                                                                                      : c.front();
+            this->text(text, category, level);
+        }
+        const std::int64_t now = now_us();
+        for (std::size_t i = 0; i < t_.count_of("agent"); ++i) {
+            const auto& e = entry("agent", i);
+            if (declares_stale_key(e)) write_agent(e, b_.stale().last(i), now);
+        }
+    } catch (const std::exception& x) {  // a writer gone at shutdown: the log line is what is left
+        b_.log(std::string("stale telemetry not published: ") + x.what());
+    }
+}
+
+void Telemetry::write_agent(const TelemetrySpec& e, std::map<std::string, Value> given, std::int64_t stamp) {
+    if (declares_stale_key(e)) {
+        std::string names;
+        for (const auto& n : b_.stale().freshness().silent_names()) names += (names.empty() ? "" : ", ") + n;
+        given[STALE_KEY] = names;
+    }
     std::string qos;
     const auto& name = topic(e, "state", qos);
     ::rapid::AgentState s;
     s.values = values(e, given);
-    send(name, s, e, qos);
+    send(name, s, e, qos, stamp);
 }
 
-void Telemetry::position(const std::array<double, 3>& xyz, const std::array<float, 9>& rot,
+bool Telemetry::agent_state(const std::map<std::string, Value>& given, std::size_t index,
+                            std::optional<std::int64_t> stamp) {
+    const auto& e = entry("agent", index);
+    auto when = current(e, stamp);
+    if (!when) return false;
+    b_.stale().remember(index, given);
+    write_agent(e, given, *when);
+    return true;
+}
+
+bool Telemetry::position(const std::array<double, 3>& xyz, const std::array<float, 9>& rot,
                          const std::array<double, 3>& velocity_xyz, const std::array<float, 9>& velocity_rot,
-                         const std::map<std::string, Value>& given, std::size_t index) {
+                         const std::map<std::string, Value>& given, std::size_t index,
+                         std::optional<std::int64_t> stamp) {
     const auto& e = entry("position", index);
     std::string qos;
     const auto& name = topic(e, "sample", qos);
@@ -170,11 +280,14 @@ void Telemetry::position(const std::array<double, 3>& xyz, const std::array<floa
     s.velocity.xyz = velocity_xyz;
     s.velocity.rot = velocity_rot;
     s.values = values(e, given);
-    send(name, s, e, qos);
+    auto when = current(e, stamp);
+    if (!when) return false;
+    send(name, s, e, qos, *when);
+    return true;
 }
 
-void Telemetry::joints(const std::vector<double>& positions, const std::vector<double>& velocities,
-                       const std::vector<double>& torques, std::size_t index) {
+bool Telemetry::joints(const std::vector<double>& positions, const std::vector<double>& velocities,
+                       const std::vector<double>& torques, std::size_t index, std::optional<std::int64_t> stamp) {
     const auto& e = entry("joint", index);
     std::size_t n = e.joints.size();
     if (positions.size() != n || (!velocities.empty() && velocities.size() != n) ||
@@ -187,7 +300,10 @@ void Telemetry::joints(const std::vector<double>& positions, const std::vector<d
     s.anglePos.assign(positions.begin(), positions.end());
     s.angleVel.assign(velocities.begin(), velocities.end());
     s.torque.assign(torques.begin(), torques.end());
-    send(name, s, e, qos);
+    auto when = current(e, stamp);
+    if (!when) return false;
+    send(name, s, e, qos, *when);
+    return true;
 }
 
 void Telemetry::text(const std::string& message, const std::string& category, ::rapid::MessageLevel level,
@@ -213,23 +329,27 @@ void Telemetry::text(const std::string& message, const std::string& category, ::
     return m;
 }
 
-void Telemetry::image(const std::vector<std::uint8_t>& data, std::size_t index, bool state) {
+bool Telemetry::image(const std::vector<std::uint8_t>& data, std::size_t index, bool state,
+                      std::optional<std::int64_t> stamp) {
     const auto& e = entry("image", index);
     ImageInfo info{e.mime, e.width, e.height};
     describe_image(data, info);
+    auto when = current(e, stamp);
+    if (!when) return false;
     std::string qos;
     if (state && e.topic("state") != nullptr) {
         const auto& name = topic(e, "state", qos);
         ::rapid::ImageSensorState s;
         s.meta = meta(e, info.width, info.height);
-        send(name, s, e, qos);
+        send(name, s, e, qos, *when);
     }
     const auto& name = topic(e, "sample", qos);
     ::rapid::ImageSensorSample s;
     s.meta = meta(e, info.width, info.height);
     s.mimeType = info.mime;
     s.data = data;
-    send(name, s, e, qos);
+    send(name, s, e, qos, *when);
+    return true;
 }
 
 void Telemetry::image_state(std::size_t index) {

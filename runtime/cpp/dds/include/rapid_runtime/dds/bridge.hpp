@@ -57,6 +57,7 @@ struct BridgeOptions {
 };
 
 class Breaks;
+class StaleWatch;
 
 // What a test build's --break does to one config's publication (breaks.hpp); a plain
 // bridge publishes every config as it is.
@@ -103,6 +104,8 @@ public:
     std::int32_t serial_of(const std::string& config_topic) const;
     // The test build's breaks (breaks.hpp; none in a plain bridge), for the telemetry helpers.
     const Breaks& breaks() const { return *breaks_; }
+    // Stale telemetry's watch (telemetry.hpp), shared by the telemetry helpers; stop() joins it.
+    StaleWatch& stale() { return *stale_; }
     void start();  // publishes the states, opens the command path; prints nothing
     // idempotent: no command read any more, the pending and running ones answered (running
     // handlers told to stop and waited for up to shutdown_timeout_ms), the last acks
@@ -160,6 +163,7 @@ private:
     std::unique_ptr<Breaks> breaks_;  // (before the manager: it may hold the manager's tables)
     bool breaking_configs_ = false;  // (a test build's config breaks)
     std::unique_ptr<Log> log_;
+    std::unique_ptr<StaleWatch> stale_;
     JournalRecovered recovered_;  // what the journal held after a crash (answered at start())
     std::unique_ptr<Journal> journal_;  // before the manager, which writes to it
     Serials serials_;
