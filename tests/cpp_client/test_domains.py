@@ -36,6 +36,7 @@ def test_the_suites_fast_dds_processes_on_the_host_use_domains_below_102():
     from tests.cpp import test_fastdds_limits as limits, test_interop as cpp_interop
     from tests.cpp_client import test_broken as broken, test_fuzz as fuzz, test_interop as client
     from tests.cpp_runtime import test_cpp_runtime as runtime, test_handler_faults as faults, test_restart as restart
+    from tests.cpp_runtime import test_stale_telemetry as stale
     from tests.field import test_restart as field_restart
     from tests.rust import test_interop_cpp as rust_cpp
     from tests.streams import test_setpoint_stream as streams
@@ -44,7 +45,7 @@ def test_the_suites_fast_dds_processes_on_the_host_use_domains_below_102():
             restart.CROSS_DOMAIN, restart.CROSS_DOMAIN + 1, field_restart.CPP_RESEND_DOMAIN,
             cpp_interop.DOMAIN_CPP_TO_PY, cpp_interop.DOMAIN_PY_TO_CPP, rust_cpp.DOMAIN_RUST_TO_CPP,
             rust_cpp.DOMAIN_CPP_TO_RUST, streams.DOMAIN, streams.RIG_DOMAIN, streams.SEED_DOMAIN, *faults.DOMAINS,
-            27}  # (27: the bridge that refuses --break and rapid_cmd with no asset)
+            stale.DOMAIN, 27}  # (27: the bridge that refuses --break and rapid_cmd with no asset)
     assert sorted(d for d in used if d >= 102) == []
 
 
