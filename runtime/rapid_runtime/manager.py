@@ -429,7 +429,9 @@ class CommandManager:
         self._watch.notify_all()
 
     def _watch_loop(self) -> None:
-        """The one watchdog thread: sleeps until the earliest stop deadline, answers what is overdue."""
+        """The one watchdog thread: sleeps until the earliest stop deadline, answers what is overdue;
+        it ends when no handler is being stopped (the next _tell_stop makes another), so a
+        manager that is dropped leaves no thread behind."""
         while True:
             with self.lock:
                 while True:
@@ -438,7 +440,10 @@ class CommandManager:
                     if due:
                         break
                     nearest = min((r.stop_by for r in self._stopping if r.stop_by is not None), default=None)
-                    self._watch.wait(None if nearest is None else max(0.001, nearest - now))
+                    if nearest is None:
+                        self._watchdog = None  # (under the lock _tell_stop takes: it starts a new one)
+                        return
+                    self._watch.wait(max(0.001, nearest - now))
             with self.batch():
                 for run in sorted(due, key=lambda r: r.stop_by or 0.0):
                     self._overdue(run)
