@@ -176,7 +176,9 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
         if not acks:
             print(f"  no ack within {allow(args.timeout, args.rtt):g} s", flush=True)
             return 1
-        final = acks[-1]
+        # the first COMPLETED decides: acks taken in the same batch after it (a stranger's, on
+        # the same cmdId) must not turn an answered command into a failure
+        final = next((a for a in acks if a[0] == COMPLETED), acks[-1])
         if action == "DELETE" and final[0] == COMPLETED:
             print(f"target {visible(args.target)}:", flush=True)
             _follow(commander, args.target, allow(3.0, args.rtt))
