@@ -5,6 +5,7 @@ or (--strict) a diagnosis fired; 2 usage; Ctrl-C in the live view exits 0."""
 from __future__ import annotations
 
 import os
+import signal
 import sys
 import tempfile
 import time
@@ -99,8 +100,17 @@ def _overview(w, declared, args) -> int:
         snap = snapshot(w, declared)
         sys.stdout.write(render.as_json(snap) if args.json else render.text(snap))
         return 1 if args.strict and snap.findings else 0
-    while True:  # until Ctrl-C (main's KeyboardInterrupt handling is bypassed: exit 0 here)
-        w.run_for(1.0)
-        sys.stdout.write(render.live_frame(snapshot(w, declared)))
+    # Ctrl-C works even when the shell started us with SIGINT ignored, and ends the process at
+    # once: the DDS objects are not torn down one by one (with other participants' traffic
+    # arriving, that teardown could keep a terminal waiting).
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        while True:  # until Ctrl-C
+            w.run_for(1.0)
+            sys.stdout.write(render.live_frame(snapshot(w, declared)))
+            sys.stdout.flush()
+            time.sleep(0)
+    except KeyboardInterrupt:
         sys.stdout.flush()
-        time.sleep(0)
+        sys.stderr.flush()
+        os._exit(0)
