@@ -1,0 +1,183 @@
+"""The protocol specification's cases (runtime/spec/cases/*.yaml) read, checked and
+written out as the plain JSON every runtime's driver replays (runtime/spec/README.md).
+
+    cases = load_cases()                       # every case, defaults filled in, args typed
+    python -m rapidgen.protocol_cases json OUT.json
+
+Arguments are typed here, from the seed's generated tables (the asset_tables module the
+Python runtime reads), so a driver never guesses a RAPID type. Errors are located
+(file:line:col) and end the load: a case that is not what it says must not be skipped.
+"""
+from __future__ import annotations
+
+import functools
+import importlib.util
+import json
+import os
+import sys
+from pathlib import Path
+
+import jsonschema
+
+from rapidgen.asset.yamlread import load_yaml
+from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+
+ROOT = Path(__file__).resolve().parents[1]
+SPEC = ROOT / "runtime" / "spec"
+CASES = SPEC / "cases"
+# seed -> (generated package folder, package): the tables each driver builds for that name
+SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot")}
+DEFAULT_SOURCE = "RapidWorkbench"
+OFFLINE_ONLY = {"release", "idle", "shutdown", "refuse", "calls", "retired", "log", "pending"}
+
+
+class CaseError(Exception):
+    """A case file that is not a valid case (the message is located)."""
+
+
+@functools.lru_cache(maxsize=None)
+def _schema_validator() -> jsonschema.Draft202012Validator:
+    return jsonschema.Draft202012Validator(json.loads((SPEC / "case.schema.json").read_text()))
+
+
+@functools.lru_cache(maxsize=None)
+def seed_tables(seed: str):
+    """The seed's generated tables as the Python runtime reads them (rapid_runtime.tables)."""
+    from rapid_runtime.tables import Tables
+    folder, package = SEEDS[seed]
+    path = ROOT / "generated" / folder / "python" / package / "asset_tables.py"
+    spec = importlib.util.spec_from_file_location(f"_spec_tables_{package}", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return Tables(module)
+
+
+def _params(seed: str, subsystem: str, name: str) -> list[str]:
+    """The parameter types of subsystem/name on the seed; [] for a command it does not have
+    (a case that sends an unknown command gives its arguments' types itself)."""
+    entry = seed_tables(seed).command(subsystem, name)
+    return [p.type for p in entry.params] if entry is not None else []
+
+
+def _typed(args: list, types: list[str], where: SourceLoc) -> list[dict]:
+    out = []
+    for i, a in enumerate(args):
+        if isinstance(a, dict):
+            out.append({"type": a["type"], "value": a["value"]})
+        elif i < len(types):
+            value = float(a) if types[i] in ("RAPID_FLOAT", "RAPID_DOUBLE") and isinstance(a, int) and \
+                not isinstance(a, bool) else a
+            out.append({"type": types[i], "value": value})
+        else:
+            raise CaseError(f"{where}: argument {i + 1} has no declared parameter to type it: "
+                            f"write it as {{type: RAPID_..., value: ...}}")
+    return out
+
+
+def _ack(text: str) -> dict:
+    head, sep, message = text.partition(": ")
+    status, _, completion = head.partition(" ")
+    prefix = bool(sep) and message.endswith("*")
+    return {"status": status, "completion": completion or None,
+            "message": (message[:-1] if prefix else message) if sep else None, "prefix": prefix}
+
+
+def _handler(h) -> dict:
+    if isinstance(h, str):
+        return {"kind": h, "text": "", "texts": []}
+    (kind, value), = h.items()
+    return {"kind": kind, "text": value if isinstance(value, str) else "",
+            "texts": value if isinstance(value, list) else []}
+
+
+def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
+    name = seed_tables(seed).name
+    out: list[dict] = []
+    for i, step in enumerate(case["steps"]):
+        (op, body), = step.items()
+        where = doc.loc((*path, "steps", i))
+        if op in ("send", "refuse"):
+            sub, _, cname = body.get("cmd", "Admin/noOp").partition("/")
+            s = {"op": op, "id": body["id"], "src": body.get("src", source), "subsystem": sub, "name": cname,
+                 "asset": body.get("asset", name)}
+            if op == "send":
+                s.update(args=_typed(body.get("args", []), _params(seed, sub, cname), where),
+                         action=body.get("action", "QUEUE_BYPASS"), target=body.get("target", ""),
+                         handler=_handler(body.get("handler", "ok")))
+            else:
+                s.update(args=[], action="QUEUE_BYPASS", target="", why=body.get("why", "bridge busy"))
+            out.append(s)
+        elif op == "acks":
+            for cid, acks in body.items():
+                out.append({"op": "acks", "id": cid, "acks": [_ack(a) for a in acks]})
+        elif op == "release":
+            out.append({"op": op, "id": body})
+        elif op == "shutdown":
+            out.append({"op": op, "timeout_ms": body.get("timeout_ms", -1)})
+        elif op == "idle":
+            out.append({"op": op})
+        elif op == "queue":
+            out.append({"op": op, **{k: body[k] for k in ("code", "pending", "active") if k in body}})
+        elif op == "control":
+            out.append({"op": op, **{k: body[k] for k in ("controller", "requestors") if k in body}})
+        elif op == "calls":
+            out.append({"op": op, "calls": [{"id": c[0], "values": c[1]} for c in body]})
+        elif op in ("retired", "pending"):
+            out.append({"op": op, "ids": body})
+        elif op == "log":
+            out.append({"op": op, "text": body})
+    return out
+
+
+def load_file(path: Path) -> list[dict]:
+    sink = DiagnosticSink()
+    shown = os.path.relpath(path, ROOT) if path.is_relative_to(ROOT) else str(path)
+    doc = load_yaml(str(path), shown, sink)
+    if doc is None or sink.has_errors:
+        raise CaseError("\n".join(str(d) for d in sink.errors()) or f"{shown}: cannot be read")
+    errors = sorted(_schema_validator().iter_errors(doc.data), key=lambda e: list(e.absolute_path))
+    if errors:
+        e = errors[0]
+        raise CaseError(f"{doc.loc(tuple(e.absolute_path))}: {e.message[:300]}")
+    data = doc.data
+    cases = []
+    names: set[str] = set()
+    for n, case in enumerate(data["cases"]):
+        path_ = ("cases", n)
+        if case["name"] in names:
+            raise CaseError(f"{doc.loc((*path_, 'name'))}: a second case named {case['name']!r} in this file")
+        names.add(case["name"])
+        seed = case.get("asset", data.get("asset", "k10"))
+        source = case.get("source", data.get("source", DEFAULT_SOURCE))
+        steps = _steps(case, seed, source, doc, path_)
+        live = all(s["op"] not in OFFLINE_ONLY and (s["op"] != "send" or s["handler"]["kind"] == "ok")
+                   for s in steps)
+        cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
+                      "rules": case.get("rules", []), "asset": seed, "options": case.get("options", {}),
+                      "live": live, "steps": steps})
+    return cases
+
+
+def load_cases(folder: Path = CASES) -> list[dict]:
+    return [c for f in sorted(folder.glob("*.yaml")) for c in load_file(f)]
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) != 2 or argv[0] != "json":
+        print("usage: python -m rapidgen.protocol_cases json OUT.json", file=sys.stderr)
+        return 2
+    try:
+        cases = load_cases()
+    except CaseError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 1
+    tmp = Path(argv[1] + ".tmp")
+    tmp.write_text(json.dumps({"cases": cases}, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+    tmp.replace(argv[1])
+    print(f"{len(cases)} cases -> {argv[1]}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

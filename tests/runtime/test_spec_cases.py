@@ -1,0 +1,218 @@
+"""The protocol specification (runtime/spec/cases/*.yaml) replayed by the Python runtime,
+without DDS: each case drives a CommandManager on the seed's generated tables through a
+collecting outbox and scripted handlers (runtime/spec/README.md). The C++ runtime replays
+the same cases (tests/cpp_runtime/test_spec_cases.cpp)."""
+from __future__ import annotations
+
+import math
+import threading
+import time
+
+import pytest
+
+from rapid_runtime.command import Cmd
+from rapid_runtime.handlers import CommandFailed
+from rapid_runtime.manager import CommandManager
+from rapidgen.protocol_cases import load_cases, seed_tables
+
+WAIT = 10.0
+NOT_IMPLEMENTED = "not implemented"
+CASES = load_cases()
+
+
+class Outbox:
+    """What the manager writes, as a ground tool would see it (plus the log and retirements)."""
+
+    def __init__(self) -> None:
+        self.cond = threading.Condition()
+        self.acks: dict[str, list[tuple[str, str, str]]] = {}
+        self.queue: tuple[int, list[str], list[str]] | None = None
+        self.access: tuple[str, list[str]] | None = None
+        self.retired: list[str] = []
+        self.logs: list[str] = []
+
+    def _changed(self) -> None:
+        self.cond.notify_all()
+
+    def ack(self, cmd, status, completed, message):
+        with self.cond:
+            self.acks.setdefault(cmd.cmd_id, []).append(
+                (status.removeprefix("ACK_"), completed.removeprefix("ACK_COMPLETED_"), message))
+            self._changed()
+
+    def queue_state(self, code, pending, active, completed):
+        with self.cond:
+            self.queue = (code, [c.cmd_id for c, *_ in pending], [c.cmd_id for c, *_ in active])
+            self._changed()
+
+    def access_state(self, controller, requestors):
+        with self.cond:
+            self.access = (controller, list(requestors))
+            self._changed()
+
+    def retire(self, cmd):
+        with self.cond:
+            self.retired.append(cmd.cmd_id)
+            self._changed()
+
+    def log(self, text):
+        with self.cond:
+            self.logs.append(text)
+            self._changed()
+
+
+class Scripted:
+    """Every handler method: behaves as the case's `handler:` for the cmdId says."""
+
+    def __init__(self, cond: threading.Condition) -> None:
+        self.cond = cond  # the outbox's: a call wakes the expectations too
+        self.behaviour: dict[str, dict] = {}
+        self.released: dict[str, threading.Event] = {}
+        self.calls: list[tuple[str, list]] = []
+        self.lock = threading.Lock()
+
+    def release_of(self, cmd_id: str) -> threading.Event:
+        with self.lock:
+            return self.released.setdefault(cmd_id, threading.Event())
+
+    def __getattr__(self, method: str):
+        if method.startswith("__"):
+            raise AttributeError(method)
+        return self._run
+
+    def _run(self, ctx, **kwargs):
+        cid = ctx.cmd.cmd_id
+        with self.cond:
+            self.calls.append((cid, list(kwargs.values())))
+            self.cond.notify_all()
+        h = self.behaviour.get(cid, {"kind": "ok", "text": "", "texts": []})
+        kind, released = h["kind"], self.release_of(cid)
+        if kind == "ok":
+            return h["text"]
+        if kind == "fail":
+            raise CommandFailed(h["text"])
+        if kind == "error":
+            raise RuntimeError(h["text"])
+        if kind == "not_implemented":
+            raise CommandFailed(NOT_IMPLEMENTED)
+        if kind == "progress":
+            for text in h["texts"]:
+                ctx.progress(text)
+            return ""
+        if kind == "block":
+            while not released.is_set():
+                if not ctx.sleep(0.005):
+                    return None  # told to stop: returns (CANCELED, or REQUEUED when preempted)
+            return "released"
+        if kind == "stubborn":
+            released.wait(60)
+            return "released"
+        raise AssertionError(f"unknown handler behaviour {kind}")
+
+
+def _same(seen, want) -> bool:
+    if isinstance(want, float) or isinstance(seen, float):
+        try:
+            return math.isclose(float(seen), float(want), rel_tol=1e-6, abs_tol=1e-9)
+        except (TypeError, ValueError):
+            return False
+    if isinstance(want, list):
+        return isinstance(seen, (list, tuple)) and len(seen) == len(want) and all(map(_same, seen, want))
+    return seen == want
+
+
+def _ack_matches(seen: tuple[str, str, str], want: dict) -> bool:
+    status, completion, message = seen
+    if status != want["status"] or (want["completion"] is not None and completion != want["completion"]):
+        return False
+    if want["message"] is None:
+        return True
+    return message.startswith(want["message"]) if want["prefix"] else message == want["message"]
+
+
+class Replay:
+    def __init__(self, case: dict) -> None:
+        self.case = case
+        self.out = Outbox()
+        self.handlers = Scripted(self.out.cond)
+        self.tables = seed_tables(case["asset"])
+        self.m = CommandManager(self.tables, self.handlers, self.out, **case["options"])
+
+    def cmd(self, s: dict) -> Cmd:
+        args = tuple((a["type"], tuple(a["value"]) if isinstance(a["value"], list) else a["value"]) for a in s["args"])
+        return Cmd(s["id"], s["src"], s["subsystem"], s["name"], args, s["action"], s["target"], s["src"], s["asset"])
+
+    def until(self, what: str, ok, seen) -> None:
+        # woken by every write to the outbox and handler call; the manager's own view (pending)
+        # changes with them, the short slices only cover a change made between two writes
+        end = time.monotonic() + WAIT
+        with self.out.cond:
+            while not ok() and time.monotonic() < end:
+                self.out.cond.wait(0.05)
+            if not ok():
+                pytest.fail(f"{self.case['file']}:{self.case['line']} {self.case['name']!r}: "
+                            f"expected {what}; seen {seen()}")
+
+    def step(self, s: dict) -> None:
+        op, out = s["op"], self.out
+        if op == "send":
+            self.handlers.behaviour[s["id"]] = s["handler"]
+            self.m.receive(self.cmd(s))
+        elif op == "refuse":
+            self.m.refuse(self.cmd(s), s["why"])
+        elif op == "release":
+            self.handlers.release_of(s["id"]).set()
+        elif op == "idle":
+            assert self.m.wait_idle(WAIT), "the manager never became idle"
+        elif op == "shutdown":
+            self.m.shutdown(s["timeout_ms"] / 1000.0 if s["timeout_ms"] >= 0 else 5.0)
+        elif op == "acks":
+            want = s["acks"]
+            got = lambda: out.acks.get(s["id"], [])  # noqa: E731
+            self.until(f"acks of {s['id']}: {want}",
+                       lambda: len(got()) == len(want) and all(map(_ack_matches, got(), want)), got)
+        elif op == "queue":
+            def queue_ok():
+                if out.queue is None:
+                    return False
+                code, pending, active = out.queue
+                return (s.get("code", code) == code and s.get("pending", pending) == pending
+                        and s.get("active", active) == active)
+            self.until(f"QueueState {s}", queue_ok, lambda: out.queue)
+        elif op == "control":
+            def control_ok():
+                return out.access is not None and s.get("controller", out.access[0]) == out.access[0] and \
+                    s.get("requestors", out.access[1]) == out.access[1]
+            self.until(f"AccessControlState {s}", control_ok, lambda: out.access)
+        elif op == "calls":
+            want = [(c["id"], c["values"]) for c in s["calls"]]
+            calls = lambda: self.handlers.calls  # noqa: E731
+            self.until(f"handler calls {want}", lambda: len(calls()) == len(want) and all(
+                cid == wid and _same(list(vals), wvals) for (cid, vals), (wid, wvals) in zip(calls(), want)), calls)
+        elif op == "retired":
+            self.until(f"retired {s['ids']}", lambda: out.retired == s["ids"], lambda: out.retired)
+        elif op == "pending":
+            ids = lambda: [r.cmd.cmd_id for r in self.m.pending.items]  # noqa: E731
+            self.until(f"pending {s['ids']}", lambda: ids() == s["ids"], ids)
+        elif op == "log":
+            self.until(f"a log line with {s['text']!r}", lambda: any(s["text"] in line for line in out.logs),
+                       lambda: out.logs[-10:])
+        else:
+            raise AssertionError(f"unknown step {op}")
+
+    def close(self) -> None:
+        for event in list(self.handlers.released.values()):
+            event.set()
+        for cid in list(self.handlers.behaviour):
+            self.handlers.release_of(cid).set()
+        self.m.shutdown(2.0)
+
+
+@pytest.mark.parametrize("case", CASES, ids=[f"{c['file'][:-5]}:{c['name']}" for c in CASES])
+def test_case(case):
+    replay = Replay(case)
+    try:
+        for s in case["steps"]:
+            replay.step(s)
+    finally:
+        replay.close()
