@@ -195,6 +195,7 @@ _CODES = (
     Code("RG1507", "warning", "descriptor", 'ros2: a telemetry entry no ROS 2 topic feeds (the bridge never publishes it)'),
     Code("RG1508", "warning", "descriptor",
          'ros2: an advertised command with no ROS 2 mapping (the bridge answers it EXEC_FAILED)'),
+    Code("RG1509", "warning", "descriptor", "ros2: BatteryState's 0-1 percentage fed unscaled into a value whose unit is %"),
     Code("RG1601", "error", "qos", 'the file cannot be read, is binary or over 1 MiB'),
     Code("RG1602", "error", "qos",
          'schema: unknown key (with a did-you-mean), wrong type or value, keep_last without depth, keep_all with one'),

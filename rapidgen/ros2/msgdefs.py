@@ -40,6 +40,7 @@ BUILTIN: dict[str, str] = {
     "geometry_msgs/msg/Wrench": "Vector3 force\nVector3 torque",
     "geometry_msgs/msg/WrenchStamped": "std_msgs/Header header\nWrench wrench",
     "geometry_msgs/msg/PoseWithCovariance": "Pose pose\nfloat64[36] covariance",
+    "geometry_msgs/msg/PoseWithCovarianceStamped": "std_msgs/Header header\nPoseWithCovariance pose",
     "geometry_msgs/msg/TwistWithCovariance": "Twist twist\nfloat64[36] covariance",
     "nav_msgs/msg/Odometry": "std_msgs/Header header\nstring child_frame_id\n"
                              "geometry_msgs/PoseWithCovariance pose\ngeometry_msgs/TwistWithCovariance twist",

@@ -7,6 +7,7 @@ parameter name can be judged against the message and the command it belongs to.
 """
 from __future__ import annotations
 
+import math
 import re
 from typing import Any
 
@@ -28,11 +29,15 @@ POSE_SOURCES = {
     "geometry_msgs/msg/PoseWithCovariance": ("pose", None),
 }
 JOINT_SOURCE = "sensor_msgs/msg/JointState"
+BATTERY = "sensor_msgs/msg/BatteryState"  # its percentage is 0-1 (REP 145 / the message's comment)
+PERCENT = ("%", "percent", "pct")
 # What an image entry's declared MIME type must be for each image message: a compressed
 # image is passed on as it is; a raw one is wrapped as PNM (rgb8/bgr8 -> PPM, mono8 -> PGM).
 IMAGE_SOURCES = {"sensor_msgs/msg/CompressedImage": ("image/jpeg", "image/png"),
                  "sensor_msgs/msg/Image": ("image/x-portable-pixmap", "image/x-portable-graymap")}
-ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33", "RAPID_ROT_NONE")
+# Euler XYZ/ZYX (intrinsic, radians; ZYX: heading first) from the quaternion too; ZYZ is not made
+# (undefined at the identity a rover mostly stands in).
+ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33", "RAPID_ROT_XYZ", "RAPID_ROT_ZYX", "RAPID_ROT_NONE")
 VELOCITY_ENCODINGS = ("RAPID_ROT_NONE", "RAPID_ROT_VEL")
 
 _SECTION_KEYS = ("node", "telemetry", "commands", "streams", "ground")
@@ -50,6 +55,12 @@ STREAM_TARGETS: dict[str, dict[str, str | None]] = {
     "rapid::PositionSample": {"geometry_msgs/msg/PoseStamped": "pose", "geometry_msgs/msg/Pose": ""},
     "rapid::JointSample": {JOINT_SOURCE: None}}
 STREAM_ENCODINGS = ("RAPID_ROT_QUAT", "RAPID_ROT_M33")
+# Command arguments -> fields: name[i] picks one element of a vector parameter; roll/pitch/yaw
+# build a quaternion from single numbers (simpleMove's heading: {yaw: xyt[2]}).
+_ELEMENT = re.compile(r"^(.+)\[(\d+)\]$")
+ELEMENTS = {"RAPID_VEC3d": 3, "RAPID_MAT33f": 9}
+EULER = ("roll", "pitch", "yaw")
+SCALABLE = ("float", "list", "vec3", "quat_rpy", "quat_euler")
 # Standard commands the runtime answers without a handler (docs/runtime.md), so without a
 # mapping too; stopAllMotion cancels the Mobility commands (and their `cancel` messages).
 RUNTIME_ANSWERS = frozenset({("Admin", "echo"), ("Admin", "noOp"), ("Admin", "shutdown"), ("Queue", "cancelAll"),
@@ -440,23 +451,64 @@ class _Reader:
             return None
         keys = {v.name: v for v in entry.values}
         got = []
-        for key, field_path in values.items():
+        for key, source in values.items():
             v = keys.get(key)
             if v is None:
                 self.error("RG1504", f"the agent entry has no value '{key}'", vpath + (key,),
                            "its values: " + ", ".join(keys) if keys else "it declares no values", key=True)
                 continue
-            f = self.field(msg, field_path, vpath + (key,))
-            if f is None:
-                continue
-            conv = _value_from(f, v.type)
-            if conv is None:
-                self.error("RG1503", f"{msg.name} field '{field_path}' ({_spell(f)}) cannot carry {key} "
-                           f"({v.type})", vpath + (key,), _fits_hint(v.type))
-                continue
-            got.append([key, field_path, conv])
+            value = self.agent_value(msg, key, v, source, vpath + (key,))
+            if value is not None:
+                got.append(value)
         out["values"] = got
         return out
+
+    def agent_value(self, msg: msgdefs.MsgDef, key: str, v: Any, source: object, where: tuple) -> list | None:
+        """[key, field path, conversion, scale] for `path`, {field: path, scale: k} or {yaw: path}
+        (a Quaternion's heading [rad], about z as tf2's getRPY)."""
+        scale: float = 1
+        conv_of = None
+        if isinstance(source, dict):
+            heads = [k for k in ("field", "yaw") if k in source]
+            if len(heads) != 1 or not set(source) <= {"field", "yaw", "scale"}:
+                self.error("RG1505", "a value is a field path, {field: PATH, scale: K} or {yaw: PATH, scale: K}",
+                           where, "e.g. {field: percentage, scale: 100} (BatteryState's 0-1 as %)")
+                return None
+            scale = source.get("scale", 1)
+            if isinstance(scale, bool) or not isinstance(scale, (int, float)) or not math.isfinite(scale) \
+                    or scale == 0:
+                self.error("RG1503", f"scale {scale!r} is not a finite number other than 0", where + ("scale",),
+                           "the field's value is multiplied by it")
+                return None
+            if heads[0] == "yaw":
+                conv_of = "yaw"
+            where, source = where + (heads[0],), source[heads[0]]
+        f = self.field(msg, source, where)
+        if f is None:
+            return None
+        assert isinstance(source, str)
+        if conv_of == "yaw":
+            if f.type != QUAT or f.array or v.type not in ("RAPID_DOUBLE", "RAPID_FLOAT"):
+                self.error("RG1503", f"yaw takes a geometry_msgs/Quaternion field into a RAPID_DOUBLE or RAPID_FLOAT; "
+                           f"here {msg.name} '{source}' ({_spell(f)}) into {key} ({v.type})", where,
+                           "e.g. heading: {yaw: pose.pose.orientation}")
+                return None
+            conv = "yaw"
+        else:
+            conv = _value_from(f, v.type)
+            if conv is None:
+                self.error("RG1503", f"{msg.name} field '{source}' ({_spell(f)}) cannot carry {key} ({v.type})",
+                           where, _fits_hint(v.type))
+                return None
+            if scale != 1 and conv not in ("float", "vec3"):
+                self.error("RG1503", f"{key} ({v.type}) cannot be scaled", where,
+                           "scale goes with RAPID_DOUBLE, RAPID_FLOAT and RAPID_VEC3d values")
+                return None
+        if msg.name == BATTERY and source == "percentage" and scale == 1 and (v.unit or "").strip() in PERCENT:
+            self.sink.warning("RG1509", f"{BATTERY} percentage is 0 to 1, and {key}'s unit is {v.unit}",
+                              self.doc.loc(where), "write {field: percentage, scale: 100}, or declare the value "
+                              "without a % unit (0-1)")
+        return [key, source, conv, scale]
 
     # -- commands: RAPID command -> ROS 2 message ----------------------------------------
     def command(self, item: object, path: tuple) -> dict | None:
@@ -607,10 +659,11 @@ class _Reader:
         return got if good else None
 
     def source(self, f: Field, fpath: str, source: object, where: tuple, params: dict, mname: str) -> list | None:
-        """[conversion, parameter indices or a constant]: how the field is filled."""
-        if isinstance(source, dict):
+        """[conversion, references or a constant]: how the field is filled. A reference is a
+        parameter's index (the whole argument) or [index, element or None, scale]."""
+        if isinstance(source, dict) and "value" in source:
             if set(source) != {"value"}:
-                self.error("RG1505", "a constant is written {value: ...}", where, "or name a parameter")
+                self.error("RG1505", "a constant is written {value: ...}, alone", where, "or name a parameter")
                 return None
             const = source["value"]
             if _const_fits(f, const):
@@ -618,21 +671,101 @@ class _Reader:
             self.error("RG1503", f"{const!r} does not fit {mname} field '{fpath}' ({_spell(f)})", where,
                        "give a value of the field's type")
             return None
-        names = source if isinstance(source, list) else [source]
-        idx = []
-        for n in names:
-            if not isinstance(n, str) or n not in params:
-                self.error("RG1504", f"the command has no parameter {n!r}", where,
-                           "its parameters: " + (", ".join(params) or "none") + "; a constant is {value: ...}")
-                return None
-            idx.append(params[n][0])
-        types = [params[n][1].type for n in names]
-        conv = _arg_to_field(f, types, isinstance(source, list))
-        if conv is None:
-            self.error("RG1503", f"{', '.join(f'{n} ({t})' for n, t in zip(names, types))} does not fit "
-                       f"{mname} field '{fpath}' ({_spell(f)})", where, _field_hint(f))
+        if isinstance(source, dict) and (set(source) & set(EULER) or (f.type == QUAT and "from" not in source)):
+            return self.euler(f, fpath, source, where, params, mname)
+        listed = isinstance(source, list)
+        got = [self.reference(s, where, params) for s in (source if listed else [source])]
+        if any(g is None for g in got) or not got:
+            if not got:
+                self.error("RG1505", "an empty list fills nothing", where, "name the parameters to put in the field")
             return None
-        return [conv, idx]
+        refs, types = [g[0] for g in got], [g[1] for g in got]
+        conv = _arg_to_field(f, types, listed)
+        if conv is None:
+            self.error("RG1503", f"{', '.join(g[2] for g in got)} does not fit {mname} field '{fpath}' ({_spell(f)})",
+                       where, _field_hint(f))
+            return None
+        scaled = [r for r in refs if isinstance(r, list) and r[2] != 1]
+        if scaled and conv not in SCALABLE:
+            self.error("RG1503", f"a {_spell(f)} field cannot be scaled", where,
+                       "scale goes with float fields, float arrays, Point/Vector3 and roll-pitch-yaw quaternions")
+            return None
+        return [conv, refs]
+
+    def reference(self, source: object, where: tuple, params: dict) -> tuple[Any, str, str] | None:
+        """(reference, the RAPID type it gives, how to name it) for `name`, `name[i]` (one element
+        of a RAPID_VEC3d or RAPID_MAT33f) or {from: name or name[i], scale: k}."""
+        scale: float = 1
+        if isinstance(source, dict):
+            if "from" not in source or not set(source) <= {"from", "scale"}:
+                self.error("RG1505", "a scaled argument is written {from: PARAMETER, scale: NUMBER}", where,
+                           "e.g. {from: 'xyt[2]', scale: 57.29578}; a constant is {value: ...}")
+                return None
+            scale = source.get("scale", 1)
+            if isinstance(scale, bool) or not isinstance(scale, (int, float)) or not math.isfinite(scale) \
+                    or scale == 0:
+                self.error("RG1503", f"scale {scale!r} is not a finite number other than 0", where + ("scale",),
+                           "the argument is multiplied by it (e.g. 0.001 for mm to m)")
+                return None
+            source = source["from"]
+        if not isinstance(source, str) or not source:
+            self.error("RG1505", f"{source!r} names no parameter", where,
+                       "write a parameter name, name[i] for one element, {from: ..., scale: ...} or {value: ...}")
+            return None
+        name, element = source, None
+        m = _ELEMENT.match(source)
+        if source not in params and m is not None:
+            name, element = m.group(1), int(m.group(2))
+        if name not in params:
+            self.error("RG1504", f"the command has no parameter {name!r}", where,
+                       "its parameters: " + (", ".join(params) or "none") + "; a constant is {value: ...}")
+            return None
+        index, param = params[name]
+        ptype = param.type
+        if element is not None:
+            size = ELEMENTS.get(ptype)
+            if size is None:
+                self.error("RG1503", f"{name} ({ptype}) has no elements to pick", where,
+                           "name[i] picks from a RAPID_VEC3d (0-2) or a RAPID_MAT33f (0-8, row-major)")
+                return None
+            if element >= size:
+                self.error("RG1503", f"{source}: a {ptype} has elements 0 to {size - 1}", where,
+                           "RAPID_VEC3d xyt: x 0, y 1, heading 2" if ptype == "RAPID_VEC3d" else "row-major 3x3")
+                return None
+            ptype = "RAPID_DOUBLE"
+        if scale != 1 and ptype not in NUMERIC + ("RAPID_VEC3d", "RAPID_MAT33f"):
+            self.error("RG1503", f"{source} ({ptype}) cannot be scaled", where, "scale numbers and vectors")
+            return None
+        ref: Any = index if element is None and scale == 1 else [index, element, scale]
+        return ref, ptype, f"{source} ({ptype})"
+
+    def euler(self, f: Field, fpath: str, source: dict, where: tuple, params: dict, mname: str) -> list | None:
+        """{roll, pitch, yaw} -> a Quaternion: each angle [rad] one numeric argument (an element,
+        a number parameter, scaled or not), an angle left out 0; as tf2's setRPY."""
+        if f.type != QUAT or f.array:
+            self.error("RG1503", f"roll/pitch/yaw make a quaternion; {mname} field '{fpath}' is {_spell(f)}", where,
+                       "map them onto a geometry_msgs/Quaternion field (e.g. pose.orientation)")
+            return None
+        extra = [k for k in source if k not in EULER]
+        if extra:
+            self.error("RG1505", f"unknown key '{extra[0]}' in a roll/pitch/yaw orientation", where + (extra[0],),
+                       "keys here: roll, pitch, yaw (each a number argument; left out: 0)", key=True)
+            return None
+        angles: list[Any] = []
+        for k in EULER:
+            if k not in source:
+                angles.append(None)
+                continue
+            got = self.reference(source[k], where + (k,), params)
+            if got is None:
+                return None
+            if got[1] not in NUMERIC:
+                self.error("RG1503", f"{got[2]} is not one angle", where + (k,),
+                           f"{k} takes a number: pick an element (e.g. xyt[2], the heading of simpleMove's xyt) "
+                           "or a number parameter")
+                return None
+            angles.append(got[0])
+        return ["quat_euler", angles]
 
     def until(self, value: object, path: tuple) -> dict | None:
         if not self.mapping(value, path, _UNTIL_KEYS, ("topic", "type", "field", "equals")):

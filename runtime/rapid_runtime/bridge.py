@@ -551,17 +551,22 @@ def _valid_strings(value):
     return value
 
 
-def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
+def main(asset_tables, rapid, make_handlers, package: str, argv=None, module: str = "bridge",
+         description: str | None = None, simulate: bool = True) -> int:
+    """The bridge's command line. `module`, `description`: what --help names (the ROS 2 bridge's
+    own); `simulate`: whether --simulate and --sim-speed are offered (not where handlers must be real)."""
     tables = Tables(asset_tables)
-    p = argparse.ArgumentParser(prog=f"python -m {package}.bridge",
-                                description=f"RAPID bridge of asset {tables.name} (rapid_runtime)")
-    p.add_argument("--simulate", action="store_true", help="a simulated robot behind the handlers")
+    p = argparse.ArgumentParser(prog=f"python -m {package}.{module}",
+                                description=description or f"RAPID bridge of asset {tables.name} (rapid_runtime)")
+    if simulate:
+        p.add_argument("--simulate", action="store_true", help="a simulated robot behind the handlers")
     p.add_argument("--domain", type=int, default=None, help=f"DDS domain (default {tables.domain})")
     p.add_argument("--transport", default=None,
                    help="Cyclone transport from the package's QoS files: local (loopback, the default when "
                         "CYCLONEDDS_URI is unset), lan, wan")
     p.add_argument("--seconds", type=float, default=None, help="stop after this long (default: run until stopped)")
-    p.add_argument("--sim-speed", type=float, default=1.0, help="simulated time runs this many times faster")
+    if simulate:
+        p.add_argument("--sim-speed", type=float, default=1.0, help="simulated time runs this many times faster")
     p.add_argument("--command-window", type=_positive, default=COMMAND_WINDOW, metavar="N",
                    help=f"commands remembered: repeated cmdIds detected among the last N, acks of the last N "
                         f"completed kept for late joiners (default {COMMAND_WINDOW})")
@@ -577,6 +582,8 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None) -> int:
                    help=f"how long a shutdown (Admin/shutdown, SIGTERM, SIGINT) waits for the running handlers "
                         f"(default {SHUTDOWN_TIMEOUT_MS})")
     args = p.parse_args(argv)
+    if not simulate:
+        args.simulate, args.sim_speed = False, 1.0
     qos_mod = __import__(f"{package}.qos", fromlist=["RapidQos"])
     try:
         qos = qos_mod.RapidQos()

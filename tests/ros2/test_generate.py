@@ -192,7 +192,7 @@ def test_raw_images_become_pnm(example_bridge):
 
 def test_feeds_read_odometry_split_joint_states_and_fields(example_bridge):
     """The bridge's readers on message-shaped objects: Odometry's pose and twist (RAPID_ROT_M33,
-    RAPID_ROT_VEL), JointState split over messages (a joint not in one keeps its value), agent
+    RAPID_ROT_VEL; the twist turned from child_frame_id into the pose's frame), JointState split over messages (a joint not in one keeps its value), agent
     fields through paths."""
     from types import SimpleNamespace as NS
     ros2 = example_bridge
@@ -203,7 +203,7 @@ def test_feeds_read_odometry_split_joint_states_and_fields(example_bridge):
     feed = {"pose": "pose.pose", "twist": "twist.twist", "encoding": "RAPID_ROT_M33",
             "velocity_encoding": "RAPID_ROT_VEL"}
     xyz, rot, vxyz, vrot = h._read_position(feed, odom, None)
-    assert xyz == [1.0, 2.0, 3.0] and vxyz == [0.5, 0.0, 0.0]
+    assert xyz == [1.0, 2.0, 3.0] and vxyz == pytest.approx([-0.5, 0.0, 0.0])  # body-forward, facing -x
     assert rot == pytest.approx([-1, 0, 0, 0, -1, 0, 0, 0, 1])  # half a turn about z
     assert vrot == [0.0, 0.0, 0.25] + [0.0] * 6
     joints = {"joints": ["a", "b", "c"]}

@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/python/ros2_map.py.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "c47705ef436edab5ccf3f318bc50312285f5912ea16296a45617916fb632cbd2"
+KEY = "577f6f93128aca6ef70fb1355bb128739ce734ef77bbc578639057d3d0fe5d29"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'ros2_map.py.j2'
 
@@ -31,9 +31,9 @@ def root(context, missing=missing, environment=environment):
     yield str(t_1((undefined(name='header') if l_0_header is missing else l_0_header)))
     yield '\n"""Asset '
     yield str(t_2((undefined(name='asset') if l_0_asset is missing else l_0_asset)))
-    yield ' mapped onto ROS 2, as data (the descriptor\'s ros2: section).\n\nNODE       the ROS 2 node name\nTELEMETRY  ROS 2 topic -> RAPID telemetry entry: topic, message type, kind and index of the\n           entry fed, its rate, and per kind the joint names (JointConfig order), the pose\n           and twist field paths and encodings, or (agent) [value key, field path, conversion]\nCOMMANDS   "Subsystem/command" -> publish: topic, message type, [field path, conversion,\n           parameter indices or constant], header stamped; until: topic, type, field, value,\n           timeout [s] or None\nSTREAMS    RAPID input stream -> ROS 2: the stream\'s name, RAPID type, topic, the writer\'s\n           partition, deadline [ms], on_loss, subsystem, state and missed value keys; ros2:\n           topic, message type, where the pose sits (or the joint names), frame, rot encoding,\n           stamped; stop: the message published on a loss with on_loss stop (or None)\nGROUND     RAPID -> ROS 2 (None without ros2.ground): the node name, and per joint, position\n           and agent entry (kind, index) the ROS 2 topic, joint names, frame and pose\n           encoding, or [value key, DataType, unit, warning, critical] ([below, above])\n"""\n\n'
+    yield ' mapped onto ROS 2, as data (the descriptor\'s ros2: section).\n\nNODE       the ROS 2 node name\nTELEMETRY  ROS 2 topic -> RAPID telemetry entry: topic, message type, kind and index of the\n           entry fed, its rate, and per kind the joint names (JointConfig order), the pose\n           and twist field paths and encodings, or (agent) [value key, field path, conversion,\n           scale] (conversion "yaw": a quaternion\'s heading)\nCOMMANDS   "Subsystem/command" -> publish: topic, message type, [field path, conversion,\n           references or constant], header stamped; until: topic, type, field, value,\n           timeout [s] or None. A reference is a parameter\'s index (the whole argument) or\n           [index, element or None, scale]; "quat_euler" takes [roll, pitch, yaw] references\n           (None: 0)\nSTREAMS    RAPID input stream -> ROS 2: the stream\'s name, RAPID type, topic, the writer\'s\n           partition, deadline [ms], on_loss, subsystem, state and missed value keys; ros2:\n           topic, message type, where the pose sits (or the joint names), frame, rot encoding,\n           stamped; stop: the message published on a loss with on_loss stop (or None)\nGROUND     RAPID -> ROS 2 (None without ros2.ground): the node name, and per joint, position\n           and agent entry (kind, index) the ROS 2 topic, joint names, frame and pose\n           encoding, or [value key, DataType, unit, warning, critical] ([below, above])\n"""\n\n'
     yield str((undefined(name='body') if l_0_body is missing else l_0_body))
     yield '\n'
 
 blocks = {}
-debug_info = '1=27&2=29&20=31'
+debug_info = '1=27&2=29&23=31'
