@@ -148,7 +148,77 @@ def describe(loaded: LoadedAsset) -> str:
     if ac is not None:
         out += ["", f"Access control (sources not listed: {ac.default})"]
         out += table(["source", "may send"], [[r.source, ", ".join(r.allow)] for r in ac.rules])
+    if loaded.ros2 is not None:
+        out += _ros2(loaded)
     return "\n".join(visible(line) for line in "\n".join(out).split("\n")) + "\n"
+
+
+def _ros2_source(conv: str, source, names: list[str]) -> str:
+    """A command field's filling as the descriptor writes it (`names`: the command's parameters)."""
+    if conv == "const":
+        return repr(source)
+
+    def ref(r) -> str:
+        if r is None:
+            return "0"
+        if isinstance(r, int):
+            return names[r]
+        index, element, scale = r
+        text = names[index] + (f"[{element}]" if element is not None else "")
+        return text if scale == 1 else f"{text} x {scale:g}"
+    if conv == "quat_euler":
+        return "quaternion of " + ", ".join(f"{k} {ref(r)}" for k, r in zip(("roll", "pitch", "yaw"), source)
+                                            if r is not None)
+    return ", ".join(ref(r) for r in source) + {"quat_rpy": " (roll, pitch, yaw)", "quat_m33": " (rotation matrix)"
+                                                }.get(conv, "")
+
+
+def _ros2(loaded: LoadedAsset) -> list[str]:
+    """The ros2: section as the generated bridge will serve it (docs/ros2.md)."""
+    m = loaded.ros2
+    types = {s.name: loaded.types.get(s.type) for s in loaded.subsystems}
+    out = ["", f"ROS 2 (node {m['node']}; python -m <package>.ros2)"]
+    feeds = []
+    for f in m["telemetry"]:
+        how = ""
+        if f["feeds"] == "joint":
+            how = f"{len(f['joints'])} joints by name"
+        elif f["feeds"] == "position":
+            how = f"pose {f['pose'] or 'message'} as {f['encoding']}" + \
+                (f"; twist {f['twist']} turned into the pose's frame" if f["twist"] else "")
+        elif f["feeds"] == "agent":
+            how = "; ".join(f"{v[0]} <- " + (f"yaw of {v[1]}" if v[2] == "yaw" else v[1])
+                            + (f" x {v[3]:g}" if len(v) > 3 and v[3] != 1 else "") for v in f["values"])
+        feeds.append([f["topic"], f["type"], f"{f['feeds']} {f['index']}", how])
+    if feeds:
+        out += ["  telemetry (ROS 2 -> RAPID)"]
+        out += table(["topic", "type", "feeds", "how"], feeds, indent=4)
+    rows = []
+    for name, c in m["commands"].items():
+        doing = c.get("publish") or c.get("call") or c.get("action")
+        kind = "publish" if "publish" in c else "call" if "call" in c else "action"
+        target = doing.get("topic") or doing.get("service") or doing.get("action")
+        sub, _, cname = name.partition("/")
+        cmd = next((x for x in (types[sub].commands if types.get(sub) else ()) if x.name == cname), None)
+        names = [q.name for q in cmd.parameters] if cmd is not None else []
+        fields = "; ".join(f"{path} <- {_ros2_source(conv, src, names)}" for path, conv, src in doing["fields"]) or "-"
+        extra = []
+        if c.get("until"):
+            extra.append(f"until {c['until']['field']} == {c['until']['equals']!r} on {c['until']['topic']}")
+        if c.get("cancel"):
+            extra.append(f"cancel: {c['cancel']['topic']}")
+        rows.append([name, f"{kind} {target}", doing["type"], fields + ("; " + "; ".join(extra) if extra else "")])
+    if rows:
+        out += ["  commands (RAPID -> ROS 2)"]
+        out += table(["command", "does", "type", "fields"], rows, indent=4)
+    if m["streams"]:
+        out += ["  streams (RAPID -> ROS 2)"]
+        out += table(["stream", "topic", "type"], [[st["stream"], st["ros2"]["topic"], st["ros2"]["type"]]
+                                                   for st in m["streams"]], indent=4)
+    if m["ground"] is not None:
+        g = m["ground"]
+        out += [f"  ground (RAPID -> ROS 2): node {g['node']}, namespace {g['namespace'] or '/'}"]
+    return out
 
 
 def _details(spec, pubs) -> list[str]:
@@ -238,4 +308,5 @@ def describe_data(loaded: LoadedAsset) -> dict:
             "parameter": spec.native.parameter, "description": spec.native.description},
         "access_control": None if ac is None else {
             "default": ac.default, "rules": [{"source": r.source, "allow": list(r.allow)} for r in ac.rules]},
+        "ros2": loaded.ros2,  # the checked section as the generated ros2_map.py holds it (None without one)
     }

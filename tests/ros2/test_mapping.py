@@ -209,3 +209,23 @@ def test_without_rclpy_one_line_says_what_to_install(rover):
     assert lines == ["python -m rapid_navrover.ros2: cannot import rclpy (ROS 2 Python): install ros-rclpy "
                      "ros-rmw-fastrtps-cpp (pip, the PyPI ROS wheels; docs/ros2.md) or source a ROS 2 install"], \
         res.stderr
+
+
+def test_describe_shows_the_ros2_section():
+    run = lambda *a: subprocess.run([sys.executable, "-m", "rapidgen", "describe", *a], cwd=ROOT,  # noqa: E731
+                                    capture_output=True, text=True, timeout=120)
+    res = run(str(ROVER))
+    assert res.returncode == 0, res.stderr
+    text = res.stdout[res.stdout.index("\nROS 2 (node nav_rover_bridge; python -m <package>.ros2)"):]
+    assert "/battery_state  sensor_msgs/msg/BatteryState" in text and "batteryCharge <- percentage x 100" in text
+    assert "heading <- yaw of pose.pose.orientation x 57.2958" in text
+    assert "twist twist.twist turned into the pose's frame" in text
+    assert "pose.position.x <- xyt[0]; pose.position.y <- xyt[1]; pose.orientation <- quaternion of yaw xyt[2]" \
+        in text
+    assert "pose.position.x <- xyt[0] x 1000" in text
+    data = __import__("json").loads(run("--json", str(ROVER)).stdout)
+    assert data["ros2"]["node"] == "nav_rover_bridge"
+    assert data["ros2"]["commands"]["Mobility/simpleMove"]["publish"]["topic"] == "/goal_pose"
+    plain = run(str(ROOT / "specs/assets/k10.yaml"))
+    assert plain.returncode == 0 and "\nROS 2 (" not in plain.stdout
+    assert __import__("json").loads(run("--json", str(ROOT / "specs/assets/k10.yaml")).stdout)["ros2"] is None
