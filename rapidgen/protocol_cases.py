@@ -28,7 +28,7 @@ CASES = SPEC / "cases"
 # seed -> (generated package folder, package): the tables each driver builds for that name
 SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot")}
 DEFAULT_SOURCE = "RapidWorkbench"
-OFFLINE_ONLY = {"release", "idle", "shutdown", "refuse", "calls", "retired", "log", "pending"}
+OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse", "calls", "retired", "log", "pending"}
 
 
 class CaseError(Exception):
@@ -115,7 +115,7 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
             out.append({"op": op, "id": body})
         elif op == "shutdown":
             out.append({"op": op, "timeout_ms": body.get("timeout_ms", -1)})
-        elif op == "idle":
+        elif op in ("idle", "restart"):
             out.append({"op": op})
         elif op == "queue":
             out.append({"op": op, **{k: body[k] for k in ("code", "pending", "active") if k in body}})

@@ -5,14 +5,17 @@ the same cases (tests/cpp_runtime/test_spec_cases.cpp)."""
 from __future__ import annotations
 
 import math
+import os
 import threading
 import time
+from pathlib import Path
 
 import pytest
 
 from rapid_runtime.command import Cmd
 from rapid_runtime.handlers import CommandFailed
-from rapid_runtime.manager import CommandManager
+from rapid_runtime.journal import Journal
+from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapidgen.protocol_cases import load_cases, seed_tables
 
 WAIT = 10.0
@@ -130,13 +133,43 @@ def _ack_matches(seen: tuple[str, str, str], want: dict) -> bool:
     return message.startswith(want["message"]) if want["prefix"] else message == want["message"]
 
 
+class Dead:
+    """The outbox of a crashed manager: what its handler threads still do is not seen."""
+
+    def __getattr__(self, name: str):
+        return lambda *args: None
+
+
 class Replay:
-    def __init__(self, case: dict) -> None:
+    def __init__(self, case: dict, state_dir: Path) -> None:
         self.case = case
         self.out = Outbox()
         self.handlers = Scripted(self.out.cond)
         self.tables = seed_tables(case["asset"])
-        self.m = CommandManager(self.tables, self.handlers, self.out, **case["options"])
+        # a case that restarts the asset runs with the restart journal, as the bridge does
+        self.journal_dir = state_dir if any(s["op"] == "restart" for s in case["steps"]) else None
+        self.m = self.manager()
+
+    def manager(self) -> CommandManager:
+        journal, recovered = None, None
+        if self.journal_dir is not None:
+            window = self.case["options"].get("window", COMMAND_WINDOW)
+            journal, recovered = Journal.open(self.journal_dir, self.tables.name, 0, window, self.out.log)
+            assert journal is not None, self.out.logs
+            journal.start(1)
+        m = CommandManager(self.tables, self.handlers, self.out, journal=journal, **self.case["options"])
+        if recovered is not None and recovered.crashed:
+            m.restore(recovered)
+        return m
+
+    def crash(self) -> None:
+        """The process dies: the journal as the disk has it, nothing more written by the old manager."""
+        old = self.m
+        with old.lock:
+            journal, old.journal, old.out = old.journal, None, Dead()
+        if journal is not None:
+            os.close(journal.fd)  # (no clean stop record: the next start recovers)
+        self.m = self.manager()
 
     def cmd(self, s: dict) -> Cmd:
         args = tuple((a["type"], tuple(a["value"]) if isinstance(a["value"], list) else a["value"]) for a in s["args"])
@@ -162,6 +195,8 @@ class Replay:
             self.m.refuse(self.cmd(s), s["why"])
         elif op == "release":
             self.handlers.release_of(s["id"]).set()
+        elif op == "restart":
+            self.crash()
         elif op == "idle":
             assert self.m.wait_idle(WAIT), "the manager never became idle"
         elif op == "shutdown":
@@ -209,8 +244,8 @@ class Replay:
 
 
 @pytest.mark.parametrize("case", CASES, ids=[f"{c['file'][:-5]}:{c['name']}" for c in CASES])
-def test_case(case):
-    replay = Replay(case)
+def test_case(case, tmp_path):
+    replay = Replay(case, tmp_path)
     try:
         for s in case["steps"]:
             replay.step(s)
