@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from rapid_runtime import texts
 from rapid_runtime.tables import AccessSpec
 
 MAX_REQUESTORS = 16  # AccessControlState.requestors is a String32Sequence16
@@ -52,35 +53,35 @@ class Control:
     def request(self, source: str) -> tuple[str | None, str]:
         if self.controller in (NO_CONTROLLER, source):
             self._give(source)
-            return None, f"control granted to {source}"
+            return None, texts.control_granted(source)
         if source in self.requestors:
-            return None, f"request already queued; {self.controller} has control"
+            return None, texts.request_already_queued(self.controller)
         if len(self.requestors) >= MAX_REQUESTORS:
-            return f"{MAX_REQUESTORS} requests already queued", ""
+            return texts.requests_full(MAX_REQUESTORS), ""
         self.requestors.append(source)
-        return None, f"request queued; {self.controller} has control"
+        return None, texts.request_queued(self.controller)
 
     def grab(self, source: str) -> tuple[str | None, str]:
         before = self.controller
         self._give(source)
-        return None, f"control taken from {before}" if before not in (NO_CONTROLLER, source) else "control taken"
+        return None, texts.control_taken_from(before) if before not in (NO_CONTROLLER, source) else texts.CONTROL_TAKEN
 
     def release(self, source: str) -> tuple[str | None, str]:
         if not self.holds(source):
-            return f"{source} does not have control", ""
+            return texts.no_control(source), ""
         nxt = self.requestors.pop(0) if self.requestors else NO_CONTROLLER
         self.controller = nxt
-        return None, f"control released to {nxt}" if nxt else "control released"
+        return None, texts.control_released_to(nxt) if nxt else texts.CONTROL_RELEASED
 
     def transfer(self, source: str, new: str) -> tuple[str | None, str]:
         if not self.holds(source):
-            return f"{source} does not have control", ""
+            return texts.no_control(source), ""
         if not new.strip():
-            return "newController is empty", ""
+            return texts.NEW_CONTROLLER_EMPTY, ""
         if len(new.encode("utf-8")) > 31:
-            return "newController longer than 31 bytes", ""
+            return texts.NEW_CONTROLLER_TOO_LONG, ""
         self._give(new)
-        return None, f"control transferred to {new}"
+        return None, texts.control_transferred(new)
 
     def _give(self, source: str) -> None:
         self.controller = source

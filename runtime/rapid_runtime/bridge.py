@@ -19,6 +19,7 @@ import time
 from cyclonedds.util import duration
 
 from rapid_runtime import messages as M
+from rapid_runtime import texts
 from rapid_runtime.ack_writers import AckWriters
 from rapid_runtime.acks import COMPLETED, NOT, clip, valid
 from rapid_runtime.configs import Serials
@@ -316,7 +317,7 @@ class TelemetryPublisher:
         ok, back = self.freshness.offer(name, stamp / 1e6)
         self._watch()
         if back:
-            self._announce(f"{name} source back", "MSG_INFO")
+            self._announce(texts.source_back(name), "MSG_INFO")
         return stamp if ok else None
 
     def _watch(self) -> None:
@@ -335,7 +336,7 @@ class TelemetryPublisher:
     def check(self) -> None:
         """Say which watched sources went silent since the last check (the watcher's tick)."""
         for name, age in self.freshness.check():
-            self._announce(f"{name} source silent for {age:.1f} s: samples stopped", "MSG_WARN")
+            self._announce(texts.source_silent(name, age), "MSG_WARN")
 
     def _announce(self, text: str, level: str) -> None:
         """A source gone silent or back: the log, one TextMessage, the agent entries' stale key."""

@@ -20,6 +20,7 @@ from __future__ import annotations
 import collections
 import threading
 
+from rapid_runtime import texts
 from rapid_runtime.command import Cmd
 
 PER_WRITER = 256  # commands of one writer waiting for the manager
@@ -27,7 +28,6 @@ MAX_WRITERS = 256  # writers with a FIFO of their own; past that they share one
 SHED_ANSWERS = 4096  # "busy" answers waiting to be written
 BATCH = 32  # commands handed to the manager at once (journal.py: one sync per batch)
 CONTROL = {("Mobility", "stopAllMotion"), ("Queue", "cancelAll")}
-BUSY = "bridge busy: {n} commands from this writer already waiting; retry later"
 
 
 class Intake:
@@ -121,7 +121,7 @@ class Intake:
                 for cmd, shed in batch:
                     try:
                         if shed:
-                            self.manager.refuse(cmd, BUSY.format(n=self.per_writer))
+                            self.manager.refuse(cmd, texts.bridge_busy(self.per_writer))
                         else:
                             self.manager.receive(cmd)
                     except Exception as exc:  # a bad command must not stop intake

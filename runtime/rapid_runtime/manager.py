@@ -29,7 +29,7 @@ import traceback
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple, Protocol
 
-from rapid_runtime import access
+from rapid_runtime import access, texts
 from rapid_runtime.acks import (APPEND, BAD_SYNTAX, BYPASS, CANCELED, COMPLETED, DELETE, EXEC_FAILED, EXECUTING,
                                 HEAD, INSERT, NOT, OK, QUEUED, REPLACE, REQUEUED, RESULT_OF_COMPLETION,
                                 STATUS_OF_COMPLETION, clip)
@@ -57,19 +57,19 @@ QUEUE_LIMIT = 1024
 BYPASS_LIMIT = 64
 COMPLETED_KEEP_S = 20.0  # finished commands stay in QueueState this long (soraCore)
 RECORDS = 64  # QueueState's SingleQueue holds at most 64 records
-VIOLATION = "RAPID access violation: "
-# What a command left unfinished by a restart or a stop is answered (docs/runtime.md,
-# "Restarts": a command never re-run, since a half-done motion run again is not safe).
-RESTARTED_QUEUED = "asset restarted before it ran"
-RESTARTED_RUNNING = "asset restarted while it ran; outcome unknown"
-# Handler faults (issue 42; docs/runtime.md, "Handler faults"). The texts are the C++
-# runtime's too (shared contract).
+# Every text an ack carries is in texts (generated from runtime/spec/texts.yaml, the C++
+# runtime's too). What a command left unfinished by a restart or a stop is answered
+# (docs/runtime.md, "Restarts": a command never re-run, since a half-done motion run again
+# is not safe), and the handler faults' texts (issue 42; docs/runtime.md, "Handler faults"),
+# are also named here for the tests.
+RESTARTED_QUEUED = texts.RESTARTED_QUEUED
+RESTARTED_RUNNING = texts.RESTARTED_RUNNING
 STOP_TIMEOUT_MS = 2000  # a told-to-stop handler's default bound (descriptor: stop_timeout_ms)
 SHUTDOWN_TIMEOUT_MS = 5000  # how long a stop waits for the handlers told to stop
-DID_NOT_STOP = "handler did not stop"
-SHUTTING_DOWN = "asset shutting down"
-NOT_IMPLEMENTED = "not implemented"  # the generated stub's CommandFailed
-NO_HARDWARE_STOP = "motion commands canceled; no hardware stop handler"
+DID_NOT_STOP = texts.DID_NOT_STOP
+SHUTTING_DOWN = texts.ASSET_SHUTTING_DOWN
+NOT_IMPLEMENTED = texts.NOT_IMPLEMENTED  # the generated stub's CommandFailed
+NO_HARDWARE_STOP = texts.NO_HARDWARE_STOP
 
 
 class Outbox(Protocol):
@@ -207,16 +207,16 @@ class CommandManager:
     def _intake(self, cmd: Cmd) -> tuple[str, str] | None:
         """Checks then dispatch; (completion, message) when the command ends here."""
         if not cmd.cmd_id:
-            return BAD_SYNTAX, "empty cmdId"
+            return BAD_SYNTAX, texts.EMPTY_CMD_ID
         action, target = cmd.action, cmd.target
         if action not in (BYPASS, APPEND, DELETE, INSERT, REPLACE):
-            return BAD_SYNTAX, f"unknown queue action {_short(str(action))}"
+            return BAD_SYNTAX, texts.unknown_queue_action(_short(str(action)))
         if action != BYPASS and not self.has_queue:
-            return BAD_SYNTAX, f"{action} refused: this asset has no command queue (send QUEUE_BYPASS)"
+            return BAD_SYNTAX, texts.no_queue(action)
         if action in (BYPASS, APPEND) and target:
-            return BAD_SYNTAX, f"{action} takes no targetCmdId (got '{_short(target)}')"
+            return BAD_SYNTAX, texts.target_not_taken(action, _short(target))
         if action in (INSERT, REPLACE, DELETE) and not target:
-            return BAD_SYNTAX, f"{action} needs a targetCmdId"
+            return BAD_SYNTAX, texts.target_needed(action)
         if action == DELETE:
             return self._delete(cmd)
         entry, why = check_command(cmd, self.tables)
@@ -224,16 +224,16 @@ class CommandManager:
             return BAD_SYNTAX, why
         assert entry is not None  # check_command: an entry when there is no reason
         if action == INSERT and target != HEAD and not self._queued_run(target):
-            return BAD_SYNTAX, f"unknown targetCmdId '{_short(target)}' (pending ids, the running one or 'head')"
+            return BAD_SYNTAX, texts.unknown_insert_target(_short(target))
         if action == REPLACE and not self._queued_run(target):
-            return BAD_SYNTAX, f"unknown targetCmdId '{_short(target)}' (not pending or running)"
+            return BAD_SYNTAX, texts.unknown_target(_short(target))
         denied = self._authorize(cmd, entry)
         if denied:
             return BAD_SYNTAX, denied
         if action in (APPEND, INSERT) and len(self.pending) >= self.queue_limit:
-            return EXEC_FAILED, f"queue full ({self.queue_limit} pending); retry later"
+            return EXEC_FAILED, texts.queue_full(self.queue_limit)
         if action == BYPASS and len(self.bypass) >= self.bypass_limit:
-            return EXEC_FAILED, f"{self.bypass_limit} commands already running beside the queue; retry later"
+            return EXEC_FAILED, texts.bypass_full(self.bypass_limit)
         if self.closing:  # the bridge is stopping: nothing new starts or waits
             return EXEC_FAILED, SHUTTING_DOWN
         run = Run(cmd, entry, kwargs_of(entry, cmd), queued=action != BYPASS)
@@ -245,12 +245,12 @@ class CommandManager:
             assert old is not None  # checked above, under the same lock
             if old is self.active:
                 if not self._abortable(old):
-                    return EXEC_FAILED, f"target '{_short(target)}' is running and not abortable"
+                    return EXEC_FAILED, texts.target_not_abortable(_short(target))
                 self._cancel(old)
                 self.pending.push_front(run)
             else:
                 self.pending.replace(target, run)
-                self._finish_unstarted(old, "replaced by " + _short(cmd.cmd_id))
+                self._finish_unstarted(old, texts.replaced_by(_short(cmd.cmd_id)))
         elif action == INSERT:
             if not self.pending.insert_after(target, run):  # the running command: go next
                 self.pending.push_front(run)
@@ -274,28 +274,28 @@ class CommandManager:
         if access.always_allowed(entry.subsystem_type, entry.name):
             return None
         if not access.allowed(self.tables.access, cmd.cmd_src, cmd.subsystem, entry.name):
-            return f"{VIOLATION}{_short(cmd.cmd_src)} may not send {_short(cmd.subsystem)}/{_short(entry.name)}"
+            return texts.access_not_allowed(_short(cmd.cmd_src), _short(cmd.subsystem), _short(entry.name))
         if (self.has_control and entry.subsystem_type != "AccessControl" and cmd.cmd_src != self.tables.name
                 and not self.control.holds(cmd.cmd_src)):
-            return f"{VIOLATION}{_short(cmd.cmd_src)} does not have control (send requestControl)"
+            return texts.access_no_control(_short(cmd.cmd_src))
         return None
 
     def _delete(self, cmd: Cmd) -> tuple[str, str] | None:
         target = self._queued_run(cmd.target) or next((r for r in self.bypass if r.cmd.cmd_id == cmd.target), None)
         if target is None:
-            return BAD_SYNTAX, f"unknown targetCmdId '{_short(cmd.target)}' (not pending or running)"
+            return BAD_SYNTAX, texts.unknown_target(_short(cmd.target))
         denied = self._authorize(_as_sender(cmd, target.cmd), target.entry)
         if denied:
             return BAD_SYNTAX, denied
         if target in self.pending.items:
             self.pending.remove(target)
-            self._finish_unstarted(target, "deleted by " + _short(cmd.cmd_id))
-            said = f"{_short(cmd.target)} canceled"
+            self._finish_unstarted(target, texts.deleted_by(_short(cmd.cmd_id)))
+            said = texts.target_canceled(_short(cmd.target))
         elif not self._abortable(target):
-            return EXEC_FAILED, f"target '{_short(cmd.target)}' is running and not abortable"
+            return EXEC_FAILED, texts.target_not_abortable(_short(cmd.target))
         else:
             self._cancel(target)  # its own final ack follows when its handler returns, or at its stop bound
-            said = f"{_short(cmd.target)} cancel requested; handler has not stopped yet"
+            said = texts.cancel_requested(_short(cmd.target))
         self._ack(cmd, EXECUTING, NOT, "")
         self._ack(cmd, COMPLETED, OK, said)
         self._service()
@@ -363,14 +363,14 @@ class CommandManager:
             if method is None:
                 raise CommandFailed(NOT_IMPLEMENTED)
             result = method(ctx, **run.kwargs)
-            outcome = (CANCELED, "canceled") if ctx.cancelled.is_set() else (OK, result if isinstance(result, str) else "")
+            outcome = (CANCELED, texts.CANCELED) if ctx.cancelled.is_set() else (OK, result if isinstance(result, str) else "")
         except Cancelled:
-            outcome = CANCELED, "canceled"
+            outcome = CANCELED, texts.CANCELED
         except CommandFailed as exc:
-            outcome = EXEC_FAILED, _text(exc) or "failed"
+            outcome = EXEC_FAILED, _text(exc) or texts.FAILED
         except BaseException as exc:  # a handler's bug must not stop the bridge; the commander hears of it
             # (BaseException: a SystemExit or KeyboardInterrupt raised in a handler ends the command, not the bridge)
-            outcome = EXEC_FAILED, f"handler error: {type(exc).__name__}: {_text(exc)}"
+            outcome = EXEC_FAILED, texts.handler_error(type(exc).__name__, _text(exc))
             self._log_exception(run, exc)
         with self.batch():
             self._handlers_running -= 1
@@ -384,7 +384,7 @@ class CommandManager:
                 outcome = self._stop_all_motion_outcome(run, outcome)
             if run.requeue and outcome[0] == CANCELED and not self.closing:
                 run.requeue, run.done, run.ctx, run.stop_by = False, False, None, None
-                self._ack(run.cmd, REQUEUED, NOT, "preempted; back in the queue")
+                self._ack(run.cmd, REQUEUED, NOT, texts.PREEMPTED)
                 run.record_status = "Q_STATUS_PAUSED"
                 self.active = None
                 self.pending.push_front(run)
@@ -470,7 +470,7 @@ class CommandManager:
             outcome = OK, NO_HARDWARE_STOP
         left = sum(1 for r in run.stopped if r.running and not r.done)
         if left:
-            outcome = outcome[0], "; ".join(p for p in (outcome[1], f"{left} motion handler(s) not stopped yet") if p)
+            outcome = outcome[0], "; ".join(p for p in (outcome[1], texts.motion_not_stopped(left)) if p)
         return outcome
 
     def _complete(self, run: Run, completion: str, message: str, suspend: bool = True) -> None:
@@ -735,13 +735,13 @@ def _noop(m: CommandManager, run: Run):
 
 def _shutdown(m: CommandManager, run: Run):
     m.shutdown_after = run  # once its COMPLETED ack is out
-    return OK, "shutting down"
+    return OK, texts.SHUTTING_DOWN
 
 
 def _cancel_all(m: CommandManager, run: Run):
     for r in list(m.pending):
         m.pending.remove(r)
-        m._finish_unstarted(r, "cancelAll")
+        m._finish_unstarted(r, texts.CANCELED_BY_CANCEL_ALL)
     kept = asked = 0
     for r in [m.active, *m.bypass]:
         if r is None or r is run or r.done:
@@ -752,8 +752,7 @@ def _cancel_all(m: CommandManager, run: Run):
         else:
             kept += 1
     m.suspended = False
-    parts = [f"{asked} handler(s) asked to stop, not stopped yet" if asked else "",
-             f"{kept} non-abortable command(s) still running" if kept else ""]
+    parts = [texts.handlers_asked_to_stop(asked) if asked else "", texts.non_abortable_running(kept) if kept else ""]
     return OK, "; ".join(p for p in parts if p)
 
 
@@ -764,7 +763,7 @@ def _stop_all_motion(m: CommandManager, run: Run):
     for r in list(m.pending):
         if r.cmd.subsystem in mobility:
             m.pending.remove(r)
-            m._finish_unstarted(r, "stopAllMotion")
+            m._finish_unstarted(r, texts.CANCELED_BY_STOP_ALL_MOTION)
     for r in [m.active, *m.bypass]:
         if r is not None and r is not run and r.cmd.subsystem in mobility and not r.done:
             m._cancel(r)

@@ -3,6 +3,7 @@ command, argument count, each argument's union discriminator, then the descripto
 limits (range, allowed values). Returns a reason for COMPLETED/BAD_SYNTAX, or None."""
 from __future__ import annotations
 
+from rapid_runtime import texts
 from rapid_runtime.command import Cmd
 from rapid_runtime.tables import CommandEntry, Tables
 from rapid_runtime.values import limit_error, shape_error
@@ -17,20 +18,21 @@ def _short(text: str, n: int = 24) -> str:
 def check_command(cmd: Cmd, tables: Tables) -> tuple[CommandEntry | None, str | None]:
     """(entry, None) for a valid command, (entry or None, reason) for an invalid one."""
     if tables.type_of(cmd.subsystem) is None:
-        return None, f"unknown subsystem '{_short(cmd.subsystem)}'"
+        return None, texts.unknown_subsystem(_short(cmd.subsystem))
     entry = tables.command(cmd.subsystem, cmd.name)
     if entry is None:
-        return None, f"unknown command '{_short(cmd.name)}' for subsystem '{_short(cmd.subsystem)}'"
+        return None, texts.unknown_command(_short(cmd.name), _short(cmd.subsystem))
     if len(cmd.args) != len(entry.params):
-        return entry, (f"{entry.name} takes {len(entry.params)} argument{'s' * (len(entry.params) != 1)}, "
-                       f"got {len(cmd.args)}")
+        if len(entry.params) == 1:
+            return entry, texts.argument_count_one(entry.name, len(cmd.args))
+        return entry, texts.argument_count(entry.name, len(entry.params), len(cmd.args))
     for i, (p, (dtype, _)) in enumerate(zip(entry.params, cmd.args)):
         if dtype != p.type:
-            return entry, f"argument {i + 1} ({_short(p.name, 16)}) must be {p.type}, got {dtype}"
+            return entry, texts.argument_type(i + 1, _short(p.name, 16), p.type, dtype)
     for i, (p, (_, value)) in enumerate(zip(entry.params, cmd.args)):
         why = shape_error(p.type, value) or limit_error(p, value)
         if why:
-            return entry, f"argument {i + 1} ({_short(p.name, 16)}): {why}"
+            return entry, texts.argument_invalid(i + 1, _short(p.name, 16), why)
     return entry, None
 
 

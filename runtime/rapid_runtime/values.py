@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from rapid_runtime import texts
+
 INT32 = (-2**31, 2**31 - 1)
 INT64 = (-2**63, 2**63 - 1)
 FLOAT32_MAX = 3.4028234663852886e38
@@ -38,7 +40,7 @@ def shape_error(dtype: str, value: object) -> str | None:
         if not isinstance(value, str):
             return "not a string"
         n = len(value.encode("utf-8", "surrogatepass"))
-        return None if n <= STRING_BYTES else f"{n} bytes (max {STRING_BYTES})"
+        return None if n <= STRING_BYTES else texts.string_too_long(n, STRING_BYTES)
     if dtype in COUNTS:
         if not isinstance(value, (list, tuple)) or len(value) != COUNTS[dtype]:
             return f"needs {COUNTS[dtype]} numbers"
@@ -59,7 +61,7 @@ def limit_error(param, value: object) -> str | None:
     NaN is outside every range; a range applies to each element of a vector."""
     if param.allowed and value not in param.allowed:
         shown = "|".join(str(a) for a in param.allowed)
-        return f"{value!r} not one of {shown}"
+        return texts.not_one_of(repr(value), shown)
     if param.min is None and param.max is None:
         return None
     items = value if isinstance(value, (list, tuple)) else [value]
@@ -69,7 +71,7 @@ def limit_error(param, value: object) -> str | None:
         if math.isnan(x) or (param.min is not None and x < param.min) or (param.max is not None and x > param.max):
             lo = "-inf" if param.min is None else _fmt(param.min)
             hi = "inf" if param.max is None else _fmt(param.max)
-            return f"{_fmt(x)} not in [{lo}, {hi}]"
+            return texts.out_of_range(_fmt(x), lo, hi)
     return None
 
 
