@@ -340,3 +340,67 @@ def test_robonaut2_joints_named_by_its_joint_config_and_m33_hand_poses(r2_record
 def test_the_robonaut2_layout_names_the_recorded_channels(r2_recording):
     derived = r2_recording["derived"]
     _layout_check("robonaut2-layout.json", derived, _frames(derived))
+
+
+SEEDS_DOMAIN = 39
+OTHER_SEEDS = ("athlete", "chariot", "eva-suit", "xarm2")
+
+
+@pytest.fixture(scope="module")
+def seeds_recording(tmp_path_factory):
+    """The four other seeds' simulated bridges recorded together with --foxglove for a few
+    seconds (one domain, one asset per partition), read under Node: their layouts' channels."""
+    pytest.importorskip("cyclonedds")
+    from tests.runtime.live import SEEDS, python_dir
+    out = tmp_path_factory.mktemp("foxglove-seeds") / "seeds.mcap"
+    assets = [a for s in OTHER_SEEDS for a in ("--asset", str(ROOT / "specs" / "assets" / f"{s}.yaml"))]
+    rec = Proc([*RAPIDGEN, "record", *assets, "--domain", str(SEEDS_DOMAIN), "-o", str(out), "--foxglove", "--quiet"])
+    bridges = []
+    try:
+        rec.wait_for("rapidgen record: recording domain")
+        for seed in OTHER_SEEDS:
+            bridges.append(BridgeProcess(python_dir(seed), SEEDS[seed], SEEDS_DOMAIN))
+        for b in bridges:
+            b.wait_ready()
+        time.sleep(3)  # two or three 1 Hz poses, a few 2 Hz Chariot pictures
+        for b in bridges:
+            b.stop()
+        bridges = []
+        time.sleep(0.5)
+        code = rec.end()
+    finally:
+        for b in bridges:
+            b.stop()
+        if rec.proc.poll() is None:
+            rec.proc.kill()
+            rec.proc.wait()
+    assert code == 0, "".join(rec.err)[-3000:]
+    got = run_json("read_mcap.js", "--all", str(out))
+    assert got["failed"] == [] and got["invalid"] == [], (got["failed"][:3], got["invalid"][:3])
+    return got["derived"]
+
+
+@pytest.mark.parametrize("seed, partition, follow", [("athlete", "ATHLETE", "ATHLETE"), ("chariot", "Chariot", "Chariot"),
+                                                     ("eva-suit", "EvaSuitA", "EvaSuitA"),
+                                                     ("xarm2", "XArm2", "XArm2Base")])
+def test_each_seeds_layout_names_its_recorded_channels(seeds_recording, seed, partition, follow):
+    """docs/foxglove/SEED-layout.json: only that seed's channels (each one recorded), its 3D
+    panel following a frame its transforms name."""
+    derived = {t: ds for t, ds in seeds_recording.items() if t.startswith(f"/{partition}/")}
+    assert derived, sorted(seeds_recording)
+    _layout_check(f"{seed}-layout.json", derived, _frames(derived))
+    layout = json.loads((ROOT / "docs" / "foxglove" / f"{seed}-layout.json").read_text(encoding="utf-8"))
+    assert [c["followTf"] for k, c in layout["configById"].items() if k.startswith("3D!")] == [follow]
+
+
+def test_desktop_origins_are_refused_unless_given():
+    """Foxglove's desktop app is an Electron page loaded from file:// (docs/foxglove.md): its
+    WebSocket carries `Origin: file://` (or `null`), refused like any browser Origin unless
+    given with --foxglove-origin; a client with no Origin (a program) is accepted."""
+    from rapidgen.foxglove.server import FoxgloveServer
+    default = FoxgloveServer()
+    assert default._origin_ok(None)
+    assert not any(default._origin_ok(o) for o in ("file://", "null", "https://app.foxglove.dev"))
+    desktop = FoxgloveServer(origins=("file://", "null"))
+    assert desktop._origin_ok("file://") and desktop._origin_ok("null") and desktop._origin_ok(None)
+    assert not desktop._origin_ok("https://app.foxglove.dev") and not desktop._origin_ok("http://localhost:8080")
