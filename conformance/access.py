@@ -112,12 +112,46 @@ def grab(s):
            f"{now!r} after grabControl answered {describe(acks[-2:])}")
 
 
+@check("ACC-08", REQUIRED, "Once control moved, the former controller's commands are refused",
+       "rapid-protocol.md 5b: anyone who is not the controller gets BAD_SYNTAX \"RAPID access violation\"",
+       needs=("ACC-03", "ACC-04"))
+def former(s):
+    """The runner holds control and its harmless command is accepted; a second source grabs
+    control; the runner's same command must now be refused (the AccessControl subsystem
+    alone is exempt, so ACC-05's releaseControl does not show this)."""
+    _access(s)
+    c = s.facts.harmless()
+    if c is None:
+        raise Unsupported("no command to send that moves nothing")
+    b = _other(s)
+    s.ensure_control()
+    before = s.run(c)
+    if not _ok(s, before):
+        raise Blocked(f"{c.subsystem}/{c.name} from the controller {s.source} answered {describe(before)} (CMD-02)")
+    try:
+        s.grab_control(b)
+        if s.holder != b:
+            raise Blocked(f"grabControl by {b} was not answered OK (ACC-04)")
+        s.expect_refused(s.run(c), f"{c.subsystem}/{c.name} from {s.source} once {b} took control from it "
+                                   f"(5b: not the controller -> RAPID access violation)")
+    finally:
+        s.holder = None
+        try:
+            s.ensure_control()
+        except Blocked:  # answers that cannot be judged: the checks that need them say so
+            pass
+
+
 @check("ACC-05", REQUIRED, "releaseControl by a source without control is refused",
        "rapid-protocol.md 5b: release/transfer by a non-owner -> EXEC_FAILED", needs=("ACC-04",))
 def release_other(s):
     _access(s)
-    s.expect_refused(s.run(("AccessControl", "releaseControl"), []), "releaseControl by a non-owner")
     b = _other(s)
+    if s.holder != b:  # the second source holds control (ACC-04 left it so; ACC-08 took it back)
+        s.grab_control(b)
+        if s.holder != b:
+            raise Blocked(f"grabControl by {b} was not answered OK (ACC-04)")
+    s.expect_refused(s.run(("AccessControl", "releaseControl"), []), "releaseControl by a non-owner")
     s.expect_ok(s.run(("AccessControl", "releaseControl"), [], source=b), "releaseControl by the controller")
     s.ensure_control()
 
@@ -129,3 +163,26 @@ def stop_all(s):
     if s.facts.command("Mobility", "stopAllMotion") is None:
         raise Unsupported("no Mobility/stopAllMotion")
     s.expect_ok(s.run(("Mobility", "stopAllMotion"), [], source=INTRUDER), "stopAllMotion from a non-controller")
+
+
+@check("ACC-09", REQUIRED, "releaseControl by the controller is published: AccessControlState no longer names it",
+       "rapid-protocol.md 5b: release passes control on (a requestor, or nobody); docs/runtime.md: "
+       "AccessControlState published on every change", needs=("ACC-05",))
+def release_published(s):
+    _access(s)
+    s.ensure_control()
+    if s.controller(1.0, want=s.source) != s.source:
+        raise Blocked(f"AccessControlState does not name the controller {s.source} (ACC-04)")
+    acks = s.run(("AccessControl", "releaseControl"), [])
+    try:
+        if not _ok(s, acks):
+            raise Blocked(f"releaseControl by the controller answered {describe(acks)} (ACC-05)")
+        gone = s.wait_controller_not(s.source, 2.0)
+        expect(gone, f"AccessControlState naming another controller than {s.source!r} (a requestor, or nobody) "
+                     f"within 2 s of its releaseControl answered OK (published on every change)",
+               f"still {s.controller(0.0)!r} after releaseControl answered {describe(acks)}")
+    finally:
+        try:
+            s.ensure_control()
+        except Blocked:
+            pass

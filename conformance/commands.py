@@ -9,7 +9,7 @@ from typing import Any
 from rapidgen.textsafe import visible
 from rapidgen.conform.asset import is_motion, valid_args, wrong_type
 from rapidgen.conform.model import RECOMMENDED, REQUIRED, Blocked, Unsupported, check, expect
-from rapidgen.conform.session import COMPLETED, describe
+from rapidgen.conform.session import COMPLETED, GRACE, describe
 
 from .dds import qos_mismatch
 
@@ -60,8 +60,10 @@ def endpoints(s):
 def valid(s):
     _ready(s)
     c = _harmless(s)
-    acks = s.run(c)
+    acks = s.run(c, final=False)  # its silence is this check's own finding (not CMD-16's)
     s.memo["valid"] = acks[0].cmd_id if acks else None
+    if s.final(acks) is None:
+        s.owned.update(cid for cid, origin in s.client.origin.items() if origin == "CMD-02")
     if not acks:  # the checks after this that wait for an answer would each wait out the timeout
         s.memo.setdefault("answers", f"a valid command ({c.subsystem}/{c.name}) got no ack within "
                                      f"{s.timeout:g} s (CMD-02)")
@@ -117,6 +119,7 @@ def other_asset(s):
     c = _harmless(s)
     since = time.monotonic()
     cid = s.client.send(c.subsystem, c.name, valid_args(c), source=s.source, asset=s.asset + "Other")
+    s.unanswerable.add(cid)  # not to be answered: no final ack is owed (CMD-16)
     s.pause(QUIET)
     s.silent_since(since)
     acks = s.client.acks_of(cid)
@@ -162,24 +165,71 @@ def late_acks(s):
     expect(found, f"the acks of {cid} for a reader created after it was answered", f"{seen} acks, none of it")
 
 
-@check("CMD-15", RECOMMENDED, "A value outside its declared range is answered non-OK",
+NUMERIC = ("RAPID_FLOAT", "RAPID_DOUBLE", "RAPID_INT", "RAPID_LONGLONG")
+WIDTH = {"RAPID_INT": 2**31, "RAPID_LONGLONG": 2**63}  # a probe must still fit its union member
+NOT_ALLOWED = "conformance-not-allowed"
+
+
+def _outside(p: dict) -> list[tuple[str, object]]:
+    """(which limit, a value past it) for parameter p: above its maximum, below its minimum,
+    not among its allowed values (a string, or a number inside its range), each where the
+    descriptor declares it."""
+    out: list[tuple[str, object]] = []
+    t, lo, hi, allowed = p["type"], p.get("min"), p.get("max"), p.get("allowed") or []
+    if t in NUMERIC:
+        integer = t in WIDTH
+        for which, end, sign in (("above its maximum", hi, 1), ("below its minimum", lo, -1)):
+            if end is None:
+                continue
+            value = end + sign if integer else float(end) + sign * max(1.0, abs(float(end)))
+            if not integer or -WIDTH[t] <= value < WIDTH[t]:
+                out.append((f"{which} {end:g}", value))
+        if allowed:
+            top = (hi if hi is not None else max(allowed) + 1)
+            value = next((v for v in (max(allowed) + 1, min(allowed) - 1, top)
+                          if v not in allowed and (lo is None or v >= lo) and (hi is None or v <= hi)), None)
+            if value is not None:
+                out.append((f"not among its allowed values {'|'.join(map(str, allowed))}",
+                            int(value) if integer else float(value)))
+    elif t == "RAPID_STRING" and allowed:
+        value = next(v for v in (NOT_ALLOWED, NOT_ALLOWED + "-2") if v not in allowed)
+        out.append((f"not among its allowed values {'|'.join(map(str, allowed))}", value))
+    return out
+
+
+@check("CMD-15", RECOMMENDED, "A value outside its declared range or allowed values is answered non-OK",
        "descriptor: parameter range and allowed values", needs=("CMD-01",))
 def out_of_range(s):
-    refused = None
+    """One probe per kind of limit the descriptor declares (above a maximum, below a minimum,
+    a value not allowed), each on the first parameter that declares it; never a motion
+    command without leave."""
+    refused, probes, kinds = None, [], set()
     for c in s.facts.commands():
+        limited = [(i, p, which, v) for i, p in enumerate(c.params) for which, v in _outside(p)]
         if is_motion(c) and not s.allow_motion:  # refused by a good asset, a drive by a bad one
-            ranged = [p for p in c.params if p["type"] in ("RAPID_FLOAT", "RAPID_DOUBLE", "RAPID_INT")
-                      and p.get("max") is not None]
-            if refused is None and ranged:
+            if refused is None and limited:
                 refused = s.refusal(c)
             continue
-        for i, p in enumerate(c.params):
-            if p["type"] in ("RAPID_FLOAT", "RAPID_DOUBLE", "RAPID_INT") and p.get("max") is not None:
-                args = valid_args(c)
-                args[i] = (p["type"], p["max"] + 1 if p["type"] == "RAPID_INT" else float(p["max"]) * 2 + 1)
-                _refused(s, f"{c.subsystem}/{c.name} {p['name']}={args[i][1]}", c.subsystem, c.name, args)
-                return
-    raise Unsupported(refused or "no parameter declares a numeric range")
+        for i, p, which, v in limited:
+            kind = which.split(" its ")[0]
+            if kind not in kinds:
+                kinds.add(kind)
+                probes.append((c, i, p, which, v))
+    if not probes:
+        raise Unsupported(refused or "no parameter declares a range or allowed values")
+    _ready(s)
+    bad = []
+    for c, i, p, which, v in probes:
+        args = valid_args(c)
+        args[i] = (p["type"], v)
+        acks = s.run(c, args)
+        f = s.final(acks)
+        if f.completed in ("ACK_COMPLETED_OK", "ACK_COMPLETED_NOT"):
+            bad.append(f"{c.subsystem}/{c.name} {p['name']}={v!r} ({which}) answered {describe(acks)}")
+    expect(not bad, "a value outside its parameter's declared range or allowed values answered BAD_SYNTAX or "
+                    "EXEC_FAILED (descriptor: range, allowed)", "; ".join(bad))
+    return f"{len(probes)} probe(s): " + ", ".join(f"{c.name} {p['name']} {which.split(' its ')[0]}"
+                                                 for c, _i, p, which, _v in probes)
 
 
 @check("CMD-11", REQUIRED, "Ack messages are at most 127 bytes", "rapid-protocol.md 5 and 5b: Ack.message String128",
@@ -187,8 +237,8 @@ def out_of_range(s):
 def ack_length(s):
     echo = s.facts.command("Admin", "echo")
     if echo is not None and echo.params:
-        s.run(echo, [("RAPID_STRING", "x" * 127)])
-    s.run((s.facts.commands()[0].subsystem, "n" * 63), [])
+        s.run(echo, [("RAPID_STRING", "x" * 127)], final=False)  # judged: the messages; an answer missing is CMD-16's
+    s.run((s.facts.commands()[0].subsystem, "n" * 63), [], final=False)
     long = [f"{visible(a.cmd_id)}: {len(a.message.encode())} bytes" for a in s.client.acks
             if len(a.message.encode()) > 127]
     expect(not long, "every Ack.message within 127 bytes", "; ".join(long[:3]))
@@ -238,7 +288,7 @@ def ack_ids(s):
     if not s.awaited:  # nothing was sent yet (--only CMD-12): one command to answer
         _ready(s, answers=False)
         try:
-            s.run(_harmless(s))
+            s.run(_harmless(s), final=False)
         except Blocked:
             pass
     c = s.client
@@ -277,9 +327,16 @@ def _judged(s) -> list[str]:
 
 
 # Last of all: an asset that crashes on it must not take the other checks with it.
+PROBE_AGAIN = 2.0  # s without any ack for the probe before a second one tells a lost probe from a stopped asset
+
+
 @check("CMD-14", REQUIRED, "Malformed commands do not stop the asset", "rapid-protocol.md 5: commands cannot be dropped",
        needs=("CMD-02",), late=True)
 def survives(s):
+    """Ten malformed commands, then the harmless command must still be answered OK. A probe
+    with no ack at all gets a second one: one command lost (CMD-16's finding) is not an asset
+    that stopped. Every command of the burst is looked at: one without a final ack is named
+    (CMD-16 judges it, with the full timeout)."""
     c = _harmless(s)
     s.ensure_control()  # an access-control fault earlier in the run may have left control elsewhere
     p = s.with_params() if s.facts.with_params(motion=s.allow_motion) else c
@@ -287,9 +344,61 @@ def survives(s):
         dict(args=[("RAPID_DOUBLE", float("nan"))] * 16), dict(args=[("RAPID_STRING", "\x01\x7f\u00e9" * 30)]),
         dict(args=[(t, v) for t, v in valid_args(p)], cmd_id=""), dict(args=[("RAPID_MAT33f", [float("inf")] * 9)]),
         dict(args=[(t, v) for t, v in valid_args(p)], action="QUEUE_INSERT", target="\u00e9" * 31)]
+    burst = []
     for kw in odd:
-        s.client.send(p.subsystem, p.name, source=s.source, **kw)
-        s.client.send("\u00e9" * 15, "\x01x" * 31, source=s.source, **kw)
+        burst.append(s.client.send(p.subsystem, p.name, source=s.source, **kw))
+        burst.append(s.client.send("\u00e9" * 15, "\x01x" * 31, source=s.source, **kw))
     time.sleep(0.3)
-    acks = s.run(c)
-    s.expect_ok(acks, f"{c.subsystem}/{c.name} after {2 * len(odd)} malformed commands")
+    s.answers()
+    args = valid_args(c)
+    probes = [s.client.send(c.subsystem, c.name, args, source=s.source)]
+    acks = s.wait_acks(probes[0], timeout=PROBE_AGAIN)
+    if not acks:
+        probes.append(s.client.send(c.subsystem, c.name, args, source=s.source))
+        s.wait_acks(probes[-1])
+    answered = next((got for cid in probes if s.final(got := s.client.acks_of(cid)) is not None), None)
+    what = f"{c.subsystem}/{c.name} after {len(burst)} malformed commands"
+    if answered is None:
+        s.owned.update(burst + probes)  # this check's finding: the asset stopped answering
+        s.expect_ok(s.client.acks_of(probes[-1]), what + f" ({len(probes)} sent, none answered)")
+    s.expect_ok(answered, what)
+    due = [cid for cid in dict.fromkeys(burst) if s.accountable(cid)]
+    end = time.monotonic() + s.allow(GRACE)  # the burst came before the probe: its answers too
+    while time.monotonic() < end and any(s.final(s.client.acks_of(cid)) is None for cid in due):
+        time.sleep(0.05)
+    unanswered = [cid for cid in due if s.final(s.client.acks_of(cid)) is None]
+    lost = [cid for cid in probes if s.final(s.client.acks_of(cid)) is None]
+    if unanswered or lost:
+        return (f"{len(unanswered)} of the {len(due)} malformed commands answered nothing yet"
+                + (f", {len(lost)} probe(s) unanswered" if lost else "") + " (CMD-16 judges)")
+    return None
+
+
+ACCOUNT = "rapid-protocol.md 5: commands cannot be dropped"
+
+
+# After CMD-14 (the last commands of the run): each command is judged once its time is up.
+@check("CMD-16", REQUIRED, "Every command sent is answered with a final COMPLETED ack",
+       f"{ACCOUNT}; 5b: every command gets a final COMPLETED (dropped silently only: another asset's, a repeated "
+       f"cmdId, a queued action without a queue)", needs=("CMD-14",), late=True)
+def accounted(s):
+    """Every command the checks sent, followed to its final ack (--timeout s after it was
+    sent, at most): one without is named with the check that sent it. Those checks were
+    BLOCKED (they could not judge their rule); this is the finding."""
+    _ready(s)
+    c = s.client
+    due = [cid for cid in list(c.sent) if s.accountable(cid)]
+
+    def missing() -> list[str]:
+        return [cid for cid in due if not any(a.cmd_id == cid and a.status == COMPLETED for a in c.acks)]
+    left = missing()
+    while left:
+        last = max(c.sent_at[cid] for cid in left) + s.timeout
+        if time.monotonic() >= last:
+            break
+        time.sleep(0.05)
+        left = missing()
+    listed = [s.silence(cid) for cid in left[:4]] + ([f"and {len(left) - 4} more"] if len(left) > 4 else [])
+    expect(not left, f"a final COMPLETED ack for each of the {len(due)} commands sent, within {s.timeout:g} s "
+                     f"({ACCOUNT})", f"{len(left)} unanswered: " + "; ".join(listed))
+    return f"{len(due)} commands, each answered"

@@ -149,6 +149,10 @@ class Client:
         self.acks_not_kept = 0
         self.sent: dict[str, object] = {}  # cmdId -> Command we wrote
         self.sent_at: dict[str, float] = {}  # cmdId -> time.monotonic() when we first wrote it
+        # Accounting (CMD-16): who sent each cmdId (the check running, Session.begin), so a command
+        # that gets no final ack is named with the check that sent it
+        self.sender = ""
+        self.origin: dict[str, str] = {}
         # cmdIds any commander wrote (our command reader sees every writer's): bounded, oldest out
         self.commanded: collections.OrderedDict[str, None] = collections.OrderedDict()
         self.command_guard: GuardedReader | None = None
@@ -366,6 +370,7 @@ class Client:
         with self.lock:
             self.sent.setdefault(cmd_id, cmd)
             self.sent_at.setdefault(cmd_id, time.monotonic())
+            self.origin.setdefault(cmd_id, self.sender)
         if self.command_writer is None:  # callers check Session.needs_commands() first
             raise RuntimeError("the asset takes no commands: no command writer")
         self.command_writer.write(cmd)

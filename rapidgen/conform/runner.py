@@ -24,6 +24,7 @@ def select(checks: dict[str, Check], only: list[str], skip: list[str]) -> tuple[
 def run_checks(session, checks: list[Check], on_result=None) -> list[Result]:
     ordered = sorted(checks, key=lambda c: c.late)
     results: dict[str, Result] = {}
+    begin = getattr(session, "begin", None)  # the session names each command with the check that sent it
     for c in ordered:
         blockers = [n for n in c.needs if n in results and results[n].outcome not in (PASS, UNSUPPORTED)]
         moot = [n for n in c.needs if n in results and results[n].outcome == UNSUPPORTED]
@@ -34,6 +35,8 @@ def run_checks(session, checks: list[Check], on_result=None) -> list[Result]:
             res = Result(c, BLOCKED, f"not judged: {', '.join(blockers)} did not pass")
         else:
             try:
+                if begin is not None:
+                    begin(c.id)
                 note = c.run(session)
                 res = Result(c, PASS, note or "")
             except Fail as f:

@@ -8,7 +8,7 @@ import time
 
 from rapidgen.textsafe import visible
 from rapidgen.conform.asset import AssetFacts, Cmd, valid_args
-from rapidgen.conform.client import UNKNOWN, Client
+from rapidgen.conform.client import UNKNOWN, Client, enum_name
 from rapidgen.conform.model import Blocked, Fail, Unsupported
 
 COMPLETED, OK = "ACK_COMPLETED", "ACK_COMPLETED_OK"
@@ -59,6 +59,15 @@ class Session:
         self.allow_motion = allow_motion
         self.before: str | None = None  # AccessControlState's controller before the first check (None: no state)
         self.control = ""  # what hand_back() did, for the report
+        # Accounting (CMD-16): every command sent gets a final COMPLETED ack. Not accounted: those
+        # sent to get no answer (another asset's: CMD-09), and those whose silence the check that
+        # sent them judged itself (CMD-02's valid command, CMD-14's probe: their own rule).
+        self.unanswerable: set[str] = set()
+        self.owned: set[str] = set()
+
+    def begin(self, check_id: str) -> None:
+        """The runner starts a check: the commands sent from now on are its (accounting)."""
+        self.client.sender = check_id
 
     # ---- motion --------------------------------------------------------------------------------
     @staticmethod
@@ -230,9 +239,12 @@ class Session:
         return False
 
     def run(self, cmd: Cmd | tuple[str, str], args=None, source: str | None = None, timeout: float | None = None,
-            **kw) -> list:
+            final: bool = True, **kw) -> list:
         """Send and wait for the final ack; returns the acks of that cmdId. BLOCKED at once
-        when an earlier command showed the asset's answers cannot be judged (answers())."""
+        when an earlier command showed the asset's answers cannot be judged (answers()).
+        final: BLOCKED when no final ack came within the timeout (the check cannot judge its
+        rule; the missing answer is CMD-16's finding, named with this check); False: the
+        acks as they are (a check that judges the silence itself, or does not need it)."""
         self.answers()
         sub, name = (cmd.subsystem, cmd.name) if isinstance(cmd, Cmd) else cmd
         if args is None:
@@ -246,7 +258,46 @@ class Session:
                 self.holder = source
             elif name in ("releaseControl", "transferControl"):
                 self.holder = None
+        if final:
+            self.require_final(cid, acks)
         return acks
+
+    # ---- accounting: every command sent is followed to its final ack (CMD-16) ------------------
+    def require_final(self, cmd_id: str, acks: list | None = None) -> list:
+        """The cmdId's acks when they hold its final COMPLETED; else BLOCKED: the check that
+        needs the answer cannot judge its rule, and the missing answer is CMD-16's finding."""
+        acks = self.client.acks_of(cmd_id) if acks is None else acks
+        if self.final(acks) is None:
+            raise Blocked(self.silence(cmd_id) + " (CMD-16)")
+        return acks
+
+    def silence(self, cmd_id: str) -> str:
+        """'cmdId X (Sub/cmd, ACTION) sent by CHECK got no final ack within T s' (the acks it got)."""
+        c = self.client
+        with c.lock:
+            cmd, origin, at = c.sent.get(cmd_id), c.origin.get(cmd_id, ""), c.sent_at.get(cmd_id)
+        what = ""
+        if cmd is not None:
+            action = enum_name(cmd.cmdAction)
+            what = f" ({visible(cmd.subsysName)[:32]}/{visible(cmd.cmdName)[:40]}" + \
+                   ("" if action == "QUEUE_BYPASS" else f", {action}") + ")"
+        waited = (time.monotonic() - at) if at is not None else self.timeout
+        acks = c.acks_of(cmd_id)
+        got = f" (its acks: {describe(acks)})" if acks else ""
+        return (f"cmdId {visible(cmd_id)[:60]!r}{what} sent by {origin or 'the runner'} got no final ack within "
+                f"{waited:.0f} s{got}")
+
+    def accountable(self, cmd_id: str) -> bool:
+        """A command of the runner's that must get a final COMPLETED ack: not one sent to get no
+        answer or whose silence its own check judged, not one with an empty cmdId (nothing
+        to answer with), not a queued action on an asset without a queue (soraCore drops
+        those: rapid-protocol.md 5b), and sent by a check (not the hand-back at the end)."""
+        c = self.client
+        with c.lock:
+            cmd, origin = c.sent.get(cmd_id), c.origin.get(cmd_id, "")
+        if not cmd_id or cmd is None or not origin or cmd_id in self.unanswerable or cmd_id in self.owned:
+            return False
+        return enum_name(cmd.cmdAction) == "QUEUE_BYPASS" or self.facts.has_type("Queue")
 
     def wait_acks(self, cmd_id: str, statuses: tuple[str, ...] = (COMPLETED,), timeout: float | None = None) -> list:
         """The cmdId's acks once one has a status in statuses, or at the timeout. Ends sooner,
@@ -367,6 +418,7 @@ class Session:
         Session.control); empty when the asset has no access control or nothing was sent."""
         if not self.facts.has_type("AccessControl") or self.client.command_writer is None:
             return ""
+        self.client.sender = ""  # not a check's: its answers are said here, not accounted by CMD-16
         with self.client.lock:
             ours = {str(getattr(c, "cmdSrc", "")) for c in self.client.sent.values()}
         if not ours:
@@ -398,7 +450,11 @@ class Session:
                     done.append(f"transferControl from {now} to {before} answered {describe(acks)}")
                 acks = self._send_final("releaseControl", [], now)
                 done.append(f"releaseControl by {now}: {describe(acks)}")
-                self._wait_controller_not(now, 2.0)
+                if self.final(acks).completed != OK:
+                    break  # the asset says it does not hold control: its state is not the asset's word here
+                if not self.wait_controller_not(now, 2.0):
+                    done.append(f"AccessControlState still names {now!r} (ACC-09)")
+                    break
         except Blocked as b:  # the asset's answers cannot be judged (CMD-12): say what is known
             done.append(f"stopped: {b}")
         now = self.controller(0.5)
@@ -421,10 +477,11 @@ class Session:
             self.holder = None
         return acks
 
-    def _wait_controller_not(self, who: str, timeout: float) -> None:
+    def wait_controller_not(self, who: str, timeout: float) -> bool:
         end = time.monotonic() + self.allow(timeout)
         while self.controller(0.0) == who and time.monotonic() < end:
             time.sleep(0.02)
+        return self.controller(0.0) != who
 
     def close(self) -> None:
         self.client.stop()

@@ -6,6 +6,7 @@ from rapid_runtime.acks import EXEC_FAILED, OK
 from . import kind
 
 REQUEST, GRAB = ("AccessControl", "requestControl"), ("AccessControl", "grabControl")
+RELEASE = ("AccessControl", "releaseControl")
 
 
 @kind("access-state-unwritten", "ACC-01")
@@ -93,3 +94,38 @@ def grab_unpublished(a):
         err, note = m.control.grab(run.cmd.cmd_src)
         return (EXEC_FAILED, err) if err else (OK, note)
     a.manager_module.BUILTINS[GRAB] = grab
+
+
+@kind("release-unpublished", "ACC-09")
+def release_unpublished(a):
+    """releaseControl works but AccessControlState is not republished: the state still names
+    the source that released."""
+    def release(m, run):
+        err, note = m.control.release(run.cmd.cmd_src)
+        return (EXEC_FAILED, err) if err else (OK, note)
+    a.manager_module.BUILTINS[RELEASE] = release
+
+
+@kind("former-controller-keeps-rights", "ACC-08")
+def former_controller_keeps_rights(a):
+    """The control gate asks whether the source ever held control: once control moved, the
+    former controller's commands still run (release and transfer still need control)."""
+    m, control = a.manager, a.manager.control
+    ever: set[str] = set()
+    give, authorize = control._give, m._authorize
+
+    def remembered(source):
+        ever.add(source)
+        give(source)
+    control._give = remembered
+
+    def gate(cmd, entry):
+        if cmd.cmd_src not in ever:
+            return authorize(cmd, entry)
+        holds = control.holds  # the gate alone asks "held it once?" (an instance attribute, removed after)
+        control.holds = lambda source: source in ever or holds(source)
+        try:
+            return authorize(cmd, entry)
+        finally:
+            del control.holds
+    m._authorize = gate

@@ -4,6 +4,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import sys
 
 from rapid_runtime.acks import COMPLETED, EXEC_FAILED, EXECUTING, NOT, OK
 
@@ -226,3 +227,39 @@ def odd_ack_text(a):
     sim = a.bridge.handlers
     run = sim.run
     sim.run = lambda ctx, entry, kw: "\udcff " + str(run(ctx, entry, kw))
+
+
+@kind("allowed-unchecked", "CMD-15")
+def allowed_unchecked(a):
+    """Allowed values are not enforced (a string outside the list runs); ranges still are."""
+    import rapid_runtime.validate as V
+    limit = V.limit_error
+    V.limit_error = lambda p, value: limit(dataclasses.replace(p, allowed=()), value)
+
+
+@kind("minimum-unchecked", "CMD-15")
+def minimum_unchecked(a):
+    """Only the maximum of a range is enforced (a bridge that tests `x > max` alone)."""
+    import rapid_runtime.validate as V
+    limit = V.limit_error
+    V.limit_error = lambda p, value: limit(dataclasses.replace(p, min=None), value)
+
+
+LOST_EVERY = 20
+
+
+@kind("every-20th-lost", "CMD-16")
+def every_20th_lost(a):
+    """Every 20th command read is lost between the reader and the manager (a ring buffer's
+    off-by-one): never run, never answered. The checks that sent one are BLOCKED; CMD-16
+    names each with the check that sent it."""
+    intake = a.bridge.intake
+    offer, count = intake.offer, [0]
+
+    def lossy(cmd, *args, **kw):
+        count[0] += 1
+        if count[0] % LOST_EVERY:
+            return offer(cmd, *args, **kw)
+        print(f"broken: lost command {count[0]} {cmd.cmd_id!r}", file=sys.stderr, flush=True)
+        return None
+    intake.offer = lossy

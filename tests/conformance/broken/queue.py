@@ -93,3 +93,47 @@ def queue_parallel(a):
                 m.bypass.append(run)
         m._publish_queue()
     m._service = start_all
+
+
+@kind("queue-state-stale", "QUE-07")
+def queue_state_stale(a):
+    """QueueState is not republished when a handler finishes: the finished drive stays listed
+    active until the next command changes the queue (instant built-ins, done before intake
+    republishes, look right)."""
+    m = a.manager
+    execute, publish = m._execute, m._publish_queue
+    finishing = threading.local()
+
+    def quiet_execute(run):
+        finishing.on = True  # the handler's thread: its completion publishes nothing
+        try:
+            execute(run)
+        finally:
+            finishing.on = False
+    m._execute = quiet_execute
+    m._publish_queue = lambda: None if getattr(finishing, "on", False) else publish()
+
+
+@kind("insert-at-back", "QUE-06")
+def insert_at_back(a):
+    """QUEUE_INSERT is appended at the back of the queue instead of after its target."""
+    pending = a.manager.pending
+
+    def at_back(target, run):
+        pending.append(run)
+        return True
+    pending.insert_after = at_back
+
+
+@kind("replace-at-back", "QUE-06")
+def replace_at_back(a):
+    """QUEUE_REPLACE cancels its target but puts the new command at the back."""
+    pending = a.manager.pending
+
+    def at_back(target, run):
+        old = pending.find(target)
+        if old is not None:
+            pending.remove(old)
+            pending.append(run)
+        return old
+    pending.replace = at_back
