@@ -126,6 +126,8 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
     if sink.has_errors:
         report(sink, line)
         return 1
+    from rapidgen.live.cyclone_log import quiet_warnings
+    quiet_warnings()  # a C++ bridge's retired acks: a Cyclone warning each (rapidgen/live/cyclone_log.py)
     try:
         use_transport(asset.qos, args.transport)
         qos = asset.qos_module.RapidQos()

@@ -36,6 +36,8 @@ def use_transport(config_path: str, keep_environment: bool) -> str:
     """Point CYCLONEDDS_URI at a generated transport file before the first participant
     starts (Cyclone reads it then). With keep_environment, a CYCLONEDDS_URI already set
     (e.g. a test's loopback file) wins. Returns the URI in use."""
+    from rapidgen.live.cyclone_log import quiet_warnings
+    quiet_warnings()  # a C++ bridge's retired acks: a Cyclone warning each (cyclone_log.py)
     if keep_environment and os.environ.get("CYCLONEDDS_URI"):
         return os.environ["CYCLONEDDS_URI"]
     os.environ["CYCLONEDDS_URI"] = "file://" + os.path.abspath(config_path)
