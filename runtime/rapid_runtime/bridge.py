@@ -115,7 +115,8 @@ class Bridge:
                                       journal=self.journal, stop_timeout_ms=stop_timeout_ms)
         self.telemetry = TelemetryPublisher(self)
         self._reader: ReaderThread | None = None
-        self.intake = Intake(self.manager, self.log)
+        # inline: a command arriving at an empty door is handled on the reader thread (intake.py)
+        self.intake = Intake(self.manager, self.log, inline=True)
         self.ack_writers: AckWriters | None = None  # made at start(): commanders wait to match it
 
     # ---- Outbox (manager.py) ---------------------------------------------------------------
@@ -195,19 +196,25 @@ class Bridge:
             reader = self.node.reader(COMMAND_TOPIC, self.rapid.Command, max_samples=COMMAND_CACHE)
             self.intake.start()
             self._reader = ReaderThread(self.node, reader, self.rapid.Command, self._on_command, "rapid-commands",
-                                        log=self.log)
+                                        log=self.log, on_batch=self._on_commands)
             self._reader.start()
         self.handlers.on_start(self)
         return self
 
-    def _on_command(self, sample) -> None:
-        """The reader thread: hand the command to the intake (intake.py decides the order)."""
+    def _on_commands(self, samples: list) -> None:
+        """The reader thread: what one take read, to the intake (intake.py decides the order);
+        a command read alone may be handled on this thread at once."""
+        alone = len(samples) == 1
+        for sample in samples:
+            self._on_command(sample, alone)
+
+    def _on_command(self, sample, alone: bool = True) -> None:
         try:
             cmd = M.command_in(sample)
         except Exception as exc:  # a bad sample must not stop command intake
             self.log(f"command {getattr(sample, 'cmdId', '?')!r} not read: {type(exc).__name__}: {exc}")
             return
-        self.intake.offer(cmd, sample.sample_info.publication_handle)
+        self.intake.offer(cmd, sample.sample_info.publication_handle, alone)
 
     def stop(self) -> None:
         """Stop taking commands, tell the running handlers to stop and wait for them at most the

@@ -101,12 +101,12 @@ class Node:
 
 class ReaderThread:
     """Calls on_sample(sample) for every valid sample the reader takes, in a thread (with
-    .sample_info). Samples that do not decode are dropped alone and logged once per writer
+    .sample_info); or, with on_batch, on_batch(samples) once per take with what it decoded. Samples that do not decode are dropped alone and logged once per writer
     (untrusted.py); an exception in on_sample is logged and the thread goes on."""
 
     def __init__(self, node: Node, reader: DataReader, cls, on_sample, name: str, log=None, wanted=None,
-                 batch: int = 32) -> None:
-        self.reader, self.cls, self.on_sample = reader, cls, on_sample
+                 batch: int = 32, on_batch=None) -> None:
+        self.reader, self.cls, self.on_sample, self.on_batch = reader, cls, on_sample, on_batch
         self.log = log or (lambda text: None)
         self.guard = GuardedReader(reader, self.log, batch=batch, wanted=wanted)
         self.waitset = WaitSet(node.participant)
@@ -125,6 +125,12 @@ class ReaderThread:
             self.waitset.wait(duration(seconds=1))
             while not self.stopping.is_set():
                 samples = self.guard.take()
+                if self.on_batch is not None and samples:
+                    try:
+                        self.on_batch(samples)
+                    except Exception as exc:  # (on_batch handles its samples' own trouble)
+                        self.log(f"samples on {self.reader.topic.name} not handled: {type(exc).__name__}: {exc}")
+                    samples = ()
                 for sample in samples:
                     try:
                         self.on_sample(sample)
