@@ -121,6 +121,30 @@ def test_euler_encodings_agree_with_the_foxglove_derivation(rover, encoding):
         assert [sign * b for b in back] == pytest.approx(list(q), abs=1e-9), (encoding, rpy)
 
 
+@pytest.mark.parametrize("encoding", ["RAPID_ROT_ZYX", "RAPID_ROT_XYZ", "RAPID_ROT_ZYZ"])
+def test_euler_poses_go_to_ros2_as_their_quaternion(rover, encoding):
+    """ros2_ground: a PositionSample in Euler angles (Chariot's and the EVA suit's ZYX heading)
+    becomes the PoseStamped quaternion rapidgen's Foxglove derivation reads from it."""
+    from rapidgen.foxglove.derive import rotation
+    pydir, ros2, _ = rover
+    ground = importlib.import_module("rapid_navrover.ros2_ground")
+    g = ground.Ground.__new__(ground.Ground)
+    for angles in [(0.3, 0.0, 0.0), (2.5, -1.1, 3.0), (-3.0, 0.4, -2.9)]:
+        sample = NS(hdr=NS(timeStamp=1_700_000_000_123_456), pose=NS(xyz=[1.0, 2.0, 3.0], rot=[*angles] + [0.0] * 6))
+        g.PoseStamped = lambda: NS(header=NS(frame_id="", stamp=NS(sec=0, nanosec=0)),  # noqa: E731
+                                   pose=NS(position=NS(x=0.0, y=0.0, z=0.0), orientation=NS(x=0, y=0, z=0, w=1)))
+        msg = g._position({"frame": "utm", "encoding": encoding}, sample)
+        o = msg.pose.orientation
+        want = rotation(encoding, sample.pose.rot)
+        sign = 1 if sum(a * b for a, b in zip(want, (o.x, o.y, o.z, o.w))) >= 0 else -1
+        assert [sign * v for v in (o.x, o.y, o.z, o.w)] == pytest.approx(list(want), abs=1e-9)
+        assert msg.header.frame_id == "utm" and (msg.header.stamp.sec, msg.header.stamp.nanosec) == \
+            (1_700_000_000, 123_456_000)
+    if encoding == "RAPID_ROT_ZYX":  # a heading alone: a rotation about z
+        q = ros2.quat_from_euler([0.7, 0.0, 0.0], "ZYX")
+        assert q == pytest.approx((0.0, 0.0, math.sin(0.35), math.cos(0.35)))
+
+
 def test_battery_percentage_scaled_and_heading_from_a_quaternion(rover):
     _, ros2, ros2_map = rover
     h = ros2.Ros2Handlers.__new__(ros2.Ros2Handlers)
