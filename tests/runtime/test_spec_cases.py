@@ -18,7 +18,7 @@ from rapid_runtime.journal import Journal
 from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapidgen.protocol_cases import load_cases, seed_tables
 
-WAIT = 10.0
+WAIT = float(os.environ.get("RAPID_SPEC_WAIT", "10"))  # bench/mutation.py shortens it
 NOT_IMPLEMENTED = "not implemented"
 CASES = load_cases()
 
