@@ -121,6 +121,16 @@ NAMES = {
     "frozen-stamps": ("TEL-04", ("advanced 0.00 s", "1 distinct stamp")),
     "request-steals-control": ("ACC-07", ("controller 'MultiCenterCockpit' (was 'RapidWorkbench')",)),
     "grab-unpublished": ("ACC-04", ("'RapidWorkbench' after grabControl answered", "COMPLETED/OK")),
+    # Issue 37: each class caught by the check of its rule, the message naming the rule
+    "allowed-unchecked": ("CMD-15", ("takePicture mode='conformance-not-allowed' (not among its allowed values",)),
+    "minimum-unchecked": ("CMD-15", ("below its minimum -3.05", "pointCamera")),
+    "every-20th-lost": ("CMD-16", ("commands cannot be dropped", "sent by", "got no final ack within")),
+    "nan-unanswered": ("CMD-16", ("sent by CMD-14 got no final ack within", "commands cannot be dropped")),
+    "insert-at-back": ("QUE-06", ("INSERT goes after targetCmdId", "QueueState pending A, R (REPLACE B), E, C")),
+    "replace-at-back": ("QUE-06", ("REPLACE cancels its target", "QueueState pending A, C (INSERT after A), E, R")),
+    "queue-state-stale": ("QUE-07", ("QueueState republished when a command finishes", "still listed active")),
+    "former-controller-keeps-rights": ("ACC-08", ("RAPID access violation", "once MultiCenterCockpit took control")),
+    "release-unpublished": ("ACC-09", ("published on every change", "still 'RapidWorkbench' after releaseControl")),
 }
 LONGEST = 60.0  # s: no run against a broken asset takes longer (issue 22: one took 188 s)
 
@@ -137,6 +147,17 @@ def test_no_broken_run_is_long(broken_runs):
     times = sorted(((r["seconds"], r["report"]["seconds"], k) for k, r in broken_runs.items()), reverse=True)
     print("longest broken runs (CLI s, checks s):", ", ".join(f"{k} {c:.1f}/{r:.1f}" for c, r, k in times[:5]))
     assert times[0][0] < LONGEST, times[:3]
+
+
+def test_lost_commands_are_named_with_their_sender(broken_runs):
+    """Accounting (issue 37): a command that gets no final ack is CMD-16's finding, named with
+    the check that sent it; that check is BLOCKED saying so, never failed for another reason."""
+    checks = {c["id"]: c for c in broken_runs["every-20th-lost"]["report"]["checks"]}
+    senders = [c["id"] for c in checks.values() if c["outcome"] == "BLOCKED" and "(CMD-16)" in c["message"]]
+    assert senders, checks
+    assert all(f"sent by {s} " in checks["CMD-16"]["message"] for s in senders[:4]), (senders, checks["CMD-16"])
+    burst = {c["id"]: c for c in broken_runs["nan-unanswered"]["report"]["checks"]}
+    assert burst["CMD-14"]["outcome"] == "PASS" and "CMD-16 judges" in burst["CMD-14"]["message"], burst["CMD-14"]
 
 
 def test_mangled_ack_ids_block_the_others_at_once(broken_runs):

@@ -49,3 +49,19 @@ def test_docs_list_every_broken_asset_with_its_check():
     from tests.conformance.broken import KINDS
     got = {kind: check for check, kind, _what in _rows("| check | kind | what the asset gets wrong |")}
     assert got == {k: a or "-" for k, a in KINDS.items()}
+
+
+def test_each_check_is_named_to_the_session_before_it_runs():
+    """Accounting (CMD-16) names a command with the check that sent it: the runner tells the
+    session which check runs (Session.begin) before calling it, not for one it skips."""
+    seen = []
+
+    class Session:
+        def begin(self, check_id):
+            seen.append(check_id)
+
+    checks = [Check("X-01", REQUIRED, "a", "r", lambda s: seen.append("ran X-01")),
+              Check("X-02", REQUIRED, "b", "r", _raise(Fail("x", "y"))),
+              Check("X-03", REQUIRED, "c", "r", lambda s: None, needs=("X-02",))]
+    run_checks(Session(), checks)
+    assert seen == ["X-01", "ran X-01", "X-02"]

@@ -149,7 +149,9 @@ def no_dedup(a):
 def long_ack_message(a):
     def change(ack, cmd, status, completed, message):
         if message:
-            message = (message + " " + "x" * 128)[:128]  # Astrobee's bug: 128 bytes, no terminator
+            # Astrobee's bug: 128 bytes, no terminator (bytes, cut on a character boundary: a
+            # message of 128 characters, some of two bytes, could not be written at all)
+            message = (message + " " + "x" * 128).encode()[:128].decode(errors="ignore")
         return ack(cmd, status, completed, message)
     _wrap_ack(a, change)
 
@@ -182,10 +184,10 @@ def ack_ids_truncated(a):
 def crash_on_bad_input(a):
     on_command = a.bridge._on_command
 
-    def fragile(sample):
+    def fragile(sample, *args, **kw):  # (the reader may pass more: whatever it passes goes on)
         if any(isinstance(x.value, float) and math.isnan(x.value) for x in sample.arguments):
             os._exit(70)  # what an unchecked float conversion in a robot's C++ bridge does
-        on_command(sample)
+        on_command(sample, *args, **kw)
     a.bridge._on_command = fragile
 
 
@@ -263,3 +265,16 @@ def every_20th_lost(a):
         print(f"broken: lost command {count[0]} {cmd.cmd_id!r}", file=sys.stderr, flush=True)
         return None
     intake.offer = lossy
+
+
+@kind("nan-unanswered", "CMD-16")
+def nan_unanswered(a):
+    """A command with a NaN argument is dropped at the reader without an ack (no crash):
+    only CMD-14's burst sends one, so CMD-16 names CMD-14 as its sender."""
+    on_command = a.bridge._on_command
+
+    def drop_nan(sample, *args, **kw):
+        if any(isinstance(x.value, float) and math.isnan(x.value) for x in sample.arguments):
+            return None
+        return on_command(sample, *args, **kw)
+    a.bridge._on_command = drop_nan
