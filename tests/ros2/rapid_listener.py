@@ -17,7 +17,8 @@ def plain(s) -> dict:
     if kind == "JointSample":
         return {"anglePos": list(s.anglePos), "angleVel": list(s.angleVel), "torque": list(s.torque)}
     if kind == "PositionSample":
-        return {"xyz": list(s.pose.xyz), "rot": list(s.pose.rot)}
+        return {"xyz": list(s.pose.xyz), "rot": list(s.pose.rot), "vxyz": list(s.velocity.xyz),
+                "vrot": list(s.velocity.rot)}
     if kind == "AgentState":
         return {"values": [list(u.value) if isinstance(u.value, (list, tuple)) else u.value for u in s.values]}
     if kind == "ImageSensorSample":
