@@ -176,6 +176,7 @@ def _ros2_source(conv: str, source, names: list[str]) -> str:
 def _ros2(loaded: LoadedAsset) -> list[str]:
     """The ros2: section as the generated bridge will serve it (docs/ros2.md)."""
     m = loaded.ros2
+    assert m is not None
     types = {s.name: loaded.types.get(s.type) for s in loaded.subsystems}
     out = ["", f"ROS 2 (node {m['node']}; python -m <package>.ros2)"]
     feeds = []
@@ -199,7 +200,8 @@ def _ros2(loaded: LoadedAsset) -> list[str]:
         kind = "publish" if "publish" in c else "call" if "call" in c else "action"
         target = doing.get("topic") or doing.get("service") or doing.get("action")
         sub, _, cname = name.partition("/")
-        cmd = next((x for x in (types[sub].commands if types.get(sub) else ()) if x.name == cname), None)
+        t = types.get(sub)
+        cmd = next((x for x in (t.commands if t is not None else ()) if x.name == cname), None)
         names = [q.name for q in cmd.parameters] if cmd is not None else []
         fields = "; ".join(f"{path} <- {_ros2_source(conv, src, names)}" for path, conv, src in doing["fields"]) or "-"
         extra = []

@@ -487,6 +487,7 @@ class _Reader:
         if f is None:
             return None
         assert isinstance(source, str)
+        conv: str | None
         if conv_of == "yaw":
             if f.type != QUAT or f.array or v.type not in ("RAPID_DOUBLE", "RAPID_FLOAT"):
                 self.error("RG1503", f"yaw takes a geometry_msgs/Quaternion field into a RAPID_DOUBLE or RAPID_FLOAT; "
@@ -674,9 +675,11 @@ class _Reader:
         if isinstance(source, dict) and (set(source) & set(EULER) or (f.type == QUAT and "from" not in source)):
             return self.euler(f, fpath, source, where, params, mname)
         listed = isinstance(source, list)
-        got = [self.reference(s, where, params) for s in (source if listed else [source])]
-        if any(g is None for g in got) or not got:
-            if not got:
+        items: list = source if isinstance(source, list) else [source]
+        found = [self.reference(s, where, params) for s in items]
+        got = [g for g in found if g is not None]
+        if len(got) != len(found) or not got:
+            if not found:
                 self.error("RG1505", "an empty list fills nothing", where, "name the parameters to put in the field")
             return None
         refs, types = [g[0] for g in got], [g[1] for g in got]
