@@ -100,7 +100,7 @@ fn quote(s: &str) -> String {
             '\t' => out.push_str("\\t"),
             '\u{8}' => out.push_str("\\b"),
             '\u{c}' => out.push_str("\\f"),
-            ' '..='\u{7f}' => out.push(c),
+            ' '..='~' => out.push(c),
             _ => {
                 let mut units = [0u16; 2];
                 for u in c.encode_utf16(&mut units) {
@@ -630,7 +630,7 @@ mod tests {
         let line = line_of(&[("k", Field::Str("stop".into()))]);
         assert_eq!(line, format!("{:08x} {{\"k\":\"stop\"}}\n", crc32(b"{\"k\":\"stop\"}")));
         assert_eq!(crc32(b"123456789"), 0xCBF43926);
-        assert_eq!(quote("é\"\u{1F600}\u{7f}"), "\"\\u00e9\\\"\\ud83d\\ude00\u{7f}\"");
+        assert_eq!(quote("é\"\u{1F600}\u{7f}\u{8}\u{1}"), "\"\\u00e9\\\"\\ud83d\\ude00\\u007f\\b\\u0001\"");
         let rec = parse_line(line_of(&[("k", Field::Str("c".into())), ("id", Field::Str("a\u{1F600}".into())),
             ("src", Field::Str("s".into())), ("asset", Field::Str("A".into())), ("serial", Field::Int(-3)),
             ("c", Field::Str("ACK_COMPLETED_OK".into())), ("m", Field::Str("x\ny".into()))]).as_bytes()).unwrap();

@@ -627,3 +627,57 @@ fn spec_cases() {
     println!("spec cases: {passed} of {ran} passed (of {} in the file; window default {COMMAND_WINDOW})", all.len());
     assert!(failed.is_empty(), "{} case(s) failed:\n{}", failed.len(), failed.join("\n"));
 }
+
+// ---- the restart journal across runtimes ----------------------------------------------------------------
+
+fn entry_json(e: &JournalEntry) -> Json {
+    serde_json::json!({"id": e.cmd_id, "src": e.src_name, "asset": e.asset_name, "serial": e.serial,
+                       "state": e.state.to_string(), "c": e.completion, "m": e.message})
+}
+
+/// RAPID_JOURNAL_INTEROP=DIR (tests/rust_runtime/test_spec_cases.py): the journal the Python
+/// runtime left in DIR/from_python at a crash is recovered here (DIR/rust_recovered.json says
+/// what came back), and one this runtime leaves at a crash in DIR/from_rust is for the Python
+/// runtime to recover.
+#[test]
+fn journal_interop() {
+    let Ok(dir) = std::env::var("RAPID_JOURNAL_INTEROP") else {
+        println!("journal_interop: RAPID_JOURNAL_INTEROP not set, nothing to do");
+        return;
+    };
+    let dir = PathBuf::from(dir);
+    let logs = Arc::new(Mutex::new(Vec::<String>::new()));
+    let l = logs.clone();
+    let log: Log = Arc::new(move |t: &str| l.lock().unwrap().push(t.to_string()));
+    let (journal, rec) = Journal::open(&dir.join("from_python"), "K10Red", 7, 8, log.clone());
+    assert!(journal.is_some(), "{:?}", logs.lock().unwrap());
+    let out = serde_json::json!({
+        "unfinished": rec.unfinished.iter().map(entry_json).collect::<Vec<_>>(),
+        "finished": rec.finished.iter().map(entry_json).collect::<Vec<_>>(),
+        "last_serial": rec.last_serial, "crashed": rec.crashed,
+    });
+    std::fs::write(dir.join("rust_recovered.json"), out.to_string()).unwrap();
+    drop(journal);
+
+    let (journal, rec) = Journal::open(&dir.join("from_rust"), "K10Red", 7, 8, log);
+    let mut j = journal.expect("a fresh journal opens");
+    assert!(!rec.crashed);
+    j.start(5);
+    let entry = |id: &str, state: char, c: &str, m: &str| JournalEntry {
+        cmd_id: id.into(),
+        src_name: "Work bench é".into(),
+        asset_name: "K10Red".into(),
+        serial: 2,
+        state,
+        completion: c.into(),
+        message: m.into(),
+    };
+    j.note(entry("a", 'q', "", ""));
+    j.note(entry("a", 'x', "", ""));
+    j.note(entry("b", 'q', "", ""));
+    j.note(entry("c", 'q', "", ""));
+    j.note(entry("c", 'c', "ACK_COMPLETED_OK", "done ✓ \"q\" \\ 😀\n\u{7f}"));
+    j.serial(9);
+    assert!(j.sync());
+    drop(j); // a crash: no stop record
+}
