@@ -16,10 +16,13 @@ import sys
 import threading
 import time
 
+from cyclonedds._clayer import ddspy_write
+from cyclonedds.core import DDSException
 from cyclonedds.util import duration
 
 from rapid_runtime import messages as M
 from rapid_runtime import texts
+from rapid_runtime.ack_wire import AckWire
 from rapid_runtime.ack_writers import AckWriters
 from rapid_runtime.acks import COMPLETED, NOT, clip, valid
 from rapid_runtime.configs import Serials
@@ -118,6 +121,7 @@ class Bridge:
         # inline: a command arriving at an empty door is handled on the reader thread (intake.py)
         self.intake = Intake(self.manager, self.log, inline=True)
         self.ack_writers: AckWriters | None = None  # made at start(): commanders wait to match it
+        self._ack_wire: AckWire | None = None  # an Ack's bytes made by hand (ack_wire.py), with the first writer
 
     # ---- Outbox (manager.py) ---------------------------------------------------------------
     def _acks(self) -> AckWriters:
@@ -126,6 +130,7 @@ class Bridge:
                                                                        ACK_BLOCKING),
                                           max(ACK_GENERATION_MIN, self.manager.window // ACK_GENERATIONS),
                                           self._delete_writer)
+            self._ack_wire = AckWire(self.rapid, self.ack_writers.current.writer)
         return self.ack_writers
 
     def _delete_writer(self, writer) -> None:
@@ -140,7 +145,15 @@ class Bridge:
         threading.Thread(target=delete, daemon=True, name="rapid-ack-writer-delete").start()
 
     def ack(self, cmd, status, completed, message) -> None:
-        self._acks().writer_for(_ack_key(cmd)).write(M.ack(self.rapid, cmd, status, completed, message))
+        writer = self._acks().writer_for(_ack_key(cmd))
+        data = self._ack_wire.encode(cmd.src_name, cmd.asset_name, cmd.serial, M.now_us(), cmd.cmd_id, status,
+                                     completed, message)
+        if data is None:  # what ack_wire does not encode exactly: cyclonedds' own serializer, its errors
+            writer.write(M.ack(self.rapid, cmd, status, completed, message))
+            return
+        ret = ddspy_write(writer._ref, data)  # what DataWriter.write does after serializing
+        if ret < 0:
+            raise DDSException(ret, f"Occurred while writing an ack of {cmd.cmd_id!r}")
 
     def queue_state(self, code, pending, active, completed) -> None:
         hdr = M.header(self.rapid, self.name, self.name, self.serials.start, status=code)
