@@ -2,7 +2,7 @@
 the protocol specification's cases and a passing `rapidgen conform` run pin down?
 
     python bench/mutation.py [--sample 200] [--seed 1] [--oracle spec|conform|both]
-                             [--domain 64] [--json out.json] [--mutant NAME ...]
+                             [--domain 64] [--json out.json] [--mutant NAME ...] [--function NAME]
 
 mutmut (3.x) writes every mutant of runtime/rapid_runtime/{manager,validate,access,cmdqueue,
 acks}.py into a copy of the runtime, each behind mutmut's trampoline (MUTANT_UNDER_TEST
@@ -199,6 +199,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--oracle", choices=("spec", "conform", "both"), default="both")
     p.add_argument("--domain", type=int, default=64, help="DDS domain of the conform oracle (loopback only)")
     p.add_argument("--mutant", action="append", default=[], help="judge these mutants (names as listed) only")
+    p.add_argument("--function", help="sample the mutants of the functions of this name only (e.g. insert_after)")
     p.add_argument("--json", help="write every verdict here")
     args = p.parse_args(argv)
 
@@ -208,7 +209,12 @@ def main(argv: list[str] | None = None) -> int:
         mutants = mutate(work)
         logs = sorted(n for n, (_m, _c, log_only) in mutants.items() if log_only)
         wire = sorted(n for n in mutants if n not in set(logs))
+        if args.function:  # the pool: that function's mutants
+            wire = [n for n in wire if n.rsplit("__mutmut_", 1)[0].endswith(("ǁ" + args.function, "x_" + args.function))]
         names = args.mutant or random.Random(args.seed).sample(wire, min(args.sample, len(wire)))
+        if not names:
+            print("error: no mutant to judge", file=sys.stderr)
+            return 2
         unknown = [n for n in names if n not in mutants]
         if unknown:
             print(f"error: unknown mutant(s): {', '.join(unknown)}", file=sys.stderr)
