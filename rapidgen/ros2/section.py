@@ -61,6 +61,7 @@ _ELEMENT = re.compile(r"^(.+)\[(\d+)\]$")
 ELEMENTS = {"RAPID_VEC3d": 3, "RAPID_MAT33f": 9}
 EULER = ("roll", "pitch", "yaw")
 SCALABLE = ("float", "list", "vec3", "quat_rpy", "quat_euler")
+ANGLE_UNITS = ("rad", "deg", "radian", "radians", "degree", "degrees")
 # Standard commands the runtime answers without a handler (docs/runtime.md), so without a
 # mapping too; stopAllMotion cancels the Mobility commands (and their `cancel` messages).
 RUNTIME_ANSWERS = frozenset({("Admin", "echo"), ("Admin", "noOp"), ("Admin", "shutdown"), ("Queue", "cancelAll"),
@@ -688,6 +689,16 @@ class _Reader:
             self.error("RG1503", f"{', '.join(g[2] for g in got)} does not fit {mname} field '{fpath}' ({_spell(f)})",
                        where, _field_hint(f))
             return None
+        if conv == "quat_rpy":  # a vector of angles only: simpleMove's xyt (m, m, rad) is no roll, pitch, yaw
+            index = refs[0] if isinstance(refs[0], int) else refs[0][0]
+            param = next(q for i, q in params.values() if i == index)
+            units = [u.strip() for u in (param.unit or "").split(",") if u.strip()]
+            if units and not all(u in ANGLE_UNITS for u in units):
+                self.error("RG1503", f"{param.name} ({param.unit}) is not roll, pitch, yaw: a quaternion from it would "
+                           "turn its lengths into angles", where,
+                           f"pick its angle: pose.orientation: {{yaw: \"{param.name}[{len(units) - 1}]\"}}"
+                           if len(units) == 3 and units[-1] in ANGLE_UNITS else "map its angles with {roll, pitch, yaw}")
+                return None
         scaled = [r for r in refs if isinstance(r, list) and r[2] != 1]
         if scaled and conv not in SCALABLE:
             self.error("RG1503", f"a {_spell(f)} field cannot be scaled", where,

@@ -253,3 +253,14 @@ def test_describe_shows_the_ros2_section():
     plain = run(str(ROOT / "specs/assets/k10.yaml"))
     assert plain.returncode == 0 and "\nROS 2 (" not in plain.stdout
     assert __import__("json").loads(run("--json", str(ROOT / "specs/assets/k10.yaml")).stdout)["ros2"] is None
+
+
+def test_xyt_whole_on_a_quaternion_is_refused(tmp_path):
+    """The issue's trap: `pose.orientation: xyt` took x, y, heading as roll, pitch, yaw. xyt's
+    unit (m, m, rad) says it is not three angles: a located error pointing at the heading."""
+    got, line = _errors(tmp_path, "          pose.orientation:                                # the heading as a "
+                        "quaternion about z\n            yaw: xyt[2]", "          pose.orientation: xyt")
+    assert [(d.code, d.loc.line, d.loc.col) for d in got] == [("RG1503", line, 29)], [str(d) for d in got]
+    assert got[0].message == "xyt (m, m, rad) is not roll, pitch, yaw: a quaternion from it would turn its lengths " \
+        "into angles"
+    assert got[0].hint == 'pick its angle: pose.orientation: {yaw: "xyt[2]"}'
