@@ -639,4 +639,105 @@ mod tests {
         assert_eq!(get_int(&rec, "serial"), Some(-3));
         assert!(parse_line(b"00000000 {\"k\":\"stop\"}\n").is_none());
     }
+
+    fn folder(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("rapid-journal-{name}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        dir
+    }
+
+    fn logs() -> (Log, Arc<std::sync::Mutex<Vec<String>>>) {
+        let seen = Arc::new(std::sync::Mutex::new(Vec::new()));
+        let s = seen.clone();
+        (Arc::new(move |t: &str| s.lock().unwrap().push(t.to_string())), seen)
+    }
+
+    fn entry(id: &str, state: char) -> JournalEntry {
+        let c = state == 'c';
+        JournalEntry {
+            cmd_id: id.into(),
+            src_name: "src".into(),
+            asset_name: "A".into(),
+            serial: 1,
+            state,
+            completion: if c { "ACK_COMPLETED_OK".into() } else { String::new() },
+            message: if c { "fine".into() } else { String::new() },
+        }
+    }
+
+    #[test]
+    fn a_crash_is_recovered_a_clean_stop_is_not_and_the_file_is_locked() {
+        let dir = folder("crash");
+        let (log, seen) = logs();
+        let (j, _) = Journal::open(&dir, "A", 1, 4, log.clone());
+        let mut j = j.unwrap();
+        j.start(7);
+        j.note(entry("a", 'q'));
+        j.note(entry("b", 'q'));
+        j.note(entry("b", 'x'));
+        j.note(entry("b", 'x')); // (progress: not written again)
+        j.note(entry("c", 'q'));
+        j.note(entry("c", 'c'));
+        assert!(j.sync());
+        assert_eq!(j.lines(), 6);
+        let (other, _) = Journal::open(&dir, "A", 1, 4, log.clone());
+        assert!(other.is_none() && seen.lock().unwrap().last().unwrap().contains("in use by another bridge"));
+        drop(j); // killed: no stop record
+        let (j, rec) = Journal::open(&dir, "A", 1, 4, log.clone());
+        assert!(rec.crashed);
+        assert_eq!(rec.last_serial, 7);
+        let states: Vec<(String, char)> = rec.unfinished.iter().map(|e| (e.cmd_id.clone(), e.state)).collect();
+        assert_eq!(states, [("a".to_string(), 'q'), ("b".to_string(), 'x')]);
+        assert_eq!(rec.finished, [entry("c", 'c')]);
+        j.unwrap().close(true);
+        let (_, rec) = Journal::open(&dir, "A", 1, 4, log);
+        assert!(!rec.crashed && rec.unfinished.is_empty() && rec.last_serial == 7);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn damaged_lines_are_set_aside_and_the_sound_ones_kept() {
+        let dir = folder("damaged");
+        let (log, seen) = logs();
+        let (j, _) = Journal::open(&dir, "A", 1, 4, log.clone());
+        let mut j = j.unwrap();
+        j.note(entry("a", 'q'));
+        j.sync();
+        let path = j.path().to_path_buf();
+        drop(j);
+        let mut f = OpenOptions::new().append(true).open(&path).unwrap();
+        f.write_all(b"00000000 {\"k\":\"q\"}\n{torn").unwrap();
+        drop(f);
+        let (j, rec) = Journal::open(&dir, "A", 1, 4, log);
+        assert!(j.is_some() && rec.crashed);
+        assert_eq!(rec.unfinished, [entry("a", 'q')]);
+        let said = seen.lock().unwrap().join("\n");
+        assert!(said.contains("2 damaged line(s) (first: line 2)") && said.contains("1 sound record(s) kept"), "{said}");
+        let aside = fs::read_dir(&dir).unwrap().filter(|e| {
+            e.as_ref().unwrap().file_name().to_string_lossy().contains(".damaged-")
+        });
+        assert_eq!(aside.count(), 1);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn the_file_is_compacted_to_the_window() {
+        let dir = folder("compact");
+        let (log, _) = logs();
+        let (j, _) = Journal::open(&dir, "A", 1, 2, log.clone());
+        let mut j = j.unwrap();
+        for n in 0..200 {
+            let id = format!("c{n}");
+            j.note(entry(&id, 'x'));
+            j.note(entry(&id, 'c'));
+            j.sync();
+        }
+        assert!(j.lines() <= 4 * 2 + 16 + 2, "{} lines", j.lines());
+        drop(j);
+        let (_, rec) = Journal::open(&dir, "A", 1, 2, log);
+        let ids: Vec<&str> = rec.finished.iter().map(|e| e.cmd_id.as_str()).collect();
+        assert_eq!(ids, ["c198", "c199"]);
+        let _ = fs::remove_dir_all(&dir);
+    }
 }
+
