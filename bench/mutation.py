@@ -234,16 +234,16 @@ def main(argv: list[str] | None = None) -> int:
             verdicts.append({"mutant": name, "module": module, "killed": killed, "by": why, "change": change,
                              "seconds": round(time.monotonic() - start, 1)})
             print(f"[{i}/{len(names)}] {'killed  ' if killed else 'SURVIVED'} {name}  {why or change}", flush=True)
-        killed = sum(v["killed"] for v in verdicts)
-        lo, hi = wilson(killed, len(verdicts))
-        print(f"\nscore: {killed}/{len(verdicts)} killed = {100 * killed / max(1, len(verdicts)):.1f}% "
+        dead = sum(bool(v["killed"]) for v in verdicts)
+        lo, hi = wilson(dead, len(verdicts))
+        print(f"\nscore: {dead}/{len(verdicts)} killed = {100 * dead / max(1, len(verdicts)):.1f}% "
               f"(95% CI {100 * lo:.1f}-{100 * hi:.1f}%), {time.monotonic() - t0:.0f} s")
         for v in verdicts:
             if not v["killed"]:
                 print(f"  survivor {v['mutant']}: {v['change']}")
         if args.json:
             Path(args.json).write_text(json.dumps({"oracle": args.oracle, "seed": args.seed, "total": len(mutants), "log_only": len(logs),
-                                                   "killed": killed, "judged": len(verdicts), "ci95": [lo, hi],
+                                                   "killed": dead, "judged": len(verdicts), "ci95": [lo, hi],
                                                    "verdicts": verdicts}, indent=1) + "\n")
         return 0
     finally:

@@ -190,7 +190,7 @@ def report(sink: DiagnosticSink, stream=None, fmt: str = "text") -> None:
             if not (promoted and codes.can_be_silenced(d.code)):
                 codes.check(d.code, d.severity.value)
     if fmt == "github":
-        from rapidgen.annotations import of_diagnostic
+        from rapidgen.github_annotations import of_diagnostic
         for d in sink.sorted():
             print(of_diagnostic(d), file=sys.stdout)
     else:
@@ -260,7 +260,7 @@ def _cmd_describe(args: argparse.Namespace) -> int:
 
 
 def _cmd_init(args: argparse.Namespace) -> int:
-    from rapidgen.asset.init import run_init
+    from rapidgen.asset.scaffold import run_init
     return run_init(args.name, args.output, DiagnosticSink(), report)
 
 

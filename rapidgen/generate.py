@@ -168,15 +168,15 @@ def _call_writer(function, folder: str, files: list[GeneratedFile], sink: Diagno
 
 def generate_command(paths: list[str], include: list[str], defines: dict[str, str], langs: list[str],
                      out_dir: str, package: str | None, sink: DiagnosticSink) -> bool:
-    """Several targets go over two processes (rapidgen.workers): by the worker forked ahead
+    """Several targets go over two processes (rapidgen.fork_ahead): by the worker forked ahead
     of the front end, or for a large model (large files: no worker forked at all), by this
     process and a child."""
-    from rapidgen import workers
+    from rapidgen import fork_ahead
 
     wanted, problem = backends.parse_langs(langs)
-    two = not problem and len(wanted) >= 2 and workers.jobs() >= 2
-    ahead_too = two and workers.Ahead.likely(paths)
-    with _no_cyclic_gc(), (workers.Ahead(wanted) if ahead_too else contextlib.nullcontext()) as ahead:
+    two = not problem and len(wanted) >= 2 and fork_ahead.jobs() >= 2
+    ahead_too = two and fork_ahead.Ahead.likely(paths)
+    with _no_cyclic_gc(), (fork_ahead.Ahead(wanted) if ahead_too else contextlib.nullcontext()) as ahead:
         inputs = load_inputs(paths, include, sink, defines)
         if inputs is None:
             return False
@@ -190,7 +190,7 @@ def generate_command(paths: list[str], include: list[str], defines: dict[str, st
             done = ahead.hand_over(inputs, package, out_dir, sink)
             if done is not None:
                 return done
-        return workers.generate_in_two(Renderer(inputs, package), wanted, out_dir, sink)
+        return fork_ahead.generate_in_two(Renderer(inputs, package), wanted, out_dir, sink)
 
 
 @contextlib.contextmanager
@@ -229,8 +229,8 @@ def check_command(project: str, fix: bool, sink: DiagnosticSink, annotate: bool 
 
     stale = 0
     with _no_cyclic_gc():
-        from rapidgen import workers
-        done = workers.share(len(targets), one)
+        from rapidgen import fork_ahead
+        done = fork_ahead.share(len(targets), one)
     for is_stale, out, err, diags in done:
         sys.stdout.write(out)
         sys.stderr.write(err)
@@ -273,7 +273,7 @@ def _check_target(t, fix: bool, sink: DiagnosticSink, annotate: bool = False) ->
         print(f"{t.name}: stale ({t.out})")
         print("\n".join(lines))
         if annotate:
-            from rapidgen.annotations import command
+            from rapidgen.github_annotations import command
             for line in lines:
                 label, _, rel = line.strip().partition(": ")
                 print(command("error", f"{label}: generated output is stale; run `rapidgen check --fix` and commit it",

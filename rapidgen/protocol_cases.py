@@ -135,12 +135,13 @@ def load_file(path: Path) -> list[dict]:
     shown = os.path.relpath(path, ROOT) if path.is_relative_to(ROOT) else str(path)
     doc = load_yaml(str(path), shown, sink)
     if doc is None or sink.has_errors:
-        raise CaseError("\n".join(str(d) for d in sink.errors()) or f"{shown}: cannot be read")
+        raise CaseError("\n".join(str(d) for d in sink.errors) or f"{shown}: cannot be read")
     errors = sorted(_schema_validator().iter_errors(doc.data), key=lambda e: list(e.absolute_path))
     if errors:
         e = errors[0]
         raise CaseError(f"{doc.loc(tuple(e.absolute_path))}: {e.message[:300]}")
     data = doc.data
+    assert isinstance(data, dict)  # (the schema says so)
     cases = []
     names: set[str] = set()
     for n, case in enumerate(data["cases"]):

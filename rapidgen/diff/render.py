@@ -73,7 +73,7 @@ def github(findings: list[Finding], waived: int, fail_on: set[str], rev: str | N
     """One annotation per finding (error when its category is in --fail-on, else warning)
     at its NEW location; a finding only OLD has (a removal) names the file without a line
     (the line is OLD's), then the text summary line."""
-    from rapidgen.annotations import command
+    from rapidgen.github_annotations import command
 
     lines = []
     for f in findings:

@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from rapidgen.asset.init import starter
+from rapidgen.asset.scaffold import starter
 from rapidgen.asset.load import load_asset
 from rapidgen.diagnostics import DiagnosticSink
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from rapidgen import annotations
+from rapidgen import github_annotations
 from rapidgen.diagnostics import Diagnostic, Severity, SourceLoc
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -108,9 +108,9 @@ def test_check_and_diff_speak_github_annotations(repo):
 
 def test_annotation_values_cannot_forge_a_second_command():
     d = Diagnostic(Severity.WARNING, "RG0501", "50% done\n::error::forged", SourceLoc("a,b:c.idl", 3, 7), "x\ry")
-    line = annotations.of_diagnostic(d)
+    line = github_annotations.of_diagnostic(d)
     assert "\n" not in line and "\r" not in line
     assert line == ("::warning file=a%2Cb%3Ac.idl,line=3,col=7,title=warning[RG0501]::"
                     "50%25 done\\n::error::forged (hint: x\\ry)")  # escaped() spells controls out
-    assert annotations.command("notice", "m", SourceLoc("<command line>", 0, 0)) == "::notice::m"
-    assert annotations.command("error", "m", SourceLoc("f.idl", 0, 0)) == "::error file=f.idl::m"
+    assert github_annotations.command("notice", "m", SourceLoc("<command line>", 0, 0)) == "::notice::m"
+    assert github_annotations.command("error", "m", SourceLoc("f.idl", 0, 0)) == "::error file=f.idl::m"

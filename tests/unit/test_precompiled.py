@@ -1,6 +1,6 @@
 """Speed without a change of output (issue 26): the precompiled templates hold exactly the code
 Jinja2 generates from today's sources, a template edited since is compiled from its source,
-and (tests/unit/test_workers.py) `generate`/`check` spread over processes write what one
+and (tests/unit/test_fork_ahead.py) `generate`/`check` spread over processes write what one
 process writes."""
 from __future__ import annotations
 

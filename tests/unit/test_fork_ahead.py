@@ -1,4 +1,4 @@
-"""`generate` and `check` over processes (rapidgen.workers) write what one process writes:
+"""`generate` and `check` over processes (rapidgen.fork_ahead) write what one process writes:
 the worker forked ahead of the front end, the fallback for a large model, and errors,
 interrupts and a lost worker on the way. The model handed over (rapidgen.model.pickling)
 is the same model."""
@@ -11,14 +11,14 @@ from pathlib import Path
 
 import pytest
 
-from rapidgen import workers
+from rapidgen import fork_ahead
 from rapidgen.diagnostics import DiagnosticSink
 from rapidgen.generate import generate_command, load_inputs
 from rapidgen.model import ir, pickling
 from tests.helpers import rapidgen
 
 REPO = Path(__file__).resolve().parents[2]
-TWO = pytest.mark.skipif(workers.jobs() < 2, reason="one process here (one CPU, no fork, or threads running)")
+TWO = pytest.mark.skipif(fork_ahead.jobs() < 2, reason="one process here (one CPU, no fork, or threads running)")
 LANGS = ["python", "cpp", "rust", "qos"]
 
 
@@ -51,16 +51,16 @@ def _all_reaped(pids: list[int]) -> bool:
     return True
 
 
-@pytest.mark.skipif(workers.jobs() < 2, reason="one process here (one CPU, no fork, or threads running)")
+@pytest.mark.skipif(fork_ahead.jobs() < 2, reason="one process here (one CPU, no fork, or threads running)")
 def test_shared_work_runs_in_two_processes_and_keeps_order():
     def work(i: int) -> tuple[int, int]:
         time.sleep(0.05)  # long enough for both processes to take jobs
         return i * i, os.getpid()
 
-    got = workers.share(6, work)
+    got = fork_ahead.share(6, work)
     assert [v for v, _ in got] == [0, 1, 4, 9, 16, 25]
     assert len({pid for _, pid in got}) == 2 and os.getpid() in {pid for _, pid in got}
-    dealt = workers.share(5, work, alternate=True)  # generate's targets: in turn
+    dealt = fork_ahead.share(5, work, alternate=True)  # generate's targets: in turn
     assert [v for v, _ in dealt] == [0, 1, 4, 9, 16]
     assert [pid == os.getpid() for _, pid in dealt] == [True, False, True, False, True]
 
@@ -73,7 +73,7 @@ def test_an_error_in_shared_work_reaches_the_caller():
 
     for alternate in (False, True):
         with pytest.raises(ValueError, match="job 3"):
-            workers.share(5, work, alternate)
+            fork_ahead.share(5, work, alternate)
 
 
 def test_one_process_and_two_write_the_same_files(tmp_path, monkeypatch):
@@ -114,18 +114,18 @@ def _generate(paths: list[str], out: Path, langs: list[str] = LANGS) -> tuple[bo
 def test_a_large_model_is_rendered_here_and_the_worker_ends(tmp_path, monkeypatch, capsys, forks):
     monkeypatch.chdir(REPO)
     handed = []
-    real = workers.Ahead.hand_over
-    monkeypatch.setattr(workers.Ahead, "hand_over", lambda self, *a: handed.append(1) or real(self, *a))
-    monkeypatch.setattr(workers.Ahead, "MAX_DECLARATIONS", 0)  # every model counts as large
+    real = fork_ahead.Ahead.hand_over
+    monkeypatch.setattr(fork_ahead.Ahead, "hand_over", lambda self, *a: handed.append(1) or real(self, *a))
+    monkeypatch.setattr(fork_ahead.Ahead, "MAX_DECLARATIONS", 0)  # every model counts as large
     assert _generate(["specs/assets/k10.yaml"], tmp_path / "here")[0]
     assert handed == [] and len(forks) == 2 and _all_reaped(forks)  # the worker (stopped), the child
-    monkeypatch.setattr(workers.Ahead, "MAX_DECLARATIONS", 10_000)
+    monkeypatch.setattr(fork_ahead.Ahead, "MAX_DECLARATIONS", 10_000)
     assert _generate(["specs/assets/k10.yaml"], tmp_path / "worker")[0]
     assert handed == [1] and _all_reaped(forks)
     forked = []
-    enter = workers.Ahead.__enter__
-    monkeypatch.setattr(workers.Ahead, "__enter__", lambda self: forked.append(1) or enter(self))
-    monkeypatch.setattr(workers.Ahead, "MAX_INPUT_BYTES", 10)  # large files: no worker at all
+    enter = fork_ahead.Ahead.__enter__
+    monkeypatch.setattr(fork_ahead.Ahead, "__enter__", lambda self: forked.append(1) or enter(self))
+    monkeypatch.setattr(fork_ahead.Ahead, "MAX_INPUT_BYTES", 10)  # large files: no worker at all
     assert _generate(["specs/assets/k10.yaml"], tmp_path / "none")[0]
     assert forked == [] and handed == [1] and _all_reaped(forks)
     monkeypatch.setenv("RAPIDGEN_JOBS", "1")
@@ -151,7 +151,7 @@ def test_an_input_error_stops_the_worker_and_writes_nothing(tmp_path, forks):
 @TWO
 def test_a_worker_lost_before_the_hand_over_leaves_the_work_here(tmp_path, monkeypatch, forks):
     monkeypatch.chdir(REPO)
-    monkeypatch.setattr(workers, "prepare", lambda *a, **k: os._exit(9))  # the worker dies at once
+    monkeypatch.setattr(fork_ahead, "prepare", lambda *a, **k: os._exit(9))  # the worker dies at once
     assert _generate(["specs/assets/k10.yaml"], tmp_path / "out")[0]
     monkeypatch.setenv("RAPIDGEN_JOBS", "1")
     assert _generate(["specs/assets/k10.yaml"], tmp_path / "one")[0]
@@ -160,11 +160,11 @@ def test_a_worker_lost_before_the_hand_over_leaves_the_work_here(tmp_path, monke
 
 def _in_the_worker_only(monkeypatch, what) -> None:
     """generate_in_two runs `what()` instead in a forked worker; in this process, as it is."""
-    here, real = os.getpid(), workers.generate_in_two
+    here, real = os.getpid(), fork_ahead.generate_in_two
 
     def patched(*a):
         return what() if os.getpid() != here else real(*a)
-    monkeypatch.setattr(workers, "generate_in_two", patched)
+    monkeypatch.setattr(fork_ahead, "generate_in_two", patched)
 
 
 @TWO
@@ -172,8 +172,8 @@ def test_a_worker_lost_after_the_hand_over_leaves_the_work_here(tmp_path, monkey
     monkeypatch.chdir(REPO)
     _in_the_worker_only(monkeypatch, lambda: os._exit(9))  # the worker dies with the inputs
     handed: list = []
-    hand_over = workers.Ahead.hand_over
-    monkeypatch.setattr(workers.Ahead, "hand_over", lambda self, *a: handed.append(hand_over(self, *a)) or handed[-1])
+    hand_over = fork_ahead.Ahead.hand_over
+    monkeypatch.setattr(fork_ahead.Ahead, "hand_over", lambda self, *a: handed.append(hand_over(self, *a)) or handed[-1])
     assert _generate(["specs/assets/k10.yaml"], tmp_path / "out")[0]
     assert handed == [None] and _all_reaped(forks)  # lost: rendered and written here
     monkeypatch.setenv("RAPIDGEN_JOBS", "1")
@@ -218,11 +218,11 @@ def test_prepare_loads_the_templates_until_the_inputs_arrive():
     read, write = os.pipe()
     with os.fdopen(read, "rb") as until, os.fdopen(write, "wb") as arrived:
         templating.environment.cache_clear()
-        workers.prepare(["qos"], until=until)
+        fork_ahead.prepare(["qos"], until=until)
         assert len(templating.environment("qos").cache or {}) == len(names)  # nothing to read: all
         arrived.write(b"x")
         arrived.flush()
         templating.environment.cache_clear()
-        workers.prepare(["qos"], until=until)
+        fork_ahead.prepare(["qos"], until=until)
         assert len(templating.environment("qos").cache or {}) == 0  # the inputs came first
     templating.environment.cache_clear()
