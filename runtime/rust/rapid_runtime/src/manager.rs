@@ -62,7 +62,8 @@ pub struct Record {
 }
 
 /// Where the manager's answers go: a DDS layer writes them, tests collect them. Called under
-/// the manager's lock: an outbox must not call the manager back.
+/// the manager's lock: an outbox must not call the manager back. A write it cannot make it
+/// logs itself (an ack whose write panics is logged by the manager, and the command moves on).
 pub trait Outbox: Send + Sync {
     fn ack(&self, cmd: &Cmd, status: AckStatus, completion: Completion, message: &str);
     /// code: 1 running, 0 idle, -1 suspended
@@ -587,7 +588,18 @@ impl Inner {
             }
             for write in std::mem::take(&mut st.outgoing) {
                 match write {
-                    Write::Ack(cmd, status, completion, message) => self.out.ack(&cmd, status, completion, &message),
+                    Write::Ack(cmd, status, completion, message) => {
+                        // a write that fails is said: the command's state moves on all the same
+                        // (a lost ack must not leave the queue stuck)
+                        let wrote = catch_unwind(AssertUnwindSafe(|| self.out.ack(&cmd, status, completion, &message)));
+                        if wrote.is_err() {
+                            self.out.log(&format!(
+                                "{} ack of {} not written: the outbox panicked",
+                                status.name(),
+                                py_string(&cmd.cmd_id)
+                            ));
+                        }
+                    }
                     Write::Queue(code, p, a, c) => self.out.queue_state(code, &p, &a, &c),
                     Write::Access(controller, requestors) => self.out.access_state(&controller, &requestors),
                     Write::Retire(cmd) => self.out.retire(&cmd),
