@@ -22,8 +22,8 @@ from dataclasses import dataclass
 
 import jsonschema
 
-from rapidgen.asset.schema import end_of, report_capped
-from rapidgen.asset.yamlread import parse_yaml
+from rapidgen.schema_report import end_of, report_capped
+from rapidgen.yamlread import parse_yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 
 PROJECT_FILE = "rapidgen.yaml"

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import jsonschema
 
-from rapidgen.asset.yamlread import load_yaml
+from rapidgen.yamlread import load_yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
-from rapidgen.asset.yamlread import load_yaml
+from rapidgen.yamlread import load_yaml
 from rapidgen.diagnostics import DiagnosticSink
 
 ROOT = Path(__file__).resolve().parents[1]

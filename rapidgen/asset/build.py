@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 
 from rapidgen.asset import spec as S
-from rapidgen.asset.yamlread import YamlDoc
+from rapidgen.yamlread import YamlDoc
 from rapidgen.diagnostics import SourceLoc
 
 

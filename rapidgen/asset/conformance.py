@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from rapidgen.asset.yamlread import YamlDoc
+from rapidgen.yamlread import YamlDoc
 from rapidgen.diagnostics import DiagnosticSink
 
 CODE = "RG1318"

@@ -15,7 +15,7 @@ from rapidgen.asset.check import check_asset
 from rapidgen.asset.resolved import LoadedAsset
 from rapidgen.asset.schema import check_schema
 from rapidgen.asset.spec import AssetSpec
-from rapidgen.asset.yamlread import load_yaml
+from rapidgen.yamlread import load_yaml
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink
 from rapidgen.idl.preprocess import display_path
 from rapidgen.model.ir import Model

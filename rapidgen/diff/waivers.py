@@ -10,7 +10,7 @@ from __future__ import annotations
 import fnmatch
 from dataclasses import dataclass
 
-from rapidgen.asset.yamlread import load_yaml
+from rapidgen.yamlread import load_yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.diff.rules import RULES, Finding
 from rapidgen.idl.preprocess import display_path

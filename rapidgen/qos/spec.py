@@ -25,7 +25,7 @@ from rapidgen.packagedata import read_text
 if TYPE_CHECKING:
     import jsonschema
 
-    from rapidgen.asset.yamlread import YamlDoc
+    from rapidgen.yamlread import YamlDoc
 
 MAX_BYTES = 1024 * 1024
 PACKAGED = "rapidgen/qos/rapid.yaml"  # how diagnostics name the packaged library
@@ -272,7 +272,7 @@ def load_qos(path: str, sink: DiagnosticSink) -> QosSpec | None:
 
 def parse_qos(text: str, file: str, sink: DiagnosticSink, schema_checked: bool = False) -> QosSpec | None:
     """`schema_checked`: the text is known to pass the schema (the packaged library)."""
-    from rapidgen.asset.yamlread import parse_yaml  # PyYAML: only where a library is parsed
+    from rapidgen.yamlread import parse_yaml  # PyYAML: only where a library is parsed
 
     doc = parse_yaml(text.lstrip("\ufeff"), file, sink)
     if doc is None:
@@ -289,7 +289,7 @@ def parse_qos(text: str, file: str, sink: DiagnosticSink, schema_checked: bool =
 
 
 def _schema_ok(doc: YamlDoc, sink: DiagnosticSink) -> bool:
-    from rapidgen.asset.schema import end_of, report_capped  # imports jsonschema
+    from rapidgen.schema_report import end_of, report_capped  # imports jsonschema
     return not report_capped(_validator().iter_errors(doc.data), sink, lambda e: _translated(e, doc),
                              end_of(doc), "RG1602")
 

@@ -11,7 +11,7 @@ import math
 import re
 from typing import Any
 
-from rapidgen.asset.yamlread import YamlDoc
+from rapidgen.yamlread import YamlDoc
 from rapidgen.diagnostics import DiagnosticSink
 from rapidgen.ros2 import msgdefs
 from rapidgen.ros2.msgdefs import FLOATS, INTEGERS, Field

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from typing import TypeGuard
 
 from rapidgen.asset.resolved import LoadedAsset
-from rapidgen.asset.yamlread import YamlDoc, load_yaml
+from rapidgen.yamlread import YamlDoc, load_yaml
 from rapidgen.diagnostics import DiagnosticSink, Severity, SourceLoc, did_you_mean
 from rapidgen.idl.preprocess import display_path
 

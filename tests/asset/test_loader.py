@@ -4,7 +4,7 @@ import pytest
 from rapidgen.asset import load_asset
 from rapidgen.asset.facts import fits
 from rapidgen.asset.publish import union_value, value_keys
-from rapidgen.asset.yamlread import parse_yaml
+from rapidgen.yamlread import parse_yaml
 from rapidgen.diagnostics import DiagnosticSink
 from tests.asset.conftest import ROOT
 

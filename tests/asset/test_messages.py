@@ -12,7 +12,7 @@ import pytest
 
 from rapidgen.asset import load_asset
 from rapidgen.asset.facts import STATIC_SHAPES
-from rapidgen.asset.yamlread import parse_yaml
+from rapidgen.yamlread import parse_yaml
 from rapidgen.diagnostics import DiagnosticSink
 
 HEAD = "version: 1\nasset: {name: Probe, kind: rover}\n"
