@@ -136,7 +136,8 @@ public:
             q.resource_limits().max_samples_per_instance = 64;
         }, this);
         writer_ = node_->writer<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos", [from_listener](DataWriterQos& q) {
-            q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
+            q.reliable_writer_qos().times.heartbeatPeriod =
+                eprosima::fastrtps::Duration_t(0, rapid_runtime::dds::COMMAND_HEARTBEAT_NS);  // as rapid_cmd's
             q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(10, 0);
             rapid_runtime::dds::quiet_nack_suppression(q);
             // The profile's KEEP_ALL history holds 400 samples (max_samples_per_instance: Fast

@@ -106,10 +106,15 @@ void Bridge::start() {
         // The ack writer exists before the command reader: commanders wait to match both.
         const std::string topic = breaks_->on("ack-topic-suffixed") ? "rapid_ack-" + tables_.name : ACK_TOPIC;
         const bool durable = !breaks_->on("volatile-acks");
-        acks_ = node_->writer<::rapid::Ack>(topic, "RapidReliableDurableQos", [durable](DataWriterQos& q) {
+        // Off a slow link, a heartbeat every 5 ms (node.hpp): a commander that joins late gets the
+        // kept acks, and in order its own after them, once the heartbeat has brought its first
+        // ACKNACK: a new rapid_cmd's first ack took 22-108 ms with 100 ms, 11-33 ms with 5 ms
+        // (bench/README.md). Heartbeats go out only while acks are unacknowledged.
+        const std::uint32_t heartbeat_ns = node_->on_link() ? 100'000'000 : COMMAND_HEARTBEAT_NS;
+        acks_ = node_->writer<::rapid::Ack>(topic, "RapidReliableDurableQos", [durable, heartbeat_ns](DataWriterQos& q) {
             if (!durable) q.durability().kind = VOLATILE_DURABILITY_QOS;
-            // an ack a commander missed is sent again within 100 ms (Fast DDS's heartbeat: 3 s)
-            q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
+            // an ack a commander missed is sent again within the heartbeat (Fast DDS's: 3 s)
+            q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, heartbeat_ns);
             quiet_nack_suppression(q);
             q.history().kind = KEEP_LAST_HISTORY_QOS;
             q.history().depth = ACK_HISTORY;

@@ -114,9 +114,12 @@ Client::Client(ClientOptions options, const Tables* tables) : options_(std::move
         q.resource_limits().max_samples_per_instance = static_cast<std::int32_t>(ACKS_PER_COMMAND);
     }, &ack_listener_);
     // A command written while the asset's reader has not yet matched this writer is dropped
-    // there and sent again on the next heartbeat: every 100 ms, not Fast DDS's 3 s.
-    commands_ = node_->writer<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos", [](DataWriterQos& q) {
-        q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100'000'000);
+    // there and sent again on the next heartbeat: every 5 ms off a slow link (node.hpp,
+    // COMMAND_HEARTBEAT_NS: the history emptied before a burst fills it, no write waits for a
+    // heartbeat), 100 ms on one; not Fast DDS's 3 s.
+    const std::uint32_t heartbeat_ns = node_->on_link() ? 100'000'000 : COMMAND_HEARTBEAT_NS;
+    commands_ = node_->writer<::rapid::Command>(COMMAND_TOPIC, "RapidReliableQos", [heartbeat_ns](DataWriterQos& q) {
+        q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, heartbeat_ns);
         q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(10, 0);  // a flood waits for room
         quiet_nack_suppression(q);  // (node.hpp: Fast DDS's event thread not woken per command)
     });

@@ -48,9 +48,17 @@ struct NodeOptions {
 // each sample sent restarts the reader proxy's suppression timer, which wakes Fast DDS's
 // event thread at once to take the writer's lock (against the next write) for every
 // sample; with 5 ms it wakes once per 5 ms of writes. A NACK inside those 5 ms is for a
-// sample still on its way (it comes only with a heartbeat: 100 ms apart here); a link's
+// sample still on its way (it comes only with a heartbeat: 5 ms apart here); a link's
 // profile (docs/qos.md "Slow links") sets its own (0.8 x rtt) and keeps it.
 inline constexpr std::uint32_t NACK_SUPPRESSION_NS = 5'000'000;
+// The heartbeat period of rapid_cmd's command writer and the bridge's ack writer off a slow
+// link. The command writer's KEEP_ALL history (400 samples) is emptied only by the reader's
+// ACKNACK, which answers a heartbeat: with 100 ms, a client sending 4000+ commands a second
+// filled it and its next write blocked until the heartbeat (20-70 ms maxima in the benches);
+// with 5 ms it holds ~20 at that rate. A late-joining ack reader gets the kept acks, and its
+// own after them, once a heartbeat has brought its first ACKNACK. A heartbeat goes out only
+// while samples are unacknowledged; a link keeps 100 ms (a NACK there costs a resend).
+inline constexpr std::uint32_t COMMAND_HEARTBEAT_NS = 5'000'000;
 void quiet_nack_suppression(eprosima::fastdds::dds::DataWriterQos& qos);
 
 class Node {
@@ -62,6 +70,8 @@ public:
     ~Node();
     Node(const Node&) = delete;
     Node& operator=(const Node&) = delete;
+    // The participant's transport is a slow link (a profile with rtt: docs/qos.md "Slow links").
+    bool on_link() const { return !link_.empty(); }
 
     // The topic's writer (created once, with `profile`, then tweak(qos) applied).
     template <class T>
