@@ -206,13 +206,15 @@ def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--latency", type=int, default=2000, help="sequential commands timed (default 2000)")
     p.add_argument("--flood", type=int, default=10000, help="commands sent back to back (default 10000)")
-    p.add_argument("--rss", type=int, default=100000, help="commands for the memory figure (default 100000)")
+    p.add_argument("--rss", type=int, default=100000, help="commands for the memory figure (default 100000; 0: none)")
     p.add_argument("--build", type=Path, default=Path("/tmp/rapidgen-bench-cpp"))
     p.add_argument("--domain", type=int, default=93, help="the bridge's DDS domain (default 93)")
     p.add_argument("--ddsperf-domain", type=int, help="ddsperf's (default: --domain + 1)")
     p.add_argument("--floor-domain", type=int, help="fastdds_ping's (default: --domain + 2)")
     p.add_argument("--ddsperf-seconds", type=float, default=5, help="0 skips ddsperf")
+    p.add_argument("--json", type=Path, help="also write the figures there (bench/bridges.py reads them)")
     args = p.parse_args()
+    out: dict = {"load_start": os.getloadavg()}
     bridge_exe, cmd, ping_exe = build(args.build)
     env = {k: v for k, v in os.environ.items() if not k.startswith(("FASTDDS_", "FASTRTPS_"))}  # built-in rapid_local
     print(f"commit {git_head()}, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC", flush=True)
@@ -232,6 +234,7 @@ def main() -> int:
         print(f"ddsperf ping (Cyclone C, loopback, {args.ddsperf_seconds:g} s): {perf}", flush=True)
     else:
         perf = None
+    out["ddsperf"] = perf
     floors = {}
     for acks, wait, what in ((1, "main", "1 ack, main thread waits (rapid_cmd's shape)"),
                              (2, "main", "2 acks (an echo's), main thread waits"),
@@ -258,6 +261,8 @@ def main() -> int:
             cpu0, sw0 = cpu_and_switches(bridge.pid)
             lat = client("--repeat", str(args.latency))
             cpu1, sw1 = cpu_and_switches(bridge.pid)
+            out["floors"] = {f"{acks} {wait}": f for (acks, wait), f in floors.items()}
+            out["bridge"] = lat
             per = max(1, lat["answered"])
             ratio = f", {lat['p50_us'] / perf['50%']:.1f}x ddsperf's p50" \
                 if isinstance(perf, dict) and "50%" in perf else ""
@@ -271,6 +276,7 @@ def main() -> int:
                   f"{(sw1 - sw0) / per:.1f} context switches a command", flush=True)
             print(columns(perf, floors, lat), flush=True)
             fl = client("--flood", str(args.flood))
+            out["flood"] = fl
             lost += fl["lost"]
             door = door_said(log)
             print(f"flood: {fl['sent']} echoes written back to back, {fl['final']} final acks ({fl['ok']} OK), "
@@ -279,13 +285,14 @@ def main() -> int:
             step = max(1, args.rss // 10)
             before = rss_kib(bridge.pid)
             figures = []
-            for i in range(10):
+            for i in range(10 if args.rss else 0):
                 got = client("--flood", str(step), "--window", "256")
                 lost += got["lost"]
                 figures.append(rss_kib(bridge.pid))
-            print(f"RSS of the bridge: {before / 1024:.1f} MiB before; after "
-                  + ", ".join(f"{(i + 1) * step}: {k / 1024:.1f}" for i, k in enumerate(figures)) + " MiB "
-                  f"({(figures[-1] - figures[0]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
+            if figures:
+                print(f"RSS of the bridge: {before / 1024:.1f} MiB before; after "
+                      + ", ".join(f"{(i + 1) * step}: {k / 1024:.1f}" for i, k in enumerate(figures)) + " MiB "
+                      f"({(figures[-1] - figures[0]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
         finally:
             stop(bridge)
         if has_journal:  # the same path with the restart journal on: what a default bridge costs
@@ -294,12 +301,16 @@ def main() -> int:
                 take_control(cmd, args.domain, env)
                 client("--repeat", "50")
                 lat = client("--repeat", str(args.latency))
+                out["journal"] = lat
                 print(f"C++ bridge, journal on: command -> COMPLETED ack ({lat['answered']} of {lat['count']}): "
                       f"p50 {lat['p50_us']:.0f} us, p99 {lat['p99_us']:.0f} us, max {lat['max_us']:.0f} us; "
                       f"{lat['per_s']:.0f} commands/s one at a time", flush=True)
             finally:
                 stop(bridge)
     print("load average at the end: " + " ".join(f"{x:.2f}" for x in os.getloadavg()), flush=True)
+    if args.json:
+        out["load_end"] = os.getloadavg()
+        args.json.write_text(json.dumps(out))
     return 1 if lost else 0
 
 
