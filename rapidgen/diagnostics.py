@@ -10,6 +10,7 @@ so one run can report every error it finds. Rendering follows the rustc/clang sh
 from __future__ import annotations
 
 import enum
+import os
 from dataclasses import dataclass, field
 from typing import Callable, Iterable, NamedTuple
 
@@ -177,3 +178,16 @@ class FileLineCache:
             except OSError:
                 self._cache[path] = None
         return self._cache[path]
+
+
+def display_path(path: str) -> str:
+    """Paths shown to the user: relative to the working folder when inside it."""
+    norm = os.path.normpath(path)
+    if os.path.isabs(norm):
+        try:
+            rel = os.path.relpath(norm)
+        except ValueError:
+            return norm
+        if not rel.startswith(".."):
+            return rel
+    return norm

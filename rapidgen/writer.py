@@ -60,10 +60,23 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass, field
-from typing import Callable, Iterable, Iterator
+from typing import Callable, Iterable, Iterator, Protocol
 
-from rapidgen.backends.base import GeneratedFile
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink, Severity, SourceLoc
+
+
+class GeneratedFile(Protocol):
+    """What the writer writes (a back end's rapidgen.backends.base.GeneratedFile has it): the
+    writer knows no back end."""
+
+    @property
+    def path(self) -> str: ...  # relative to the output folder, '/'-separated
+
+    @property
+    def content(self) -> str: ...
+
+    @property
+    def user_owned(self) -> bool: ...  # written once if absent, never overwritten
 
 MANIFEST = ".rapidgen-manifest.json"
 STAGING = ".rapidgen-staging"

@@ -32,7 +32,7 @@ import xml.etree.ElementTree as ET
 
 def _load(asset_path: str):
     from rapidgen.asset import load_asset
-    from rapidgen.cli import report
+    from rapidgen.reporting import report
     from rapidgen.diagnostics import DiagnosticSink
 
     sink = DiagnosticSink()

@@ -17,7 +17,7 @@ from rapidgen.asset.schema import check_schema
 from rapidgen.asset.spec import AssetSpec
 from rapidgen.yamlread import load_yaml
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink
-from rapidgen.idl.preprocess import display_path
+from rapidgen.diagnostics import display_path
 from rapidgen.model.ir import Model
 
 

@@ -21,7 +21,7 @@ from collections.abc import Generator
 from contextlib import closing
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
-from rapidgen.idl.preprocess import display_path
+from rapidgen.diagnostics import display_path
 
 SPEC_SUFFIXES = (".idl", ".pidl", ".yaml", ".yml")
 MAX_FILES = 20_000

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from rapidgen.asset.resolved import LoadedAsset
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc
-from rapidgen.idl.preprocess import display_path
+from rapidgen.diagnostics import display_path
 from rapidgen.model.ir import Model
 
 ASSET_SUFFIXES = (".yaml", ".yml")

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from rapidgen.yamlread import load_yaml
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.diff.rules import RULES, Finding
-from rapidgen.idl.preprocess import display_path
+from rapidgen.diagnostics import display_path
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,7 @@ import os
 import re
 from dataclasses import dataclass, field
 
-from rapidgen.diagnostics import DiagnosticSink, SourceLoc
+from rapidgen.diagnostics import DiagnosticSink, SourceLoc, display_path
 from rapidgen.idl.ifexpr import evaluate as evaluate_condition
 
 # Per file, and for all files of one run together. The parser and resolver take ~80 bytes of
@@ -95,19 +95,6 @@ class PreprocessResult:
             f, ln = self.line_map[-1]
             return f, ln + 1
         return ("<input>", 1)
-
-
-def display_path(path: str) -> str:
-    """Paths shown to the user: relative to the working folder when inside it."""
-    norm = os.path.normpath(path)
-    if os.path.isabs(norm):
-        try:
-            rel = os.path.relpath(norm)
-        except ValueError:
-            return norm
-        if not rel.startswith(".."):
-            return rel
-    return norm
 
 
 @dataclass

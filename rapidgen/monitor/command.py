@@ -95,14 +95,14 @@ def run(args) -> int:
               "install it with: pip install 'rapidgen[monitor]' ./runtime", file=sys.stderr)
         return 1
     if args.foxglove is not None:
-        from rapidgen.foxglove.live import run_live
+        from rapidgen.monitor.foxglove_live import run_live
         return run_live(args)
     from rapidgen.diagnostics import DiagnosticSink
     from rapidgen.monitor.assets import load
     sink = DiagnosticSink()
     loaded = load(args.asset, sink)
     if loaded is None:
-        from rapidgen.cli import report
+        from rapidgen.reporting import report
         report(sink)
         return 1
     bindings, hints = loaded

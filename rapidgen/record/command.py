@@ -66,7 +66,7 @@ def run(args) -> int:
     if dds_missing("record") or _mcap_missing("record"):
         return 1
     from rapidgen.diagnostics import DiagnosticSink
-    from rapidgen.cli import report
+    from rapidgen.reporting import report
     sink = DiagnosticSink()
     loaded = load_types(args.asset, sink)
     report(sink)

@@ -56,7 +56,7 @@ def run(args) -> int:
     if start is None:
         print(f"rapidgen replay: {', '.join(args.files)}: no messages", file=sys.stderr)
         return 1
-    from rapidgen.cli import report
+    from rapidgen.reporting import report
     from rapidgen.diagnostics import DiagnosticSink
     sink = DiagnosticSink()
     loaded = load_types(args.asset, sink)

@@ -26,7 +26,7 @@ from typing import TypeGuard
 from rapidgen.asset.resolved import LoadedAsset
 from rapidgen.yamlread import YamlDoc, load_yaml
 from rapidgen.diagnostics import DiagnosticSink, Severity, SourceLoc, did_you_mean
-from rapidgen.idl.preprocess import display_path
+from rapidgen.diagnostics import display_path
 
 NAME = re.compile(r"[A-Za-z0-9_.-]{1,64}\Z")  # a file name and a certificate CN, never a path
 

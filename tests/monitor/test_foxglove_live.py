@@ -122,7 +122,7 @@ def test_every_channel_decodes_with_its_advertised_schema_values_equal_to_the_wi
 
 
 def test_a_client_that_stops_reading_is_dropped_and_others_go_on(capfd):
-    """The server alone (rapidgen.foxglove.server, real sockets, 256 KiB queue budget): a raw
+    """The server alone (rapidgen.monitor.foxglove_server, real sockets, 256 KiB queue budget): a raw
     client subscribes and never reads; a second one reads everything. Messages of 64 KiB are
     published one at a time, each once the reader has it: the silent client is dropped (its
     socket closed, said on stderr), the reader gets every message, before and after."""
@@ -133,7 +133,7 @@ def test_a_client_that_stops_reading_is_dropped_and_others_go_on(capfd):
     aiohttp = pytest.importorskip("aiohttp")
     from aiohttp import web
 
-    from rapidgen.foxglove.server import FoxgloveServer
+    from rapidgen.monitor.foxglove_server import FoxgloveServer
 
     async def main():
         server = FoxgloveServer(budget=256 << 10)

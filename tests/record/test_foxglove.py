@@ -409,7 +409,7 @@ def test_desktop_origins_are_refused_unless_given():
     """Foxglove's desktop app is an Electron page loaded from file:// (docs/foxglove.md): its
     WebSocket carries `Origin: file://` (or `null`), refused like any browser Origin unless
     given with --foxglove-origin; a client with no Origin (a program) is accepted."""
-    from rapidgen.foxglove.server import FoxgloveServer
+    from rapidgen.monitor.foxglove_server import FoxgloveServer
     default = FoxgloveServer()
     assert default._origin_ok(None)
     assert not any(default._origin_ok(o) for o in ("file://", "null", "https://app.foxglove.dev"))

@@ -11,7 +11,7 @@ import sys
 import threading
 import time
 
-from rapidgen.foxglove.server import FoxgloveServer
+from rapidgen.monitor.foxglove_server import FoxgloveServer
 from rapidgen.record.mcapfile import MESSAGE_ENCODING, ChannelInfo
 
 
@@ -47,7 +47,7 @@ class LiveSink:
 
 def run_live(args) -> int:
     """Serve until Ctrl-C/SIGTERM or --seconds. Exit 0; 1 when DDS, a descriptor or the port fails."""
-    from rapidgen.cli import report
+    from rapidgen.reporting import report
     from rapidgen.diagnostics import DiagnosticSink
     from rapidgen.live.dds import use_transport
     from rapidgen.record.command import _schema_finder, load_types
