@@ -355,8 +355,8 @@ def main() -> int:
             for s in servers.values():
                 s.stop()
         if args.profile:
-            out = Path(tmp) / "profile.json"
-            argv = [sys.executable, str(ROOT / "bench" / "profiled_bridge.py"), str(out),
+            stamps = Path(tmp) / "profile.json"
+            argv = [sys.executable, str(ROOT / "bench" / "profiled_bridge.py"), str(stamps),
                     *(["--cprofile"] if args.cprofile else []), "--", "--simulate", "--domain", str(args.domain),
                     "--journal", str(Path(tmp) / "jp")]
             s = Server("the profiled bridge", argv, env, "bridge ready")
@@ -371,7 +371,7 @@ def main() -> int:
                 s.stop()
             print(f"\nprofiled bridge (journal on; the probes cost a little): p50 {percentile(f.ms, 50):.3f} ms "
                   f"over {len(f.ms)} sequential noOps", flush=True)
-            profile_report(out, c.arrived)
+            profile_report(stamps, c.arrived)
     print(f"load average at the end: {load()}", flush=True)
     if args.json:
         out["load_end"] = os.getloadavg()
