@@ -1,9 +1,11 @@
-"""Import directions (DESIGN.md): the model is a leaf; the front end owns meaning; back ends
-read the model and the asset and nothing of the front end or of each other; the robot-side
-runtime needs nothing of the compiler."""
+"""Import directions (docs/architecture.md, "Import rules"): the table there names every
+unit of rapidgen and what each may import; this test reads it, checks every import of every
+module against it, and finds circles between units. The runtime needs nothing of the
+compiler; back ends import no other back end; asset facts are computed in one place."""
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -48,22 +50,108 @@ def offending(package: str, allowed) -> list[str]:
     return bad
 
 
-def test_model_is_a_leaf():
-    assert offending("rapidgen.model", lambda _m, imp: under(imp, "rapidgen.model")
-                     or under(imp, "rapidgen.diagnostics")) == []
+# ---- the table of docs/architecture.md -------------------------------------------------------
+def table() -> tuple[dict[str, set[str]], dict[str, set[str]]]:
+    """(unit -> its top-level names under rapidgen, unit -> the units it may import), read
+    from docs/architecture.md's "Import rules" table."""
+    text = (ROOT / "docs" / "architecture.md").read_text(encoding="utf-8")
+    section = text.split("## Import rules", 1)[1].split("\n## ", 1)[0]
+    members: dict[str, set[str]] = {}
+    allowed: dict[str, set[str]] = {}
+    for line in section.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 3 or cells[0] in ("unit", "---") or set(cells[0]) <= {"-"}:
+            continue
+        unit, names, may = cells
+        members[unit] = set(re.findall(r"`([^`]+)`", names))
+        allowed[unit] = {"*"} if may == "every unit" else set(re.findall(r"`([^`]+)`", may))
+    return members, allowed
 
 
-def test_codec_reads_the_model_only():
-    assert offending("rapidgen.cdr", lambda _m, imp: any(under(imp, p) for p in (
-        "rapidgen.model", "rapidgen.cdr")) or under(imp, "rapidgen.diagnostics")) == []
+def unit_of(module: str, members: dict[str, set[str]]) -> str | None:
+    """The unit of a rapidgen module (rapidgen.asset.load -> asset); `runtime` for rapid_runtime."""
+    parts = module.split(".")
+    if parts[0] == "rapid_runtime":
+        return "runtime"
+    if parts[0] != "rapidgen":
+        return None
+    top = parts[1] if len(parts) > 1 else "rapidgen"
+    if top == "__version__":
+        top = "rapidgen"
+    return next((u for u, names in members.items() if top in names), None)
 
 
-def test_front_end_imports_no_later_stage():
-    # (leaf utilities, no stage: rapidgen.precomputed, the --write/--check of a shipped
-    # precomputed module; rapidgen.packagedata, a file shipped in a package)
-    assert offending("rapidgen.idl", lambda _m, imp: any(under(imp, p) for p in (
-        "rapidgen.idl", "rapidgen.model")) or under(imp, "rapidgen.diagnostics")
-        or under(imp, "rapidgen.precomputed") or under(imp, "rapidgen.packagedata")) == []
+def package_edges() -> dict[str, set[str]]:
+    """unit -> the units its modules import."""
+    members, _ = table()
+    edges: dict[str, set[str]] = {}
+    for name, path in modules("rapidgen"):
+        src = unit_of(name, members)
+        assert src is not None, f"{name} is in no unit of docs/architecture.md's import table: add it"
+        for imp in imports_of(path):
+            dst = unit_of(imp, members)
+            if dst is not None and dst != src:
+                edges.setdefault(src, set()).add(dst)
+    return edges
+
+
+def test_the_table_names_every_module_and_real_units():
+    members, allowed = table()
+    assert {"leaves", "model", "asset", "backends", "cli"} <= set(members)
+    units = set(members) | {"runtime"}
+    assert all(a <= units | {"*"} for a in allowed.values()), allowed
+    tops = {p.stem if p.is_file() else p.name for p in (ROOT / "rapidgen").iterdir()
+            if (p.suffix == ".py" or (p.is_dir() and (p / "__init__.py").exists()))}
+    tops = {"rapidgen" if t == "__init__" else t for t in tops}
+    named = set().union(*members.values())
+    assert tops - named == set(), "modules missing from the table"
+    assert named - tops - {"rapidgen"} == set(), "the table names modules that do not exist"
+
+
+def test_every_import_is_one_the_table_allows():
+    members, allowed = table()
+    bad = []
+    for name, path in modules("rapidgen"):
+        src = unit_of(name, members)
+        for imp in sorted(imports_of(path)):
+            dst = unit_of(imp, members)
+            if dst is None or dst in (src, "leaves") or "*" in allowed[src] or dst in allowed[src]:
+                continue
+            bad.append(f"{name} ({src}) imports {imp} ({dst})")
+    assert bad == []
+
+
+def test_no_circle_between_units():
+    edges = package_edges()
+    edges.pop("cli", None)  # the dispatcher: above every unit, imported by none but __main__
+    seen: dict[str, int] = {}
+    circles = []
+
+    def visit(u: str, path: list[str]) -> None:
+        seen[u] = 1
+        for v in sorted(edges.get(u, ())):
+            if seen.get(v) == 1:
+                circles.append(" -> ".join(path[path.index(v):] + [v]))
+            elif v not in seen:
+                visit(v, path + [v])
+        seen[u] = 2
+
+    for u in sorted(edges):
+        if u not in seen:
+            visit(u, [u])
+    assert circles == []
+
+
+def test_the_leaves_import_only_leaves():
+    members, _ = table()
+    bad = [f"{name} imports {imp}" for name, path in modules("rapidgen") if unit_of(name, members) == "leaves"
+           for imp in sorted(imports_of(path)) if unit_of(imp, members) not in (None, "leaves")]
+    assert bad == []
+
+
+def test_the_conformance_suite_imports_the_runner_only():
+    assert offending("conformance", lambda _m, imp: under(imp, "rapidgen.conform") or under(imp, "conformance")
+                     or under(imp, "rapidgen.textsafe")) == []
 
 
 def test_backends_import_no_front_end_and_no_other_backend():
