@@ -7,22 +7,23 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Sequence
 
+from rapid_runtime.thresholds import threshold_level
+
 
 def _threshold(t) -> dict | None:
     return None if t is None else {"below": t.below, "above": t.above}
 
 
 def level_of(value: float | None, hint: dict | None) -> str:
-    """ok | warning | critical: below `below` or above `above` of a level raises it (NaN: critical)."""
+    """ok | warning | critical of a value against its hint's thresholds: the runtime's rule
+    (rapid_runtime.thresholds, the ROS 2 ground node's too; NaN is critical where a threshold is set)."""
     if value is None or not hint:
         return "ok"
-    if value != value:
-        return "critical" if hint.get("critical") or hint.get("warning") else "ok"
-    for level in ("critical", "warning"):
-        t = hint.get(level)
-        if t and ((t["below"] is not None and value < t["below"]) or (t["above"] is not None and value > t["above"])):
-            return level
-    return "ok"
+    return threshold_level(value, _bounds(hint.get("warning")), _bounds(hint.get("critical")))[0]
+
+
+def _bounds(t: dict | None) -> tuple[float | None, float | None] | None:
+    return None if t is None else (t["below"], t["above"])
 
 
 @dataclass

@@ -135,5 +135,6 @@ def _union_type(v: dict) -> str:
     """KeyTypePair has its type; KeyTypeValueTriple's is its value's discriminator."""
     if isinstance(v.get("type"), str):
         return v["type"].removeprefix("RAPID_")
-    value = v.get("value")
-    return next(iter(value)).removeprefix("RAPID_") if isinstance(value, dict) and value else "?"
+    value = v.get("value")  # a union in plain form: {discriminator, value}
+    d = value.get("discriminator") if isinstance(value, dict) else None
+    return d.removeprefix("RAPID_") if isinstance(d, str) else "?"

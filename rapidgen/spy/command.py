@@ -51,6 +51,12 @@ def run_spy(args, sink, report) -> int:
     from rapidgen.live.dds import dds_missing, use_transport
     if dds_missing("spy"):
         return 1
+    try:
+        import rapid_runtime  # noqa: F401  (samples are shown in the runtime's plain form)
+    except ImportError:
+        print("rapidgen spy: needs rapid_runtime, which is not installed; install it with: pip install ./runtime",
+              file=sys.stderr)
+        return 1
     bindings = _bindings(args.asset, sink)
     report(sink)
     if bindings is None:

@@ -4,9 +4,9 @@ Built from a Watcher's state; no DDS here, so it is tested without a network."""
 from __future__ import annotations
 
 import dataclasses
-import enum
-import math
 from dataclasses import dataclass, field
+
+from rapid_runtime.plain import plain  # one JSON form of a sample for every tool (the runtime's)
 
 from rapidgen.qos.spec import QosSpec, default_library
 
@@ -47,26 +47,6 @@ def profile_of(qos, type_name: str, writer: bool, library: QosSpec | None = None
         if want[:2] == seen[:2] and (seen[2] is None or want[2] == seen[2]):
             return name, expected
     return None, expected
-
-
-def plain(value):
-    """A decoded sample as JSON-ready data: structs as dicts, enums by name, unions as
-    {discriminator: value}, bytes as hex, NaN and infinities as the strings "NaN",
-    "Infinity", "-Infinity" (JSON has no such numbers)."""
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return {f.name: plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
-    if isinstance(value, enum.Enum):
-        return value.name
-    if isinstance(value, (bytes, bytearray)):
-        return value.hex()
-    if isinstance(value, (list, tuple)):
-        return [plain(v) for v in value]
-    if hasattr(value, "discriminator") and hasattr(value, "value"):  # an IdlUnion
-        d = value.discriminator
-        return {getattr(d, "name", str(d)): plain(value.value)}
-    if isinstance(value, float) and not math.isfinite(value):
-        return "NaN" if value != value else ("Infinity" if value > 0 else "-Infinity")
-    return value
 
 
 @dataclass

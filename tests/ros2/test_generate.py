@@ -16,6 +16,8 @@ from rapidgen.asset.load import load_asset
 from rapidgen.diagnostics import DiagnosticSink
 from rapidgen.ros2 import msgdefs
 
+from tests.ros2 import runtime_ros2
+
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples/ros2/robonaut2-ros2.yaml"
 
@@ -139,7 +141,8 @@ def test_the_example_maps_what_the_seed_scenario_needs(monkeypatch):
 
 @pytest.fixture(scope="module")
 def example_bridge(tmp_path_factory):
-    """The example's generated rapid_r2ros.ros2, imported (it needs no rclpy to import)."""
+    """The example generated and importable; the bridge's code (rapid_runtime.ros2, which the
+    generated rapid_r2ros.ros2 calls) as one namespace. Neither needs rclpy to import."""
     import importlib
     out = tmp_path_factory.mktemp("r2ros")
     res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(EXAMPLE), "--lang", "python", "-o",
@@ -147,7 +150,8 @@ def example_bridge(tmp_path_factory):
     assert res.returncode == 0, res.stderr
     sys.path.insert(0, str(out / "python"))
     try:
-        yield importlib.import_module("rapid_r2ros.ros2")
+        importlib.import_module("rapid_r2ros.ros2")
+        yield runtime_ros2()
     finally:
         sys.path.remove(str(out / "python"))
         for name in [n for n in sys.modules if n == "rapid_r2ros" or n.startswith("rapid_r2ros.")]:
@@ -256,15 +260,19 @@ def test_a_stream_mapping_error_is_located(tmp_path, monkeypatch, old, new, code
 
 @pytest.fixture(scope="module")
 def example_ground(example_bridge):
-    """The example's generated rapid_r2ros.ros2_ground, imported (rclpy only in its main)."""
+    """The ground node's code, rapid_runtime.ros2.ground (rclpy only in its main), beside the
+    example's generated package (its generated rapid_r2ros.ros2_ground imports)."""
     import importlib
-    return importlib.import_module("rapid_r2ros.ros2_ground")
+    importlib.import_module("rapid_r2ros.ros2_ground")
+    from rapid_runtime.ros2 import ground
+    return ground
 
 
 def test_ground_config_topics_and_json(example_ground):
     """Configs go to ROS 2 as JSON on NS/config/<name>: the name from the RAPID topic, the
-    JSON the sample's members (enums by name, unions as discriminator and value): each config
-    built from the tables reads back as the tables' computed value."""
+    JSON the sample's members (rapid_runtime.plain: enums by name, unions as discriminator and
+    value, octets as hex, NaN as "NaN"): each config built from the tables reads back as the
+    tables' computed value."""
     import importlib
     import json
 
@@ -276,7 +284,7 @@ def test_ground_config_topics_and_json(example_ground):
     assert g.config_topic("/r2ros", "rapid_position_config-rightArm") == "/r2ros/config/position/rightArm"
     assert g.config_topic("", "rapid_ext_arc_gps_config") == "/config/ext_arc_gps"
     assert g.config_topic("/r", "rapid_joint_config-a.b") == "/r/config/joint/a_b"
-    assert g.plain(float("nan")) == "nan" and g.plain(b"\x00\xff") == [0, 255]
+    assert g.plain(float("nan")) == "NaN" and g.plain(b"\x00\xff") == "00ff"
     tables = Tables(importlib.import_module("rapid_r2ros.asset_tables"))
     rapid = importlib.import_module("rapid_r2ros.rapid")
     assert set(tables.configs) >= {"rapid_command_config", "rapid_agent_config", "rapid_joint_config"}

@@ -19,21 +19,24 @@ from rapidgen.asset.load import load_asset
 from rapidgen.diagnostics import DiagnosticSink
 from rapidgen.ros2 import msgdefs
 
+from tests.ros2 import runtime_ros2
+
 ROOT = Path(__file__).resolve().parents[2]
 ROVER = ROOT / "tests/ros2/rover-nav.yaml"
 
 
 @pytest.fixture(scope="module")
 def rover(tmp_path_factory):
-    """(the generated package's folder, its ros2 module, its ros2_map)."""
+    """(the generated package's folder, the bridge's code (rapid_runtime.ros2, which the
+    generated rapid_navrover.ros2 calls), its ros2_map)."""
     out = tmp_path_factory.mktemp("navrover")
     res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(ROVER), "--lang", "python", "-o",
                           str(out)], cwd=ROOT, capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
     sys.path.insert(0, str(out / "python"))
     try:
-        yield out / "python", importlib.import_module("rapid_navrover.ros2"), \
-            importlib.import_module("rapid_navrover.ros2_map")
+        importlib.import_module("rapid_navrover.ros2")
+        yield out / "python", runtime_ros2(), importlib.import_module("rapid_navrover.ros2_map")
     finally:
         sys.path.remove(str(out / "python"))
         for name in [n for n in sys.modules if n == "rapid_navrover" or n.startswith("rapid_navrover.")]:
@@ -47,7 +50,7 @@ def _pose_stamped():
 
 
 def _build(ros2, fields, args):
-    """The message a command publishes, built by the generated bridge's own code."""
+    """The message a command publishes, built by the bridge's own code."""
     msg = _pose_stamped()
     return ros2.Ros2Handlers._build(None, msg, "geometry_msgs/msg/PoseStamped", fields, args)
 
@@ -127,7 +130,8 @@ def test_euler_poses_go_to_ros2_as_their_quaternion(rover, encoding):
     becomes the PoseStamped quaternion rapidgen's Foxglove derivation reads from it."""
     from rapidgen.foxglove.derive import rotation
     pydir, ros2, _ = rover
-    ground = importlib.import_module("rapid_navrover.ros2_ground")
+    importlib.import_module("rapid_navrover.ros2_ground")
+    from rapid_runtime.ros2 import ground
     g = ground.Ground.__new__(ground.Ground)
     for angles in [(0.3, 0.0, 0.0), (2.5, -1.1, 3.0), (-3.0, 0.4, -2.9)]:
         sample = NS(hdr=NS(timeStamp=1_700_000_000_123_456), pose=NS(xyz=[1.0, 2.0, 3.0], rot=[*angles] + [0.0] * 6))

@@ -6,7 +6,8 @@
                             the mapped input streams (Cyclone, DEADLINE) published as ROS 2 messages
     <package>/ros2_ground.py  with `ros2: {ground: ...}`: `python -m <package>.ros2_ground`, the
                             asset's RAPID telemetry republished as standard ROS 2 messages
-The two are the only modules of the package that import rclpy.
+The two hold only the call: the code is rapid_runtime.ros2 (runtime/), which imports rclpy
+when they start.
 
 Descriptor strings (topics, field paths, names, constants) reach the files only through the
 literal printer (py_str) or the docstring/comment escapes.
