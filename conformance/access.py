@@ -186,3 +186,50 @@ def release_published(s):
             s.ensure_control()
         except Blocked:
             pass
+
+
+def _unprivileged(s):
+    """(a source the allow-list lets take control, a harmless command it does not let it send),
+    or None. Harmless: Admin/noOp or echo, else any command that is not motion, queue or
+    access control."""
+    from rapidgen.conform.asset import is_motion
+    grab = s.facts.command("AccessControl", "grabControl") or s.facts.command("AccessControl", "requestControl")
+    if s.facts.access is None or grab is None:
+        return None
+    cands = [c for c in (s.facts.command("Admin", "noOp"), s.facts.command("Admin", "echo")) if c is not None]
+    cands += [c for c in s.facts.commands() if c.type not in ("AccessControl", "Queue", "Admin") and not is_motion(c)
+              and c.type != "Mobility"]
+    for rule in s.facts.access["rules"]:
+        src = rule["source"]
+        if src == s.source or not s.facts.allowed(src, grab):
+            continue
+        c = next((c for c in cands if not s.facts.allowed(src, c)), None)
+        if c is not None:
+            return src, c
+    return None
+
+
+@check("ACC-10", REQUIRED, "The allow-list holds for the controller: a command it does not allow is refused",
+       "rapid-protocol.md 5 (seed 001: the command source checked against the sender's privileges); "
+       "docs/runtime.md: the allow-list, then control", needs=("ACC-04",))
+def privileges(s):
+    """A source the descriptor's access_control lets take control, holding it, sends a
+    harmless command the allow-list does not give it: refused (BAD_SYNTAX "RAPID access
+    violation"), whoever holds control."""
+    _access(s)
+    found = _unprivileged(s)
+    if found is None:
+        raise Unsupported("the allow-list refuses no source that may take control a harmless command")
+    src, c = found
+    try:
+        s.grab_control(src)
+        if s.holder != src:
+            raise Blocked(f"grabControl by {src} was not answered OK (ACC-04)")
+        s.expect_refused(s.run(c, source=src), f"{c.subsystem}/{c.name} from {src}, the controller, which the "
+                                                f"allow-list does not let send it (RAPID access violation)")
+    finally:
+        s.holder = None
+        try:
+            s.ensure_control()
+        except Blocked:
+            pass

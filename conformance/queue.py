@@ -289,8 +289,9 @@ def positions(s):
             raise Blocked(s.silence(cid) + " (CMD-16)")
     names = {a: "A", ins: "C (INSERT after A)", rep: "R (REPLACE B)", e: "E"}
     replaced = s.final(s.client.acks_of(b))
-    ran = [x.cmd_id for x in s.client.acks if x.cmd_id in want and x.status == "ACK_COMPLETED"
-           and x.completed == "ACK_COMPLETED_OK"]
+    done = [x for x in s.client.acks if x.cmd_id in want and x.status == "ACK_COMPLETED"
+            and x.completed == "ACK_COMPLETED_OK"]
+    ran = [x.cmd_id for x in sorted(done, key=lambda x: (x.stamp, x.index))]  # as the asset wrote them
     bad = []
     if replaced is None or replaced.completed != "ACK_COMPLETED_CANCELED":
         bad.append(f"B, replaced, answered {describe(s.client.acks_of(b))}")

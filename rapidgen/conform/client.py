@@ -63,6 +63,9 @@ class AckSeen:
     message: str
     asset: str
     src: str
+    # the ack's hdr.timeStamp: the order the asset wrote acks in. `index` is the order they were
+    # taken in, and one take returns a keyed topic's samples instance by instance, not as they came
+    stamp: int = 0
 
 
 @dataclass
@@ -319,7 +322,7 @@ class Client:
             self.acks_not_kept += 1
             return
         self.acks.append(AckSeen(self._ack_count - 1, now, cid, enum_name(s.status), enum_name(s.completedStatus),
-                                 s.message, s.hdr.assetName, s.hdr.srcName))
+                                 s.message, s.hdr.assetName, s.hdr.srcName, s.hdr.timeStamp))
 
     def stop(self) -> None:
         self.stopping.set()

@@ -129,3 +129,10 @@ def former_controller_keeps_rights(a):
         finally:
             del control.holds
     m._authorize = gate
+
+
+@kind("allow-list-ignored", "ACC-10")
+def allow_list_ignored(a):
+    """The descriptor's allow-list is never consulted: holding control is enough."""
+    import rapid_runtime.access as access_module  # the manager calls it through the module
+    access_module.allowed = lambda spec, source, subsystem, command: True
