@@ -1,4 +1,5 @@
-"""The generated QoS runtime, `<package>/qos.py` (template rapidgen/templates/python/qos.py.j2).
+"""The QoS runtime, rapid_runtime.qos, through a generated package's `<package>/qos.py` (its
+RapidQos with the package's default folder; template templates/python/qos.py.j2).
 
 Robonaut 2's bindings and QoS files are generated into a temporary folder
 (`rapidgen generate specs/assets/robonaut2.yaml --lang python,qos -o OUT`); then, for every
@@ -237,3 +238,18 @@ def test_a_global_declaration_named_qos_does_not_shadow_the_runtime(tmp_path):
     files = _generate_idl(tmp_path, "const long qos = 1;\n")
     assert "from ._idl.q import qos as qos_\n" in files["rapid_types/__init__.py"]
     assert '"qos_"' in files["rapid_types/__init__.py"]
+
+
+def test_the_package_module_is_the_runtimes_with_its_default_folder(out):
+    """qos.py holds no QoS code of its own: its classes are rapid_runtime.qos's; the runtime's
+    RapidQos needs a folder or a package to find one; every package requires the runtime."""
+    from rapid_runtime import qos as runtime_qos
+    package = _load_runtime(out / "python" / PACKAGE / "qos.py", "rapidgen_test_r2_qos_thin")
+    assert issubclass(package.RapidQos, runtime_qos.RapidQos)
+    assert package.UnknownTopic is runtime_qos.UnknownTopic and package.QosFilesMissing is runtime_qos.QosFilesMissing
+    assert package.RapidQos().qos_dir == str((out / "python" / PACKAGE / "qos_files").resolve())
+    with pytest.raises(runtime_qos.QosFilesMissing, match="no qos folder"):
+        runtime_qos.RapidQos()
+    assert runtime_qos.RapidQos(out / "qos").writer("rapid_command") == package.RapidQos().writer("rapid_command")
+    for pyproject in (out / "python" / "pyproject.toml", Path(REPO) / "generated/rapid/python/pyproject.toml"):
+        assert '"rapid-runtime>=0.1,<0.2"' in pyproject.read_text(encoding="utf-8"), pyproject

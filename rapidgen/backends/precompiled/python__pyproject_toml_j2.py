@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/python/pyproject.toml.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "1da9165cbe162b0f1a0c628bd9d0aff1f9f70c19962f25332f7b58ecd55d9d24"
+KEY = "b3200c74d48058b68f329f213c9b46f372c82fcc13486203f910b3c0e0d13d64"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'pyproject.toml.j2'
 
@@ -47,11 +47,7 @@ def root(context, missing=missing, environment=environment):
     yield '\ndescription = '
     yield str(t_4(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'description')))
     yield '\nrequires-python = ">=3.9"\ndependencies = ['
-    yield str(t_4(environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'requirement')))
-    if (undefined(name='runtime') if l_0_runtime is missing else l_0_runtime):
-        pass
-        yield ', '
-        yield str(t_4(environment.getattr((undefined(name='runtime') if l_0_runtime is missing else l_0_runtime), 'requirement')))
+    yield str(t_2(context.eval_ctx, t_3(context, environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'requirements'), 'toml_str'), ', '))
     yield ']\n\n[tool.setuptools.packages.find]\ninclude = ['
     yield str(t_2(context.eval_ctx, t_3(context, environment.getattr((undefined(name='p') if l_0_p is missing else l_0_p), 'include'), 'toml_str'), ', '))
     yield ']\n'
@@ -64,4 +60,4 @@ def root(context, missing=missing, environment=environment):
         yield ']\n'
 
 blocks = {}
-debug_info = '1=38&7=40&8=42&9=44&11=46&14=52&15=54&19=57'
+debug_info = '1=38&7=40&8=42&9=44&11=46&14=48&15=50&19=53'

@@ -3,9 +3,10 @@
     generate(model, asset, options) -> [GeneratedFile]
 
 The package is named after the asset (`K10Red` -> `rapid_k10red`), or options.package,
-or `rapid_types` for IDL alone. Every package carries the `qos` runtime module (each
-topic's QoS from the generated qos/ folder; templates/python/qos.py.j2). See view.py for
-the layout and docs/python-backend.md for the mapping rules.
+or `rapid_types` for IDL alone. Every package carries the `qos` module (each topic's QoS
+from the generated qos/ folder: rapid_runtime.qos with the package's default folder,
+templates/python/qos.py.j2), so every package requires rapid-runtime. See view.py for the
+layout and docs/python-backend.md for the mapping rules.
 """
 from __future__ import annotations
 

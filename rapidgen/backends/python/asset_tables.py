@@ -185,12 +185,10 @@ RUNTIME_BUILTINS = {("Admin", "echo"), ("Admin", "noOp"), ("Admin", "shutdown"),
                     ("AccessControl", "releaseControl"), ("AccessControl", "transferControl")}
 
 
-RUNTIME_REQUIREMENT = "rapid-runtime>=0.1,<0.2"
-
-
 def runtime_view(package: str) -> dict:
-    """What pyproject.toml adds for an asset package: the runtime, the QoS files as data."""
-    return {"requirement": RUNTIME_REQUIREMENT, "package": package,
+    """What pyproject.toml adds for an asset package: the QoS files as data (every package
+    requires the runtime: view.RUNTIME_REQUIREMENT)."""
+    return {"package": package,
             "package_data": [f"{QOS_FOLDER}/*.json", f"{QOS_FOLDER}/*/*.xml"]}
 
 

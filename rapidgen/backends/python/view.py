@@ -26,6 +26,7 @@ from rapidgen.diagnostics import SourceLoc
 from rapidgen.model import ir
 
 CYCLONEDDS_REQUIREMENT = "cyclonedds>=11.0.1,<12"
+RUNTIME_REQUIREMENT = "rapid-runtime>=0.1,<0.2"  # qos.py is rapid_runtime.qos (every package)
 VERSION = "1.0.0"
 # Runtime modules of the package root (besides _idl and _support): an IDL module or a
 # global-scope declaration with one of these names is renamed (`qos`, `QoS` -> `qos_`, `QoS_`).
@@ -87,13 +88,14 @@ class ProjectView:
     name: str
     version: str
     description: str
-    requirement: str
+    requirements: list[str]
     include: list[str]  # setuptools package globs
 
 
 @dataclass
 class QosRuntimeView:
-    """`<package>/qos.py`: static runtime code; only the header and package name vary."""
+    """`<package>/qos.py`: rapid_runtime.qos with the package's default folder; only the header
+    and package name vary."""
 
     path: str
     header: str
@@ -182,7 +184,7 @@ class PythonViewBuilder:
         types = sum(1 for d in self.model.declarations if not isinstance(d, ir.Const))
         project = ProjectView(self.header, self.package.replace("_", "-"), VERSION,
                               f"RAPID DDS types from {self.source} (cyclonedds.idl dataclasses)",
-                              CYCLONEDDS_REQUIREMENT, [self.package, f"{self.package}.*"])
+                              [CYCLONEDDS_REQUIREMENT, RUNTIME_REQUIREMENT], [self.package, f"{self.package}.*"])
         return PackageView(self.package, project, modules, f"{self.package}/_support.py", self.header, types,
                            QosRuntimeView(f"{self.package}/qos.py", self.header, self.package))
 
