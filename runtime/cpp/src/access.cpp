@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rapid_runtime/texts.hpp"
+
 namespace rapid_runtime {
 namespace {
 
@@ -39,38 +41,38 @@ bool allowed(const std::optional<AccessSpec>& spec, std::string_view source, std
 Control::Outcome Control::request(const std::string& source) {
     if (controller_.empty() || controller_ == source) {
         give(source);
-        return {true, "control granted to " + source};
+        return {true, texts::control_granted(source)};
     }
     if (std::find(requestors_.begin(), requestors_.end(), source) != requestors_.end())
-        return {true, "request already queued; " + controller_ + " has control"};
-    if (requestors_.size() >= MAX_REQUESTORS) return {false, std::to_string(MAX_REQUESTORS) + " requests already queued"};
+        return {true, texts::request_already_queued(controller_)};
+    if (requestors_.size() >= MAX_REQUESTORS) return {false, texts::requests_full(static_cast<long long>(MAX_REQUESTORS))};
     requestors_.push_back(source);
-    return {true, "request queued; " + controller_ + " has control"};
+    return {true, texts::request_queued(controller_)};
 }
 
 Control::Outcome Control::grab(const std::string& source) {
     std::string before = controller_;
     give(source);
-    return {true, !before.empty() && before != source ? "control taken from " + before : "control taken"};
+    return {true, !before.empty() && before != source ? texts::control_taken_from(before) : texts::CONTROL_TAKEN};
 }
 
 Control::Outcome Control::release(const std::string& source) {
-    if (!holds(source)) return {false, source + " does not have control"};
+    if (!holds(source)) return {false, texts::no_control(source)};
     std::string next;
     if (!requestors_.empty()) {
         next = requestors_.front();
         requestors_.erase(requestors_.begin());
     }
     controller_ = next;
-    return {true, next.empty() ? "control released" : "control released to " + next};
+    return {true, next.empty() ? texts::CONTROL_RELEASED : texts::control_released_to(next)};
 }
 
 Control::Outcome Control::transfer(const std::string& source, const std::string& new_controller) {
-    if (!holds(source)) return {false, source + " does not have control"};
-    if (blank(new_controller)) return {false, "newController is empty"};
-    if (new_controller.size() > 31) return {false, "newController longer than 31 bytes"};
+    if (!holds(source)) return {false, texts::no_control(source)};
+    if (blank(new_controller)) return {false, texts::NEW_CONTROLLER_EMPTY};
+    if (new_controller.size() > 31) return {false, texts::NEW_CONTROLLER_TOO_LONG};
     give(new_controller);
-    return {true, "control transferred to " + new_controller};
+    return {true, texts::control_transferred(new_controller)};
 }
 
 void Control::give(const std::string& source) {

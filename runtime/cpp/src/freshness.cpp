@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
+
+#include "rapid_runtime/texts.hpp"
 
 namespace rapid_runtime {
 
@@ -20,13 +21,9 @@ std::string stale_name(const TelemetrySpec& e) {
     return e.topics.empty() ? e.kind : e.topics.front().topic;
 }
 
-std::string silent_text(const std::string& name, double age_seconds) {
-    char age[32];
-    std::snprintf(age, sizeof age, "%.1f", age_seconds);
-    return name + " source silent for " + age + " s: samples stopped";
-}
+std::string silent_text(const std::string& name, double age_seconds) { return texts::source_silent(name, age_seconds); }
 
-std::string back_text(const std::string& name) { return name + " source back"; }
+std::string back_text(const std::string& name) { return texts::source_back(name); }
 
 Freshness::Freshness(Clock clock) : clock_(std::move(clock)) {
     if (!clock_)

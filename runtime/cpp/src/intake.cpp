@@ -1,11 +1,12 @@
 #include "rapid_runtime/intake.hpp"
 
 #include "rapid_runtime/text.hpp"
+#include "rapid_runtime/texts.hpp"
 
 namespace rapid_runtime {
 
 std::string busy_message(std::size_t per_writer) {
-    return "bridge busy: " + std::to_string(per_writer) + " commands from this writer already waiting; retry later";
+    return texts::bridge_busy(static_cast<long long>(per_writer));
 }
 
 Intake::Intake(CommandSink& sink, std::function<void(const std::string&)> log, std::size_t per_writer,

@@ -9,6 +9,7 @@
 #include <typeinfo>
 
 #include "rapid_runtime/text.hpp"
+#include "rapid_runtime/texts.hpp"
 #include "rapid_runtime/validate.hpp"
 
 // A test build's broken decision (ManagerBreaks); the constant false in a plain build, where
@@ -22,13 +23,9 @@
 namespace rapid_runtime {
 namespace {
 
-const std::string VIOLATION = "RAPID access violation: ";
-
 double steady_seconds() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-
-std::string quoted(const std::string& s) { return "'" + shorten(s) + "'"; }
 
 // What retiring a command's acks needs (the ack key: header names and cmdId), without
 // its arguments, which the window would otherwise keep alive.
@@ -249,32 +246,30 @@ std::optional<CommandManager::Refusal> CommandManager::intake(const std::shared_
     const auto action = cmd->action;
     const std::string& target = cmd->target;
     const std::string act(name_of(action));
-    if (cmd->cmd_id.empty()) return Refusal{Completion::BadSyntax, "empty cmdId"};
+    if (cmd->cmd_id.empty()) return Refusal{Completion::BadSyntax, texts::EMPTY_CMD_ID};
     if (act.empty())
-        return Refusal{Completion::BadSyntax, "unknown queue action " + std::to_string(static_cast<int>(action))};
+        return Refusal{Completion::BadSyntax, texts::unknown_queue_action(std::to_string(static_cast<int>(action)))};
     if (action != QueueAction::Bypass && !has_queue_)
-        return Refusal{Completion::BadSyntax, act + " refused: this asset has no command queue (send QUEUE_BYPASS)"};
+        return Refusal{Completion::BadSyntax, texts::no_queue(act)};
     if ((action == QueueAction::Bypass || action == QueueAction::Append) && !target.empty())
-        return Refusal{Completion::BadSyntax, act + " takes no targetCmdId (got " + quoted(target) + ")"};
+        return Refusal{Completion::BadSyntax, texts::target_not_taken(act, shorten(target))};
     if (action != QueueAction::Bypass && action != QueueAction::Append && target.empty())
-        return Refusal{Completion::BadSyntax, act + " needs a targetCmdId"};
+        return Refusal{Completion::BadSyntax, texts::target_needed(act)};
     if (action == QueueAction::Delete) return remove_target(cmd);
 
     Checked checked = check_command(*cmd, tables_);
     if (checked.why) return Refusal{Completion::BadSyntax, *checked.why};
     if (action == QueueAction::Insert && target != HEAD && !queued_run(target))
         return Refusal{Completion::BadSyntax,
-                       "unknown targetCmdId " + quoted(target) + " (pending ids, the running one or 'head')"};
+                       texts::unknown_insert_target(shorten(target))};
     if (action == QueueAction::Replace && !queued_run(target))
-        return Refusal{Completion::BadSyntax, "unknown targetCmdId " + quoted(target) + " (not pending or running)"};
+        return Refusal{Completion::BadSyntax, texts::unknown_target(shorten(target))};
     if (auto denied = authorize(cmd->cmd_src, cmd->subsystem, checked.ref))
         return Refusal{Completion::BadSyntax, *denied};
     if ((action == QueueAction::Append || action == QueueAction::Insert) && pending_.size() >= options_.queue_limit)
-        return Refusal{Completion::ExecFailed,
-                       "queue full (" + std::to_string(options_.queue_limit) + " pending); retry later"};
+        return Refusal{Completion::ExecFailed, texts::queue_full(static_cast<long long>(options_.queue_limit))};
     if (action == QueueAction::Bypass && bypass_.size() >= options_.bypass_limit)
-        return Refusal{Completion::ExecFailed, std::to_string(options_.bypass_limit) +
-                                                   " commands already running beside the queue; retry later"};
+        return Refusal{Completion::ExecFailed, texts::bypass_full(static_cast<long long>(options_.bypass_limit))};
 
     auto run = std::make_shared<Run>();
     run->cmd = cmd;
@@ -288,12 +283,12 @@ std::optional<CommandManager::Refusal> CommandManager::intake(const std::shared_
         RunPtr old = queued_run(target);
         if (old == active_) {
             if (!old->abortable())
-                return Refusal{Completion::ExecFailed, "target " + quoted(target) + " is running and not abortable"};
+                return Refusal{Completion::ExecFailed, texts::target_not_abortable(shorten(target))};
             cancel(old);
             pending_.push_front(run);
         } else {
             pending_.replace(target, run);
-            finish_unstarted(old, "replaced by " + shorten(cmd->cmd_id));
+            finish_unstarted(old, texts::replaced_by(shorten(cmd->cmd_id)));
         }
     } else if (action == QueueAction::Insert) {
         if (!pending_.insert_after(target, run)) pending_.push_front(run);  // the running command: go next
@@ -321,10 +316,10 @@ std::optional<std::string> CommandManager::authorize(const std::string& source, 
     const std::string& name = ref.spec->name;
     if (always_allowed(type, name) && !BROKEN(stop_needs_control)) return std::nullopt;
     if (!allowed(tables_.access, source, subsystem, name))
-        return VIOLATION + shorten(source) + " may not send " + shorten(subsystem) + "/" + shorten(name);
+        return texts::access_not_allowed(shorten(source), shorten(subsystem), shorten(name));
     if (has_control_ && !BROKEN(no_control_gate) && type != "AccessControl" && source != tables_.name &&
         !control_.holds(source))
-        return VIOLATION + shorten(source) + " does not have control (send requestControl)";
+        return texts::access_no_control(shorten(source));
     return std::nullopt;
 }
 
@@ -341,16 +336,16 @@ std::optional<CommandManager::Refusal> CommandManager::remove_target(const std::
         for (const auto& r : bypass_)
             if (r->id() == cmd->target) target = r;
     if (!target)
-        return Refusal{Completion::BadSyntax, "unknown targetCmdId " + quoted(cmd->target) + " (not pending or running)"};
+        return Refusal{Completion::BadSyntax, texts::unknown_target(shorten(cmd->target))};
     // The DELETE's sender must be allowed to send the target's command.
     if (auto denied = authorize(cmd->cmd_src, target->cmd->subsystem, target->ref))
         return Refusal{Completion::BadSyntax, *denied};
     bool running = false;
     if (pending_.contains(target)) {
         pending_.remove(target);
-        finish_unstarted(target, "deleted by " + shorten(cmd->cmd_id));
+        finish_unstarted(target, texts::deleted_by(shorten(cmd->cmd_id)));
     } else if (!target->abortable()) {
-        return Refusal{Completion::ExecFailed, "target " + quoted(cmd->target) + " is running and not abortable"};
+        return Refusal{Completion::ExecFailed, texts::target_not_abortable(shorten(cmd->target))};
     } else {
         running = !target->done;
         cancel(target);
@@ -359,7 +354,7 @@ std::optional<CommandManager::Refusal> CommandManager::remove_target(const std::
     // a running target's handler is only asked: its own final ack follows when it returns
     // (CANCELED) or when its stop bound passes (EXEC_FAILED "handler did not stop")
     send_ack(*cmd, AckStatus::Completed, Completion::Ok,
-             shorten(cmd->target) + (running ? " cancel requested; handler has not stopped yet" : " canceled"));
+             running ? texts::cancel_requested(shorten(cmd->target)) : texts::target_canceled(shorten(cmd->target)));
     service();
     return std::nullopt;
 }
@@ -440,38 +435,38 @@ void CommandManager::execute(const RunPtr& run) {
             case Completion::Ok:
                 if (ctx->cancelled()) {
                     completion = Completion::Canceled;
-                    message = "canceled";
+                    message = texts::CANCELED;
                 } else {
                     message = result.message;
                 }
                 break;
             case Completion::Canceled:
                 completion = Completion::Canceled;
-                message = result.message.empty() ? "canceled" : result.message;
+                message = result.message.empty() ? texts::CANCELED : result.message;
                 break;
             case Completion::BadSyntax:  // a handler may judge the arguments itself (Astrobee does)
             case Completion::ExecFailed:
                 completion = result.completion;
-                message = result.message.empty() ? "failed" : result.message;
+                message = result.message.empty() ? texts::FAILED : result.message;
                 break;
             case Completion::Not:
                 completion = Completion::ExecFailed;
-                message = "handler gave no completion";
+                message = texts::NO_COMPLETION;
                 break;
         }
     } catch (const Cancelled&) {
         completion = Completion::Canceled;
-        message = "canceled";
+        message = texts::CANCELED;
     } catch (const CommandFailed& e) {
         completion = Completion::ExecFailed;
-        message = *e.what() ? e.what() : "failed";
+        message = *e.what() ? e.what() : texts::FAILED;
     } catch (const std::exception& e) {  // a handler's bug must not stop the bridge; the commander hears of it
         completion = Completion::ExecFailed;
-        message = "handler error: " + type_name(e) + ": " + e.what();
+        message = texts::handler_error(type_name(e), e.what());
         error = message;
     } catch (...) {
         completion = Completion::ExecFailed;
-        message = "handler error: unknown exception";
+        message = texts::HANDLER_ERROR_UNKNOWN;
         error = message;
     }
     Batch batch(*this);
@@ -487,19 +482,19 @@ void CommandManager::execute(const RunPtr& run) {
         // the runtime has canceled the motion commands; the handler stops the hardware
         if (unwritten) {
             completion = Completion::Ok;
-            message = NO_STOP_HANDLER;
+            message = texts::NO_HARDWARE_STOP;
         }
         std::size_t moving = 0;
         for (const auto& weak : run->stopped)
             if (auto r = weak.lock(); r && !r->done) ++moving;
-        if (moving) message += "; " + std::to_string(moving) + " motion handler(s) not stopped yet";
+        if (moving) message += "; " + texts::motion_not_stopped(static_cast<long long>(moving));
     }
     if (run->requeue && completion == Completion::Canceled) {
         run->requeue = false;
         run->done = false;
         run->stopping = false;
         run->ctx->close();
-        send_ack(*run->cmd, AckStatus::Requeued, Completion::Not, "preempted; back in the queue");
+        send_ack(*run->cmd, AckStatus::Requeued, Completion::Not, texts::PREEMPTED);
         run->record_status = RecordStatus::Paused;
         if (active_ == run) active_.reset();
         pending_.push_front(run);
@@ -599,11 +594,11 @@ void CommandManager::give_up(const RunPtr& run) {
     // The handler runs on (a thread cannot be stopped from outside); the command is answered
     // and leaves the queue, and whatever the handler returns later is ignored.
     out_.log(what(run) + ": handler did not stop within " + std::to_string(stop_bound_ms(run)) +
-             " ms of being told to stop; answered EXEC_FAILED \"" + DID_NOT_STOP +
+             " ms of being told to stop; answered EXEC_FAILED \"" + texts::DID_NOT_STOP +
              "\". Its handler still runs: the robot must stop it in hardware");
     run->requeue = false;
     bypass_.erase(std::remove(bypass_.begin(), bypass_.end(), run), bypass_.end());
-    complete(run, Completion::ExecFailed, DID_NOT_STOP, false);
+    complete(run, Completion::ExecFailed, texts::DID_NOT_STOP, false);
     service();
 }
 
@@ -698,7 +693,7 @@ std::pair<std::size_t, std::size_t> CommandManager::restore(const JournalRecover
         remember(e.cmd_id);
         bool queued = e.state == 'q';
         send_ack(entry_cmd(e), AckStatus::Completed, queued ? Completion::Canceled : Completion::ExecFailed,
-                 queued ? RESTARTED_QUEUED : RESTARTED_RUNNING);
+                 queued ? texts::RESTARTED_QUEUED : texts::RESTARTED_RUNNING);
     }
     return {recovered.unfinished.size(), recovered.finished.size()};
 }
@@ -722,7 +717,7 @@ CommandManager::ShutDown CommandManager::shut_down(int timeout_ms) {
         for (const auto& r : waiting) {
             pending_.remove(r);
             r->done = true;
-            send_ack(*r->cmd, AckStatus::Completed, Completion::Canceled, SHUTTING_DOWN);
+            send_ack(*r->cmd, AckStatus::Completed, Completion::Canceled, texts::ASSET_SHUTTING_DOWN);
             ++out.answered;
         }
         for (const auto& r : running()) {
@@ -742,8 +737,8 @@ CommandManager::ShutDown CommandManager::shut_down(int timeout_ms) {
     Batch batch(*this);
     for (const auto& r : running()) {
         out_.log(what(r) + ": handler did not stop within the shutdown bound (" + std::to_string(bound) +
-                 " ms); answered EXEC_FAILED \"" + DID_NOT_STOP + "\". The robot must stop it in hardware");
-        complete(r, Completion::ExecFailed, DID_NOT_STOP, false);
+                 " ms); answered EXEC_FAILED \"" + texts::DID_NOT_STOP + "\". The robot must stop it in hardware");
+        complete(r, Completion::ExecFailed, texts::DID_NOT_STOP, false);
     }
     active_.reset();
     bypass_.clear();
@@ -797,7 +792,7 @@ std::optional<Result> CommandManager::builtin(const RunPtr& run) {
     if (is(run, "Admin", "noOp")) return Result::ok();
     if (is(run, "Admin", "shutdown")) {
         shutdown_after_ = run;  // once its COMPLETED ack is out
-        return Result::ok("shutting down");
+        return Result::ok(texts::SHUTTING_DOWN);
     }
     if (is(run, "Queue", "cancelAll")) return cancel_all(run);
     if (is(run, "Mobility", "stopAllMotion")) {
@@ -825,7 +820,7 @@ Result CommandManager::cancel_all(const RunPtr& run) {
     std::vector<RunPtr> waiting(pending_.items().begin(), pending_.items().end());
     for (const auto& r : waiting) {
         pending_.remove(r);
-        finish_unstarted(r, "cancelAll");
+        finish_unstarted(r, texts::CANCELED_BY_CANCEL_ALL);
     }
     std::vector<RunPtr> running(bypass_);
     if (active_) running.insert(running.begin(), active_);
@@ -843,8 +838,8 @@ Result CommandManager::cancel_all(const RunPtr& run) {
     suspended_ = false;
     publish_queue();  // whatever the queue's state was (a suspended one included)
     std::string text;
-    if (asked) text = std::to_string(asked) + " handler(s) asked to stop, not stopped yet";
-    if (kept) text += (text.empty() ? "" : "; ") + std::to_string(kept) + " non-abortable command(s) still running";
+    if (asked) text = texts::handlers_asked_to_stop(asked);
+    if (kept) text += (text.empty() ? "" : "; ") + texts::non_abortable_running(kept);
     return Result::ok(text);
 }
 
@@ -859,7 +854,7 @@ void CommandManager::stop_all_motion(const RunPtr& run) {
     for (const auto& r : waiting) {
         if (!moving(r)) continue;
         pending_.remove(r);
-        finish_unstarted(r, "stopAllMotion");
+        finish_unstarted(r, texts::CANCELED_BY_STOP_ALL_MOTION);
     }
     std::vector<RunPtr> running(bypass_);
     if (active_) running.insert(running.begin(), active_);

@@ -7,6 +7,7 @@
 
 #include "rapid_runtime/tables.hpp"
 #include "rapid_runtime/text.hpp"
+#include "rapid_runtime/texts.hpp"
 
 namespace rapid_runtime {
 namespace {
@@ -137,7 +138,7 @@ std::string str(const Value& v) { return type_of(v) == DataType::String ? std::g
 
 std::optional<std::string> shape_error(const Value& v) {
     if (auto* s = std::get_if<std::string>(&v); s != nullptr && s->size() > STRING_BYTES)
-        return std::to_string(s->size()) + " bytes (max " + std::to_string(STRING_BYTES) + ")";
+        return texts::string_too_long(static_cast<long long>(s->size()), static_cast<long long>(STRING_BYTES));
     return std::nullopt;
 }
 
@@ -148,7 +149,7 @@ std::optional<std::string> limit_error(const Param& p, const Value& v) {
         if (!found) {
             std::string shown;
             for (std::size_t i = 0; i < p.allowed.size(); ++i) shown += (i ? "|" : "") + str(p.allowed[i]);
-            return repr(v) + " not one of " + shown;
+            return texts::not_one_of(repr(v), shown);
         }
     }
     if (!p.min && !p.max) return std::nullopt;
@@ -163,7 +164,7 @@ std::optional<std::string> limit_error(const Param& p, const Value& v) {
                                   (p.max && static_cast<double>(as_int(item)) > *p.max);
         if (out) {
             std::string shown = integral(item) ? std::to_string(as_int(item)) : fmt_g(x);
-            return shown + " not in [" + (p.min ? fmt_g(*p.min) : "-inf") + ", " + (p.max ? fmt_g(*p.max) : "inf") + "]";
+            return texts::out_of_range(shown, p.min ? fmt_g(*p.min) : "-inf", p.max ? fmt_g(*p.max) : "inf");
         }
     }
     return std::nullopt;

@@ -35,6 +35,7 @@
 
 #include "command.hpp"
 #include "tables.hpp"
+#include "texts.hpp"
 #include "vocabulary.hpp"
 
 namespace rapid_runtime {
@@ -46,7 +47,7 @@ public:
 
 class Cancelled : public std::exception {
 public:
-    const char* what() const noexcept override { return "canceled"; }
+    const char* what() const noexcept override { return texts::CANCELED; }
 };
 
 struct Result {
@@ -55,13 +56,13 @@ struct Result {
 
     static Result ok(std::string text = {}) { return {Completion::Ok, std::move(text)}; }
     static Result failed(std::string why) { return {Completion::ExecFailed, std::move(why)}; }
-    static Result canceled() { return {Completion::Canceled, "canceled"}; }
+    static Result canceled() { return {Completion::Canceled, texts::CANCELED}; }
     // What an unwritten handler answers (the generated stubs' Result::failed("not
     // implemented") is the same result): EXEC_FAILED "not implemented".
     static Result not_implemented() { return {Completion::ExecFailed, NOT_IMPLEMENTED}; }
     bool is_not_implemented() const { return completion == Completion::ExecFailed && message == NOT_IMPLEMENTED; }
 
-    static constexpr const char* NOT_IMPLEMENTED = "not implemented";
+    static constexpr const char* NOT_IMPLEMENTED = texts::NOT_IMPLEMENTED;
 };
 
 class CommandContext : public std::enable_shared_from_this<CommandContext> {

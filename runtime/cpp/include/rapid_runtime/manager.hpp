@@ -46,6 +46,7 @@
 #include "pending.hpp"
 #include "run.hpp"
 #include "tables.hpp"
+#include "texts.hpp"
 #include "workers.hpp"
 
 namespace rapid_runtime {
@@ -60,17 +61,19 @@ inline constexpr double COMPLETED_KEEP_S = 20.0;  // finished commands stay in Q
 inline constexpr std::size_t RECORDS = 64;  // QueueState's SingleQueue holds at most 64 records
 // What a command left unfinished by a restart is answered (docs/runtime.md, "Restarts":
 // never run again, since a half-done motion run again is not safe); a stop answers
-// SHUTTING_DOWN and DID_NOT_STOP (shut_down()).
-inline constexpr const char* RESTARTED_QUEUED = "asset restarted before it ran";
-inline constexpr const char* RESTARTED_RUNNING = "asset restarted while it ran; outcome unknown";
+// SHUTTING_DOWN and DID_NOT_STOP (shut_down()). Every text an ack carries is in texts.hpp
+// (generated from runtime/spec/texts.yaml, the Python runtime's too); these are named here
+// for the tests.
+inline constexpr const char* RESTARTED_QUEUED = texts::RESTARTED_QUEUED;
+inline constexpr const char* RESTARTED_RUNNING = texts::RESTARTED_RUNNING;
 // Handlers that do not stop (issue 42, docs/runtime.md "The handler contract"): how long a
 // handler told to stop may still run (a command's CommandSpec::stop_timeout_ms overrides
 // it), how long a shutdown waits for the handlers, and what the commands are answered then.
 inline constexpr int DEFAULT_STOP_TIMEOUT_MS = 2000;
 inline constexpr int DEFAULT_SHUTDOWN_TIMEOUT_MS = 5000;
-inline constexpr const char* DID_NOT_STOP = "handler did not stop";
-inline constexpr const char* SHUTTING_DOWN = "asset shutting down";
-inline constexpr const char* NO_STOP_HANDLER = "motion commands canceled; no hardware stop handler";
+inline constexpr const char* DID_NOT_STOP = texts::DID_NOT_STOP;
+inline constexpr const char* SHUTTING_DOWN = texts::ASSET_SHUTTING_DOWN;
+inline constexpr const char* NO_STOP_HANDLER = texts::NO_HARDWARE_STOP;
 // Final acks kept to answer a cmdId sent again (and contexts kept valid after their command).
 inline constexpr std::size_t FINAL_ACKS_KEPT = 1024;
 

@@ -29,6 +29,7 @@
 #include <rapid_runtime/command.hpp>
 #include <rapid_runtime/manager.hpp>
 #include <rapid_runtime/tables.hpp>
+#include <rapid_runtime/texts.hpp>
 
 #include "bridge.hpp"
 #include "messages.hpp"
@@ -153,7 +154,7 @@ public:
     void ack(const Cmd& cmd, AckStatus status, Completion completed, std::string message, Write write) const {
         if (on("noop-unimplemented") && cmd.subsystem == "Admin" && cmd.name == "noOp" && completed == Completion::Ok) {
             completed = Completion::ExecFailed;
-            message = "not implemented";
+            message = texts::NOT_IMPLEMENTED;
         }
         if (on("long-ack-message") && !message.empty())
             message = (message + " " + std::string(128, 'x')).substr(0, 128);  // Astrobee's 128 bytes
