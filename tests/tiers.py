@@ -61,6 +61,7 @@ NEEDS: dict[str, frozenset[str]] = {k: frozenset(v.split()) for k, v in {
     "tests/rust/test_interop_cpp.py": "compiler dds",
     "tests/rust_runtime/test_texts.py": "",
     "tests/runtime/test_spec_cases.py": "",
+    "tests/runtime/test_texts.py": "",
     "tests/security/test_generated_parse.py": "dds",
     "tests/security/test_live_bridge.py": "dds",
     "tests/security/test_live_conform.py": "dds",
