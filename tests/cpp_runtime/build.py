@@ -135,6 +135,14 @@ def generated(factory, seed: str) -> Path:
     return _once(factory, f"gen-{seed}", make)  # type: ignore[no-any-return]
 
 
+def table_dirs(factory) -> list[str]:
+    """The -D options naming the generated bridge folders tests/cpp_runtime/CMakeLists.txt
+    compiles tables from: K10's (the logic suite, the spec cases) and Chariot's (the spec
+    cases of an asset without a queue)."""
+    return [f"-DK10_BRIDGE_DIR={generated(factory, 'k10') / 'bridge'}",
+            f"-DCHARIOT_BRIDGE_DIR={generated(factory, 'chariot') / 'bridge'}"]
+
+
 def package_of(cpp: Path) -> str:
     return next(p.parent.name for p in (cpp / "include").glob("*/asset.hpp"))
 

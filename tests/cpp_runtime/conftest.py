@@ -17,9 +17,8 @@ def runtime_build(tmp_path_factory) -> Path:
     """The runtime package and the test folder's build; returns the tests' build folder."""
     def make() -> Path:
         runtime = B.runtime_dir(tmp_path_factory)
-        k10 = B.generated(tmp_path_factory, "k10")
         out = B.base(tmp_path_factory) / "tests"
-        B.configure(B.HERE, out, f"-Drapid_runtime_cpp_DIR={runtime}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}")
+        B.configure(B.HERE, out, f"-Drapid_runtime_cpp_DIR={runtime}", *B.table_dirs(tmp_path_factory))
         B.build(out, "logic", "faults")
         return out
     return B.once(tmp_path_factory, "runtime-tests", make)  # type: ignore[no-any-return]
@@ -38,9 +37,8 @@ def _tsan(runtime_build: Path, tmp_path_factory) -> Path:
     B.run(["cmake", "-S", str(B.ROOT / "runtime" / "cpp"), "-B", str(base / "runtime"), "-DCMAKE_BUILD_TYPE=Debug",
            *flags])
     B.build(base / "runtime")
-    k10 = B.generated(tmp_path_factory, "k10")
     B.run(["cmake", "-S", str(B.HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *flags,
-           f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}"])
+           f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", *B.table_dirs(tmp_path_factory)])
     B.build(base / "tests", "logic", "faults")  # (the fault-injecting handlers' suite beside it)
     return base / "tests" / "logic"
 
@@ -61,9 +59,8 @@ def _sanitized(runtime_build: Path, tmp_path_factory) -> Path:
     B.run(["cmake", "-S", str(B.ROOT / "runtime" / "cpp"), "-B", str(base / "runtime"), "-DCMAKE_BUILD_TYPE=Debug",
            "-DRAPID_RUNTIME_SANITIZE=ON", *flags])
     B.build(base / "runtime")
-    k10 = B.generated(tmp_path_factory, "k10")
     B.run(["cmake", "-S", str(B.HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *flags,
-           f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", f"-DK10_BRIDGE_DIR={k10 / 'bridge'}"])
+           f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", *B.table_dirs(tmp_path_factory)])
     B.build(base / "tests", "faults")
     return base / "tests" / "faults"
 

@@ -2,10 +2,13 @@
 on it: built with -Wall -Wextra -Werror (conftest.py, once per session), the GoogleTest
 suite (protocol logic, K10's generated tables and glue, the simulator, synthetic pictures)
 plain and under ThreadSanitizer, the user's handlers.cpp kept across regeneration, and
-K10's generated bridge run without --simulate (its stubs answer "not implemented"). The
-bridges pass `rapidgen conform`: tests/conformance/test_cpp_asset.py. Domains 40-49."""
+K10's generated bridge run without --simulate (its stubs answer "not implemented"), and
+the protocol specification's cases (runtime/spec/cases) replayed by the GoogleTest driver
+test_spec_cases.cpp. The bridges pass `rapidgen conform`: tests/conformance/test_cpp_asset.py.
+Domains 40-49."""
 from __future__ import annotations
 
+import json
 import os
 import re
 import struct
@@ -17,24 +20,80 @@ from pathlib import Path
 import pytest
 import yaml
 
+from rapidgen.protocol_cases import load_cases
 from tests.cpp_runtime import build as B
 from tests.runtime.live import SEEDS, env_for, python_dir
 
 DOMAIN = 46  # the stub bridge below (tests/conformance/test_cpp_asset.py: 40-45)
+SPEC = "Spec*"  # the spec cases' tests in `logic` (Spec/Case.Replays/..., SpecCases.Loaded)
+# Cases where the C++ runtime answers otherwise than the case (and the Python runtime) says,
+# by "file:name", each with the difference; the test fails when one of them passes (then
+# it leaves this list) as when any other case fails.
+CPP_DIFFERS = {
+    "faults.yaml:shutdown answers what waits and what runs":
+        "a command received after shut_down() gets no ack in C++ (manager.hpp: 'from then on the manager "
+        "writes nothing'; test_handler_faults.cpp ShutdownAnswersEveryCommand... asserts it); Python answers "
+        "it COMPLETED EXEC_FAILED 'asset shutting down'",
+}
+
+
+@pytest.fixture(scope="session")
+def spec_cases_json(tmp_path_factory) -> Path:
+    """Every case of runtime/spec/cases as the drivers read them (rapidgen.protocol_cases)."""
+    path = tmp_path_factory.mktemp("spec-cases") / "cases.json"
+    path.write_text(json.dumps({"cases": load_cases()}, ensure_ascii=False), encoding="utf-8")
+    return path
+
+
+def _gtest(program: Path, cases: Path, *args: str, timeout: float, **env: str) -> subprocess.CompletedProcess:
+    return subprocess.run([str(program), *args], capture_output=True, text=True, timeout=timeout,
+                          env=dict(os.environ, RAPID_SPEC_CASES=str(cases), **env))
 
 
 def test_logic_suite_passes(runtime_build):
-    res = subprocess.run([str(runtime_build / "logic"), "--gtest_brief=1"], capture_output=True, text=True,
-                         timeout=300)
+    res = subprocess.run([str(runtime_build / "logic"), "--gtest_brief=1", f"--gtest_filter=-{SPEC}"],
+                         capture_output=True, text=True, timeout=300)
     assert res.returncode == 0, res.stdout[-6000:] + res.stderr[-3000:]
     ran = re.search(r"\[==========\] (\d+) tests", res.stdout)
-    assert ran and int(ran.group(1)) >= 40, res.stdout[-2000:]
+    assert ran and int(ran.group(1)) >= 25, res.stdout[-2000:]
 
 
-def test_logic_suite_is_clean_under_thread_sanitizer(logic_under_tsan):
-    res = subprocess.run([str(logic_under_tsan), "--gtest_brief=1"], capture_output=True, text=True, timeout=600,
-                         env=dict(os.environ, TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"))
+def test_cpp_runtime_replays_the_spec_cases(runtime_build, spec_cases_json, tmp_path):
+    """Every case of runtime/spec/cases, replayed by the C++ runtime (test_spec_cases.cpp):
+    a failing one is reported by file:line and name with what was expected and seen."""
+    report = tmp_path / "report.json"
+    res = _gtest(runtime_build / "logic", spec_cases_json, f"--gtest_filter={SPEC}", f"--gtest_output=json:{report}",
+                 timeout=600)
+    assert report.exists(), res.stdout[-3000:] + res.stderr[-3000:]
+    tests = [t for suite in json.loads(report.read_text(encoding="utf-8"))["testsuites"] for t in suite["testsuite"]]
+    loaded = [t for t in tests if t["name"] == "Loaded"]
+    assert loaded and "failures" not in loaded[0], loaded
+    cases = json.loads(spec_cases_json.read_text(encoding="utf-8"))["cases"]
+    by_place = {f"{c['file']}:{c['line']} {c['name']!r}": f"{c['file']}:{c['name']}" for c in cases}
+    replayed = {by_place[t["value_param"]]: t for t in tests if t.get("value_param") in by_place}
+    assert len(replayed) == len(cases), f"{len(replayed)} of {len(cases)} cases replayed\n{res.stdout[-3000:]}"
+    failed = {key: t for key, t in replayed.items() if "failures" in t}
+    unexpected = [f"{t['value_param']}:\n  " + "\n  ".join(f["failure"].split("\n", 2)[-1] for f in t["failures"])
+                  for key, t in failed.items() if key not in CPP_DIFFERS]
+    fixed = [key for key in CPP_DIFFERS if key in replayed and key not in failed]
+    assert not unexpected, f"{len(unexpected)} of {len(cases)} cases fail in C++:\n" + "\n".join(unexpected)
+    assert not fixed, f"these cases pass now: take them out of CPP_DIFFERS: {fixed}"
+    assert res.returncode == (1 if failed else 0), res.stdout[-3000:] + res.stderr[-3000:]
+
+
+def test_logic_suite_is_clean_under_thread_sanitizer(logic_under_tsan, spec_cases_json):
+    """The logic suite and the spec cases (their outcomes are test_cpp_runtime_replays_the_spec_cases's
+    to judge: here, no data race nor deadlock)."""
+    known = ":".join(f"Spec/Case.Replays/{_gtest_name(k)}" for k in CPP_DIFFERS)
+    res = _gtest(logic_under_tsan, spec_cases_json, "--gtest_brief=1", *([f"--gtest_filter=-{known}"] if known else []),
+                 timeout=900, TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1")
     assert res.returncode == 0 and "ThreadSanitizer" not in res.stderr, res.stdout[-3000:] + res.stderr[-6000:]
+
+
+def _gtest_name(key: str) -> str:
+    """The GoogleTest name test_spec_cases.cpp gives the case "file:name" (test_name())."""
+    file, _, name = key.partition(":")
+    return re.sub(r"_+", "_", re.sub(r"[^A-Za-z0-9]", "_", f"{file.rsplit('.', 1)[0]}_{name}")).strip("_")
 
 
 # ---- synthetic pictures: decoded here, independently of the encoder -------------------------------

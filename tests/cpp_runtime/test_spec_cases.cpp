@@ -1,0 +1,561 @@
+// The protocol specification (runtime/spec/cases/*.yaml) replayed by the C++ runtime,
+// without DDS (GoogleTest): each case drives a CommandManager on the seed's generated
+// tables through a collecting outbox and scripted handlers (runtime/spec/README.md).
+// tests/runtime/test_spec_cases.py is the reference driver: same steps, same comparisons.
+//
+// The cases come as the JSON `python -m rapidgen.protocol_cases json OUT.json` writes
+// (arguments already typed), from the file named by RAPID_SPEC_CASES; one test per case,
+// named Spec/Case.Replays/<file>_<case name>. Without the variable there are no cases and
+// SpecCases.Loaded fails (tests/cpp_runtime/test_cpp_runtime.py sets it).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <rapid_runtime/handlers.hpp>
+#include <rapid_runtime/manager.hpp>
+#include <rapid_runtime/tables.hpp>
+#include <rapid_runtime/value.hpp>
+
+// The seeds' generated tables (bridge/tables.cpp of each generated package). Declared here
+// rather than through each bridge/handlers.hpp: the two headers share a file name.
+namespace rapid_k10red::bridge {
+const ::rapid_runtime::Tables& tables();
+}
+namespace rapid_chariot::bridge {
+const ::rapid_runtime::Tables& tables();
+}
+
+using namespace rapid_runtime;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+constexpr auto WAIT = std::chrono::seconds(10);
+constexpr auto SLICE = std::chrono::milliseconds(50);  // re-checks of what the outbox is not told of
+
+const Tables& seed_tables(const std::string& seed) {
+    if (seed == "k10") return rapid_k10red::bridge::tables();
+    if (seed == "chariot") return rapid_chariot::bridge::tables();
+    throw std::invalid_argument("no tables for seed '" + seed + "' in this driver (add them to CMakeLists.txt)");
+}
+
+// ---- the cases ------------------------------------------------------------------------------------
+
+struct Loaded {
+    std::vector<json> cases;
+    std::string error;  // why there are none
+};
+
+const Loaded& loaded() {
+    static const Loaded all = [] {
+        Loaded out;
+        const char* path = std::getenv("RAPID_SPEC_CASES");
+        if (path == nullptr || !*path) {
+            out.error = "RAPID_SPEC_CASES is not set (python -m rapidgen.protocol_cases json OUT.json writes the file)";
+            return out;
+        }
+        std::ifstream in(path);
+        if (!in) {
+            out.error = std::string("cannot read ") + path;
+            return out;
+        }
+        try {
+            json doc = json::parse(in);
+            for (auto& c : doc.at("cases")) out.cases.push_back(std::move(c));
+        } catch (const json::exception& e) {
+            out.error = std::string(path) + ": " + e.what();
+            out.cases.clear();
+        }
+        if (out.error.empty() && out.cases.empty()) out.error = std::string(path) + " holds no case";
+        return out;
+    }();
+    return all;
+}
+
+// A case, as GoogleTest's parameter: its index in loaded().cases.
+struct CaseRef {
+    std::size_t index;
+    const json& get() const { return loaded().cases.at(index); }
+};
+
+std::string where(const json& c) {
+    return c.at("file").get<std::string>() + ":" + std::to_string(c.at("line").get<int>()) + " '" +
+           c.at("name").get<std::string>() + "'";
+}
+
+void PrintTo(const CaseRef& ref, std::ostream* os) { *os << where(ref.get()); }
+
+std::vector<CaseRef> case_refs() {
+    std::vector<CaseRef> out;
+    for (std::size_t i = 0; i < loaded().cases.size(); ++i) out.push_back({i});
+    return out;
+}
+
+// <file stem>_<case name>, letters, digits and single underscores (GoogleTest's rule).
+std::string sanitized(const json& c) {
+    std::string file = c.at("file").get<std::string>();
+    file = file.substr(0, file.rfind('.'));
+    std::string raw = file + "_" + c.at("name").get<std::string>(), name;
+    for (char ch : raw) {
+        bool word = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9');
+        if (word)
+            name += ch;
+        else if (!name.empty() && name.back() != '_')
+            name += '_';
+    }
+    while (!name.empty() && name.back() == '_') name.pop_back();
+    return name;
+}
+
+// The test's name: sanitized, numbered when an earlier case sanitizes alike.
+std::string test_name(const ::testing::TestParamInfo<CaseRef>& info) {
+    const std::string name = sanitized(info.param.get());
+    for (std::size_t i = 0; i < info.param.index; ++i)
+        if (sanitized(loaded().cases[i]) == name) return name + "_" + std::to_string(info.param.index);
+    return name;
+}
+
+// ---- values ---------------------------------------------------------------------------------------
+
+Value value_of(const json& arg) {
+    const std::string type = arg.at("type").get<std::string>();
+    const json& v = arg.at("value");
+    if (type == "RAPID_BOOL") return Value(v.get<bool>());
+    if (type == "RAPID_DOUBLE") return Value(v.get<double>());
+    if (type == "RAPID_FLOAT") return Value(v.get<float>());
+    if (type == "RAPID_INT") return Value(v.get<std::int32_t>());
+    if (type == "RAPID_LONGLONG") return Value(v.get<std::int64_t>());
+    if (type == "RAPID_STRING") return Value(v.get<std::string>());
+    if (type == "RAPID_VEC3d") return Value(v.get<Vec3d>());
+    if (type == "RAPID_MAT33f") return Value(v.get<Mat33f>());
+    throw std::invalid_argument("unknown argument type " + type);
+}
+
+// A handler's argument as the case writes it (a vector as a list).
+json plain(const Value& v) {
+    return std::visit([](const auto& x) -> json { return json(x); }, v);
+}
+
+// As the Python driver's _same: a float on either side compares within a relative 1e-6
+// (RAPID_FLOAT is 32 bits here), lists element by element, the rest exactly.
+bool same(const json& seen, const json& want) {
+    if (seen.is_number_float() || want.is_number_float()) {
+        if (!seen.is_number() || !want.is_number()) return false;
+        double a = seen.get<double>(), b = want.get<double>();
+        return std::fabs(a - b) <= std::max(1e-6 * std::max(std::fabs(a), std::fabs(b)), 1e-9);
+    }
+    if (want.is_array()) {
+        if (!seen.is_array() || seen.size() != want.size()) return false;
+        for (std::size_t i = 0; i < want.size(); ++i)
+            if (!same(seen[i], want[i])) return false;
+        return true;
+    }
+    return seen == want;
+}
+
+QueueAction action_of(const std::string& name) {
+    static const std::map<std::string, QueueAction> actions{
+        {"QUEUE_BYPASS", QueueAction::Bypass}, {"QUEUE_APPEND", QueueAction::Append},
+        {"QUEUE_DELETE", QueueAction::Delete}, {"QUEUE_INSERT", QueueAction::Insert},
+        {"QUEUE_REPLACE", QueueAction::Replace}};
+    auto it = actions.find(name);
+    // a name the IDL does not have: a value outside the enum, as it would come off the wire
+    return it != actions.end() ? it->second : static_cast<QueueAction>(99);
+}
+
+// ---- what the manager writes -------------------------------------------------------------------------
+
+struct Ack {
+    std::string status;  // QUEUED, EXECUTING, REQUEUED, COMPLETED
+    std::string completion;  // NOT, OK, BAD_SYNTAX, EXEC_FAILED, CANCELED
+    std::string message;
+};
+
+// Everything a case looks at, under one lock: the outbox's writes and the handler calls,
+// each waking the expectations (Python's Outbox and Scripted share one condition too).
+struct Seen {
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::uint64_t generation = 0;  // counts changes (a waiter misses none)
+    std::map<std::string, std::vector<Ack>> acks;
+    std::optional<std::tuple<int, std::vector<std::string>, std::vector<std::string>>> queue;
+    std::optional<std::pair<std::string, std::vector<std::string>>> access;
+    std::vector<std::string> retired;
+    std::vector<std::string> logs;
+    std::vector<std::pair<std::string, json>> calls;
+    // the scripted handlers' state: each send's behaviour by its number (the Cmd's stamp: a
+    // repeat of a running cmdId must not change what the running one does)
+    std::map<std::int64_t, json> behaviour;
+    std::set<std::string> released;
+    bool all_released = false;
+
+    void bump() {
+        ++generation;
+        changed.notify_all();
+    }
+    bool is_released(const std::string& id) const { return all_released || released.count(id) > 0; }
+};
+
+std::vector<std::string> ids_of(const std::vector<Record>& records) {
+    std::vector<std::string> out;
+    for (const auto& r : records) out.push_back(r.cmd->cmd_id);
+    return out;
+}
+
+class CollectingOutbox : public Outbox {
+public:
+    explicit CollectingOutbox(Seen& seen) : seen_(seen) {}
+    void ack(const Cmd& cmd, AckStatus status, Completion completed, const std::string& message) override {
+        std::lock_guard<std::mutex> lock(seen_.mutex);
+        seen_.acks[cmd.cmd_id].push_back({std::string(name_of(status)).substr(4),  // ACK_
+                                          std::string(name_of(completed)).substr(14),  // ACK_COMPLETED_
+                                          message});
+        seen_.bump();
+    }
+    void queue_state(int code, const std::vector<Record>& pending, const std::vector<Record>& active,
+                     const std::vector<Record>&) override {
+        std::lock_guard<std::mutex> lock(seen_.mutex);
+        seen_.queue.emplace(code, ids_of(pending), ids_of(active));
+        seen_.bump();
+    }
+    void access_state(const std::string& controller, const std::vector<std::string>& requestors) override {
+        std::lock_guard<std::mutex> lock(seen_.mutex);
+        seen_.access.emplace(controller, requestors);
+        seen_.bump();
+    }
+    void retire(const Cmd& cmd) override {
+        std::lock_guard<std::mutex> lock(seen_.mutex);
+        seen_.retired.push_back(cmd.cmd_id);
+        seen_.bump();
+    }
+    void log(const std::string& text) override {
+        std::lock_guard<std::mutex> lock(seen_.mutex);
+        seen_.logs.push_back(text);
+        seen_.bump();
+    }
+
+private:
+    Seen& seen_;
+};
+
+// Every handler method: behaves as the case's `handler:` for the cmdId says.
+class Scripted : public Handlers {
+public:
+    explicit Scripted(Seen& seen) : seen_(seen) {}
+
+    Result execute(CommandContext& ctx) override {
+        const std::string id = ctx.cmd().cmd_id;
+        json h;
+        {
+            std::lock_guard<std::mutex> lock(seen_.mutex);
+            json values = json::array();
+            for (const auto& v : ctx.args()) values.push_back(plain(v));
+            seen_.calls.emplace_back(id, std::move(values));
+            seen_.bump();
+            auto it = seen_.behaviour.find(ctx.cmd().stamp);
+            h = it != seen_.behaviour.end() ? it->second : json{{"kind", "ok"}, {"text", ""}, {"texts", json::array()}};
+        }
+        const std::string kind = h.at("kind").get<std::string>();
+        const std::string text = h.at("text").get<std::string>();
+        if (kind == "ok") return Result::ok(text);
+        if (kind == "fail") throw CommandFailed(text);
+        if (kind == "error") throw std::runtime_error(text);
+        if (kind == "not_implemented") return Result::not_implemented();
+        if (kind == "progress") {
+            for (const auto& t : h.at("texts")) ctx.progress(t.get<std::string>());
+            return Result::ok();
+        }
+        if (kind == "block") {
+            while (!released(id))
+                if (!ctx.sleep(0.005)) return Result::ok();  // told to stop: returns (CANCELED, or REQUEUED)
+            return Result::ok("released");
+        }
+        if (kind == "stubborn") {  // deaf to being told to stop
+            std::unique_lock<std::mutex> lock(seen_.mutex);
+            seen_.changed.wait_for(lock, std::chrono::seconds(60), [&] { return seen_.is_released(id); });
+            return Result::ok("released");
+        }
+        throw std::logic_error("unknown handler behaviour " + kind);
+    }
+
+private:
+    bool released(const std::string& id) {
+        std::lock_guard<std::mutex> lock(seen_.mutex);
+        return seen_.is_released(id);
+    }
+    Seen& seen_;
+};
+
+// ---- comparisons and how they print -----------------------------------------------------------------
+
+bool ack_matches(const Ack& seen, const json& want) {
+    if (seen.status != want.at("status").get<std::string>()) return false;
+    if (!want.at("completion").is_null() && seen.completion != want.at("completion").get<std::string>()) return false;
+    if (want.at("message").is_null()) return true;
+    const std::string m = want.at("message").get<std::string>();
+    return want.at("prefix").get<bool>() ? seen.message.compare(0, m.size(), m) == 0 : seen.message == m;
+}
+
+std::string show(const std::vector<Ack>& acks) {
+    json out = json::array();
+    for (const auto& a : acks) out.push_back(a.status + " " + a.completion + ": " + a.message);
+    return out.dump();
+}
+
+std::string show(const std::vector<std::string>& ids) { return json(ids).dump(); }
+
+std::string show_want(const json& acks) {
+    json out = json::array();
+    for (const auto& a : acks) {
+        std::string s = a.at("status").get<std::string>();
+        if (!a.at("completion").is_null()) s += " " + a.at("completion").get<std::string>();
+        if (!a.at("message").is_null()) s += ": " + a.at("message").get<std::string>() + (a.at("prefix").get<bool>() ? "*" : "");
+        out.push_back(s);
+    }
+    return out.dump();
+}
+
+// ---- the replay ------------------------------------------------------------------------------------
+
+class Replay {
+public:
+    explicit Replay(const json& c) : case_(c), out_(seen_), handlers_(seen_) {
+        ManagerOptions o;
+        for (const auto& [key, v] : c.at("options").items()) {
+            if (key == "window")
+                o.window = v.get<std::size_t>();
+            else if (key == "queue_limit")
+                o.queue_limit = v.get<std::size_t>();
+            else if (key == "bypass_limit")
+                o.bypass_limit = v.get<std::size_t>();
+            else if (key == "stop_timeout_ms")
+                o.stop_timeout_ms = v.get<int>();
+            else
+                throw std::invalid_argument("option '" + key + "' is not known to this driver");
+        }
+        manager_ = std::make_unique<CommandManager>(seed_tables(c.at("asset").get<std::string>()), handlers_, out_, o);
+    }
+    ~Replay() {  // every handler returns, then the asset shuts down (the Python driver's close())
+        {
+            std::lock_guard<std::mutex> lock(seen_.mutex);
+            seen_.all_released = true;
+            seen_.bump();
+        }
+        manager_->shut_down(2000);
+        manager_.reset();
+    }
+    Replay(const Replay&) = delete;
+    Replay& operator=(const Replay&) = delete;
+
+    // One step; false (with a failure reported) when an expectation was not met.
+    bool step(const json& s) {
+        const std::string op = s.at("op").get<std::string>();
+        if (op == "send") {
+            Cmd c = cmd(s);
+            {
+                std::lock_guard<std::mutex> lock(seen_.mutex);
+                seen_.behaviour[c.stamp] = s.at("handler");
+            }
+            manager_->receive(c);
+        } else if (op == "refuse") {
+            manager_->refuse(cmd(s), s.at("why").get<std::string>());
+        } else if (op == "release") {
+            std::lock_guard<std::mutex> lock(seen_.mutex);
+            seen_.released.insert(s.at("id").get<std::string>());
+            seen_.bump();
+        } else if (op == "idle") {
+            if (!manager_->wait_idle(10.0)) return fail("the manager to become idle", "it did not within 10 s");
+        } else if (op == "shutdown") {
+            manager_->shut_down(s.at("timeout_ms").get<int>());
+        } else if (op == "acks") {
+            return expect_acks(s);
+        } else if (op == "queue") {
+            return expect_queue(s);
+        } else if (op == "control") {
+            return expect_control(s);
+        } else if (op == "calls") {
+            return expect_calls(s);
+        } else if (op == "retired") {
+            const auto want = s.at("ids").get<std::vector<std::string>>();
+            return until("retired " + show(want), [&] { return seen_.retired == want; },
+                         [&] { return show(seen_.retired); });
+        } else if (op == "pending") {
+            // the manager's own view: read without the outbox's lock (the manager writes to the
+            // outbox under its own lock; taking them the other way round could deadlock)
+            const auto want = s.at("ids").get<std::vector<std::string>>();
+            std::vector<std::string> got;
+            return until_unlocked("pending " + show(want), [&] { return (got = manager_->pending_ids()) == want; },
+                                  [&] { return show(got); });
+        } else if (op == "log") {
+            const std::string text = s.at("text").get<std::string>();
+            return until("a log line with '" + text + "'", [&] {
+                return std::any_of(seen_.logs.begin(), seen_.logs.end(),
+                                   [&](const std::string& line) { return line.find(text) != std::string::npos; });
+            }, [&] {
+                auto from = seen_.logs.size() > 10 ? seen_.logs.end() - 10 : seen_.logs.begin();
+                return show(std::vector<std::string>(from, seen_.logs.end()));
+            });
+        } else {
+            return fail("a step this driver knows", "step '" + op + "'");
+        }
+        return true;
+    }
+
+private:
+    Cmd cmd(const json& s) {
+        Cmd c;
+        c.stamp = ++sends_;  // (hdr.timeStamp: the manager only passes it on)
+        c.cmd_id = s.at("id").get<std::string>();
+        c.cmd_src = s.at("src").get<std::string>();
+        c.subsystem = s.at("subsystem").get<std::string>();
+        c.name = s.at("name").get<std::string>();
+        for (const auto& a : s.at("args")) c.args.push_back(value_of(a));
+        c.action = action_of(s.at("action").get<std::string>());
+        c.target = s.at("target").get<std::string>();
+        c.src_name = c.cmd_src;
+        c.asset_name = s.at("asset").get<std::string>();
+        return c;
+    }
+
+    bool fail(const std::string& what, const std::string& seen) {
+        ADD_FAILURE() << where(case_) << ": expected " << what << "; seen " << seen;
+        return false;
+    }
+
+    // Waits (up to WAIT) until ok() holds, checked under the lock of what was seen and again
+    // at every change; then fails with seen().
+    template <class Ok, class Show>
+    bool until(const std::string& what, Ok ok, Show seen) {
+        std::unique_lock<std::mutex> lock(seen_.mutex);
+        if (seen_.changed.wait_for(lock, WAIT, ok)) return true;
+        std::string shown = seen();
+        lock.unlock();
+        return fail(what, shown);
+    }
+
+    // The same for a condition read outside that lock: re-checked at every change and every SLICE.
+    template <class Ok, class Show>
+    bool until_unlocked(const std::string& what, Ok ok, Show seen) {
+        const auto end = Clock::now() + WAIT;
+        for (;;) {
+            std::uint64_t generation;
+            {
+                std::lock_guard<std::mutex> lock(seen_.mutex);
+                generation = seen_.generation;
+            }
+            if (ok()) return true;
+            if (Clock::now() >= end) return fail(what, seen());
+            std::unique_lock<std::mutex> lock(seen_.mutex);
+            seen_.changed.wait_until(lock, std::min(end, Clock::now() + SLICE),
+                                     [&] { return seen_.generation != generation; });
+        }
+    }
+
+    bool expect_acks(const json& s) {
+        const std::string id = s.at("id").get<std::string>();
+        const json& want = s.at("acks");
+        return until("acks of " + id + ": " + show_want(want), [&] {
+            auto it = seen_.acks.find(id);
+            const std::vector<Ack> none;
+            const auto& got = it != seen_.acks.end() ? it->second : none;
+            if (got.size() != want.size()) return false;
+            for (std::size_t i = 0; i < got.size(); ++i)
+                if (!ack_matches(got[i], want[i])) return false;
+            return true;
+        }, [&] {
+            auto it = seen_.acks.find(id);
+            return it != seen_.acks.end() ? show(it->second) : std::string("[]");
+        });
+    }
+
+    bool expect_queue(const json& s) {
+        return until("QueueState " + s.dump(), [&] {
+            if (!seen_.queue) return false;
+            const auto& [code, pending, active] = *seen_.queue;
+            return (!s.contains("code") || s["code"].get<int>() == code) &&
+                   (!s.contains("pending") || s["pending"].get<std::vector<std::string>>() == pending) &&
+                   (!s.contains("active") || s["active"].get<std::vector<std::string>>() == active);
+        }, [&] {
+            if (!seen_.queue) return std::string("none");
+            const auto& [code, pending, active] = *seen_.queue;
+            return "code " + std::to_string(code) + ", pending " + show(pending) + ", active " + show(active);
+        });
+    }
+
+    bool expect_control(const json& s) {
+        return until("AccessControlState " + s.dump(), [&] {
+            if (!seen_.access) return false;
+            return (!s.contains("controller") || s["controller"].get<std::string>() == seen_.access->first) &&
+                   (!s.contains("requestors") || s["requestors"].get<std::vector<std::string>>() == seen_.access->second);
+        }, [&] {
+            return seen_.access ? "controller " + seen_.access->first + ", requestors " + show(seen_.access->second)
+                                : std::string("none");
+        });
+    }
+
+    bool expect_calls(const json& s) {
+        const json& want = s.at("calls");
+        return until("handler calls " + want.dump(), [&] {
+            if (seen_.calls.size() != want.size()) return false;
+            for (std::size_t i = 0; i < want.size(); ++i)
+                if (seen_.calls[i].first != want[i].at("id").get<std::string>() ||
+                    !same(seen_.calls[i].second, want[i].at("values")))
+                    return false;
+            return true;
+        }, [&] {
+            json out = json::array();
+            for (const auto& [id, values] : seen_.calls) out.push_back({{"id", id}, {"values", values}});
+            return out.dump();
+        });
+    }
+
+    const json& case_;
+    Seen seen_;
+    CollectingOutbox out_;
+    Scripted handlers_;
+    std::unique_ptr<CommandManager> manager_;
+    std::int64_t sends_ = 0;
+};
+
+class Case : public ::testing::TestWithParam<CaseRef> {};
+
+}  // namespace
+
+TEST_P(Case, Replays) {
+    const json& c = GetParam().get();
+    try {
+        Replay replay(c);
+        for (const auto& s : c.at("steps"))
+            if (!replay.step(s)) return;  // (its failure says which and what was seen)
+    } catch (const std::exception& e) {  // a case this driver cannot run: located, not a crash
+        ADD_FAILURE() << where(c) << ": " << e.what();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Spec, Case, ::testing::ValuesIn(case_refs()), test_name);
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(Case);
+
+TEST(SpecCases, Loaded) {
+    EXPECT_TRUE(loaded().error.empty()) << loaded().error;
+    EXPECT_FALSE(loaded().cases.empty());
+}
