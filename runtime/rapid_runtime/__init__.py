@@ -18,6 +18,10 @@ makes where the protocol is silent):
     dds         the DDS side (Cyclone): readers, writers, QoS, partition
     bridge      the `python -m <package>.bridge` entry point
     simulate    a plausible simulated robot behind the handlers
+    qos         RapidQos: each topic's QoS from the generated QoS files (every package's `qos`)
+    ros2        the ROS 2 bridge's handlers and ground node (a package with a ros2: section)
+    plain       a decoded sample as JSON-ready data (the tools' one form: spy, monitor)
+    thresholds  an agent value's warning/critical level (the monitor and the ROS 2 ground node)
 
 The protocol logic (everything above `messages`) imports no DDS, so it is tested
 without a network. Depends on cyclonedds and the standard library only.

@@ -119,7 +119,9 @@ def test_generated_map_is_deterministic_and_holds_strings_exactly(tmp_path, monk
     assert cmd["publish"]["fields"][1] == ["note", "const", HOSTILE]
     assert cmd["until"]["equals"] == HOSTILE
     assert all(isinstance(t, (ast.Assign, ast.Expr)) for t in tree.body)  # a docstring and literals only
-    ast.parse(outs[0]["ros2.py"].decode())
+    bridge = ast.parse(outs[0]["ros2.py"].decode())  # the call only: the code is rapid_runtime.ros2
+    assert not [n for n in ast.walk(bridge) if isinstance(n, (ast.FunctionDef, ast.ClassDef, ast.Lambda))]
+    assert "rapid_runtime.ros2.handlers" in {n.module for n in ast.walk(bridge) if isinstance(n, ast.ImportFrom)}
     assert b"rclpy" not in b"".join(v for k, v in outs[0].items() if k != "ros2.py")
 
 
