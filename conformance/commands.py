@@ -323,7 +323,10 @@ def _closest(cmd_id: str, sent: dict[str, float]) -> str:
 
 
 def _judged(s) -> list[str]:
-    return [c for c in list(s.client.sent) if c != s.memo.get("repeated")]
+    """The runner's cmdIds but those it sent again on purpose (CMD-10's, SPEC-01's repeats):
+    a repeat's final ack written again is no ack after COMPLETED."""
+    again = {s.memo.get("repeated"), *s.memo.get("repeats", ())}
+    return [c for c in list(s.client.sent) if c not in again]
 
 
 # Last of all: an asset that crashes on it must not take the other checks with it.

@@ -26,4 +26,4 @@ def kind(name: str, aims: str | None):
     return register
 
 
-from . import access, commands, configs, dds, queue, telemetry  # noqa: E402,F401  (registers the kinds)
+from . import access, commands, configs, dds, queue, spec, telemetry  # noqa: E402,F401  (registers the kinds)
