@@ -10,7 +10,7 @@ def live_config(commander, rapid, asset: str, seconds: float) -> dict | None:
     from rapid_runtime import messages as M
     from rapid_runtime.commander import COMMAND_CONFIG_TOPIC
 
-    from rapidgen.live.take import GuardedReader
+    from rapid_runtime.untrusted import GuardedReader
 
     guard = GuardedReader(commander.node.reader(COMMAND_CONFIG_TOPIC, rapid.CommandConfig), dedupe=True, batch=4)
     end = time.monotonic() + seconds

@@ -15,7 +15,7 @@ Discovery data comes from any participant on the domain, so it is untrusted and 
 - A poll takes at most POLL_LIMIT samples per built-in topic; the rest wait for the next.
 
 The samples come through cyclonedds' own built-in readers (their data is not CDR for a
-generated type), so rapidgen.live.take.GuardedReader cannot take them; `_take` applies its
+generated type), so rapid_runtime.untrusted.GuardedReader cannot take them; `_take` applies its
 rules (dropped alone, counted, small batches) here.
 """
 from __future__ import annotations

@@ -4,7 +4,7 @@ partition asking for what the writer offers (so it matches, and gets a durable w
 history as a late joiner). Samples are kept with their writer and source timestamp.
 
 The network is untrusted (any participant in a partition writes any topic with any bytes),
-so every take goes through rapidgen.live.take.GuardedReader (a sample that does not decode
+so every take goes through rapid_runtime.untrusted.GuardedReader (a sample that does not decode
 is dropped alone and counted against its writer; a durable config republished with the
 same bytes is decoded once), and what is kept is bounded by the caps below, which
 docs/spy.md lists; what they leave out is said in the output (`Watcher.limits`).
@@ -18,7 +18,7 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable
 
-from rapidgen.live.take import GuardedReader
+from rapid_runtime.untrusted import GuardedReader
 
 if TYPE_CHECKING:
     from cyclonedds.domain import DomainParticipant

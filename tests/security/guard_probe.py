@@ -1,6 +1,7 @@
-"""Both guarded readers (the runtime's rapid_runtime.untrusted and the tools'
-rapidgen.live.take) on one real Cyclone domain, fed the same good and bad samples by a rogue
-writer in this process; prints what each delivered and dropped as JSON.
+"""The one guarded reader (rapid_runtime.untrusted) as the bridge uses it (logging, "runtime")
+and as the tools do (deduping republished bytes, "tool") on one real Cyclone domain, fed the
+same good and bad samples by a rogue writer in this process; prints what each delivered and
+dropped as JSON.
 
     python -m tests.security.guard_probe PYDIR PACKAGE DOMAIN"""
 import json
@@ -14,8 +15,7 @@ def main() -> int:
     from cyclonedds.qos import Policy, Qos
     from cyclonedds.topic import Topic
 
-    from rapid_runtime.untrusted import GuardedReader as RuntimeGuard
-    from rapidgen.live.take import GuardedReader as ToolGuard
+    from rapid_runtime.untrusted import GuardedReader
     from tests.security.rogue import Rogue
 
     r = Rogue(pydir, package, domain)
@@ -23,7 +23,8 @@ def main() -> int:
     topic = Topic(r.dp, "rapid_command", r.rapid.Command)
     readers = [DataReader(sub, topic, qos=r.qos.reader("rapid_command")) for _ in range(2)]
     logs: list[str] = []
-    guards = {"runtime": RuntimeGuard(readers[0], logs.append, batch=4), "tool": ToolGuard(readers[1], batch=4)}
+    guards = {"runtime": GuardedReader(readers[0], logs.append, batch=4),
+              "tool": GuardedReader(readers[1], batch=4, dedupe=True)}
     time.sleep(0.5)
     for i in range(10):  # bad ones among good ones, in one batch and across batches
         if i % 3 == 1:

@@ -1,7 +1,8 @@
-"""The two copies of the wire rules (rapid_runtime/untrusted.py for the robot,
-rapidgen/live/take.py and rapidgen.textsafe.visible for the tools; the runtime
-cannot import the compiler) give the same answers: the same escapes for any text, the same
-samples kept and dropped from a real reader (Cyclone on loopback, domain 34)."""
+"""The wire rules: visible() has two copies (rapid_runtime.untrusted for the robot,
+rapidgen.textsafe for the compiler, which must run without the runtime) that escape alike;
+the one GuardedReader (rapid_runtime.untrusted, the bridge's and the live tools') keeps and
+drops the same samples whether it logs (the bridge) or dedupes (the tools), from a real
+reader (Cyclone on loopback, domain 34)."""
 from __future__ import annotations
 
 import json
@@ -29,7 +30,7 @@ def test_runtime_visible_bounds_a_line():
     assert runtime_visible("x" * 5000, limit=10) == "x" * 10 + "..."
 
 
-def test_both_guarded_readers_keep_the_good_and_drop_the_bad_alike():
+def test_the_guarded_reader_keeps_the_good_and_drops_the_bad_as_the_bridge_and_the_tools_use_it():
     pydir, package = python_dir("k10"), SEEDS["k10"]
     res = subprocess.run([sys.executable, "-m", "tests.security.guard_probe", str(pydir), package, "34"], cwd=ROOT,
                          env=env_for(pydir, package), capture_output=True, text=True, timeout=60)
