@@ -6,7 +6,9 @@
 // The cases come as the JSON `python -m rapidgen.protocol_cases json OUT.json` writes
 // (arguments already typed), from the file named by RAPID_SPEC_CASES; one test per case,
 // named Spec/Case.Replays/<file>_<case name>. Without the variable there are no cases and
-// SpecCases.Loaded fails (tests/cpp_runtime/test_cpp_runtime.py sets it).
+// SpecCases.Loaded fails (tests/cpp_runtime/test_cpp_runtime.py sets it). A case with a
+// `restart` step runs on the restart journal (in a temporary folder); a restart is the
+// process dying: its manager's later writes unseen, a new manager restored from the journal.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +19,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -31,6 +34,7 @@
 #include <vector>
 
 #include <rapid_runtime/handlers.hpp>
+#include <rapid_runtime/journal.hpp>
 #include <rapid_runtime/manager.hpp>
 #include <rapid_runtime/tables.hpp>
 #include <rapid_runtime/value.hpp>
@@ -222,11 +226,14 @@ std::vector<std::string> ids_of(const std::vector<Record>& records) {
     return out;
 }
 
+// One life of the asset's outbox: once its process "dies" (a restart step), what its manager
+// still writes is not seen.
 class CollectingOutbox : public Outbox {
 public:
     explicit CollectingOutbox(Seen& seen) : seen_(seen) {}
     void ack(const Cmd& cmd, AckStatus status, Completion completed, const std::string& message) override {
         std::lock_guard<std::mutex> lock(seen_.mutex);
+        if (dead_) return;
         seen_.acks[cmd.cmd_id].push_back({std::string(name_of(status)).substr(4),  // ACK_
                                           std::string(name_of(completed)).substr(14),  // ACK_COMPLETED_
                                           message});
@@ -235,27 +242,36 @@ public:
     void queue_state(int code, const std::vector<Record>& pending, const std::vector<Record>& active,
                      const std::vector<Record>&) override {
         std::lock_guard<std::mutex> lock(seen_.mutex);
+        if (dead_) return;
         seen_.queue.emplace(code, ids_of(pending), ids_of(active));
         seen_.bump();
     }
     void access_state(const std::string& controller, const std::vector<std::string>& requestors) override {
         std::lock_guard<std::mutex> lock(seen_.mutex);
+        if (dead_) return;
         seen_.access.emplace(controller, requestors);
         seen_.bump();
     }
     void retire(const Cmd& cmd) override {
         std::lock_guard<std::mutex> lock(seen_.mutex);
+        if (dead_) return;
         seen_.retired.push_back(cmd.cmd_id);
         seen_.bump();
     }
     void log(const std::string& text) override {
         std::lock_guard<std::mutex> lock(seen_.mutex);
+        if (dead_) return;
         seen_.logs.push_back(text);
         seen_.bump();
+    }
+    void die() {
+        std::lock_guard<std::mutex> lock(seen_.mutex);
+        dead_ = true;
     }
 
 private:
     Seen& seen_;
+    bool dead_ = false;  // (under seen_.mutex)
 };
 
 // Every handler method: behaves as the case's `handler:` for the cmdId says.
@@ -339,21 +355,23 @@ std::string show_want(const json& acks) {
 
 class Replay {
 public:
-    explicit Replay(const json& c) : case_(c), out_(seen_), handlers_(seen_) {
-        ManagerOptions o;
+    explicit Replay(const json& c) : case_(c), handlers_(seen_) {
         for (const auto& [key, v] : c.at("options").items()) {
             if (key == "window")
-                o.window = v.get<std::size_t>();
+                options_.window = v.get<std::size_t>();
             else if (key == "queue_limit")
-                o.queue_limit = v.get<std::size_t>();
+                options_.queue_limit = v.get<std::size_t>();
             else if (key == "bypass_limit")
-                o.bypass_limit = v.get<std::size_t>();
+                options_.bypass_limit = v.get<std::size_t>();
             else if (key == "stop_timeout_ms")
-                o.stop_timeout_ms = v.get<int>();
+                options_.stop_timeout_ms = v.get<int>();
             else
                 throw std::invalid_argument("option '" + key + "' is not known to this driver");
         }
-        manager_ = std::make_unique<CommandManager>(seed_tables(c.at("asset").get<std::string>()), handlers_, out_, o);
+        // a case that restarts the asset runs with the restart journal, as the bridge does
+        for (const auto& s : c.at("steps"))
+            if (s.at("op") == "restart") journal_dir_ = temp_dir();
+        start();
     }
     ~Replay() {  // every handler returns, then the asset shuts down (the Python driver's close())
         {
@@ -361,8 +379,10 @@ public:
             seen_.all_released = true;
             seen_.bump();
         }
-        manager_->shut_down(2000);
-        manager_.reset();
+        manager().shut_down(2000);
+        managers_.clear();  // (each joins its handlers' threads)
+        journals_.clear();
+        if (!journal_dir_.empty()) std::filesystem::remove_all(journal_dir_);
     }
     Replay(const Replay&) = delete;
     Replay& operator=(const Replay&) = delete;
@@ -376,17 +396,19 @@ public:
                 std::lock_guard<std::mutex> lock(seen_.mutex);
                 seen_.behaviour[c.stamp] = s.at("handler");
             }
-            manager_->receive(c);
+            manager().receive(c);
         } else if (op == "refuse") {
-            manager_->refuse(cmd(s), s.at("why").get<std::string>());
+            manager().refuse(cmd(s), s.at("why").get<std::string>());
         } else if (op == "release") {
             std::lock_guard<std::mutex> lock(seen_.mutex);
             seen_.released.insert(s.at("id").get<std::string>());
             seen_.bump();
+        } else if (op == "restart") {
+            crash();
         } else if (op == "idle") {
-            if (!manager_->wait_idle(10.0)) return fail("the manager to become idle", "it did not within 10 s");
+            if (!manager().wait_idle(10.0)) return fail("the manager to become idle", "it did not within 10 s");
         } else if (op == "shutdown") {
-            manager_->shut_down(s.at("timeout_ms").get<int>());
+            manager().shut_down(s.at("timeout_ms").get<int>());
         } else if (op == "acks") {
             return expect_acks(s);
         } else if (op == "queue") {
@@ -404,7 +426,7 @@ public:
             // outbox under its own lock; taking them the other way round could deadlock)
             const auto want = s.at("ids").get<std::vector<std::string>>();
             std::vector<std::string> got;
-            return until_unlocked("pending " + show(want), [&] { return (got = manager_->pending_ids()) == want; },
+            return until_unlocked("pending " + show(want), [&] { return (got = manager().pending_ids()) == want; },
                                   [&] { return show(got); });
         } else if (op == "log") {
             const std::string text = s.at("text").get<std::string>();
@@ -422,6 +444,48 @@ public:
     }
 
 private:
+    CommandManager& manager() { return *managers_.back(); }
+
+    static std::string temp_dir() {
+        std::string pattern = ::testing::TempDir() + "spec-journal-XXXXXX";
+        std::vector<char> buf(pattern.begin(), pattern.end());
+        buf.push_back('\0');
+        if (::mkdtemp(buf.data()) == nullptr) throw std::runtime_error("cannot make a journal folder");
+        return buf.data();
+    }
+
+    // The asset starts: a new outbox and manager, on the journal (recovering what the last
+    // life left) when the case restarts.
+    void start() {
+        outboxes_.push_back(std::make_unique<CollectingOutbox>(seen_));
+        CollectingOutbox& out = *outboxes_.back();
+        ManagerOptions o = options_;
+        JournalRecovered recovered;
+        if (!journal_dir_.empty()) {
+            journals_.push_back(Journal::open(journal_dir_, seed_tables(case_.at("asset").get<std::string>()).name, 0,
+                                              o.window, [&out](const std::string& t) { out.log(t); }, recovered));
+            if (!journals_.back()) throw std::runtime_error("the restart journal cannot be opened in " + journal_dir_);
+            journals_.back()->start(1);
+            o.journal = journals_.back().get();
+        }
+        managers_.push_back(
+            std::make_unique<CommandManager>(seed_tables(case_.at("asset").get<std::string>()), handlers_, out, o));
+        if (recovered.crashed) managers_.back()->restore(recovered);
+    }
+
+    // The process dies (kill -9): what its manager writes from now on is not seen, its journal
+    // stays as the disk has it (no stop record), nothing more starts in it; then it starts again.
+    void crash() {
+        CommandManager& old = manager();
+        old.begin_batch();  // (the manager's lock: no step of it half seen)
+        outboxes_.back()->die();
+        Journal* journal = old.release_journal();
+        old.end_batch();
+        if (journal != nullptr) journal->close(false);
+        old.shut_down(0);  // (its handlers told to stop, unseen; a stubborn one runs on until released)
+        start();
+    }
+
     Cmd cmd(const json& s) {
         Cmd c;
         c.stamp = ++sends_;  // (hdr.timeStamp: the manager only passes it on)
@@ -530,10 +594,13 @@ private:
     }
 
     const json& case_;
+    ManagerOptions options_;
+    std::string journal_dir_;  // the restart journal's folder ("": none)
     Seen seen_;
-    CollectingOutbox out_;
+    std::vector<std::unique_ptr<CollectingOutbox>> outboxes_;  // one per life of the asset, the last live
     Scripted handlers_;
-    std::unique_ptr<CommandManager> manager_;
+    std::vector<std::unique_ptr<Journal>> journals_;
+    std::vector<std::unique_ptr<CommandManager>> managers_;  // the last is the running asset
     std::int64_t sends_ = 0;
 };
 
