@@ -27,6 +27,7 @@ ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "runtime" / "spec" / "texts.yaml"
 PYTHON_OUT = ROOT / "runtime" / "rapid_runtime" / "texts.py"
 CPP_OUT = ROOT / "runtime" / "cpp" / "include" / "rapid_runtime" / "texts.hpp"
+RUST_OUT = ROOT / "runtime" / "rust" / "rapid_runtime" / "src" / "texts.rs"
 SHOWN = "runtime/spec/texts.yaml"
 HEADER = f"generated from {SHOWN}; do not edit (python -m rapidgen.protocol_texts)"
 
@@ -36,7 +37,9 @@ TYPES = {
     "count": ("int", "str({})", "long long {}", "std::to_string({})"),
     "seconds": ("float", "format({}, '.1f')", "double {}", "detail::one_decimal({})"),
 }
-RUNTIMES = ("python", "cpp")
+RUNTIMES = ("python", "cpp")  # `only:` values (the Rust runtime writes what C++ alone writes too)
+# placeholder type -> (Rust parameter type, its format! spec)
+RUST_TYPES = {"text": ("&str", ""), "count": ("usize", ""), "seconds": ("f64", ":.1")}
 _KEY = re.compile(r"[a-z][a-z0-9_]*\Z")
 _PIECE = re.compile(r"\{([^{}]*)\}")
 # names a placeholder may not take: it becomes a parameter in both languages
@@ -223,9 +226,51 @@ def cpp_source(texts: Sequence[Text]) -> str:
     return "\n".join(out) + "\n"
 
 
+# ---- Rust ---------------------------------------------------------------------------------------
+
+def rust_literal(text: str, braces: bool) -> str:
+    """text inside a Rust string literal: backslash and quote escaped, anything not printable
+    as \\u{...}; braces doubled inside a format! string."""
+    out = []
+    for c in text:
+        if c in '\\"':
+            out.append("\\" + c)
+        elif braces and c in "{}":
+            out.append(c * 2)
+        elif c.isprintable():
+            out.append(c)
+        else:
+            out.append(f"\\u{{{ord(c):x}}}")
+    return "".join(out)
+
+
+def rust_source(texts: Sequence[Text]) -> str:
+    out = [f"// {HEADER}",
+           "//! Every reason and ack text the runtime writes: runtime/spec/texts.yaml's words, one constant",
+           "//! or function per text (the Python runtime's texts.py and the C++ runtime's texts.hpp come from",
+           "//! the same table). A text with placeholders is a function taking them in the table's `args`",
+           "//! order: `text` a &str (a name from the wire shortened by the caller), `count` a usize,",
+           "//! `seconds` an f64 written with one decimal.", ""]
+    for t in texts:
+        if t.only == "python":
+            continue
+        note = f"{t.when} (only the {t.only} runtime)" if t.only else t.when
+        out.append(f"/// {note}")
+        if t.constant:
+            out.append(f'pub const {t.name}: &str = "{rust_literal(t.template, False)}";')
+        else:
+            params = ", ".join(f"{n}: {RUST_TYPES[k][0]}" for n, k in t.args)
+            kinds = dict(t.args)
+            body = "".join(rust_literal(p, True) if isinstance(p, str) else "{" + p[0] + RUST_TYPES[kinds[p[0]]][1] + "}"
+                           for p in t.pieces)
+            out += [f"pub fn {t.name}({params}) -> String {{", f'    format!("{body}")', "}"]
+        out.append("")
+    return "\n".join(out)
+
+
 def outputs(texts: Sequence[Text] | None = None) -> dict[Path, str]:
     texts = load_table() if texts is None else texts
-    return {PYTHON_OUT: python_source(texts), CPP_OUT: cpp_source(texts)}
+    return {PYTHON_OUT: python_source(texts), CPP_OUT: cpp_source(texts), RUST_OUT: rust_source(texts)}
 
 
 def stale() -> list[Path]:

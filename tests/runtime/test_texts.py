@@ -99,9 +99,10 @@ def test_generated_files_are_fresh():
 
 
 def test_check_says_stale_and_write_refreshes(tmp_path, monkeypatch, capsys):
-    py, cpp = tmp_path / "texts.py", tmp_path / "texts.hpp"
+    py, cpp, rs = tmp_path / "texts.py", tmp_path / "texts.hpp", tmp_path / "texts.rs"
     monkeypatch.setattr(PT, "PYTHON_OUT", py)
     monkeypatch.setattr(PT, "CPP_OUT", cpp)
+    monkeypatch.setattr(PT, "RUST_OUT", rs)
     monkeypatch.setattr(PT, "ROOT", tmp_path)
     assert PT.main(["--check"]) == 1 and not py.exists()
     assert PT.main([]) == 0 and PT.main(["--check"]) == 0

@@ -1,7 +1,7 @@
+// generated from runtime/spec/texts.yaml; do not edit (python -m rapidgen.protocol_texts)
 //! Every reason and ack text the runtime writes: runtime/spec/texts.yaml's words, one constant
-//! or function per text (the Python runtime's texts.py and the C++ runtime's texts.hpp are
-//! generated from the same table; tests/rust_runtime/test_texts.py fails when this file and
-//! the table differ). A text with placeholders is a function taking them in the table's `args`
+//! or function per text (the Python runtime's texts.py and the C++ runtime's texts.hpp come from
+//! the same table). A text with placeholders is a function taking them in the table's `args`
 //! order: `text` a &str (a name from the wire shortened by the caller), `count` a usize,
 //! `seconds` an f64 written with one decimal.
 
@@ -227,10 +227,10 @@ pub fn handler_error(error_type: &str, message: &str) -> String {
     format!("handler error: {error_type}: {message}")
 }
 
-/// EXEC_FAILED: a C++ handler that threw something not a std::exception (a Python exception always has a type)
+/// EXEC_FAILED: a C++ handler that threw something not a std::exception (a Python exception always has a type) (only the cpp runtime)
 pub const HANDLER_ERROR_UNKNOWN: &str = "handler error: unknown exception";
 
-/// EXEC_FAILED: a C++ handler whose Result says ACK_COMPLETED_NOT (a Python handler cannot return one)
+/// EXEC_FAILED: a C++ handler whose Result says ACK_COMPLETED_NOT (a Python handler cannot return one) (only the cpp runtime)
 pub const NO_COMPLETION: &str = "handler gave no completion";
 
 /// EXEC_FAILED: a handler still running at its stop bound, or at the shutdown bound
