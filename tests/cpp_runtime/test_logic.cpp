@@ -1,7 +1,9 @@
-// The protocol logic without DDS (GoogleTest): K10's tables (k10_tables.cpp), a collecting
-// outbox, handlers the test controls. Mirrors tests/runtime/test_logic.py,
-// test_intake.py, test_command_window.py and test_flood_limits.py (their tables-only
-// parts) and adds the validation messages. Conditions, not sleeps, order the steps.
+// The protocol logic without DDS (GoogleTest) where the protocol specification's cases
+// (runtime/spec/cases, replayed by test_spec_cases.cpp) cannot state it: the C++ API
+// (on_shutdown, is_control, the window's tables, QueueState's completed records), reasons
+// JSON cannot carry (NaN, a QueueAction outside the enum), UTF-8 clipping, serials, the
+// intake's turns and the pieces. K10's tables (k10_tables.hpp), a collecting outbox,
+// handlers the test controls. Conditions, not sleeps, order the steps.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -118,45 +120,18 @@ public:
     std::vector<std::string> logs;
 };
 
-// K10's PanCam handlers: pointCamera blocks until released (or canceled).
+// K10's handlers the tests below use.
 class Camera : public Handlers {
 public:
     Result execute(CommandContext& ctx) override {
         const std::string& c = ctx.command();
-        if (c == "pointCamera") {
-            {
-                std::lock_guard<std::mutex> lock(mutex);
-                calls.emplace_back(ctx.arg<float>(0), ctx.arg<float>(1));
-            }
-            while (!release.load())
-                if (!ctx.sleep(0.01)) return Result::ok();  // canceled
-            return Result::ok("pointed");
-        }
-        if (c == "takePicture") {
-            if (ctx.arg<std::string>(0) == "right") throw CommandFailed("right camera offline");
-            return Result::ok(ctx.arg<std::string>(0) + " picture");
-        }
-        if (c == "simpleMove") {
-            while (!ctx.cancelled()) ctx.sleep(0.01);
-            return Result::ok();
-        }
+        if (c == "takePicture") return Result::ok(ctx.arg<std::string>(0) + " picture");
         if (c == "nativeCommand") {
-            const auto& text = ctx.arg<std::string>(0);
-            if (text == "boom") throw std::runtime_error("boom");
-            if (text == "cancel-me") throw Cancelled();
-            ctx.progress("step 1");
-            ctx.progress("step 2");
-            return Result::ok("ran " + text);
+            if (ctx.arg<std::string>(0) == "cancel-me") throw Cancelled();
+            return Result::ok("ran " + ctx.arg<std::string>(0));
         }
         return Handlers::execute(ctx);
     }
-    std::vector<std::pair<float, float>> points() {
-        std::lock_guard<std::mutex> lock(mutex);
-        return calls;
-    }
-    std::atomic<bool> release{false};
-    std::mutex mutex;
-    std::vector<std::pair<float, float>> calls;
 };
 
 Cmd make(const std::string& id, const std::string& sub, const std::string& name, std::vector<Value> args = {},
@@ -175,8 +150,6 @@ Cmd make(const std::string& id, const std::string& sub, const std::string& name,
     return c;
 }
 
-std::vector<Value> point(float pan = 0.1f) { return {Value(pan), Value(0.0f)}; }
-
 // K10's manager with RapidWorkbench in control (as the Python fixture).
 class K10 : public ::testing::Test {
 protected:
@@ -185,10 +158,7 @@ protected:
         auto id = send("AccessControl", "requestControl");
         ASSERT_EQ(out.final_(id), (Seq{{"EXECUTING", "NOT"}, {"COMPLETED", "OK"}}));
     }
-    void TearDown() override {
-        camera.release = true;
-        manager.reset();
-    }
+    void TearDown() override { manager.reset(); }
     virtual ManagerOptions options() { return {}; }
     std::string send(const std::string& sub, const std::string& name, std::vector<Value> args = {},
                      QueueAction action = QueueAction::Bypass, const std::string& target = "",
@@ -209,44 +179,14 @@ protected:
     int n = 0;
 };
 
-const Seq QUEUED_OK{{"QUEUED", "NOT"}, {"EXECUTING", "NOT"}, {"COMPLETED", "OK"}};
 const Seq BYPASS_OK{{"EXECUTING", "NOT"}, {"COMPLETED", "OK"}};
 
 }  // namespace
 
-// ---- test_logic.py ------------------------------------------------------------------------------
+// ---- the manager ----------------------------------------------------------------------------------
 
-TEST_F(K10, QueueOrderInsertReplaceDelete) {
-    auto a = send("PanCam", "pointCamera", point(), QueueAction::Append);
-    out.until(a, "EXECUTING");
-    auto b = send("PanCam", "pointCamera", point(0.2f), QueueAction::Append);
-    auto c = send("PanCam", "pointCamera", point(0.3f), QueueAction::Insert, "head");  // before b
-    auto d = send("PanCam", "pointCamera", point(0.4f), QueueAction::Replace, b);  // b canceled, d in its place
-    auto e = send("Admin", "noOp", {}, QueueAction::Delete, c);  // c canceled before it ran
-    EXPECT_EQ(out.seq(b), (Seq{{"QUEUED", "NOT"}, {"COMPLETED", "CANCELED"}}));
-    EXPECT_EQ(out.seq(c), (Seq{{"QUEUED", "NOT"}, {"COMPLETED", "CANCELED"}}));
-    EXPECT_EQ(out.final_(e), BYPASS_OK);
-    EXPECT_EQ(manager->pending_ids(), std::vector<std::string>{d});
-    camera.release = true;
-    EXPECT_EQ(out.final_(a), QUEUED_OK);
-    EXPECT_EQ(out.final_(d), QUEUED_OK);
-    EXPECT_EQ(camera.points(), (std::vector<std::pair<float, float>>{{0.1f, 0.0f}, {0.4f, 0.0f}}));
-    ASSERT_TRUE(manager->wait_idle(10));
-    std::lock_guard<std::mutex> lock(out.mutex);
-    EXPECT_EQ(std::get<0>(out.queue.back()), 0);  // idle
-}
-
-TEST_F(K10, DeleteAbortsARunningAbortableCommand) {
-    auto a = send("PanCam", "pointCamera", point(), QueueAction::Append);
-    out.until(a, "EXECUTING");
-    auto d = send("Admin", "noOp", {}, QueueAction::Delete, a);
-    EXPECT_EQ(out.final_(a).back(), (std::pair<std::string, std::string>{"COMPLETED", "CANCELED"}));
-    EXPECT_EQ(out.final_(d).back(), (std::pair<std::string, std::string>{"COMPLETED", "OK"}));
-    // (issue 42) the handler was asked; its own final ack says it stopped
-    EXPECT_EQ(out.last_message(d), a + " cancel requested; handler has not stopped yet");
-}
-
-TEST_F(K10, DeleteOfARunningCommandThatIsNotAbortableFails) {
+// (the cases name a target never sent; here one that has finished)
+TEST_F(K10, AFinishedCommandIsNoLongerATarget) {
     auto a = send("K10Native", "nativeCommand", {Value(std::string("x"))}, QueueAction::Append);
     out.final_(a);
     auto p = send("PanCam", "takePicture", {Value(std::string("left")), Value(0.0f)}, QueueAction::Append);
@@ -256,77 +196,8 @@ TEST_F(K10, DeleteOfARunningCommandThatIsNotAbortableFails) {
     EXPECT_EQ(out.message(unknown, 0), "unknown targetCmdId '" + p + "' (not pending or running)");
 }
 
-TEST_F(K10, BypassPreemptsASuspendableQueuedCommandWhichIsRequeued) {
-    std::vector<Value> move{Value(std::string("site")), Value(Vec3d{1.0, 0.0, 0.0})};
-    auto a = send("Mobility", "simpleMove", move, QueueAction::Append);
-    out.until(a, "EXECUTING");
-    auto b = send("Mobility", "simpleMove", move);  // BYPASS on the same subsystem
-    out.until(a, "REQUEUED");
-    out.until(b, "EXECUTING");
-    auto stop = send("Mobility", "stopAllMotion", {}, QueueAction::Bypass, "", "Intruder");  // always allowed
-    EXPECT_EQ(out.final_(b).back(), (std::pair<std::string, std::string>{"COMPLETED", "CANCELED"}));
-    // no handler (the stub): the runtime's cancel is the answer (ACC-06), OK; b may not have
-    // returned yet when it completes (its answer then says so)
-    EXPECT_EQ(out.final_(stop), (Seq{{"EXECUTING", "NOT"}, {"COMPLETED", "OK"}}));
-    const std::string said = out.last_message(stop);
-    EXPECT_TRUE(said == NO_STOP_HANDLER || said == std::string(NO_STOP_HANDLER) + "; 1 motion handler(s) not stopped yet")
-        << said;
-    auto seq = out.final_(a);
-    ASSERT_GE(seq.size(), 4u);
-    EXPECT_EQ(Seq(seq.begin(), seq.begin() + 3), (Seq{{"QUEUED", "NOT"}, {"EXECUTING", "NOT"}, {"REQUEUED", "NOT"}}));
-    EXPECT_EQ(seq.back(), (std::pair<std::string, std::string>{"COMPLETED", "CANCELED"}));  // then stopAllMotion
-}
-
-TEST_F(K10, AFailureSuspendsTheQueueUntilCancelAll) {
-    auto a = send("PanCam", "takePicture", {Value(std::string("right")), Value(0.0f)}, QueueAction::Append);
-    EXPECT_EQ(out.final_(a).back(), (std::pair<std::string, std::string>{"COMPLETED", "EXEC_FAILED"}));
-    EXPECT_EQ(out.last_message(a), "right camera offline");
-    auto b = send("PanCam", "takePicture", {Value(std::string("left")), Value(0.0f)}, QueueAction::Append);
-    EXPECT_EQ(out.seq(b), (Seq{{"QUEUED", "NOT"}}));
-    {
-        std::lock_guard<std::mutex> lock(out.mutex);
-        EXPECT_EQ(std::get<0>(out.queue.back()), -1);  // suspended
-    }
-    EXPECT_TRUE(manager->suspended());
-    auto c = send("Queue", "cancelAll");
-    EXPECT_EQ(out.final_(c).back(), (std::pair<std::string, std::string>{"COMPLETED", "OK"}));
-    EXPECT_EQ(out.final_(b).back(), (std::pair<std::string, std::string>{"COMPLETED", "CANCELED"}));
-    auto d = send("PanCam", "takePicture", {Value(std::string("left")), Value(0.0f)}, QueueAction::Append);
-    EXPECT_EQ(out.final_(d).back(), (std::pair<std::string, std::string>{"COMPLETED", "OK"}));
-    EXPECT_EQ(out.last_message(d), "left picture");
-}
-
-TEST_F(K10, AccessControlRequestQueueReleaseTransfer) {
-    const std::string other = "MultiCenterCockpit";
-    auto r = send("AccessControl", "requestControl", {}, QueueAction::Bypass, "", other);
-    EXPECT_EQ(out.final_(r).back().second, "OK");
-    EXPECT_EQ(manager->requestors(), std::vector<std::string>{other});
-    EXPECT_EQ(out.final_(send("AccessControl", "releaseControl", {}, QueueAction::Bypass, "", other)).back().second,
-              "EXEC_FAILED");
-    EXPECT_EQ(out.final_(send("AccessControl", "releaseControl")).back().second, "OK");
-    EXPECT_EQ(manager->controller(), other);
-    {
-        std::lock_guard<std::mutex> lock(out.mutex);
-        EXPECT_EQ(out.access.back(), (std::pair<std::string, std::vector<std::string>>{other, {}}));
-    }
-    EXPECT_EQ(out.final_(send("AccessControl", "grabControl")).back().second, "OK");
-    EXPECT_EQ(manager->controller(), OP);
-    EXPECT_EQ(out.final_(send("AccessControl", "transferControl", {Value(other)})).back().second, "OK");
-    EXPECT_EQ(manager->controller(), other);
-    auto denied = send("Admin", "echo", {Value(std::string("x"))});
-    EXPECT_EQ(out.final_(denied), (Seq{{"COMPLETED", "BAD_SYNTAX"}}));
-    EXPECT_EQ(out.message(denied, 0), "RAPID access violation: RapidWorkbench does not have control (send requestControl)");
-}
-
-TEST_F(K10, TheAllowListComesBeforeControl) {
-    auto id = send("K10Native", "nativeCommand", {Value(std::string("x"))}, QueueAction::Bypass, "", "ScienceBackroom");
-    EXPECT_EQ(out.final_(id), (Seq{{"COMPLETED", "BAD_SYNTAX"}}));
-    EXPECT_EQ(out.message(id, 0), "RAPID access violation: ScienceBackroom may not send K10Native/nativeCommand");
-    auto self = send("Admin", "noOp", {}, QueueAction::Bypass, "", "K10Red");  // the asset itself: no control needed
-    EXPECT_EQ(out.final_(self).back().second, "BAD_SYNTAX");  // but K10's allow-list names no "K10Red": denied
-}
-
-TEST(Logic, AnAssetWithoutAQueueTakesBypassOnly) {
+// (queue.yaml's case has the refusal; a case cannot say that no QueueState is written)
+TEST(Logic, AnAssetWithoutAQueuePublishesNoQueueState) {
     Tables t;
     t.name = "Chariot";
     t.subsystems = {{"Admin", "Admin"}};
@@ -334,12 +205,13 @@ TEST(Logic, AnAssetWithoutAQueueTakesBypassOnly) {
     TestOutbox out;
     Handlers none;
     CommandManager m(t, none, out);
+    m.publish_states();
     m.receive(make("q1", "Admin", "noOp", {}, QueueAction::Append, "", OP, "Chariot"));
     EXPECT_EQ(out.final_("q1"), (Seq{{"COMPLETED", "BAD_SYNTAX"}}));
-    EXPECT_EQ(out.message("q1", 0), "QUEUE_APPEND refused: this asset has no command queue (send QUEUE_BYPASS)");
     m.receive(make("q2", "Admin", "noOp", {}, QueueAction::Bypass, "", OP, "Chariot"));
     EXPECT_EQ(out.final_("q2"), BYPASS_OK);
-    EXPECT_TRUE(out.queue.empty());  // no QueueState without a Queue subsystem
+    std::lock_guard<std::mutex> lock(out.mutex);
+    EXPECT_TRUE(out.queue.empty());
 }
 
 TEST_F(K10, MessagesFit127BytesEvenForLongHostileNames) {
@@ -374,68 +246,18 @@ TEST(Logic, SerialsChangeWithContentOnly) {
     EXPECT_EQ(s.of("other"), 1'700'000'000);
 }
 
-// ---- validation, in soraCore's order, with the Python runtime's reasons ----------------------
+// ---- reasons the cases' JSON cannot carry (validation.yaml and queue.yaml have the rest) -------
 
-TEST_F(K10, ChecksInOrderWithTheirReasons) {
-    EXPECT_EQ(bad_syntax("Arm", "x"), "unknown subsystem 'Arm'");
-    EXPECT_EQ(bad_syntax("PanCam", "zoom"), "unknown command 'zoom' for subsystem 'PanCam'");
-    EXPECT_EQ(bad_syntax("PanCam", "pointCamera", {Value(0.1f)}), "pointCamera takes 2 arguments, got 1");
-    EXPECT_EQ(bad_syntax("Admin", "echo", {}), "echo takes 1 argument, got 0");
-    EXPECT_EQ(bad_syntax("PanCam", "pointCamera", {Value(0.1), Value(0.0f)}),
-              "argument 1 (pan) must be RAPID_FLOAT, got RAPID_DOUBLE");
-    EXPECT_EQ(bad_syntax("PanCam", "pointCamera", {Value(5.0f), Value(0.0f)}), "argument 1 (pan): 5 not in [-3.05, 3.05]");
+TEST_F(K10, NanIsOutsideEveryRangeAndAnActionOutsideTheEnumIsNamedByNumber) {
     EXPECT_EQ(bad_syntax("PanCam", "pointCamera", {Value(0.0f), Value(std::nanf(""))}),
               "argument 2 (tilt): nan not in [-1.4, 1.4]");
-    EXPECT_EQ(bad_syntax("PanCam", "takePicture", {Value(std::string("up")), Value(0.0f)}),
-              "argument 1 (mode): 'up' not one of left|right|stereo");
-    EXPECT_EQ(bad_syntax("PanCam", "takePanorama", {Value(0.0f), Value(1.0f), Value(0.0f), Value(std::int32_t{65})}),
-              "argument 4 (tiles): 65 not in [1, 64]");
-    EXPECT_EQ(bad_syntax("Admin", "echo", {Value(std::string(128, 'x'))}), "argument 1 (text): 128 bytes (max 127)");
-    // the queue's own rules come first
-    EXPECT_EQ(bad_syntax("Admin", "noOp", {}, QueueAction::Append, "x"), "QUEUE_APPEND takes no targetCmdId (got 'x')");
-    EXPECT_EQ(bad_syntax("Admin", "noOp", {}, QueueAction::Insert), "QUEUE_INSERT needs a targetCmdId");
-    EXPECT_EQ(bad_syntax("Admin", "noOp", {}, QueueAction::Insert, "nope"),
-              "unknown targetCmdId 'nope' (pending ids, the running one or 'head')");
-    EXPECT_EQ(bad_syntax("Admin", "noOp", {}, QueueAction::Replace, "nope"),
-              "unknown targetCmdId 'nope' (not pending or running)");
     EXPECT_EQ(bad_syntax("Admin", "noOp", {}, static_cast<QueueAction>(9)), "unknown queue action 9");
-    EXPECT_EQ(bad_syntax("Admin", "noOp", {}, QueueAction::Delete, "nope"),
-              "unknown targetCmdId 'nope' (not pending or running)");
-    manager->receive(make("", "Admin", "noOp"));
-    EXPECT_EQ(out.final_(""), (Seq{{"COMPLETED", "BAD_SYNTAX"}}));
-    EXPECT_EQ(out.message("", 0), "empty cmdId");
 }
 
-TEST_F(K10, AnotherAssetsCommandsAreDroppedAndARepeatedIdGetsItsFinalAckAgain) {
-    manager->receive(make("x1", "Admin", "noOp", {}, QueueAction::Bypass, "", OP, "K10Blue"));
-    auto id = send("Admin", "echo", {Value(std::string("first"))});
-    out.final_(id);
-    send("Admin", "echo", {Value(std::string("again"))}, QueueAction::Bypass, "", OP, id);
-    EXPECT_TRUE(out.seq("x1").empty());
-    // nothing ran again: the stored final ack, written once more (issue 42)
-    EXPECT_EQ(out.seq(id), (Seq{{"EXECUTING", "NOT"}, {"COMPLETED", "OK"}, {"COMPLETED", "OK"}}));
-    EXPECT_EQ(out.last_message(id), "first");
-    std::lock_guard<std::mutex> lock(out.mutex);
-    EXPECT_EQ(out.logs.size(), 2u);
-}
-
-TEST_F(K10, BuiltinsAnswerAtOnceAndHandlersReportProgressAndFailures) {
-    auto echo = send("Admin", "echo", {Value(std::string("hello"))});
-    EXPECT_EQ(out.final_(echo), BYPASS_OK);
-    EXPECT_EQ(out.last_message(echo), "hello");
-    auto native = send("K10Native", "nativeCommand", {Value(std::string("go"))});
-    EXPECT_EQ(out.final_(native),
-              (Seq{{"EXECUTING", "NOT"}, {"EXECUTING", "NOT"}, {"EXECUTING", "NOT"}, {"COMPLETED", "OK"}}));
-    EXPECT_EQ(out.message(native, 1), "step 1");
-    EXPECT_EQ(out.last_message(native), "ran go");
-    auto boom = send("K10Native", "nativeCommand", {Value(std::string("boom"))});
-    EXPECT_EQ(out.final_(boom).back().second, "EXEC_FAILED");
-    EXPECT_EQ(out.last_message(boom), "handler error: std::runtime_error: boom");
+// (validation.yaml's builtins case has the rest: a handler's own Cancelled is no behaviour of its)
+TEST_F(K10, AHandlerThrowingCancelledIsCanceled) {
     auto cancel = send("K10Native", "nativeCommand", {Value(std::string("cancel-me"))});
-    EXPECT_EQ(out.final_(cancel).back().second, "CANCELED");
-    auto macro = send("Queue", "loadMacro", {Value(std::string("m"))});  // standard, but the handler's
-    EXPECT_EQ(out.final_(macro).back().second, "EXEC_FAILED");
-    EXPECT_EQ(out.last_message(macro), "not implemented");
+    EXPECT_EQ(out.final_(cancel), (Seq{{"EXECUTING", "NOT"}, {"COMPLETED", "CANCELED"}}));
 }
 
 TEST(Logic, ShutdownCallsBackAfterItsCompletedAck) {
@@ -453,19 +275,6 @@ TEST(Logic, ShutdownCallsBackAfterItsCompletedAck) {
     EXPECT_TRUE(down);
 }
 
-TEST_F(K10, StopAllMotionCancelsPendingAndRunningMobilityCommands) {
-    std::vector<Value> move{Value(std::string("site")), Value(Vec3d{1.0, 0.0, 0.0})};
-    auto a = send("Mobility", "simpleMove", move, QueueAction::Append);
-    out.until(a, "EXECUTING");
-    auto b = send("Mobility", "simpleMove", move, QueueAction::Append);
-    auto p = send("PanCam", "takePicture", {Value(std::string("left")), Value(0.0f)}, QueueAction::Append);
-    send("Mobility", "stopAllMotion");
-    EXPECT_EQ(out.final_(a).back().second, "CANCELED");
-    EXPECT_EQ(out.final_(b), (Seq{{"QUEUED", "NOT"}, {"COMPLETED", "CANCELED"}}));
-    EXPECT_EQ(out.last_message(b), "stopAllMotion");
-    EXPECT_EQ(out.final_(p), QUEUED_OK);  // not motion: runs on
-}
-
 TEST_F(K10, QueueStateRecordsCompletedCommands) {
     auto a = send("PanCam", "takePicture", {Value(std::string("left")), Value(0.0f)}, QueueAction::Append);
     out.final_(a);
@@ -477,7 +286,7 @@ TEST_F(K10, QueueStateRecordsCompletedCommands) {
     EXPECT_EQ(out.last_completed.back().result, RecordResult::Succeeded);
 }
 
-// ---- test_command_window.py (tables only) ---------------------------------------------------------
+// ---- the command window --------------------------------------------------------------------------
 
 class Window : public K10 {
 protected:
@@ -495,7 +304,8 @@ TEST(Logic, DefaultWindowIsAFewThousandCommands) {
     EXPECT_EQ(BYPASS_LIMIT, 64u);
 }
 
-TEST_F(Window, TablesStayWithinTheWindowAndTheOldestAcksAreRetired) {
+// (window.yaml has the retirements and repeats; the manager's own tables stay bounded)
+TEST_F(Window, TablesStayWithinTheWindow) {
     auto w = [](int i) { return "w" + std::to_string(i); };
     for (int i = 0; i < 40; ++i) {
         send("Admin", "noOp", {}, QueueAction::Bypass, "", OP, w(i));
@@ -503,111 +313,7 @@ TEST_F(Window, TablesStayWithinTheWindowAndTheOldestAcksAreRetired) {
         EXPECT_LE(manager->acks_kept().size(), 5u);
     }
     for (int i = 0; i < 40; ++i) EXPECT_EQ(out.seq(w(i)), BYPASS_OK);
-    std::vector<std::string> retired{"c1"};  // the fixture's requestControl, then completion order
-    for (int i = 0; i < 35; ++i) retired.push_back(w(i));
-    {
-        std::lock_guard<std::mutex> lock(out.mutex);
-        EXPECT_EQ(out.retired, retired);
-    }
     EXPECT_EQ(manager->acks_kept(), (std::vector<std::string>{"w35", "w36", "w37", "w38", "w39"}));
-    send("Admin", "noOp", {}, QueueAction::Bypass, "", OP, "w39");  // within the window: its final ack again
-    EXPECT_EQ(out.seq("w39"), (Seq{{"EXECUTING", "NOT"}, {"COMPLETED", "OK"}, {"COMPLETED", "OK"}}));
-    send("Admin", "noOp", {}, QueueAction::Bypass, "", OP, "w30");  // 9 newer since: a new command
-    EXPECT_EQ(out.seq("w30"), (Seq{{"EXECUTING", "NOT"}, {"COMPLETED", "OK"}, {"EXECUTING", "NOT"}, {"COMPLETED", "OK"}}));
-    EXPECT_EQ(manager->acks_kept().size(), 5u);  // (the manager's lock, then the outbox's: never both)
-    std::lock_guard<std::mutex> lock(out.mutex);
-    EXPECT_EQ(out.retired.back(), "w35");
-}
-
-TEST_F(Window, ARunningCommandIsNeverTakenForNewNorRetired) {
-    window = 3;
-    manager = std::make_unique<CommandManager>(k10_tables(), camera, out, options());
-    send("AccessControl", "requestControl", {}, QueueAction::Bypass, "", OP, "control");
-    send("PanCam", "pointCamera", point(), QueueAction::Bypass, "", OP, "long");
-    for (int i = 0; i < 10; ++i) send("Admin", "noOp", {}, QueueAction::Bypass, "", OP, "w" + std::to_string(i));
-    send("PanCam", "pointCamera", point(), QueueAction::Bypass, "", OP, "long");  // out of the window but running
-    EXPECT_EQ(out.seq("long"), (Seq{{"EXECUTING", "NOT"}}));
-    camera.release = true;
-    ASSERT_TRUE(manager->wait_idle(10));
-    EXPECT_EQ(out.seq("long"), BYPASS_OK);
-    auto kept = manager->acks_kept();
-    EXPECT_EQ(kept.size(), 3u);
-    EXPECT_EQ(kept.back(), "long");
-    std::lock_guard<std::mutex> lock(out.mutex);
-    EXPECT_EQ(std::count(out.retired.begin(), out.retired.end(), "long"), 0);
-}
-
-// ---- test_flood_limits.py -----------------------------------------------------------------------
-
-class Limits : public K10 {
-protected:
-    ManagerOptions options() override {
-        ManagerOptions o;
-        o.queue_limit = 3;
-        o.bypass_limit = 2;
-        return o;
-    }
-};
-
-TEST_F(Limits, AFullQueueRefusesNewCommandsAndKeepsTheQueuedOnes) {
-    auto hold = send("PanCam", "pointCamera", point(), QueueAction::Append);  // runs, holding the queue
-    out.until(hold, "EXECUTING");
-    for (int i = 0; i < 3; ++i) send("Admin", "noOp", {}, QueueAction::Append, "", OP, "q" + std::to_string(i));
-    EXPECT_EQ(manager->pending_count(), 3u);
-    send("Admin", "noOp", {}, QueueAction::Append, "", OP, "over");
-    EXPECT_EQ(out.seq("over"), (Seq{{"COMPLETED", "EXEC_FAILED"}}));
-    EXPECT_EQ(out.message("over", 0), "queue full (3 pending); retry later");
-    EXPECT_EQ(manager->pending_count(), 3u);
-    camera.release = true;
-    ASSERT_TRUE(manager->wait_idle(10));
-    EXPECT_FALSE(manager->suspended());
-    for (int i = 0; i < 3; ++i) EXPECT_EQ(out.seq("q" + std::to_string(i)), QUEUED_OK);
-    send("Admin", "noOp", {}, QueueAction::Append, "", OP, "after");  // room again
-    ASSERT_TRUE(manager->wait_idle(10));
-    EXPECT_EQ(out.final_("after"), QUEUED_OK);
-}
-
-TEST_F(Limits, TooManyBypassCommandsAtOnceAreRefused) {
-    send("PanCam", "pointCamera", point(), QueueAction::Bypass, "", OP, "b0");
-    send("PanCam", "pointCamera", point(), QueueAction::Bypass, "", OP, "b1");  // b0 canceled, still returning
-    send("Admin", "noOp", {}, QueueAction::Bypass, "", OP, "b2");
-    auto b2 = out.final_("b2");
-    // b0 may have returned already (it notices cancellation within 10 ms): then b2 runs
-    if (b2.size() == 1) {
-        EXPECT_EQ(b2, (Seq{{"COMPLETED", "EXEC_FAILED"}}));
-        EXPECT_EQ(out.message("b2", 0), "2 commands already running beside the queue; retry later");
-    }
-    camera.release = true;
-    ASSERT_TRUE(manager->wait_idle(10));
-    EXPECT_EQ(out.final_("b0").back().second, "CANCELED");
-    EXPECT_EQ(out.final_("b1").back().second, "OK");
-    send("Admin", "noOp", {}, QueueAction::Bypass, "", OP, "b3");
-    EXPECT_EQ(out.final_("b3"), BYPASS_OK);
-}
-
-// A handler that holds its command until released: the bypass limit without a race.
-TEST(Logic, BypassLimitWithHeldHandlers) {
-    struct Held : Handlers {
-        std::atomic<bool> go{false};
-        Result execute(CommandContext&) override {
-            while (!go) std::this_thread::sleep_for(1ms);
-            return Result::ok();
-        }
-    } held;
-    TestOutbox out;
-    ManagerOptions o;
-    o.bypass_limit = 2;
-    CommandManager m(k10_tables(), held, out, o);
-    m.receive(make("r", "AccessControl", "requestControl"));
-    m.receive(make("n1", "K10Native", "nativeCommand", {Value(std::string("a"))}));
-    m.receive(make("n2", "K10Native", "nativeCommand", {Value(std::string("b"))}));
-    m.receive(make("n3", "K10Native", "nativeCommand", {Value(std::string("c"))}));
-    EXPECT_EQ(out.seq("n3"), (Seq{{"COMPLETED", "EXEC_FAILED"}}));
-    EXPECT_EQ(out.message("n3", 0), "2 commands already running beside the queue; retry later");
-    EXPECT_FALSE(m.suspended());
-    held.go = true;
-    ASSERT_TRUE(m.wait_idle(10));
-    EXPECT_EQ(out.seq("n1"), BYPASS_OK);
 }
 
 // ---- test_intake.py ---------------------------------------------------------------------------
@@ -718,22 +424,15 @@ TEST(Intake, AFloodIsAnsweredBusyThenDroppedAndCounted) {
     EXPECT_EQ(run, (std::vector<std::string>{"f0", "f1", "f2", "f3"}));
 }
 
-TEST(Intake, RefuseAnswersBusyOnceAndForgetsTheId) {
+// (validation.yaml's door case has the rest)
+TEST(Intake, ARefusedEmptyCmdIdIsNotAnswered) {
     TestOutbox out;
     Handlers none;
     CommandManager m(k10_tables(), none, out);
-    m.refuse(noop("x1"), "bridge busy");
-    EXPECT_EQ(out.seq("x1"), (Seq{{"COMPLETED", "EXEC_FAILED"}}));
-    EXPECT_EQ(out.message("x1", 0), "bridge busy");
-    m.refuse(make("other", "Admin", "noOp", {}, QueueAction::Bypass, "", OP, "K10Blue"), "bridge busy");  // not ours
     m.refuse(noop(""), "bridge busy");
-    EXPECT_TRUE(out.seq("other").empty());
+    m.refuse(noop("x1"), "bridge busy");
+    EXPECT_EQ(out.seq("x1"), (Seq{{"COMPLETED", "EXEC_FAILED"}}));  // (the door does answer)
     EXPECT_TRUE(out.seq("").empty());
-    m.receive(noop("x1"));  // sent again once the flood is over: a new command, judged
-    ASSERT_EQ(out.all("x1").size(), 2u);
-    EXPECT_NE(out.message("x1", 1), "bridge busy");
-    m.refuse(noop("x1"), "bridge busy");  // a seen id: its acks belong to that command
-    EXPECT_EQ(out.all("x1").size(), 2u);
 }
 
 TEST(Intake, TheManagerNamesControlCommands) {
