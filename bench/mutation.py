@@ -2,7 +2,7 @@
 the protocol specification's cases and a passing `rapidgen conform` run pin down?
 
     python bench/mutation.py [--sample 200] [--seed 1] [--oracle spec|conform|both]
-                             [--domain 225] [--json out.json] [--mutant NAME ...] [--function NAME]
+                             [--domain 9] [--json out.json] [--mutant NAME ...] [--function NAME]
 
 mutmut (3.x) writes every mutant of runtime/rapid_runtime/{manager,validate,access,cmdqueue,
 acks}.py into a copy of the runtime, each behind mutmut's trampoline (MUTANT_UNDER_TEST
@@ -197,7 +197,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--sample", type=int, default=200, help="mutants judged (a seeded sample of all)")
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--oracle", choices=("spec", "conform", "both"), default="both")
-    p.add_argument("--domain", type=int, default=225, help="DDS domain of the conform oracle (loopback only)")
+    p.add_argument("--domain", type=int, default=9, help="DDS domain of the conform oracle (loopback only)")
     p.add_argument("--mutant", action="append", default=[], help="judge these mutants (names as listed) only")
     p.add_argument("--function", help="sample the mutants of the functions of this name only (e.g. insert_after)")
     p.add_argument("--json", help="write every verdict here")

@@ -1,7 +1,7 @@
 """bench/mutation.py, short (the full campaign: `python bench/mutation.py`, figures in
 bench/README.md): three mutants of one function whose behaviour the protocol fixes
 (Pending.insert_after: where QUEUE_INSERT lands), judged by the spec cases and, for those
-the cases let live, by rapidgen conform against K10's bridge on the mutant (domain 64). The
+the cases let live, by rapidgen conform against K10's bridge on the mutant (domain 8). The
 unmutated runtime passes both oracles first (the script exits 1 otherwise), and a
 misplaced insert is killed: an oracle that passes everything would kill none."""
 from __future__ import annotations
@@ -16,7 +16,7 @@ from tests.runtime.live import ROOT
 
 pytest.importorskip("mutmut")
 pytest.importorskip("cyclonedds")
-DOMAIN = 64
+DOMAIN = 8
 
 
 def test_insert_after_mutants_are_killed(tmp_path):
