@@ -46,6 +46,7 @@ pub enum AckCompletedStatus { #[default] Not = 0, Ok = 1, BadSyntax = 2, ExecFai
 pub struct Ack {
     #[dust_dds(key)]
     pub hdr: Header,
+    #[dust_dds(key)]
     pub cmd_id: String,
     pub status: AckStatus,
     pub completed_status: AckCompletedStatus,
@@ -192,7 +193,7 @@ fn main() {
         "pong" => {
             // answer each Command with an Ack of its cmdId (the latency peer)
             let r = subscriber.create_datareader::<Command>(&cmds, QosKind::Specific(rqos(false, 100)), NO_LISTENER, NO_STATUS).unwrap();
-            let w = publisher.create_datawriter::<Ack>(&acks, QosKind::Specific(wqos(false, 100)), NO_LISTENER, NO_STATUS).unwrap();
+            let w = publisher.create_datawriter::<Ack>(&acks, QosKind::Specific(wqos(true, 100)), NO_LISTENER, NO_STATUS).unwrap();
             println!("READY");
             let end = Instant::now() + Duration::from_secs(secs);
             while Instant::now() < end {

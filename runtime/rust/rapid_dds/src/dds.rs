@@ -1,0 +1,200 @@
+//! Cyclone DDS entities through cyclors, safe to use: a participant, blob topics (a type name
+//! and raw CDR), writers and readers with the RAPID QoS sides (reliability, durability,
+//! history) in one partition. The transport is Cyclone's: CYCLONEDDS_URI (the generated
+//! qos/cyclonedds/local.xml keeps it on 127.0.0.1).
+use std::ffi::CString;
+
+use cyclors::*;
+
+#[derive(Debug)]
+pub struct DdsError(pub String);
+
+impl std::fmt::Display for DdsError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for DdsError {}
+
+fn check(what: &str, ret: dds_entity_t) -> Result<dds_entity_t, DdsError> {
+    if ret < 0 {
+        Err(DdsError(format!("{what}: DDS error {ret}")))
+    } else {
+        Ok(ret)
+    }
+}
+
+/// One side of a RAPID QoS profile (the generated asset::QosSide's facts).
+#[derive(Clone, Copy, Debug)]
+pub struct Side {
+    pub reliable: bool,
+    pub transient_local: bool,
+    /// None: keep all
+    pub depth: Option<i32>,
+}
+
+struct Qos(*mut dds_qos_t);
+
+impl Qos {
+    fn new(partition: Option<&str>, side: Option<Side>) -> Qos {
+        // SAFETY: a fresh qos object, owned by this value and deleted on drop
+        unsafe {
+            let q = dds_create_qos();
+            if let Some(p) = partition {
+                let c = CString::new(p).unwrap_or_default();
+                let mut names = [c.as_ptr()];
+                dds_qset_partition(q, 1, names.as_mut_ptr());
+            }
+            if let Some(s) = side {
+                if s.reliable {
+                    dds_qset_reliability(q, dds_reliability_kind_DDS_RELIABILITY_RELIABLE, 100_000_000);
+                } else {
+                    dds_qset_reliability(q, dds_reliability_kind_DDS_RELIABILITY_BEST_EFFORT, 0);
+                }
+                let d = if s.transient_local {
+                    dds_durability_kind_DDS_DURABILITY_TRANSIENT_LOCAL
+                } else {
+                    dds_durability_kind_DDS_DURABILITY_VOLATILE
+                };
+                dds_qset_durability(q, d);
+                match s.depth {
+                    Some(n) => dds_qset_history(q, dds_history_kind_DDS_HISTORY_KEEP_LAST, n),
+                    None => dds_qset_history(q, dds_history_kind_DDS_HISTORY_KEEP_ALL, 0),
+                }
+            }
+            Qos(q)
+        }
+    }
+}
+
+impl Drop for Qos {
+    fn drop(&mut self) {
+        // SAFETY: created by dds_create_qos, deleted once
+        unsafe { dds_delete_qos(self.0) }
+    }
+}
+
+/// A domain participant with one publisher and one subscriber in the asset's partition.
+pub struct Participant {
+    dp: dds_entity_t,
+    publisher: dds_entity_t,
+    subscriber: dds_entity_t,
+}
+
+// SAFETY: Cyclone's entity handles are integers its API takes from any thread
+unsafe impl Send for Participant {}
+unsafe impl Sync for Participant {}
+
+impl Participant {
+    pub fn new(domain: u32, partition: &str) -> Result<Participant, DdsError> {
+        // SAFETY: plain calls of Cyclone's C API with valid arguments
+        unsafe {
+            let dp = check("participant", dds_create_participant(domain, std::ptr::null(), std::ptr::null()))?;
+            let q = Qos::new(Some(partition), None);
+            let publisher = check("publisher", dds_create_publisher(dp, q.0, std::ptr::null()))?;
+            let subscriber = check("subscriber", dds_create_subscriber(dp, q.0, std::ptr::null()))?;
+            Ok(Participant { dp, publisher, subscriber })
+        }
+    }
+
+    /// A topic carrying CDR bytes of `type_name`; keyed: a WITH_KEY topic (the blob type
+    /// computes no key: every sample is one instance on the writer's side).
+    pub fn topic(&self, name: &str, type_name: &str, keyed: bool) -> Result<Topic, DdsError> {
+        let n = CString::new(name).map_err(|_| DdsError(format!("topic name {name:?}")))?;
+        let t = CString::new(type_name).map_err(|_| DdsError(format!("type name {type_name:?}")))?;
+        // SAFETY: the strings outlive the call; cyclocut copies them
+        let topic = unsafe { cdds_create_blob_topic(self.dp, n.as_ptr() as *mut _, t.as_ptr() as *mut _, !keyed) };
+        Ok(Topic(check(&format!("topic {name}"), topic)?))
+    }
+
+    pub fn writer(&self, topic: &Topic, side: Side) -> Result<Writer, DdsError> {
+        let q = Qos::new(None, Some(side));
+        // SAFETY: valid entities and qos
+        let w = unsafe { dds_create_writer(self.publisher, topic.0, q.0, std::ptr::null()) };
+        Ok(Writer { w: check("writer", w)?, topic: topic.0 })
+    }
+
+    pub fn reader(&self, topic: &Topic, side: Side) -> Result<Reader, DdsError> {
+        let q = Qos::new(None, Some(side));
+        // SAFETY: valid entities and qos
+        let r = unsafe { dds_create_reader(self.subscriber, topic.0, q.0, std::ptr::null()) };
+        Ok(Reader(check("reader", r)?))
+    }
+}
+
+impl Drop for Participant {
+    fn drop(&mut self) {
+        // SAFETY: deletes the participant and everything in it, once
+        unsafe {
+            dds_delete(self.dp);
+        }
+    }
+}
+
+#[derive(Clone, Copy)]
+pub struct Topic(dds_entity_t);
+
+#[derive(Clone, Copy)]
+pub struct Writer {
+    w: dds_entity_t,
+    topic: dds_entity_t,
+}
+
+// SAFETY: entity handles (integers); Cyclone locks internally
+unsafe impl Send for Writer {}
+unsafe impl Sync for Writer {}
+
+impl Writer {
+    /// Writes one sample given as its CDR bytes (encapsulation header included).
+    pub fn write(&self, bytes: &[u8]) -> Result<(), DdsError> {
+        // SAFETY: the sertype is the topic's; from_ser_iov copies the bytes into a new serdata,
+        // which dds_writecdr takes over
+        unsafe {
+            let mut st: *const ddsi_sertype = std::ptr::null();
+            check("sertype", dds_get_entity_sertype(self.topic, &mut st))?;
+            let from = (*(*st).serdata_ops).from_ser_iov.ok_or(DdsError("no from_ser_iov".into()))?;
+            let iov = ddsrt_iovec_t { iov_base: bytes.as_ptr() as *mut _, iov_len: bytes.len() as _ };
+            let sd = from(st, ddsi_serdata_kind_SDK_DATA, 1, &iov, bytes.len());
+            check("write", dds_writecdr(self.w, sd))?;
+        }
+        Ok(())
+    }
+}
+
+#[derive(Clone, Copy)]
+pub struct Reader(dds_entity_t);
+
+// SAFETY: entity handle (integer)
+unsafe impl Send for Reader {}
+
+impl Reader {
+    /// The next sample's CDR bytes; None when there is none now (a sample without data, a
+    /// dispose or unregister, is passed over).
+    pub fn take(&self) -> Option<Vec<u8>> {
+        loop {
+            // SAFETY: dds_takecdr hands over one serdata reference, released below
+            unsafe {
+                let mut sd: *mut ddsi_serdata = std::ptr::null_mut();
+                let mut info: dds_sample_info_t = std::mem::zeroed();
+                if dds_takecdr(self.0, &mut sd, 1, &mut info, DDS_ANY_STATE) <= 0 || sd.is_null() {
+                    return None;
+                }
+                let ops = (*sd).ops;
+                let bytes = match ((*ops).get_size, (*ops).to_ser) {
+                    (Some(size), Some(to_ser)) if info.valid_data => {
+                        let n = size(sd) as usize;
+                        let mut buf = vec![0u8; n];
+                        to_ser(sd, 0, n, buf.as_mut_ptr() as *mut _);
+                        Some(buf)
+                    }
+                    _ => None,
+                };
+                ddsi_serdata_unref(sd);
+                if bytes.is_some() {
+                    return bytes;
+                }
+            }
+        }
+    }
+}

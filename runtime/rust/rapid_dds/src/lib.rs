@@ -1,0 +1,14 @@
+//! The RAPID asset runtime's DDS layer for Rust (issue 38, second stage), on Cyclone DDS's C
+//! library through cyclors (docs/rust-backend.md, "Choosing the DDS stack"): a participant on
+//! the asset's domain, commands read from the asset's partition into
+//! [`rapid_runtime::CommandManager`], its acks, QueueState and AccessControlState written back,
+//! the asset's configs published transient-local. Samples travel as their CDR bytes (cyclors'
+//! blob topics), encoded and decoded by the generated codec.
+
+pub mod convert;
+pub mod dds;
+pub mod outbox;
+pub mod tables_json;
+
+pub use dds::{Participant, Reader, Topic, Writer};
+pub use outbox::DdsOutbox;
