@@ -47,19 +47,11 @@ class LiveSink:
 
 def run_live(args) -> int:
     """Serve until Ctrl-C/SIGTERM or --seconds. Exit 0; 1 when DDS, a descriptor or the port fails."""
-    from rapidgen.reporting import report
-    from rapidgen.diagnostics import DiagnosticSink
-    from rapidgen.live.dds import use_transport
-    from rapidgen.record.command import _schema_finder, load_types
-    sink = DiagnosticSink()
-    loaded = load_types(args.asset, sink)
-    report(sink)
-    if loaded is None:
+    from rapidgen.record.command import _schema_finder, open_assets
+    opened = open_assets(args)
+    if opened is None:
         return 1
-    bindings, models = loaded
-    use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None)
-    assets = [b.tables["ASSET"] for b in bindings[1:]]
-    domain = args.domain if args.domain is not None else (assets[0].get("domain", 0) if assets else 0)
+    bindings, models, assets, domain = opened
     server = FoxgloveServer(args.bind, tuple(args.foxglove_origin or ()), budget=args.foxglove_queue)
     live = LiveSink(server)
     stop = threading.Event()

@@ -58,24 +58,36 @@ def add_parser(sub) -> None:
     p.add_argument("--quiet", action="store_true", help="no progress line")
 
 
-def run(args) -> int:
-    if args.info is not None:
-        from rapidgen.record.info import print_info
-        return print_info(args.info)
-    from rapidgen.live.dds import dds_missing, use_transport
-    if dds_missing("record") or _mcap_missing("record"):
-        return 1
+def open_assets(args):
+    """What record and the live Foxglove server start from: the descriptors' bindings and
+    models (errors reported), the transport chosen, the asset tables and the domain; None
+    when a descriptor could not be loaded."""
     from rapidgen.diagnostics import DiagnosticSink
+    from rapidgen.live.dds import use_transport
     from rapidgen.reporting import report
     sink = DiagnosticSink()
     loaded = load_types(args.asset, sink)
     report(sink)
     if loaded is None:
-        return 1
+        return None
     bindings, models = loaded
     use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None)
     assets = [b.tables["ASSET"] for b in bindings[1:]]
     domain = args.domain if args.domain is not None else (assets[0].get("domain", 0) if assets else 0)
+    return bindings, models, assets, domain
+
+
+def run(args) -> int:
+    if args.info is not None:
+        from rapidgen.record.info import print_info
+        return print_info(args.info)
+    from rapidgen.live.dds import dds_missing
+    if dds_missing("record") or _mcap_missing("record"):
+        return 1
+    opened = open_assets(args)
+    if opened is None:
+        return 1
+    bindings, models, assets, domain = opened
     partitions = set(args.partition) | {a.get("partition", a["name"]) for a in assets}
     output = args.output or time.strftime("rapid-%Y%m%d-%H%M%S.mcap")
     try:
