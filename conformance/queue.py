@@ -57,12 +57,14 @@ def fifo(s):
         s.wait_acks(cid)
     for cid in ids:  # one lost: the order cannot be judged (CMD-16 names it)
         s.require_final(cid)
-    acks = [a for a in s.client.acks if a.cmd_id in ids]
+    # as the asset wrote them (one take hands a keyed topic's samples out instance by instance)
+    acks = sorted((a for a in s.client.acks if a.cmd_id in ids), key=lambda a: (a.stamp, a.index))
+    place = {id(a): n for n, a in enumerate(acks)}
     finals = [a.cmd_id for a in acks if a.status == "ACK_COMPLETED"]
     expect(finals == ids, "COMPLETED in the order appended", f"{[ids.index(f) for f in finals]} of {len(ids)}")
     for k in range(1, len(ids)):  # k's EXECUTING comes after k-1's COMPLETED
-        done = next(a.index for a in acks if a.cmd_id == ids[k - 1] and a.status == "ACK_COMPLETED")
-        early = [a for a in acks if a.cmd_id == ids[k] and a.status == "ACK_EXECUTING" and a.index < done]
+        done = next(place[id(a)] for a in acks if a.cmd_id == ids[k - 1] and a.status == "ACK_COMPLETED")
+        early = [a for a in acks if a.cmd_id == ids[k] and a.status == "ACK_EXECUTING" and place[id(a)] < done]
         expect(not early, f"command {k + 1} executing after command {k} completed", describe(early))
     for cid in ids:
         s.expect_ok(s.client.acks_of(cid), "an appended command")

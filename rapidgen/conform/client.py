@@ -63,8 +63,9 @@ class AckSeen:
     message: str
     asset: str
     src: str
-    # the ack's hdr.timeStamp: the order the asset wrote acks in. `index` is the order they were
-    # taken in, and one take returns a keyed topic's samples instance by instance, not as they came
+    # when the asset's writer wrote it (DDS source timestamp, ns): the order the asset wrote acks
+    # in. `index` is the order they were taken in, and one take returns a keyed topic's samples
+    # instance by instance, not as they came (the header's stamp may be the command's, unrefreshed)
     stamp: int = 0
 
 
@@ -322,7 +323,8 @@ class Client:
             self.acks_not_kept += 1
             return
         self.acks.append(AckSeen(self._ack_count - 1, now, cid, enum_name(s.status), enum_name(s.completedStatus),
-                                 s.message, s.hdr.assetName, s.hdr.srcName, s.hdr.timeStamp))
+                                 s.message, s.hdr.assetName, s.hdr.srcName,
+                                 getattr(getattr(s, "sample_info", None), "source_timestamp", 0) or 0))
 
     def stop(self) -> None:
         self.stopping.set()

@@ -369,7 +369,7 @@ class Session:
         requestors[0] that grabControl(cookie) turns into control. Returns the acks. The
         holder (Session.holder) is the source once the state names it after an OK, or once
         grabControl(cookie) is answered OK."""
-        acks = self.run(("AccessControl", "requestControl"), [], source=source)
+        acks = self._run_again(("AccessControl", "requestControl"), source)
         f = self.final(acks)
         if self.controller(1.5, want=source) == source:
             if f is not None and f.completed == OK:
@@ -389,10 +389,16 @@ class Session:
         grab = self.facts.command("AccessControl", "grabControl")
         acks: list = []
         if grab is not None and not grab.params:
-            acks = self.run(("AccessControl", "grabControl"), [], source=source)
+            acks = self._run_again(("AccessControl", "grabControl"), source)
             if self.holder == source:
                 return acks
         return acks + self.take_control(source)  # no grabControl, or refused: ask
+
+    def _run_again(self, cmd: tuple[str, str], source: str) -> list:
+        """An AccessControl command the run cannot go on without, sent once more when the first
+        gets no final ack (lost: CMD-16 names it); BLOCKED when the second gets none either."""
+        acks = self.run(cmd, [], source=source, final=False)
+        return acks if self.final(acks) is not None else self.run(cmd, [], source=source)
 
     def ensure_control(self) -> None:
         """Our source holds control on an asset with access control (or nothing to do),
