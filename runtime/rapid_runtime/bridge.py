@@ -146,6 +146,7 @@ class Bridge:
 
     def ack(self, cmd, status, completed, message) -> None:
         writer = self._acks().writer_for(_ack_key(cmd))
+        assert self._ack_wire is not None  # (made with the first ack writer, by _acks())
         data = self._ack_wire.encode(cmd.src_name, cmd.asset_name, cmd.serial, M.now_us(), cmd.cmd_id, status,
                                      completed, message)
         if data is None:  # what ack_wire does not encode exactly: cyclonedds' own serializer, its errors

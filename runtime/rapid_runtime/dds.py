@@ -130,7 +130,7 @@ class ReaderThread:
                         self.on_batch(samples)
                     except Exception as exc:  # (on_batch handles its samples' own trouble)
                         self.log(f"samples on {self.reader.topic.name} not handled: {type(exc).__name__}: {exc}")
-                    samples = ()
+                    samples = []
                 for sample in samples:
                     try:
                         self.on_sample(sample)
