@@ -25,9 +25,9 @@ import threading
 from dataclasses import dataclass, field
 from typing import Any
 
-from aiohttp import WSMsgType, web
+from aiohttp import web
 
-from rapidgen.monitor.server import Gate
+from rapidgen.monitor.server import Gate, json_objects
 
 SUBPROTOCOL = "foxglove.websocket.v1"
 CLIENT_BUDGET = 32 << 20  # bytes queued for one client before it is dropped
@@ -220,15 +220,8 @@ class FoxgloveServer:
                                     ensure_ascii=True))
         writer = c.writer = asyncio.create_task(self._writer(c))
         try:
-            async for m in ws:
-                if m.type != WSMsgType.TEXT:
-                    continue
-                try:
-                    msg = json.loads(m.data)
-                except ValueError:
-                    continue
-                if isinstance(msg, dict):
-                    self._subscribe(c, msg)
+            async for msg in json_objects(ws):
+                self._subscribe(c, msg)
         finally:
             self.clients.discard(c)
             writer.cancel()

@@ -122,6 +122,20 @@ async def _headers(request: web.Request, handler) -> web.StreamResponse:
     return resp
 
 
+async def json_objects(ws):
+    """The JSON objects a client sends on a WebSocket (text frames that parse as an object;
+    anything else is ignored): the monitor's page and Foxglove clients alike."""
+    async for m in ws:
+        if m.type != WSMsgType.TEXT:
+            continue
+        try:
+            msg = json.loads(m.data)
+        except ValueError:
+            continue
+        if isinstance(msg, dict):
+            yield msg
+
+
 def make_app(source: Source, tick: float = 0.1, bind: str = "127.0.0.1") -> web.Application:
     app = web.Application(middlewares=[_headers], client_max_size=MAX_MESSAGE)
     gate = app["gate"] = Gate(bind)
@@ -161,17 +175,10 @@ def make_app(source: Source, tick: float = 0.1, bind: str = "127.0.0.1") -> web.
         await ws.send_json({"type": "hello", "mode": source.mode, **source.info()})
         pusher = asyncio.create_task(_push(ws, source, tick))
         try:
-            async for m in ws:
-                if m.type != WSMsgType.TEXT:
-                    continue
-                try:
-                    msg = json.loads(m.data)
-                except ValueError:
-                    continue
-                if isinstance(msg, dict):
-                    answer = await asyncio.get_running_loop().run_in_executor(None, source.handle, msg)
-                    if answer is not None:
-                        await ws.send_json(answer)
+            async for msg in json_objects(ws):
+                answer = await asyncio.get_running_loop().run_in_executor(None, source.handle, msg)
+                if answer is not None:
+                    await ws.send_json(answer)
         finally:
             pusher.cancel()
         return ws
