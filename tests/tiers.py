@@ -59,6 +59,7 @@ NEEDS: dict[str, frozenset[str]] = {k: frozenset(v.split()) for k, v in {
     "tests/qos/test_cyclone.py": "dds compiler",
     "tests/rust/test_interop.py": "compiler dds",
     "tests/rust/test_interop_cpp.py": "compiler dds",
+    "tests/rust_runtime/test_dds_bridge.py": "compiler dds",
     "tests/rust_runtime/test_texts.py": "",
     "tests/runtime/test_spec_cases.py": "",
     "tests/runtime/test_texts.py": "",

@@ -1,5 +1,6 @@
 //! A minimal K10 bridge on the Rust runtime and its DDS layer (issue 38, second stage):
-//! simulated handlers (every command OK), the asset's configs published transient-local,
+//! simulated handlers (every command OK; a Mobility move drives 10 m/s, 500 m in 50 s, until
+//! told to stop: the queue checks need a command that holds the queue), the asset's configs published transient-local,
 //! commands read from its partition. Telemetry is not published yet.
 //!   k10_bridge --tables FILE [--domain N]
 //! FILE: the asset's tables as JSON (rapid_dds::tables_json). Loopback only unless
@@ -10,13 +11,26 @@ use std::time::Duration;
 
 use rapid_dds::dds::Side;
 use rapid_dds::{convert, tables_json, DdsOutbox, Participant};
-use rapid_runtime::{CommandManager, Context, Handlers, Options, Outcome};
+use rapid_runtime::{CommandManager, Context, Handlers, Options, Outcome, Value};
 
 struct Simulated;
 
 impl Handlers for Simulated {
-    fn execute(&self, _ctx: &Context) -> Outcome {
-        Outcome::Ok(String::new())
+    fn execute(&self, ctx: &Context) -> Outcome {
+        let metres = ctx.args().iter().find_map(|v| match v {
+            Value::Vec3d(x) => Some((x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()),
+            _ => None,
+        });
+        match metres {
+            Some(m) if ctx.subsystem() == "Mobility" => {
+                if ctx.sleep(Duration::from_secs_f64(m / 10.0)) {
+                    Outcome::Ok(format!("{m:.0} m driven (simulated)"))
+                } else {
+                    Outcome::Canceled
+                }
+            }
+            _ => Outcome::Ok(String::new()),
+        }
     }
 }
 
