@@ -165,8 +165,8 @@ class Replay:
     def crash(self) -> None:
         """The process dies: the journal as the disk has it, nothing more written by the old manager."""
         old = self.m
-        with old.lock:
-            journal, old.journal, old.out = old.journal, None, Dead()
+        with old.lock:  # (closing: the dead manager starts nothing more, as a dead process would)
+            journal, old.journal, old.out, old.closing = old.journal, None, Dead(), True
         if journal is not None:
             os.close(journal.fd)  # (no clean stop record: the next start recovers)
         self.m = self.manager()
@@ -174,6 +174,10 @@ class Replay:
     def cmd(self, s: dict) -> Cmd:
         args = tuple((a["type"], tuple(a["value"]) if isinstance(a["value"], list) else a["value"]) for a in s["args"])
         return Cmd(s["id"], s["src"], s["subsystem"], s["name"], args, s["action"], s["target"], s["src"], s["asset"])
+
+    def finished(self, cmd_id: str) -> bool:
+        with self.out.cond:
+            return any(a[0] == "COMPLETED" for a in self.out.acks.get(cmd_id, []))
 
     def until(self, what: str, ok, seen) -> None:
         # woken by every write to the outbox and handler call; the manager's own view (pending)
@@ -189,7 +193,9 @@ class Replay:
     def step(self, s: dict) -> None:
         op, out = s["op"], self.out
         if op == "send":
-            self.handlers.behaviour[s["id"]] = s["handler"]
+            # a send's behaviour is its command's: a repeat of a cmdId still live must not change it
+            if s["id"] not in self.handlers.behaviour or self.finished(s["id"]):
+                self.handlers.behaviour[s["id"]] = s["handler"]
             self.m.receive(self.cmd(s))
         elif op == "refuse":
             self.m.refuse(self.cmd(s), s["why"])
