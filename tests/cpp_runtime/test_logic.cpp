@@ -185,17 +185,6 @@ const Seq BYPASS_OK{{"EXECUTING", "NOT"}, {"COMPLETED", "OK"}};
 
 // ---- the manager ----------------------------------------------------------------------------------
 
-// (the cases name a target never sent; here one that has finished)
-TEST_F(K10, AFinishedCommandIsNoLongerATarget) {
-    auto a = send("K10Native", "nativeCommand", {Value(std::string("x"))}, QueueAction::Append);
-    out.final_(a);
-    auto p = send("PanCam", "takePicture", {Value(std::string("left")), Value(0.0f)}, QueueAction::Append);
-    out.final_(p);
-    auto unknown = send("Admin", "noOp", {}, QueueAction::Delete, p);  // finished: no longer a target
-    EXPECT_EQ(out.final_(unknown), (Seq{{"COMPLETED", "BAD_SYNTAX"}}));
-    EXPECT_EQ(out.message(unknown, 0), "unknown targetCmdId '" + p + "' (not pending or running)");
-}
-
 // (queue.yaml's case has the refusal; a case cannot say that no QueueState is written)
 TEST(Logic, AnAssetWithoutAQueuePublishesNoQueueState) {
     Tables t;
