@@ -24,7 +24,8 @@ def select(checks: dict[str, Check], only: list[str], skip: list[str]) -> tuple[
 def run_checks(session, checks: list[Check], on_result=None) -> list[Result]:
     ordered = sorted(checks, key=lambda c: c.late)
     results: dict[str, Result] = {}
-    session.results = results  # what ran so far (SPEC-01 defers to the check of a rule that failed)
+    if session is not None:
+        session.results = results  # what ran so far (SPEC-01 defers to the check of a rule that failed)
     begin = getattr(session, "begin", None)  # the session names each command with the check that sent it
     for c in ordered:
         blockers = [n for n in c.needs if n in results and results[n].outcome not in (PASS, UNSUPPORTED)]

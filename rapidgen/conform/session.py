@@ -19,6 +19,7 @@ MAX_LISTED = 32  # strangers listed one by one in a report
 # An ack for a cmdId nobody sent arrived after ours was sent, and none carries ours this long
 # after it: the asset does not answer with the cmdIds it was sent (CMD-12's finding).
 GRACE = 1.0
+PROBE = 2.0  # s without any ack for a command before a probe asks whether it was lost (Session.run)
 HAND_BACK_WAIT = 3.0  # s for each AccessControl answer when control is handed back at the end
 
 
@@ -251,7 +252,7 @@ class Session:
             args = valid_args(cmd) if isinstance(cmd, Cmd) else []
         source = self.source if source is None else source
         cid = self.client.send(sub, name, args, source=source, **kw)
-        acks = self.wait_acks(cid, (COMPLETED,), timeout)
+        acks = self.wait_acks(cid, (COMPLETED,), timeout, probe=True)
         f = self.final(acks)
         if sub == "AccessControl" and f is not None and f.completed == OK:
             if name == "grabControl":
@@ -299,7 +300,16 @@ class Session:
             return False
         return enum_name(cmd.cmdAction) == "QUEUE_BYPASS" or self.facts.has_type("Queue")
 
-    def wait_acks(self, cmd_id: str, statuses: tuple[str, ...] = (COMPLETED,), timeout: float | None = None) -> list:
+    def _probe(self) -> str | None:
+        """Send the harmless command (BYPASS) to see whether the asset answers commands sent
+        after one that got no ack at all; None when the asset has none."""
+        c = self.facts.harmless()
+        if c is None or self.client.command_writer is None:
+            return None
+        return self.client.send(c.subsystem, c.name, valid_args(c), source=self.source)
+
+    def wait_acks(self, cmd_id: str, statuses: tuple[str, ...] = (COMPLETED,), timeout: float | None = None,
+                  probe: bool = False) -> list:
         """The cmdId's acks once one has a status in statuses, or at the timeout. Ends sooner,
         BLOCKED, once acks for cmdIds nobody sent (not the runner, no commander seen on
         rapid_command) have come since the command was sent and, GRACE s later, still none
@@ -309,12 +319,22 @@ class Session:
         self.awaited.setdefault(cmd_id, None)
         end = time.monotonic() + (self.timeout if timeout is None else self.allow(timeout))
         since = c.sent_at.get(cmd_id, time.monotonic())
+        probe_id: str | None = None
         with c.lock:
             while True:
                 acks = [a for a in c.acks if a.cmd_id == cmd_id]
                 now = time.monotonic()
                 if any(a.status in statuses for a in acks) or now >= end:
                     return acks
+                # probe: no ack at all PROBE s after sending: a command sent behind it tells a lost
+                # command (the probe answered, this one not: the asset answers a commander's commands
+                # in order) from a slow asset (neither answered); CMD-16 judges the loss in full
+                if probe and not acks and probe_id is None and now - since >= self.allow(PROBE):
+                    probe_id = self._probe() or ""
+                if probe_id and not acks:
+                    answered = next((a for a in c.acks if a.cmd_id == probe_id and a.status == COMPLETED), None)
+                    if answered is not None and now - answered.at >= self.allow(GRACE / 2, 1):
+                        return acks
                 odd = c.unsent(since)
                 if odd and now - odd[0].at >= GRACE:
                     why = (f"no ack carries cmdId {visible(cmd_id)!r} {now - since:.1f} s after it was sent; the "
