@@ -4,7 +4,7 @@ a command writer, an ack reader, a reader per config and telemetry topic. One th
 takes every sample as it arrives and stamps it with its arrival time.
 
 The wire is untrusted (any participant in the partition may write any topic, with any
-bytes), so every take goes through rapidgen.live.take.GuardedReader: a sample that does not
+bytes), so every take goes through rapid_runtime.untrusted.GuardedReader: a sample that does not
 decode is dropped alone and counted against its writer, a durable sample repeated by its
 writer is decoded once, batches are small. Samples are attributed before they are decoded:
 only those of the asset's own participants (Session.find_asset) are kept and judged; a
@@ -22,7 +22,7 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from rapidgen.live.take import GuardedReader
+from rapid_runtime.untrusted import GuardedReader
 
 if TYPE_CHECKING:
     from cyclonedds.sub import DataReader
