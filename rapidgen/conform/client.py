@@ -151,7 +151,7 @@ class Client:
         self._acks_per_cmd: collections.Counter[str] = collections.Counter()
         self._other_acks = 0
         self.acks_not_kept = 0
-        self.sent: dict[str, object] = {}  # cmdId -> Command we wrote
+        self.sent: dict[str, Any] = {}  # cmdId -> Command we wrote (the generated type)
         self.sent_at: dict[str, float] = {}  # cmdId -> time.monotonic() when we first wrote it
         # Accounting (CMD-16): who sent each cmdId (the check running, Session.begin), so a command
         # that gets no final ack is named with the check that sent it
