@@ -131,6 +131,8 @@ NAMES = {
     "queue-state-stale": ("QUE-07", ("QueueState republished when a command finishes", "still listed active")),
     "former-controller-keeps-rights": ("ACC-08", ("RAPID access violation", "once MultiCenterCockpit took control")),
     "release-unpublished": ("ACC-09", ("published on every change", "still 'RapidWorkbench' after releaseControl")),
+    "transfer-to-any-name": ("SPEC-01", ("transferControl refuses a name AccessControlState cannot hold",
+                                         "t1 ends COMPLETED EXEC_FAILED")),
     "allow-list-ignored": ("ACC-10", ("Admin/noOp from MultiCenterCockpit, the controller", "RAPID access violation")),
 }
 LONGEST = 60.0  # s: no run against a broken asset takes longer (issue 22: one took 188 s)
