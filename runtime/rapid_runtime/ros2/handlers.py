@@ -40,6 +40,9 @@ from rapid_runtime.ros2.rotations import quat_from_m33, rapid_rot, rotate, yaw_f
 from rapid_runtime.ros2.streams import StreamReader
 
 SERVICE_WAIT = 5.0  # s a service call or goal waits for its server when the mapping gives no timeout
+# s a command's message waits for a subscriber to match its publisher: ROS 2 topics are
+# volatile, so a goal published before the robot's node matched is lost without a word
+SUBSCRIBER_WAIT = 5.0
 GOAL_SUCCEEDED, GOAL_CANCELED, GOAL_ABORTED = 4, 5, 6  # action_msgs/GoalStatus
 
 
@@ -282,7 +285,7 @@ class Ros2Handlers(Handlers):
     def stream_state(self, spec, state, missed, text, level):
         """A stream's state change: the on_loss action, the log, the text telemetry, the agent keys."""
         if state == "lost" and spec["on_loss"] == "stop" and spec["stop"] is not None:
-            self._publish_of(spec["stop"], [])
+            self._publish_of(spec["stop"], [], wait=0.0)  # (a lost stream's stop goes out at once)
         self.bridge.log(text)
         texts = [t for t in self.bridge.tables.telemetry if t["kind"] == "text"]
         if texts:
@@ -328,11 +331,18 @@ class Ros2Handlers(Handlers):
                 raise CommandFailed(f"{type_name}.{path}: {exc}") from None
         return msg
 
-    def _publish_of(self, pub, args):
+    def _publish_of(self, pub, args, wait: float = SUBSCRIBER_WAIT) -> bool:
+        """Publish a command's message, once a subscriber matched or `wait` passed; False when
+        none had (published all the same: the caller says so)."""
         msg = self._build(message_class(pub["type"])(), pub["type"], pub["fields"], args)
+        publisher = self.publishers[(pub["topic"], pub["type"])]
+        end = time.monotonic() + wait
+        while publisher.get_subscription_count() == 0 and time.monotonic() < end:
+            time.sleep(0.02)
         if pub["stamp"]:
             msg.header.stamp = self.node.get_clock().now().to_msg()
-        self.publishers[(pub["topic"], pub["type"])].publish(msg)
+        publisher.publish(msg)
+        return publisher.get_subscription_count() > 0
 
     def _run(self, ctx, **kwargs):
         key = f"{ctx.subsystem}/{ctx.entry.name}"
@@ -438,9 +448,10 @@ class Ros2Handlers(Handlers):
             with self.lock:
                 self.waiters[(until["topic"], until["type"])].append(waiter)
         try:
-            self._publish_of(pub, args)
+            heard = self._publish_of(pub, args)
             if waiter is None:
-                return f"published on {pub['topic']}"
+                return f"published on {pub['topic']}" + ("" if heard else f"; no subscriber had matched within "
+                                                         f"{SUBSCRIBER_WAIT:.0f} s")
             ctx.progress(f"published on {pub['topic']}; waiting for {until['field']} on {until['topic']}")
             end = None if until["timeout"] is None else time.monotonic() + until["timeout"]
             while not waiter.done.wait(0.05):
