@@ -162,11 +162,7 @@ def targets(s):
        needs=("CMD-02", "QUE-02"))
 def delete(s):
     _queue(s)
-    long = s.long_running()  # Unsupported (why) when the runner may not send it
-    if long is None:
-        raise Unsupported("no long-running command (Mobility move) to hold the queue")
-    cmd, args = long
-    c = _harmless(s)
+    cmd, args, c = _held(s)
     first = s.client.send(cmd.subsystem, cmd.name, args, source=s.source, action="QUEUE_APPEND")
     second, d = "", []
     try:
@@ -209,6 +205,15 @@ def records(s):
     missing = [cid for cid in s.memo.get("fifo", []) if cid not in listed]
     expect(not bad, "record statuses matching their list", "; ".join(sorted(set(bad))[:4]))
     expect(not missing, "the appended commands listed in QueueState", f"{len(missing)} never listed")
+
+
+def _held(s):
+    """(the long-running command, its arguments, the harmless command) of a check that holds
+    the queue with a drive; Unsupported (why) when the runner may not send one."""
+    long = s.long_running()
+    if long is None:
+        raise Unsupported("no long-running command (Mobility move) to hold the queue")
+    return (*long, _harmless(s))
 
 
 def _records(q):
@@ -258,11 +263,7 @@ def positions(s):
     the queue carries on (it may suspend after a cancellation: soraCore), the four complete in
     that order."""
     _queue(s)
-    long = s.long_running()  # Unsupported (why) when the runner may not send it
-    if long is None:
-        raise Unsupported("no long-running command (Mobility move) to hold the queue")
-    cmd, args = long
-    c = _harmless(s)
+    cmd, args, c = _held(s)
 
     def send(action="QUEUE_APPEND", target=""):
         return s.client.send(c.subsystem, c.name, valid_args(c), source=s.source, action=action, target=target)
