@@ -27,6 +27,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from rapid_runtime.ros2.rotations import quat_from_euler, quat_from_m33
+
 # rapid::MessageLevel -> foxglove.LogLevel (DEBUG 1, INFO 2, WARNING 3, ERROR 4, FATAL 5)
 LOG_LEVELS = {"MSG_DEBUG": 1, "MSG_INFO": 2, "MSG_ATTENTION": 3, "MSG_WARN": 3, "MSG_ERROR": 4, "MSG_CRITICAL": 5}
 COMPRESSED = {"jpeg": "jpeg", "jpg": "jpeg", "pjpeg": "jpeg", "png": "png", "webp": "webp", "avif": "avif"}
@@ -67,36 +69,6 @@ def stamp(micros: Any, received_ns: int) -> dict[str, int]:
     return {"sec": min(ns // 1_000_000_000, 2**32 - 1), "nsec": ns % 1_000_000_000}
 
 
-def quat_from_m33(m: list[float]) -> tuple[float, float, float, float]:
-    """(x, y, z, w) of a row-major rotation matrix."""
-    r00, r01, r02, r10, r11, r12, r20, r21, r22 = m[:9]
-    tr = r00 + r11 + r22
-    if tr > 0:
-        s = math.sqrt(tr + 1.0) * 2
-        return ((r21 - r12) / s, (r02 - r20) / s, (r10 - r01) / s, 0.25 * s)
-    if r00 > r11 and r00 > r22:
-        s = math.sqrt(1.0 + r00 - r11 - r22) * 2
-        return (0.25 * s, (r01 + r10) / s, (r02 + r20) / s, (r21 - r12) / s)
-    if r11 > r22:
-        s = math.sqrt(1.0 + r11 - r00 - r22) * 2
-        return ((r01 + r10) / s, 0.25 * s, (r12 + r21) / s, (r02 - r20) / s)
-    s = math.sqrt(1.0 + r22 - r00 - r11) * 2
-    return ((r02 + r20) / s, (r12 + r21) / s, 0.25 * s, (r10 - r01) / s)
-
-
-def _axis(axis: str, angle: float) -> tuple[float, float, float, float]:
-    h = angle / 2
-    s = math.sin(h)
-    return {"X": (s, 0.0, 0.0, math.cos(h)), "Y": (0.0, s, 0.0, math.cos(h)), "Z": (0.0, 0.0, s, math.cos(h))}[axis]
-
-
-def _mul(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float, float, float]:
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return (aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
-            aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz)
-
-
 def is_rotation(m: list[float], tol: float = 1e-3) -> bool:
     """A row-major 3x3 that is orthonormal with determinant +1 (float32 rounding allowed)."""
     if len(m) < 9 or not all(math.isfinite(v) for v in m[:9]):
@@ -118,12 +90,10 @@ def rotation(encoding: str, rot: list[float]) -> tuple[float, float, float, floa
     elif encoding == "RAPID_ROT_M33":
         if not is_rotation(rot):
             return IDENTITY  # (a zero matrix: no pose filled in)
-        q = quat_from_m33(rot)
+        q = quat_from_m33(rot[:9])
     elif encoding in ("RAPID_ROT_XYZ", "RAPID_ROT_ZYX", "RAPID_ROT_ZYZ"):
         axes = encoding.rsplit("_", 1)[1]  # intrinsic rotations in this order
-        q = IDENTITY
-        for axis, angle in zip(axes, rot[:3]):
-            q = _mul(q, _axis(axis, angle))
+        q = quat_from_euler(rot[:3], axes)
     else:
         return IDENTITY
     n = math.sqrt(sum(c * c for c in q))
