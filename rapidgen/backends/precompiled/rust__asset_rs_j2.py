@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/rust/asset.rs.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "a46e56f9e1e80e82bdd346a6da68795a356367ce88d935ce3f22711d7cd46155"
+KEY = "9e933cbc4f91f9aadefaa53d6f9fe39aa7f07f6ff4783455a2f8df8aff02d9d0"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'asset.rs.j2'
 
@@ -122,7 +122,21 @@ def root(context, missing=missing, environment=environment):
         yield str(environment.getattr(l_1_cfg, 'function'))
         yield '(), crate::cdr::Endianness::Little)?),\n'
     l_1_cfg = missing
+    yield "    ])\n}\n\n/// Extension telemetry a simulated robot publishes (`<crate>_bridge --simulate`): topic, DDS\n/// type name, keyed, a message with plausible values (CDR_LE, the header left at its default).\n#[allow(clippy::type_complexity)]\npub fn simulated() -> ::core::result::Result<::std::vec::Vec<(&'static str, &'static str, bool, ::std::vec::Vec<u8>)>, crate::cdr::EncodeError> {\n    Ok(::std::vec![\n"
+    for l_1_s in environment.getattr((undefined(name='a') if l_0_a is missing else l_0_a), 'simulated'):
+        _loop_vars = {}
+        pass
+        yield '        ('
+        yield str(environment.getattr(l_1_s, 'topic'))
+        yield ', <'
+        yield str(environment.getattr(l_1_s, 'type'))
+        yield ' as crate::cdr::Cdr>::TYPE_NAME, <'
+        yield str(environment.getattr(l_1_s, 'type'))
+        yield ' as crate::cdr::Cdr>::KEYED, crate::cdr::serialize(&'
+        yield str(environment.getattr(l_1_s, 'value'))
+        yield ', crate::cdr::Endianness::Little)?),\n'
+    l_1_s = missing
     yield '    ])\n}\n'
 
 blocks = {}
-debug_info = '1=20&63=22&64=24&65=26&69=28&70=32&75=38&76=42&82=54&83=58&98=66&100=70&101=72&102=74&103=76&105=78&106=82&112=96&114=100&115=104&116=108&123=112&124=116'
+debug_info = '1=20&63=22&64=24&65=26&69=28&70=32&75=38&76=42&82=54&83=58&98=66&100=70&101=72&102=74&103=76&105=78&106=82&112=96&114=100&115=104&116=108&123=112&124=116&134=122&135=126'

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from rapidgen.backends.base import (QOS_LIBRARY, GeneratedFile, Options, check_output, embed_nothing,
                                    no_companions, notice)
-from rapidgen.backends.escape import crate_name
+from rapidgen.backends.escape import crate_name, rust_str
 from rapidgen.backends.rust.view import Builder, CrateView, UnsupportedInput
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
@@ -30,7 +30,27 @@ DEFAULT_CRATE = "rapid_types"
 __all__ = ["NAME", "DEFAULT_CRATE", "UnsupportedInput", "companions", "crate_for", "embed", "generate", "needs",
            "view"]
 
-companions, embed = no_companions, embed_nothing
+def companions(asset: "LoadedAsset | None") -> tuple[str, ...]:
+    """An asset's bridge carries the qos target's Cyclone DDS configurations."""
+    return ("qos",) if asset is not None else ()
+
+
+def embed(files: list[GeneratedFile], other: dict[str, list[GeneratedFile]]) -> list[GeneratedFile]:
+    """The qos target's cyclonedds/<transport>.xml built into the bridge (bridge/src/transports.rs)."""
+    from rapidgen.backends.rust import bridge
+    target = f"{bridge.BRIDGE}/src/transports.rs"
+    qos = {f.path: f.content for f in other.get("qos", [])}
+    out = []
+    for f in files:
+        if f.path == target:
+            content = f.content
+            for t in bridge.TRANSPORTS:
+                xml = qos.get(f"cyclonedds/{t}.xml")
+                if xml is not None:
+                    content = content.replace(bridge.TRANSPORT_MARK.format(t), rust_str(xml) + ";", 1)
+            f = GeneratedFile(f.path, content)
+        out.append(f)
+    return out
 
 
 def needs(asset: "LoadedAsset | None") -> frozenset[str]:
@@ -67,8 +87,25 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
         files.append(GeneratedFile(m.file, render("rust", template, c=c, m=m, asset=a is not None)))
     if a is not None:
         files.append(GeneratedFile("src/asset.rs", render("rust", "asset.rs.j2", c=c, a=a)))
+        assert asset is not None
+        files += _bridge(asset, c, a)
     files.append(GeneratedFile("src/dds.rs", render("rust", "dds.rs.j2", c=c, asset=a is not None)))
     if c.serde_arrays:
         files.append(GeneratedFile("src/serde_arrays.rs", render("rust", "serde_arrays.rs.j2", header=c.header)))
     check_output(files, asset)
     return sorted(files, key=lambda f: f.path)
+
+
+def _bridge(asset: "LoadedAsset", c: CrateView, a: "AssetView") -> list[GeneratedFile]:
+    """The bridge crate (bridge.py): generated files, and the user's handlers.rs written once."""
+    from rapidgen.backends.rust import bridge, tables
+    v = bridge.build(asset, c.crate, a.configs)
+    b = bridge.BRIDGE
+    files = [GeneratedFile(f"{b}/Cargo.toml", render("rust", "bridge/Cargo.toml.j2", c=c, v=v)),
+             GeneratedFile(f"{b}/src/tables.rs", render("rust", "bridge/tables.rs.j2", c=c, v=v,
+                                                        tables_json=tables.json_text(asset)))]
+    files += [GeneratedFile(f"{b}/src/{name}.rs", render("rust", f"bridge/{name}.rs.j2", c=c, v=v))
+              for name in ("dispatch", "main", "transports")]
+    files.append(GeneratedFile(f"{b}/src/handlers.rs", render("rust", "bridge/handlers.rs.j2", c=c, v=v),
+                               user_owned=True))
+    return files

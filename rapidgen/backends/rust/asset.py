@@ -4,8 +4,10 @@ types. Literals only; every string goes through rust_str."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, cast
 
+from rapidgen.asset.spec import CustomTelemetry
+from rapidgen.backends.cpp.bridge import plausible
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.rust import namer
 from rapidgen.backends.rust.typemap import float_literal
@@ -45,6 +47,13 @@ class ConfigView:
 
 
 @dataclass
+class CustomView:
+    topic: str  # literal
+    type: str  # the type's path
+    value: str  # a Rust expression of the type (header default)
+
+
+@dataclass
 class QosView:
     name: str
     writer: str  # a crate::asset::QosSide literal
@@ -61,6 +70,7 @@ class AssetView:
     commands: list[CommandView]
     configs: list[ConfigView]
     profiles: list[QosView]  # the QoS library's profiles the topics name (none without a library)
+    simulated: list[CustomView]  # extension telemetry a simulated robot publishes
 
 
 def _opt_str(text: str | None) -> str:
@@ -104,7 +114,7 @@ def build(loaded: "LoadedAsset", b: "Builder", library: "QosSpec | None" = None)
               for p in pubs]
     scope = namer.Scope("asset", {"NAME", "DOMAIN", "PARTITION", "SUBSYSTEMS", "TOPICS", "COMMANDS", "Topic",
                                   "Command", "Parameter", "QosSide", "QosHistory", "QosProfile",
-                                  "QOS_PROFILES", "qos_profile", "topic_qos"})
+                                  "QOS_PROFILES", "qos_profile", "topic_qos", "configs", "simulated"})
     views = []
     for topic, (type_name, value) in loaded.configs.items():
         t = ir.TypeRef(type_name, "struct")
@@ -112,4 +122,24 @@ def build(loaded: "LoadedAsset", b: "Builder", library: "QosSpec | None" = None)
                                 rust_str(topic), rust_str(type_name), b.value(t, value)))
     return AssetView(rust_str(spec.name), spec.domain, rust_str(spec.partition),
                      [(rust_str(s.name), rust_str(s.type)) for s in loaded.subsystems], topics, commands, views,
-                     _profiles([p.qos for p in pubs], library))
+                     _profiles([p.qos for p in pubs], library), _simulated(loaded, b))
+
+
+def _simulated(loaded: "LoadedAsset", b: "Builder") -> list[CustomView]:
+    """Extension telemetry's messages with plausible values of the asset's own types, as the
+    C++ bridge's (cpp/bridge.py plausible()); a config the tables compute is among configs()."""
+    out = []
+    for t, topics, msgs in zip(loaded.spec.telemetry, loaded.telemetry_topics, loaded.telemetry_messages):
+        if not isinstance(t, CustomTelemetry):
+            continue
+        for role, type_name, _base, _loc in msgs:
+            topic = topics[role]
+            if role == "config" and topic in loaded.configs:
+                continue
+            d = b.model.get(type_name)
+            if not isinstance(d, ir.Struct):
+                continue
+            # plausible() reads the model and the type map only, which both builders have
+            value = b.value(ir.TypeRef(type_name, "struct"), plausible(cast(Any, b), d, loaded.spec.name, 0))
+            out.append(CustomView(rust_str(topic), b.path(type_name), value))
+    return out

@@ -338,3 +338,11 @@ pub fn configs() -> ::core::result::Result<::std::vec::Vec<(&'static str, ::std:
         ("rapid_agent_config", crate::cdr::serialize(&config_rapid_agent_config(), crate::cdr::Endianness::Little)?),
     ])
 }
+
+/// Extension telemetry a simulated robot publishes (`<crate>_bridge --simulate`): topic, DDS
+/// type name, keyed, a message with plausible values (CDR_LE, the header left at its default).
+#[allow(clippy::type_complexity)]
+pub fn simulated() -> ::core::result::Result<::std::vec::Vec<(&'static str, &'static str, bool, ::std::vec::Vec<u8>)>, crate::cdr::EncodeError> {
+    Ok(::std::vec![
+    ])
+}

@@ -295,3 +295,13 @@ pub fn configs() -> ::core::result::Result<::std::vec::Vec<(&'static str, ::std:
         ("rapid_agent_config", crate::cdr::serialize(&config_rapid_agent_config(), crate::cdr::Endianness::Little)?),
     ])
 }
+
+/// Extension telemetry a simulated robot publishes (`<crate>_bridge --simulate`): topic, DDS
+/// type name, keyed, a message with plausible values (CDR_LE, the header left at its default).
+#[allow(clippy::type_complexity)]
+pub fn simulated() -> ::core::result::Result<::std::vec::Vec<(&'static str, &'static str, bool, ::std::vec::Vec<u8>)>, crate::cdr::EncodeError> {
+    Ok(::std::vec![
+        ("rapid_ext_arc_gps_config", <crate::rapid::ext::arc::GpsConfig as crate::cdr::Cdr>::TYPE_NAME, <crate::rapid::ext::arc::GpsConfig as crate::cdr::Cdr>::KEYED, crate::cdr::serialize(&crate::rapid::ext::arc::GpsConfig { receiver_model: ::std::string::String::from("simulated"), datum: ::std::string::String::from("WGS84"), ..::core::default::Default::default() }, crate::cdr::Endianness::Little)?),
+        ("rapid_ext_arc_gps_sample", <crate::rapid::ext::arc::GpsSample as crate::cdr::Cdr>::TYPE_NAME, <crate::rapid::ext::arc::GpsSample as crate::cdr::Cdr>::KEYED, crate::cdr::serialize(&crate::rapid::ext::arc::GpsSample { latitude: 37.4195, longitude: -122.0647, altitude: 10.0, hdop: 0.9, num_satellites: 9, fix_type: crate::rapid::ext::arc::GpsFixType::GpsFix3D, ..::core::default::Default::default() }, crate::cdr::Endianness::Little)?),
+    ])
+}

@@ -28,7 +28,8 @@ fn value(p: &rapid::ParameterUnion) -> Value {
     }
 }
 
-fn union(v: &Value) -> rapid::ParameterUnion {
+/// A runtime value as the wire's ParameterUnion.
+pub fn union(v: &Value) -> rapid::ParameterUnion {
     match v {
         Value::Bool(x) => rapid::ParameterUnion::B(*x),
         Value::Double(x) => rapid::ParameterUnion::D(*x),

@@ -169,9 +169,9 @@ pub struct Reader(dds_entity_t);
 unsafe impl Send for Reader {}
 
 impl Reader {
-    /// The next sample's CDR bytes; None when there is none now (a sample without data, a
-    /// dispose or unregister, is passed over).
-    pub fn take(&self) -> Option<Vec<u8>> {
+    /// The next sample's CDR bytes and the handle of the writer that sent it; None when there
+    /// is none now (a sample without data, a dispose or unregister, is passed over).
+    pub fn take(&self) -> Option<(Vec<u8>, u64)> {
         loop {
             // SAFETY: dds_takecdr hands over one serdata reference, released below
             unsafe {
@@ -191,8 +191,8 @@ impl Reader {
                     _ => None,
                 };
                 ddsi_serdata_unref(sd);
-                if bytes.is_some() {
-                    return bytes;
+                if let Some(b) = bytes {
+                    return Some((b, info.publication_handle));
                 }
             }
         }

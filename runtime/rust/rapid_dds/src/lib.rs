@@ -5,10 +5,13 @@
 //! the asset's configs published transient-local. Samples travel as their CDR bytes (cyclors'
 //! blob topics), encoded and decoded by the generated codec.
 
+pub mod bridge;
 pub mod convert;
 pub mod dds;
+pub mod images;
 pub mod outbox;
 pub mod tables_json;
+pub mod telemetry;
 
 pub use dds::{Participant, Reader, Topic, Writer};
 pub use outbox::DdsOutbox;

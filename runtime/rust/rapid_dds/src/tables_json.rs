@@ -1,6 +1,9 @@
-//! An asset's tables from JSON, in the form tests/rust_runtime/test_spec_cases.py writes from
-//! the Python runtime's (rapidgen.protocol_cases.seed_tables): until the generated crate
-//! carries the whole dictionary (defaults, allowed values, access rules), the bridge reads it.
+//! An asset's tables from JSON: the form rapidgen's Rust back end writes beside a generated
+//! bridge (rapidgen/backends/rust/tables.py: the Python package's asset_tables, in lists),
+//! which tests/rust_runtime/test_spec_cases.py also writes from the Python runtime's tables
+//! (no telemetry nor publications there). The bridge embeds it and reads it at start.
+use std::collections::BTreeMap;
+
 use rapid_runtime::*;
 use serde_json::Value as Json;
 
@@ -68,6 +71,9 @@ pub fn tables_of(j: &Json) -> Result<Tables, String> {
                 for a in p["allowed"].as_array().into_iter().flatten() {
                     param.allowed.push(value_of(dt, a)?);
                 }
+                if let Some(d) = p.get("default") {
+                    param.default = Some(value_of(dt, d)?);
+                }
                 spec.params.push(param);
             }
             st.commands.push(spec);
@@ -86,4 +92,137 @@ pub fn tables_of(j: &Json) -> Result<Tables, String> {
         });
     }
     Ok(t)
+}
+
+/// A value key of a telemetry entry (agent and position values).
+#[derive(Clone, Debug)]
+pub struct TelemetryValue {
+    pub name: String,
+    pub data_type: DataType,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+    pub allowed: Vec<Value>,
+    pub default: Option<Value>,
+}
+
+/// A joint of a joint entry.
+#[derive(Clone, Debug)]
+pub struct Joint {
+    pub frame: String,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
+/// One telemetry entry of the descriptor (kind position, agent, joint, image, text, custom).
+#[derive(Clone, Debug, Default)]
+pub struct Telemetry {
+    pub kind: String,
+    /// role (config, sample, state) -> topic
+    pub topics: BTreeMap<String, String>,
+    /// Hz; None: none declared
+    pub rate: Option<f64>,
+    pub subsystem: String,
+    pub values: Vec<TelemetryValue>,
+    pub pose_encoding: String,
+    pub velocity_encoding: String,
+    /// a joint entry's JointSample fields
+    pub fields: Vec<String>,
+    pub joints: Vec<Joint>,
+    pub sensor: String,
+    pub sensor_type: String,
+    pub mime: String,
+    pub width: i32,
+    pub height: i32,
+    pub categories: Vec<String>,
+    /// a custom entry's role -> DDS type name
+    pub types: BTreeMap<String, String>,
+}
+
+/// A topic the asset publishes.
+#[derive(Clone, Debug)]
+pub struct Publication {
+    pub role: String,
+    pub type_name: String,
+    pub topic: String,
+    pub qos: String,
+    pub rate: Option<f64>,
+}
+
+/// The tables, the telemetry entries and the publications.
+pub struct Asset {
+    pub tables: Tables,
+    pub telemetry: Vec<Telemetry>,
+    pub publications: Vec<Publication>,
+}
+
+fn string_map(j: &Json) -> BTreeMap<String, String> {
+    j.as_object()
+        .map(|m| m.iter().filter_map(|(k, v)| v.as_str().map(|v| (k.clone(), v.to_string()))).collect())
+        .unwrap_or_default()
+}
+
+fn telemetry_of(t: &Json) -> Result<Telemetry, String> {
+    let mut values = Vec::new();
+    for v in t["values"].as_array().into_iter().flatten() {
+        let dt = data_type(&s(v, "type"))?;
+        let mut allowed = Vec::new();
+        for a in v["allowed"].as_array().into_iter().flatten() {
+            allowed.push(value_of(dt, a)?);
+        }
+        let has_default = v["has_default"].as_bool().unwrap_or(false);
+        values.push(TelemetryValue {
+            name: s(v, "name"),
+            data_type: dt,
+            min: v["min"].as_f64(),
+            max: v["max"].as_f64(),
+            allowed,
+            default: if has_default { Some(value_of(dt, &v["default"])?) } else { None },
+        });
+    }
+    let joints = t["joints"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|j| Joint { frame: s(j, "frame"), min: j["min"].as_f64(), max: j["max"].as_f64() })
+        .collect();
+    Ok(Telemetry {
+        kind: s(t, "kind"),
+        topics: string_map(&t["topics"]),
+        rate: t["rate"].as_f64().filter(|r| *r > 0.0),
+        subsystem: s(t, "subsystem"),
+        values,
+        pose_encoding: s(t, "pose_encoding"),
+        velocity_encoding: s(t, "velocity_encoding"),
+        fields: strings(&t["fields"]),
+        joints,
+        sensor: s(t, "sensor"),
+        sensor_type: s(t, "sensor_type"),
+        mime: s(t, "mime"),
+        width: t["width"].as_i64().unwrap_or(640) as i32,
+        height: t["height"].as_i64().unwrap_or(480) as i32,
+        categories: strings(&t["categories"]),
+        types: string_map(&t["types"]),
+    })
+}
+
+/// A generated bridge's tables.json (rapidgen/backends/rust/tables.py).
+pub fn asset_of(j: &Json) -> Result<Asset, String> {
+    let tables = tables_of(j)?;
+    let mut telemetry = Vec::new();
+    for (i, t) in j["telemetry"].as_array().into_iter().flatten().enumerate() {
+        telemetry.push(telemetry_of(t).map_err(|e| format!("telemetry entry {}: {e}", i + 1))?);
+    }
+    let publications = j["publications"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|p| Publication {
+            role: s(p, "role"),
+            type_name: s(p, "type"),
+            topic: s(p, "topic"),
+            qos: s(p, "qos"),
+            rate: p["rate"].as_f64(),
+        })
+        .collect();
+    Ok(Asset { tables, telemetry, publications })
 }

@@ -1,0 +1,192 @@
+//! An asset's bridge, the whole program but for what the generated crate knows (its tables,
+//! configs, QoS profiles, transports, extension types) and the user's handlers:
+//!
+//!   <crate>_bridge [--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE]
+//!
+//! The configs go out first (transient-local: commanders read the CommandConfig to find the
+//! asset), then the manager's states; commands are read in the asset's partition and handed
+//! to the runtime's CommandManager; `--simulate` runs simulated handlers (`Simulated`) and
+//! publishes simulated telemetry (`telemetry`). Cyclone's configuration is CYCLONEDDS_URI when
+//! set, else the transport's generated XML (loopback only for `local`, the default).
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+use rapid_runtime::{CommandManager, Context, Handlers, Options, Outcome, Value};
+
+use crate::dds::{Participant, Side};
+use crate::telemetry::{self, Custom, Source};
+use crate::{convert, tables_json, DdsOutbox};
+
+/// What the generated crate gives the bridge.
+pub struct Asset {
+    /// the tables as rapidgen's Rust back end writes them (tables_json::asset_of)
+    pub tables_json: &'static str,
+    /// every computed config: topic, DDS type name, its CDR_LE sample (header left default)
+    pub configs: Vec<(&'static str, &'static str, Vec<u8>)>,
+    /// the writer side of a topic's QoS profile
+    pub qos: fn(&str) -> Option<Side>,
+    /// transport name -> Cyclone DDS XML (the generated qos target's cyclonedds/<name>.xml)
+    pub transports: &'static [(&'static str, &'static str)],
+    /// extension telemetry made from the crate's own types (`--simulate`)
+    pub customs: Vec<Custom>,
+}
+
+/// Handlers of a simulated robot: every command completes OK, a Mobility move (a Vec3d
+/// argument) drives at 10 m/s until there or told to stop (the queue checks need a command
+/// that holds the queue).
+pub struct Simulated;
+
+impl Handlers for Simulated {
+    fn execute(&self, ctx: &Context) -> Outcome {
+        let metres = ctx.args().iter().find_map(|v| match v {
+            Value::Vec3d(x) => Some((x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()),
+            _ => None,
+        });
+        match metres {
+            Some(m) if ctx.type_name() == "Mobility" && m.is_finite() => {
+                if ctx.sleep(Duration::from_secs_f64(m.min(1e6) / 10.0)) {
+                    Outcome::Ok(format!("{m:.0} m driven (simulated)"))
+                } else {
+                    Outcome::Canceled
+                }
+            }
+            _ => Outcome::Ok(String::new()),
+        }
+    }
+}
+
+struct Args {
+    simulate: bool,
+    domain: Option<u32>,
+    transport: String,
+    tables: Option<String>,
+}
+
+const USAGE: &str = "[--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE]";
+
+fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
+    let mut out = Args { simulate: false, domain: None, transport: "local".into(), tables: None };
+    let mut it = args.iter().skip(1);
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| it.next().cloned().ok_or(format!("{name} wants a value"));
+        match a.as_str() {
+            "--simulate" => out.simulate = true,
+            "--domain" => {
+                let d = value(a)?;
+                out.domain = Some(d.parse().map_err(|_| format!("--domain {d:?}: not a domain id (0-232)"))?);
+            }
+            "--transport" => {
+                let t = value(a)?;
+                if !transports.iter().any(|(n, _)| *n == t) {
+                    let names: Vec<&str> = transports.iter().map(|(n, _)| *n).collect();
+                    return Err(format!("--transport {t:?}: one of {}", names.join(", ")));
+                }
+                out.transport = t;
+            }
+            "--tables" => out.tables = Some(value(a)?),
+            "-h" | "--help" => return Err(format!("usage: {} {USAGE}", args[0])),
+            other => return Err(format!("unknown argument {other:?}; usage: {} {USAGE}", args[0])),
+        }
+    }
+    Ok(out)
+}
+
+/// Runs the bridge until a shutdown command; `handlers` unless `--simulate`.
+pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), String> {
+    let argv: Vec<String> = std::env::args().collect();
+    let args = parse(&argv, asset.transports)?;
+    let text = match &args.tables {
+        Some(f) => std::fs::read_to_string(f).map_err(|e| format!("{f}: {e}"))?,
+        None => asset.tables_json.to_string(),
+    };
+    let where_ = args.tables.clone().unwrap_or_else(|| "the built-in tables".into());
+    let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{where_}: {e}"))?;
+    let tables = tables_json::asset_of(&json).map_err(|e| format!("{where_}: {e}"))?;
+    let domain = args.domain.unwrap_or(tables.tables.domain.max(0) as u32);
+    if std::env::var_os("CYCLONEDDS_URI").is_none() {
+        if let Some((_, xml)) = asset.transports.iter().find(|(n, _)| *n == args.transport) {
+            // Cyclone takes the configuration itself in CYCLONEDDS_URI (no XML declaration)
+            let body = xml.find("<CycloneDDS").map(|i| &xml[i..]).unwrap_or(xml);
+            std::env::set_var("CYCLONEDDS_URI", body);
+        }
+    }
+    let name = tables.tables.name.clone();
+    let serial = convert::now_us().div_euclid(1_000_000) as i32; // (as Python: the start time)
+    let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;
+    let outbox = Arc::new(DdsOutbox::new(&dp, &name, serial).map_err(|e| e.to_string())?);
+
+    // configs first (transient-local): commanders read the CommandConfig to find the asset
+    let hdr = convert::header(&name, &name, serial, 0);
+    let mut config_writers = BTreeMap::new();
+    for (topic, type_name, bytes) in &asset.configs {
+        let side = (asset.qos)(topic).unwrap_or(Side { reliable: true, transient_local: true, depth: Some(1) });
+        let w = dp.writer(&dp.topic(topic, type_name, true).map_err(|e| e.to_string())?, side).map_err(|e| e.to_string())?;
+        w.write(&convert::with_header(bytes, &hdr)?).map_err(|e| format!("{topic}: {e}"))?;
+        config_writers.insert(*topic, w);
+    }
+
+    let stop = Arc::new(AtomicBool::new(false));
+    let sim = if args.simulate {
+        let source = Source { name: name.clone(), serial, qos: Box::new(asset.qos) };
+        Some(telemetry::start(&dp, &tables, source, asset.customs, stop.clone()).map_err(|e| e.to_string())?)
+    } else {
+        None
+    };
+    let on_shutdown = {
+        let stop = stop.clone();
+        Arc::new(move || stop.store(true, Ordering::SeqCst)) as Arc<dyn Fn() + Send + Sync>
+    };
+    let handlers: Arc<dyn Handlers> = if args.simulate { Arc::new(Simulated) } else { handlers };
+    let manager = CommandManager::new(Arc::new(tables.tables), handlers, outbox.clone(),
+                                      Options { on_shutdown: Some(on_shutdown), ..Options::default() })?;
+    manager.publish_states();
+    let commands = dp.topic("rapid_command", "rapid::Command", true).map_err(|e| e.to_string())?;
+    let reader = dp
+        .reader(&commands, Side { reliable: true, transient_local: false, depth: None })
+        .map_err(|e| e.to_string())?;
+    println!("{name} ready on domain {domain}{}", if args.simulate { " (simulated)" } else { "" });
+    let mut drops = Drops::default();
+    while !stop.load(Ordering::SeqCst) {
+        let mut idle = true;
+        while let Some((bytes, writer)) = reader.take() {
+            idle = false;
+            match convert::command_in(&bytes) {
+                Ok(cmd) => manager.receive(cmd),
+                Err(e) => drops.dropped(&name, writer, &e.to_string()),
+            }
+        }
+        if idle {
+            std::thread::sleep(Duration::from_micros(500));
+        }
+    }
+    manager.shutdown(None);
+    if let Some(t) = sim {
+        let _ = t.join();
+    }
+    Ok(())
+}
+
+/// Writers whose Commands are counted one by one when they do not decode; past this, as
+/// "other writers" (a flood of new writers must not grow the table).
+const MAX_WRITERS: usize = 256;
+
+/// Commands the codec refuses (a string past its bound, invalid UTF-8, truncated CDR): not
+/// answered, as in the Python and C++ runtimes (the sample's cmdId cannot be trusted), each
+/// counted against the writer that sent it and logged once per writer.
+#[derive(Default)]
+struct Drops(BTreeMap<u64, u64>);
+
+impl Drops {
+    fn dropped(&mut self, name: &str, writer: u64, why: &str) {
+        let key = if self.0.len() >= MAX_WRITERS && !self.0.contains_key(&writer) { 0 } else { writer };
+        let n = self.0.entry(key).or_insert(0);
+        *n += 1;
+        if *n == 1 {
+            let who = if key == 0 { "other writers".to_string() } else { format!("writer {writer:x}") };
+            eprintln!("[{name}] dropped an undecodable Command from {who}: {} (further ones from it are counted, \
+                       not logged)", rapid_runtime::text::visible(why, 160));
+        }
+    }
+}

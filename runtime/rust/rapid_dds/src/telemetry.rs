@@ -1,0 +1,344 @@
+//! Simulated telemetry (`--simulate`), as the Python runtime's simulate.py publishes it: every
+//! declared entry on its topics, each sample's header copying its config's (the asset's name,
+//! the configs' serial) with the time it was made. Position, agent and joint entries at their
+//! declared rate (1 Hz without one), values aligned with their config (one per value key, of
+//! its DataType, inside its declared range); images (a synthetic grey picture of the declared
+//! size and MIME type, with the camera's state) at their rate, or every IDLE_PERIOD seconds
+//! when none is declared and no command of the subsystem takes pictures; extension (custom)
+//! entries from samples the bridge makes (the generated types), header replaced; a text
+//! message at start (and at a declared rate). A still body: the handlers move nothing yet.
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use rapid_runtime::{DataType, Value};
+use rapid_types::cdr::{self, Endianness};
+use rapid_types::rapid;
+
+use crate::convert;
+use crate::dds::{DdsError, Participant, Side, Writer};
+use crate::images;
+use crate::tables_json::{Asset, Telemetry, TelemetryValue};
+
+/// Seconds between samples of an entry without a declared rate (extension samples, cameras
+/// no command triggers); as the other runtimes.
+pub const IDLE_PERIOD: f64 = 5.0;
+const TICK: Duration = Duration::from_millis(50);
+
+/// An extension entry's message made by the bridge (it knows the generated type): a sample
+/// whose header is replaced (`convert::with_header`) before it goes out.
+pub struct Custom {
+    pub topic: String,
+    pub type_name: String,
+    pub keyed: bool,
+    pub make: Box<dyn Fn() -> Result<Vec<u8>, String> + Send>,
+}
+
+/// What the publishing thread needs to know of the asset.
+pub struct Source {
+    pub name: String,
+    pub serial: i32,
+    /// the writer side of a topic's QoS profile (the generated asset::topic_qos)
+    pub qos: Box<dyn Fn(&str) -> Option<Side>>,
+}
+
+enum Kind {
+    Position { values: Vec<rapid::ParameterUnion>, rot: [f32; 9] },
+    Agent(Vec<rapid::ParameterUnion>),
+    Joint { positions: Vec<f32>, fields: Vec<String> },
+    Image { state: Writer, meta: rapid::ImageMetadata, mime: String, frame: u32 },
+    Text { category: String },
+    Custom(Box<dyn Fn() -> Result<Vec<u8>, String> + Send>),
+}
+
+struct Job {
+    topic: String,
+    writer: Writer,
+    period: Duration,
+    next: Instant,
+    kind: Kind,
+}
+
+fn number(v: &TelemetryValue) -> f64 {
+    let (lo, hi) = (v.min.unwrap_or(f64::NEG_INFINITY), v.max.unwrap_or(f64::INFINITY));
+    if lo <= 0.0 && 0.0 <= hi {
+        0.0
+    } else if lo.is_finite() && hi.is_finite() {
+        (lo + hi) / 2.0
+    } else if lo.is_finite() {
+        lo
+    } else {
+        hi
+    }
+}
+
+/// A plausible value of a value key: its default, else its first allowed value, else zero
+/// (or the middle of its range when zero is outside it).
+pub fn plausible(v: &TelemetryValue) -> rapid::ParameterUnion {
+    let value = v.default.clone().or_else(|| v.allowed.first().cloned()).unwrap_or_else(|| {
+        let x = number(v);
+        match v.data_type {
+            DataType::Bool => Value::Bool(false),
+            DataType::Double => Value::Double(x),
+            DataType::Float => Value::Float(x as f32),
+            DataType::Int => Value::Int(x.round() as i32),
+            DataType::LongLong => Value::LongLong(x.round() as i64),
+            DataType::String => Value::String(String::new()),
+            DataType::Vec3d => Value::Vec3d([0.0; 3]),
+            DataType::Mat33f => Value::Mat33f([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]),
+        }
+    });
+    convert::union(&value)
+}
+
+/// The identity rotation in a pose encoding (QUAT: x, y, z, w; M33: the identity matrix;
+/// Euler angles and NONE: zeros), in Transform3D's nine floats.
+fn identity(encoding: &str) -> [f32; 9] {
+    let mut r = [0.0f32; 9];
+    match encoding {
+        "RAPID_ROT_QUAT" => r[3] = 1.0,
+        "RAPID_ROT_M33" => {
+            r[0] = 1.0;
+            r[4] = 1.0;
+            r[8] = 1.0;
+        }
+        _ => {}
+    }
+    r
+}
+
+fn period(rate: Option<f64>, idle: f64) -> Duration {
+    Duration::from_secs_f64(1.0 / rate.unwrap_or(1.0 / idle))
+}
+
+struct Publisher {
+    name: String,
+    serial: i32,
+    jobs: Vec<Job>,
+}
+
+impl Publisher {
+    fn header(&self) -> rapid::Header {
+        convert::header(&self.name, &self.name, self.serial, 0)
+    }
+
+    fn bytes(&self, kind: &mut Kind) -> Result<Vec<u8>, String> {
+        let hdr = self.header();
+        let le = Endianness::Little;
+        let enc = |e: cdr::EncodeError| e.to_string();
+        match kind {
+            Kind::Position { values, rot } => {
+                let s = rapid::PositionSample {
+                    hdr,
+                    pose: rapid::Transform3D { xyz: [0.0; 3], rot: *rot },
+                    velocity: rapid::Transform3D::default(),
+                    values: values.clone(),
+                };
+                cdr::serialize(&s, le).map_err(enc)
+            }
+            Kind::Agent(values) => cdr::serialize(&rapid::AgentState { hdr, values: values.clone() }, le).map_err(enc),
+            Kind::Joint { positions, fields } => {
+                let n = positions.len();
+                let mut s = rapid::JointSample { hdr, angle_pos: positions.clone(), ..Default::default() };
+                for f in fields.iter() {
+                    match f.as_str() {
+                        "angleVel" => s.angle_vel = vec![0.0; n],
+                        "angleAcc" => s.angle_acc = vec![0.0; n],
+                        "current" => s.current = vec![0.0; n],
+                        "torque" => s.torque = vec![0.0; n],
+                        "temperature" => s.temperature = vec![20.0; n],
+                        "status" => s.status = vec![0; n],
+                        _ => {}
+                    }
+                }
+                cdr::serialize(&s, le).map_err(enc)
+            }
+            Kind::Image { state, meta, mime, frame } => {
+                *frame = frame.wrapping_add(1);
+                let st = rapid::ImageSensorState { hdr: hdr.clone(), meta: meta.clone() };
+                state.write(&cdr::serialize(&st, le).map_err(enc)?).map_err(|e| e.to_string())?;
+                let data = images::synthetic(mime, meta.width, meta.height, *frame);
+                let s = rapid::ImageSensorSample { hdr, meta: meta.clone(), mime_type: mime.clone(), data };
+                cdr::serialize(&s, le).map_err(enc)
+            }
+            Kind::Text { category } => {
+                let s = rapid::TextMessage {
+                    hdr,
+                    level: rapid::MessageLevel::MsgInfo,
+                    category: category.clone(),
+                    message: format!("{} simulated", self.name),
+                };
+                cdr::serialize(&s, le).map_err(enc)
+            }
+            Kind::Custom(make) => convert::with_header(&make()?, &hdr),
+        }
+    }
+
+    fn run(mut self, stop: Arc<AtomicBool>) {
+        let mut reported = std::collections::BTreeSet::new();
+        while !stop.load(Ordering::SeqCst) {
+            let now = Instant::now();
+            let mut jobs = std::mem::take(&mut self.jobs);
+            for job in jobs.iter_mut().filter(|j| j.next <= now) {
+                // the next one is due a period after this one was, not after it went out: the
+                // declared rate holds on average (a late sample does not delay the rest)
+                job.next += job.period;
+                if job.next < now {
+                    job.next = now + job.period;
+                }
+                let out = self.bytes(&mut job.kind).and_then(|b| job.writer.write(&b).map_err(|e| e.to_string()));
+                if let Err(e) = out {
+                    // once per topic and message: telemetry may be dropped, the bridge keeps running
+                    if reported.insert((job.topic.clone(), e.clone())) {
+                        eprintln!("[{}] simulated telemetry on {} not sent: {e}", self.name, job.topic);
+                    }
+                }
+            }
+            self.jobs = jobs;
+            let next = self.jobs.iter().map(|j| j.next).min().unwrap_or(now + TICK);
+            std::thread::sleep(next.saturating_duration_since(Instant::now()).min(TICK));
+        }
+    }
+}
+
+fn writer(dp: &Participant, src: &Source, topic: &str, type_name: &str, keyed: bool) -> Result<Writer, DdsError> {
+    let side = (src.qos)(topic).unwrap_or(Side { reliable: false, transient_local: false, depth: Some(5) });
+    dp.writer(&dp.topic(topic, type_name, keyed)?, side)
+}
+
+/// Writers for every entry, the messages sent once at start, and the thread publishing the
+/// rest until `stop`.
+pub fn start(
+    dp: &Participant,
+    asset: &Asset,
+    src: Source,
+    customs: Vec<Custom>,
+    stop: Arc<AtomicBool>,
+) -> Result<JoinHandle<()>, DdsError> {
+    let mut p = Publisher { name: src.name.clone(), serial: src.serial, jobs: Vec::new() };
+    let now = Instant::now();
+    let mut once = Vec::new();
+    for t in &asset.telemetry {
+        let topic = |role: &str| t.topics.get(role).cloned();
+        let mut job = |topic: String, type_name: &str, rate: Option<f64>, kind: Kind| -> Result<(), DdsError> {
+            let writer = writer(dp, &src, &topic, type_name, true)?;
+            p.jobs.push(Job { topic, writer, period: period(rate, 1.0), next: now, kind });
+            Ok(())
+        };
+        match t.kind.as_str() {
+            "position" => {
+                if let Some(s) = topic("sample") {
+                    let values = t.values.iter().map(plausible).collect();
+                    job(s, "rapid::PositionSample", t.rate, Kind::Position { values, rot: identity(&t.pose_encoding) })?;
+                }
+            }
+            "agent" => {
+                if let Some(s) = topic("state") {
+                    job(s, "rapid::AgentState", t.rate, Kind::Agent(t.values.iter().map(plausible).collect()))?;
+                }
+            }
+            "joint" => {
+                if let Some(s) = topic("sample") {
+                    let positions = t.joints.iter().map(|j| joint_rest(j.min, j.max) as f32).collect();
+                    job(s, "rapid::JointSample", t.rate, Kind::Joint { positions, fields: t.fields.clone() })?;
+                }
+            }
+            "image" => image(dp, &src, t, takes_pictures(asset, &t.subsystem), &mut p, now)?,
+            "text" => {
+                if let Some(s) = topic("sample") {
+                    let category =
+                        if t.categories.iter().any(|c| c == "system") { "system".into() } else { t.categories.first().cloned().unwrap_or_default() };
+                    let w = writer(dp, &src, &s, "rapid::TextMessage", true)?;
+                    let kind = Kind::Text { category };
+                    match t.rate {
+                        Some(r) => p.jobs.push(Job { topic: s, writer: w, period: period(Some(r), 1.0), next: now, kind }),
+                        None => once.push((s, w, kind)),
+                    }
+                }
+            }
+            _ => {} // custom: below, from the bridge's samples
+        }
+    }
+    for c in customs {
+        let entry = asset.telemetry.iter().find(|t| t.topics.iter().any(|(_, topic)| *topic == c.topic));
+        let role = entry.and_then(|t| t.topics.iter().find(|(_, topic)| **topic == c.topic)).map(|(r, _)| r.as_str());
+        let w = writer(dp, &src, &c.topic, &c.type_name, c.keyed)?;
+        let kind = Kind::Custom(c.make);
+        match (role, entry) {
+            (Some("config"), _) | (_, None) => once.push((c.topic, w, kind)),
+            (_, Some(t)) => p.jobs.push(Job { topic: c.topic, writer: w, period: period(t.rate, IDLE_PERIOD), next: now, kind }),
+        }
+    }
+    for (topic, w, mut kind) in once {
+        let sent = p.bytes(&mut kind).and_then(|b| w.write(&b).map_err(|e| e.to_string()));
+        if let Err(e) = sent {
+            eprintln!("[{}] simulated telemetry on {topic} not sent: {e}", p.name);
+        }
+    }
+    std::thread::Builder::new()
+        .name("sim-telemetry".into())
+        .spawn(move || p.run(stop))
+        .map_err(|e| DdsError(format!("telemetry thread: {e}")))
+}
+
+/// A joint's resting position: zero, or the middle of its limits when zero is outside them.
+fn joint_rest(min: Option<f64>, max: Option<f64>) -> f64 {
+    let v = TelemetryValue { name: String::new(), data_type: DataType::Double, min, max, allowed: Vec::new(), default: None };
+    number(&v)
+}
+
+fn image(
+    dp: &Participant,
+    src: &Source,
+    t: &Telemetry,
+    on_command: bool,
+    p: &mut Publisher,
+    now: Instant,
+) -> Result<(), DdsError> {
+    let (Some(state_topic), Some(sample_topic)) = (t.topics.get("state"), t.topics.get("sample")) else {
+        return Ok(());
+    };
+    let state = writer(dp, src, state_topic, "rapid::ImageSensorState", true)?;
+    let meta = rapid::ImageMetadata {
+        sensor_name: t.sensor.clone(),
+        sensor_type: t.sensor_type.clone(),
+        offset: rapid::Transform3D { xyz: [0.0; 3], rot: identity("RAPID_ROT_M33") },
+        width: t.width,
+        height: t.height,
+        ..Default::default()
+    };
+    // the camera's state at start (durable): its size and name before any picture
+    let hdr = convert::header(&p.name, &p.name, p.serial, 0);
+    let st = rapid::ImageSensorState { hdr, meta: meta.clone() };
+    match cdr::serialize(&st, Endianness::Little) {
+        Ok(b) => state.write(&b)?,
+        Err(e) => eprintln!("[{}] {state_topic} not sent: {e}", p.name),
+    }
+    if t.rate.is_some() || !on_command {
+        let writer = writer(dp, src, sample_topic, "rapid::ImageSensorSample", true)?;
+        let mime = if t.mime.is_empty() { "image/jpeg".to_string() } else { t.mime.clone() };
+        p.jobs.push(Job {
+            topic: sample_topic.clone(),
+            writer,
+            period: period(t.rate, IDLE_PERIOD),
+            next: now,
+            kind: Kind::Image { state, meta, mime, frame: 0 },
+        });
+    }
+    Ok(())
+}
+
+/// Whether a command name says it takes pictures (as the other runtimes' simulators).
+pub fn picture_command(name: &str) -> bool {
+    let n = name.to_ascii_lowercase();
+    ["picture", "image", "photo", "snap", "capture", "panorama", "acquire", "shoot"].iter().any(|w| n.contains(w))
+}
+
+/// Whether some command of the subsystem takes pictures: its cameras publish on command.
+fn takes_pictures(asset: &Asset, subsystem: &str) -> bool {
+    let t = &asset.tables;
+    t.subsystems.iter().filter(|s| s.name == subsystem).any(|s| {
+        t.types.iter().filter(|ty| ty.name == s.type_name).any(|ty| ty.commands.iter().any(|c| picture_command(&c.name)))
+    })
+}
