@@ -17,8 +17,16 @@ def _access(s, answers: bool = True):
     _ready(s, answers)
 
 
+def _one_source(s):
+    """Checks that speak as a second source need an asset that takes cmdSrc on trust."""
+    if s.secured_as:
+        raise Unsupported(f"the runner joined a secured domain as {s.secured_as}, and a secured asset binds cmdSrc to "
+                          "the writer's certificate (docs/secure.md): a second source needs its own enclave")
+
+
 def _other(s, cmd=None):
     """A second source allowed cmd (default: grabControl), and that command."""
+    _one_source(s)
     cmd = cmd or s.facts.command("AccessControl", "grabControl")
     found = s.facts.refusable(s.source) if cmd is None else ((cmd, b) if (b := s.facts.other_source(cmd, s.source))
                                                                else None)
@@ -54,6 +62,7 @@ def request(s):
        "rapid-protocol.md 5b: not the controller -> BAD_SYNTAX", needs=("ACC-02",))
 def refused(s):
     _access(s)
+    _one_source(s)
     found = s.facts.refusable(s.source)
     if found is None:
         raise Unsupported("the allow-list names no second source allowed a harmless command")
@@ -162,6 +171,7 @@ def stop_all(s):
     _access(s)
     if s.facts.command("Mobility", "stopAllMotion") is None:
         raise Unsupported("no Mobility/stopAllMotion")
+    _one_source(s)
     s.expect_ok(s.run(("Mobility", "stopAllMotion"), [], source=INTRUDER), "stopAllMotion from a non-controller")
 
 
@@ -217,6 +227,7 @@ def privileges(s):
     harmless command the allow-list does not give it: refused (BAD_SYNTAX "RAPID access
     violation"), whoever holds control."""
     _access(s)
+    _one_source(s)
     found = _unprivileged(s)
     if found is None:
         raise Unsupported("the allow-list refuses no source that may take control a harmless command")

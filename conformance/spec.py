@@ -26,7 +26,7 @@ def spec_cases(s):
     failed: list[str] = []
     for n, case in enumerate(cases):
         tables = seed_tables(case["asset"])
-        why = applicable(case, tables, s.facts, lambda _cmd: s.allow_motion)
+        why = applicable(case, tables, s.facts, lambda _cmd: s.allow_motion, s.secured_as)
         if why is None:
             sources = {st["src"] for st in case["steps"] if st["op"] == "send"} | {s.source}
             if not free_control(s, sources):

@@ -61,4 +61,9 @@ if [ -z "${RAPIDGEN_SKIP_APT:-}" ] && command -v dpkg-query >/dev/null; then
         $SUDO apt-get install -y -qq --no-install-recommends "${MISSING[@]}" >&2
     fi
 fi
+# The Python side of DDS Security: Cyclone DDS with its security plugins under the venv's
+# cyclonedds binding (the wheel has none); built once, after the Debian packages (cmake, g++).
+if [ -z "${RAPIDGEN_SKIP_APT:-}" ]; then
+    bash "$ROOT/scripts/cyclone_security.sh" "$VENV"
+fi
 export PATH="$VENV/bin:$PATH"

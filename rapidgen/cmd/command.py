@@ -7,6 +7,7 @@ import sys
 import time
 
 from rapidgen.argtypes import domain_id
+from rapidgen.live.dds import add_enclave_argument, use_enclave
 from rapidgen.cmd.arguments import complete
 from rapidgen.cmd.dictionary import live_config, merged_tables
 from rapidgen.cmd.line import CMDLINE, CmdLine, did_you_mean, report
@@ -35,6 +36,7 @@ def add_parser(sub) -> None:
     p.add_argument("--domain", type=domain_id, metavar="N", help="DDS domain (default: the asset's)")
     p.add_argument("--transport", choices=("local", "lan", "wan"), help="Cyclone transport of the asset's QoS "
                    "files (default: local, loopback only, unless CYCLONEDDS_URI is set)")
+    add_enclave_argument(p)
     p.add_argument("--timeout", type=float, default=30.0, metavar="S",
                    help="seconds to wait for the asset, then for completion (default 30)")
     p.add_argument("--discover", type=float, default=2.0, metavar="S",
@@ -130,6 +132,8 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
     quiet_warnings()  # a C++ bridge's retired acks: a Cyclone warning each (rapidgen/live/cyclone_log.py)
     try:
         use_transport(asset.qos, args.transport)
+        if args.enclave:
+            use_enclave(args.enclave)
         qos = asset.qos_module.RapidQos()
     except asset.qos_module.RapidQosError as exc:
         sink.error("RG1908", f"the asset's QoS files cannot be used: {exc}", SourceLoc(CMDLINE, 0, 0),

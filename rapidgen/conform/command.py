@@ -8,6 +8,7 @@ import os
 import sys
 import time
 from rapidgen.argtypes import domain_id
+from rapidgen.live.dds import add_enclave_argument
 from rapidgen.cmd.timing import round_trip
 from rapidgen.textsafe import visible
 
@@ -18,6 +19,7 @@ def add_parser(sub) -> None:
     p.add_argument("--domain", type=domain_id, default=None, metavar="N", help="DDS domain (default: the descriptor's)")
     p.add_argument("--transport", choices=("local", "lan", "wan"), default=None,
                    help="Cyclone transport from the generated QoS files (default: CYCLONEDDS_URI if set, else local)")
+    add_enclave_argument(p)
     p.add_argument("--only", action="append", default=[], metavar="IDS",
                    help="run only these checks (comma-separated ids or prefixes: CMD-,DDS-01)")
     p.add_argument("--skip", action="append", default=[], metavar="IDS", help="leave these checks out")
@@ -72,7 +74,8 @@ def run_conform(args, sink, report) -> int:
     if bindings is None:
         report(sink)
         return 1
-    use_transport(bindings.transport_file(args.transport or "local"), keep_environment=args.transport is None)
+    use_transport(bindings.transport_file(args.transport or "local"), keep_environment=args.transport is None,
+                  enclave=args.enclave)
     return _run(args, bindings, chosen, _motion(args.file))
 
 
@@ -106,8 +109,17 @@ def _run(args, bindings, chosen, motion: dict[str, list] | None = None) -> int:
     domain = bindings.tables["ASSET"].get("domain", 0) if args.domain is None else args.domain
     t0 = time.monotonic()
     allow = bool(getattr(args, "allow_motion", False))
-    session = Session(bindings, domain, timeout=args.timeout, participants=tuple(args.participant), rtt=args.rtt,
-                      motion=motion, allow_motion=allow)
+    try:
+        session = Session(bindings, domain, timeout=args.timeout, participants=tuple(args.participant),
+                          rtt=args.rtt, motion=motion, allow_motion=allow,
+                          secured_as=os.path.basename(os.path.normpath(args.enclave)) if args.enclave else None)
+    except Exception as exc:  # cyclonedds' DDSException: what DDS Security refused, said plainly
+        if not args.enclave or "SECURITY" not in str(exc):
+            raise
+        print(f"rapidgen conform: DDS Security refused what the runner needs with the enclave {visible(args.enclave)} "
+              "(it writes the asset's commands and reads all its topics: the deployment must grant its source "
+              f"command and audit on the asset; docs/secure.md): {exc}", file=sys.stderr)
+        return 1
     name, partition = visible(session.asset), visible(session.facts.partition)
     print(f"rapidgen conform: looking for asset {name} (partition {partition}) in domain {domain} "
           f"via {visible(os.environ.get('CYCLONEDDS_URI', 'Cyclone defaults'))}"

@@ -33,8 +33,9 @@ MAX_RELEASES = 20  # releaseControl rounds to free control before a case (each p
 QUIET = 0.5  # s a command the case expects unanswered is watched for an ack
 
 
-def applicable(case: dict, seed_tables, facts, motion_ok) -> str | None:
-    """Why the case cannot be replayed against this asset (None: it can)."""
+def applicable(case: dict, seed_tables, facts, motion_ok, speaks_as: str | None = None) -> str | None:
+    """Why the case cannot be replayed against this asset (None: it can). speaks_as: the one
+    source a runner on a secured domain may send as (its enclave's)."""
     if not case["live"]:
         return "offline only"
     if seed_tables.has_type("Queue") != facts.has_type("Queue") or \
@@ -43,6 +44,8 @@ def applicable(case: dict, seed_tables, facts, motion_ok) -> str | None:
     for s in case["steps"]:
         if s["op"] != "send":
             continue
+        if speaks_as and s["src"] != speaks_as:
+            return f"sends as {s['src']}: on a secured domain the runner speaks only as {speaks_as}"
         if (s["subsystem"], s["name"]) == ("Admin", "shutdown"):
             return "shuts the asset down"
         entry = seed_tables.command(s["subsystem"], s["name"])

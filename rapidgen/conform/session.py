@@ -25,7 +25,11 @@ HAND_BACK_WAIT = 3.0  # s for each AccessControl answer when control is handed b
 
 class Session:
     def __init__(self, bindings, domain: int, timeout: float = 10.0, participants: tuple[str, ...] = (),
-                 rtt: float = 0.0, motion: dict[str, list] | None = None, allow_motion: bool = False) -> None:
+                 rtt: float = 0.0, motion: dict[str, list] | None = None, allow_motion: bool = False,
+                 secured_as: str | None = None) -> None:
+        """secured_as: the source whose enclave the runner joined a secured domain with: the
+        asset binds cmdSrc to that certificate (docs/secure.md), so the runner speaks as it
+        and as no other source."""
         from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant
         from cyclonedds.domain import DomainParticipant
 
@@ -41,7 +45,8 @@ class Session:
         self._births_reader = BuiltinDataReader(self.participant, BuiltinTopicDcpsParticipant)
         self.births: dict[str, int] = {}  # participant GUID -> its announced creation time (ns)
         self.client = Client(bindings, self.participant, self.asset)
-        self.source = self.facts.runner_source()
+        self.secured_as = secured_as
+        self.source = secured_as or self.facts.runner_source()
         self.asset_participants: set[str] = set()
         self.chosen = tuple(_hex(p) for p in participants)  # --participant: GUID prefixes (hex)
         self.identification = ""  # how the asset's participant was chosen (for the report)

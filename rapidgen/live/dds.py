@@ -32,13 +32,31 @@ def dds_missing(tool: str) -> bool:
     return False
 
 
-def use_transport(config_path: str, keep_environment: bool) -> str:
+def add_enclave_argument(p) -> None:
+    p.add_argument("--enclave", metavar="DIR", help="join a secured domain as this enclave of a `rapidgen secure` "
+                   "keystore (KEYSTORE/enclaves/NAME: its certificate and grants; docs/secure.md)")
+
+
+def use_transport(config_path: str, keep_environment: bool, enclave: str | None = None) -> str:
     """Point CYCLONEDDS_URI at a generated transport file before the first participant
     starts (Cyclone reads it then). With keep_environment, a CYCLONEDDS_URI already set
-    (e.g. a test's loopback file) wins. Returns the URI in use."""
+    (e.g. a test's loopback file) wins. An enclave's <Security> section goes after it; one
+    that cannot be used ends the tool (exit 1, saying why). Returns the URI in use."""
     from rapidgen.live.cyclone_log import quiet_warnings
     quiet_warnings()  # a C++ bridge's retired acks: a Cyclone warning each (cyclone_log.py)
-    if keep_environment and os.environ.get("CYCLONEDDS_URI"):
-        return os.environ["CYCLONEDDS_URI"]
-    os.environ["CYCLONEDDS_URI"] = "file://" + os.path.abspath(config_path)
+    if not (keep_environment and os.environ.get("CYCLONEDDS_URI")):
+        os.environ["CYCLONEDDS_URI"] = "file://" + os.path.abspath(config_path)
+    if enclave:
+        use_enclave(enclave)
     return os.environ["CYCLONEDDS_URI"]
+
+
+def use_enclave(enclave: str) -> None:
+    """The runtime's use_enclave, its refusal said on stderr and the tool ended (exit 1)."""
+    from rapid_runtime.security import SecurityUnavailable
+    from rapid_runtime.security import use_enclave as add
+    try:
+        add(enclave)
+    except SecurityUnavailable as exc:
+        print(f"rapidgen: --enclave: {exc}", file=sys.stderr)
+        raise SystemExit(1) from None

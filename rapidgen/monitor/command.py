@@ -14,6 +14,7 @@ import sys
 from typing import TYPE_CHECKING
 
 from rapidgen.argtypes import domain_id
+from rapidgen.live.dds import add_enclave_argument
 from rapidgen.record.command import size
 
 if TYPE_CHECKING:
@@ -32,6 +33,7 @@ def add_parser(sub) -> None:
     p.add_argument("--domain", type=domain_id, metavar="N", help="DDS domain (default: the first --asset's, else 0)")
     p.add_argument("--transport", choices=("local", "lan", "wan"),
                    help="Cyclone transport (default: CYCLONEDDS_URI if set, else local: loopback only)")
+    add_enclave_argument(p)
     p.add_argument("--asset", action="append", default=[], metavar="FILE",
                    help="an asset descriptor: units, ranges, defaults and thresholds, extension types (repeatable)")
     p.add_argument("--bind", default="127.0.0.1", metavar="ADDR",
@@ -107,7 +109,8 @@ def run(args) -> int:
         return 1
     bindings, hints = loaded
     from rapidgen.live.dds import use_transport
-    use_transport(bindings[-1].transport_file(args.transport or "local"), keep_environment=args.transport is None)
+    use_transport(bindings[-1].transport_file(args.transport or "local"), keep_environment=args.transport is None,
+                  enclave=args.enclave)
     from rapidgen.monitor.state import Hub
     source: Source
     if args.replay is not None:

@@ -13,6 +13,7 @@ import threading
 import time
 
 from rapidgen.argtypes import domain_id, positive_seconds
+from rapidgen.live.dds import add_enclave_argument
 
 BASE_DESCRIPTOR = """version: 1
 asset: {name: RapidRecord, kind: other}
@@ -47,6 +48,7 @@ def add_parser(sub) -> None:
     p.add_argument("--domain", type=domain_id, metavar="N", help="DDS domain (default: the first --asset's, else 0)")
     p.add_argument("--transport", choices=("local", "lan", "wan"),
                    help="Cyclone transport (default: CYCLONEDDS_URI if set, else local: loopback only)")
+    add_enclave_argument(p)
     p.add_argument("-o", "--output", metavar="FILE.mcap",
                    help="the file (default rapid-YYYYmmdd-HHMMSS.mcap); with rotation FILE-000.mcap, FILE-001.mcap, ...")
     p.add_argument("--seconds", type=positive_seconds, metavar="S", help="stop after S seconds (default: until Ctrl-C/SIGTERM)")
@@ -71,7 +73,8 @@ def open_assets(args):
     if loaded is None:
         return None
     bindings, models = loaded
-    use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None)
+    use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None,
+                  enclave=args.enclave)
     assets = [b.tables["ASSET"] for b in bindings[1:]]
     domain = args.domain if args.domain is not None else (assets[0].get("domain", 0) if assets else 0)
     return bindings, models, assets, domain

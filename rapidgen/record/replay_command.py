@@ -9,6 +9,7 @@ import threading
 import time
 
 from rapidgen.argtypes import domain_id, positive_factor, seconds_from_start
+from rapidgen.live.dds import add_enclave_argument
 from rapidgen.textsafe import visible
 
 
@@ -30,6 +31,7 @@ def add_parser(sub) -> None:
                    help="an asset descriptor whose extension types the recording holds (repeatable)")
     p.add_argument("--transport", choices=("local", "lan", "wan"),
                    help="Cyclone transport (default: CYCLONEDDS_URI if set, else local: loopback only)")
+    add_enclave_argument(p)
     p.add_argument("--linger", type=float, default=1.0, metavar="S",
                    help="keep the writers S seconds after the last message (default 1), for readers to catch up")
     p.add_argument("--quiet", action="store_true", help="no progress line")
@@ -77,7 +79,8 @@ def run(args) -> int:
     extra, refused, keep = classes_from_schemas(schemas) if schemas else ({}, {}, None)
     for type_name, why in sorted(refused.items()):
         print(f"rapidgen replay: no bindings for {visible(type_name)}: {why}", file=sys.stderr)
-    use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None)
+    use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None,
+                  enclave=args.enclave)
     recorded = recs[0].metadata.get("rapidgen", {}).get("domain", "0")
     domain = args.domain if args.domain is not None else (int(recorded) if recorded.isdigit() else 0)
     topics = {t.strip() for t in args.topics.split(",") if t.strip()} if args.topics else None

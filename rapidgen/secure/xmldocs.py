@@ -149,6 +149,8 @@ def cyclone_security(enclave: str) -> bytes:
               ("Permissions", "permissions.p7s"))),
             ("Cryptographic", "dds_security_crypto", "crypto", ())):
         el = _sub(sec, part)
+        if part == "Authentication":  # hash_c1 and hash_c2 in the handshake: Fast DDS 2.9 requires them
+            _sub(el, "IncludeOptionalFields", "true")
         _sub(el, "Library").attrib.update({"path": lib, "initFunction": f"init_{init}",
                                            "finalizeFunction": f"finalize_{init}"})
         for tag, name in items:

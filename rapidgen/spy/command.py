@@ -10,6 +10,7 @@ import sys
 import tempfile
 import time
 from rapidgen.argtypes import domain_id
+from rapidgen.live.dds import add_enclave_argument
 
 BASE_DESCRIPTOR = """version: 1
 asset: {name: RapidSpy, kind: other}
@@ -28,6 +29,7 @@ def add_parser(sub) -> None:
     p.add_argument("--domain", type=domain_id, metavar="N", help="DDS domain (default: the first --asset's, else 0)")
     p.add_argument("--transport", choices=("local", "lan", "wan"),
                    help="Cyclone transport (default: CYCLONEDDS_URI if set, else local: loopback only)")
+    add_enclave_argument(p)
     p.add_argument("--partition", action="append", default=[], metavar="P", help="watch only partition P (repeatable)")
     p.add_argument("--asset", action="append", default=[], metavar="FILE",
                    help="an asset descriptor: its extension types, roles, rates and config pairs (repeatable)")
@@ -61,7 +63,8 @@ def run_spy(args, sink, report) -> int:
     report(sink)
     if bindings is None:
         return 1
-    use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None)
+    use_transport(bindings[0].transport_file(args.transport or "local"), keep_environment=args.transport is None,
+                  enclave=args.enclave)
     from rapidgen.spy.collect import Declared
     from rapidgen.spy.watch import Watcher
     assets = [b.tables for b in bindings[1:]]

@@ -27,10 +27,12 @@ from rapid_runtime.ack_writers import AckWriters
 from rapid_runtime.acks import COMPLETED, NOT, clip, valid
 from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
+from rapid_runtime.identity import Identities, IdentitiesError
 from rapid_runtime.images import describe as describe_image
 from rapid_runtime.intake import Intake
 from rapid_runtime.journal import Journal, Recovered, default_dir
 from rapid_runtime.manager import COMMAND_WINDOW, SHUTDOWN_TIMEOUT_MS, STOP_TIMEOUT_MS, CommandManager
+from rapid_runtime.security import SecurityUnavailable, enclave_from_environment, use_enclave
 from rapid_runtime.tables import Tables
 from rapid_runtime.telemetry import STALE_KEY, Freshness, TelemetryError, ordered_values, stale_after_ms, typed_values
 from rapid_runtime.untrusted import visible
@@ -92,9 +94,10 @@ class Bridge:
     def __init__(self, tables: Tables, rapid, handlers, qos, domain: int | None = None,
                  log=None, serial: int | None = None, command_window: int = COMMAND_WINDOW,
                  journal: str | None = None, stop_timeout_ms: int = STOP_TIMEOUT_MS,
-                 shutdown_timeout_ms: int = SHUTDOWN_TIMEOUT_MS) -> None:
+                 shutdown_timeout_ms: int = SHUTDOWN_TIMEOUT_MS, identities: Identities | None = None) -> None:
         """journal: the restart journal's folder (journal.py; None: no journal, nothing in
-        flight survives a crash). stop_timeout_ms: a told-to-stop handler's bound when its
+        flight survives a crash). identities: a secured bridge's ground sources (identity.py):
+        a command runs only when its cmdSrc is the identity of the certificate that wrote it. stop_timeout_ms: a told-to-stop handler's bound when its
         command declares none; shutdown_timeout_ms: how long stop() waits for the handlers
         (docs/runtime.md, "Handler faults")."""
         self.shutdown_timeout = shutdown_timeout_ms / 1000.0
@@ -118,6 +121,8 @@ class Bridge:
                                       journal=self.journal, stop_timeout_ms=stop_timeout_ms)
         self.telemetry = TelemetryPublisher(self)
         self._reader: ReaderThread | None = None
+        self.identities = identities
+        self._writers: dict[int, bytes] = {}  # publication handle -> the writer's GUID prefix (secured)
         # inline: a command arriving at an empty door is handled on the reader thread (intake.py)
         self.intake = Intake(self.manager, self.log, inline=True)
         self.ack_writers: AckWriters | None = None  # made at start(): commanders wait to match it
@@ -208,6 +213,7 @@ class Bridge:
                 self.log(f"journal: restarted after a crash; {answered} unfinished command(s) answered, "
                          f"{again} final ack(s) written again")
             reader = self.node.reader(COMMAND_TOPIC, self.rapid.Command, max_samples=COMMAND_CACHE)
+            self._command_reader = reader
             self.intake.start()
             self._reader = ReaderThread(self.node, reader, self.rapid.Command, self._on_command, "rapid-commands",
                                         log=self.log, on_batch=self._on_commands)
@@ -228,7 +234,28 @@ class Bridge:
         except Exception as exc:  # a bad sample must not stop command intake
             self.log(f"command {getattr(sample, 'cmdId', '?')!r} not read: {type(exc).__name__}: {exc}")
             return
-        self.intake.offer(cmd, sample.sample_info.publication_handle, alone)
+        writer = sample.sample_info.publication_handle
+        if self.identities is not None:
+            why = self.identities.refusal(cmd.cmd_src, self._writer_prefix(writer))
+            if why is not None:  # before the door, as the C++ bridge (docs/secure.md)
+                self.log(f"refused {visible(cmd.cmd_id)!r} from writer {self._writer_prefix(writer).hex()}: {why}")
+                self.manager.refuse(cmd, why)
+                return
+        self.intake.offer(cmd, writer, alone)
+
+    def _writer_prefix(self, handle: int) -> bytes:
+        """The GUID prefix of the writer a command came from (discovery data; kept per handle)."""
+        prefix = self._writers.get(handle)
+        if prefix is None:
+            try:
+                found = self._command_reader.get_matched_publication_data(handle)
+            except Exception:  # cyclonedds raises DDSException for a writer no longer matched
+                found = None
+            prefix = found.key.bytes[:12] if found is not None else b""
+            if len(self._writers) >= 4096:  # writers come and go: forget them all now and then
+                self._writers.clear()
+            self._writers[handle] = prefix
+        return prefix
 
     def stop(self) -> None:
         """Stop taking commands, tell the running handlers to stop and wait for them at most the
@@ -613,15 +640,33 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None, module: st
     except qos_mod.RapidQosError as exc:
         print(f"bridge: {exc}", file=sys.stderr)
         return 2
+    identities = None
+    enclave = enclave_from_environment(tables.partition or tables.name)
+    if enclave is not None:  # secured (RAPID_SECURITY_KEYSTORE): never started unsecured
+        try:
+            use_enclave(enclave)
+            identities = Identities.load(enclave)
+        except (SecurityUnavailable, IdentitiesError) as exc:
+            print(f"bridge: DDS Security: {exc}", file=sys.stderr)
+            return 1
+        print(f"[{visible(tables.name)}] DDS Security: cmdSrc bound to the writer's certificate "
+              f"({len(identities.sources)} ground source(s) in {enclave}/identities.txt)", file=sys.stderr, flush=True)
     if args.simulate:
         from rapid_runtime.simulate import Simulator
         handlers = Simulator(tables, speed=args.sim_speed)
     else:
         handlers = make_handlers()
     journal = None if args.no_journal else (args.journal or str(default_dir()))
-    bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain, command_window=args.command_window,
-                    journal=journal, stop_timeout_ms=args.stop_timeout,
-                    shutdown_timeout_ms=args.shutdown_timeout).start()
+    try:
+        bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain, command_window=args.command_window,
+                        journal=journal, stop_timeout_ms=args.stop_timeout,
+                        shutdown_timeout_ms=args.shutdown_timeout, identities=identities).start()
+    except Exception as exc:  # cyclonedds' DDSException: with an enclave, the plugins refused it
+        if enclave is None:
+            raise
+        print(f"bridge: DDS Security refused this participant's keystore ({enclave}): {exc}; Cyclone's own "
+              "log line above says which file and why", file=sys.stderr)
+        return 1
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: bridge.stop())
     print(f"bridge ready: asset {tables.name}, domain {tables.domain if args.domain is None else args.domain}, "

@@ -1,0 +1,71 @@
+"""The operator's Python tools on a secured domain (issue 35 item 7; docs/security.md, "The
+Python side"): `rapidgen cmd` and `rapidgen conform`, on the Cyclone DDS with DDS Security
+that scripts/setup.sh builds, join K10's secured C++ bridge (Fast DDS 2.9's plugins) with
+an enclave of a `rapidgen secure` keystore, in a private network namespace (only lo).
+
+- `rapidgen cmd --enclave RapidWorkbench` (granted command on K10Red): the command runs.
+- `rapidgen conform --enclave RapidWorkbench` (granted command and audit on K10Red): every
+  required check passes; the checks that speak as a second source are unsupported (the
+  bridge binds cmdSrc to the certificate: one enclave is one source).
+- Without an enclave, or with one the deployment did not grant commanding K10Red (Outsider:
+  watch only; Conformance: audit only), nothing runs: cmd finds no asset; conform finds none
+  or says that DDS Security refused its command writer."""
+from __future__ import annotations
+
+import sys
+
+import pytest
+
+from tests.secure.conftest import DOMAIN, ROOT, run_scenario
+
+K10 = str(ROOT / "specs" / "assets" / "k10.yaml")
+
+
+def _cmd(enclave: str | None) -> dict:
+    extra = ["--enclave", enclave] if enclave else []
+    return {"argv": [sys.executable, "-m", "rapidgen", "cmd", K10, "AccessControl", "requestControl",
+                     "--source", "RapidWorkbench", "--domain", str(DOMAIN), "--timeout", "15", *extra], "env": {}}
+
+
+def _conform(enclave: str | None) -> dict:
+    extra = ["--enclave", enclave] if enclave else []
+    return {"argv": [sys.executable, "-m", "rapidgen", "conform", K10, "--domain", str(DOMAIN), "--timeout", "10",
+                     *extra], "env": {}}
+
+
+@pytest.fixture(scope="module")
+def secured(keystores, programs, tmp_path_factory) -> dict:
+    enclaves = keystores["main"] / "enclaves"
+    return run_scenario(tmp_path_factory.mktemp("python_tools"), {
+        "bridge": [str(programs["bridge"]), "--simulate", "--domain", str(DOMAIN), "--seconds", "150"],
+        "bridge_env": {"RAPID_SECURITY_KEYSTORE": str(keystores["main"])}, "ready_s": 60,
+        "cases": {"cmd": _cmd(str(enclaves / "RapidWorkbench")), "cmd_no_enclave": _cmd(None),
+                  "cmd_watch_only": _cmd(str(enclaves / "Outsider")),
+                  "conform_no_enclave": _conform(None), "conform_audit_only": _conform(str(enclaves / "Conformance"))},
+        # after the cases (the scenario's watch slot): alone, as a conformance run is
+        "watch": _conform(str(enclaves / "RapidWorkbench"))})
+
+
+def test_cmd_with_an_enclave_commands_the_secured_cpp_bridge(secured):
+    assert secured["bridge_ready"], secured["bridge"]
+    case = secured["cases"]["cmd"]
+    assert case["rc"] == 0 and "COMPLETED OK" in case["stdout"], case
+
+
+def test_conform_with_an_audit_grant_passes_against_the_secured_cpp_bridge(secured):
+    case = secured["watch"]
+    assert case["rc"] == 0 and "every required check passed" in case["stdout"], case
+    assert "ACC-04   required     UNSUPPORTED" in case["stdout"], case  # a second source: its own enclave
+
+
+def test_conform_without_a_command_grant_is_refused_plainly(secured):
+    case = secured["cases"]["conform_audit_only"]
+    assert case["rc"] == 1 and "DDS Security refused what the runner needs" in case["stderr"], case
+    assert "Traceback" not in case["stderr"], case
+
+
+@pytest.mark.parametrize("name", ["cmd_no_enclave", "cmd_watch_only", "conform_no_enclave"])
+def test_without_a_grant_the_tools_find_no_asset(secured, name):
+    case = secured["cases"][name]
+    assert case["rc"] != 0, case
+    assert "COMPLETED OK" not in case["stdout"] and "every required check passed" not in case["stdout"], case
