@@ -1,14 +1,15 @@
-"""The Python side secured (issue 24): the Python bridge (rapid_runtime) and `rapidgen
-conform` on a Cyclone DDS 11.0.1 built with DDS Security, with the keystore's
-cyclonedds-security.xml, in a private network namespace. The PyPI wheel is built without
-DDS Security, so this needs tests/secure/cyclone_security.sh PREFIX (about 7 minutes) and
-RAPIDGEN_CYCLONE_SECURITY=PREFIX; without it the tests are skipped, saying why.
+"""The Python bridge secured (issue 35 items 1 and 7; docs/secure.md): K10's generated Python
+bridge with RAPID_SECURITY_KEYSTORE, on the Cyclone DDS with DDS Security that
+scripts/setup.sh builds, in a private network namespace (only lo). Its ground tools are the
+C++ ones (tests/secure/cpp/ground.cpp, Fast DDS 2.9's plugins) and `rapidgen conform`.
 
-An authorised runner (RapidWorkbench: commands and audits K10Red) judges the secured
-bridge: every required check passes. An unsecured runner beside it finds no asset."""
+- RapidWorkbench as itself: N of N run.
+- ScienceBackroom's own valid certificate, granted to command K10Red, sending as
+  RapidWorkbench: 0 of N, each answered "cmdSrc 'RapidWorkbench' is not the writer's
+  identity 'ScienceBackroom'", and the bridge logs each.
+- `rapidgen conform --enclave RapidWorkbench` afterwards: every required check passes."""
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -17,10 +18,8 @@ import pytest
 
 from tests.secure.conftest import DOMAIN, ROOT, run_scenario
 
-PREFIX = os.environ.get("RAPIDGEN_CYCLONE_SECURITY", "")
-pytestmark = pytest.mark.skipif(
-    not PREFIX, reason="needs a Cyclone DDS built with DDS Security: tests/secure/cyclone_security.sh PREFIX, "
-    "then RAPIDGEN_CYCLONE_SECURITY=PREFIX (the cyclonedds wheel has no DDS Security)")
+N = 3
+WAIT_S = "40"  # each tool ends once its N commands are answered; a loaded machine's margin
 
 
 @pytest.fixture(scope="module")
@@ -31,28 +30,41 @@ def k10_python(tmp_path_factory) -> Path:
     return out / "python"
 
 
-def _env(uri_files: list[Path], **extra: str) -> dict:
-    env = {"LD_LIBRARY_PATH": f"{PREFIX}/lib", "CYCLONEDDS_HOME": PREFIX,
-           "CYCLONEDDS_URI": ",".join(f"file://{p}" for p in uri_files)}
-    env.update(extra)
-    return env
+def _ground(programs: dict, enclave: Path, source: str, prefix: str) -> dict:
+    return {"argv": [str(programs["ground"]), "command", str(programs["profiles"]), str(DOMAIN), "K10Red", source,
+                     prefix, str(N), WAIT_S],
+            "env": {"RAPID_SECURITY_KEYSTORE": str(enclave.parents[1]), "RAPID_SECURITY_ENCLAVE": str(enclave)}}
 
 
-def test_conformance_passes_against_the_secured_python_bridge(keystores, k10_python, tmp_path):
-    python = f"{PREFIX}/venv/bin/python"
-    local = k10_python / "rapid_k10red" / "qos_files" / "cyclonedds" / "local.xml"
-    enclaves = keystores["main"] / "enclaves"
+@pytest.fixture(scope="module")
+def secured(keystores, programs, k10_python, tmp_path_factory) -> dict:
+    ks = keystores["main"]
+    enclaves = ks / "enclaves"
+    return run_scenario(tmp_path_factory.mktemp("python_bridge"), {
+        "bridge": [sys.executable, "-m", "rapid_k10red.bridge", "--simulate", "--domain", str(DOMAIN),
+                   "--no-journal", "--seconds", "150"],
+        "bridge_env": {"RAPID_SECURITY_KEYSTORE": str(ks), "PYTHONPATH": str(k10_python)}, "ready_s": 60,
+        "cases": {"itself": _ground(programs, enclaves / "RapidWorkbench", "RapidWorkbench", "itself"),
+                  "spoof": _ground(programs, enclaves / "ScienceBackroom", "RapidWorkbench", "spoofed")},
+        "watch": {"argv": [sys.executable, "-m", "rapidgen", "conform", str(ROOT / "specs" / "assets" / "k10.yaml"),
+                           "--domain", str(DOMAIN), "--timeout", "10", "--enclave", str(enclaves / "RapidWorkbench")],
+                  "env": {}}})
 
-    def conform(enclave: str | None) -> dict:
-        files = [local] + ([enclaves / enclave / "cyclonedds-security.xml"] if enclave else [])
-        return {"argv": [python, "-m", "rapidgen", "conform", str(ROOT / "specs" / "assets" / "k10.yaml"),
-                         "--domain", str(DOMAIN), "--timeout", "10"], "env": _env(files)}
-    result = run_scenario(tmp_path, {
-        "bridge": [python, "-m", "rapid_k10red.bridge", "--simulate", "--domain", str(DOMAIN)],
-        "bridge_env": _env([local, enclaves / "K10Red" / "cyclonedds-security.xml"], PYTHONPATH=str(k10_python)),
-        "ready_s": 60, "cases": {"authorised": conform("RapidWorkbench"), "no_certificate": conform(None)}})
-    assert result["bridge_ready"], result["bridge"]
-    ok = result["cases"]["authorised"]
-    assert ok["rc"] == 0 and "every required check passed" in ok["stdout"], ok
-    stranger = result["cases"]["no_certificate"]
-    assert stranger["rc"] == 1 and "no participant with K10Red's topics" in stranger["stderr"], stranger
+
+def test_the_operator_runs_n_of_n_on_the_secured_python_bridge(secured):
+    assert secured["bridge_ready"], secured["bridge"]
+    case = secured["cases"]["itself"]
+    assert f"completed: {N} of {N}" in case["stdout"], case
+
+
+def test_a_valid_certificate_cannot_send_as_another_source(secured):
+    case = secured["cases"]["spoof"]
+    assert "completed: 0 of" in case["stdout"], case
+    why = "cmdSrc 'RapidWorkbench' is not the writer's identity 'ScienceBackroom'"
+    refused = [line for line in case["stdout"].splitlines() if line.startswith("failed spoofed-") and why in line]
+    assert len(refused) == N + 1, case  # each, and its control command, answered with the reason
+
+
+def test_conform_with_an_enclave_passes_against_the_secured_python_bridge(secured):
+    case = secured["watch"]
+    assert case["rc"] == 0 and "every required check passed" in case["stdout"], case
