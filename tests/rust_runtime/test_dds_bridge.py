@@ -20,6 +20,7 @@ import time
 from pathlib import Path
 
 import pytest
+import yaml
 
 from tests.runtime.live import BridgeProcess
 from tests.rust.conftest import cargo
@@ -113,3 +114,114 @@ def test_conform_judges_the_generated_rust_bridge(bridges, seed, tmp_path):
     if seed == "k10":  # the seed with every kind of check: commands, queue, access control, images, extension
         assert all(status.get(f"TEL-0{i}") == "PASS" for i in range(1, 9)), status
         assert any(c.startswith("QUE-") and st == "PASS" for c, st in status.items()), status
+
+
+# ---- K10's bridge beyond conform ---------------------------------------------------------------
+
+def _run(binary: Path, *args: str) -> subprocess.CompletedProcess:
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
+    return subprocess.run([str(binary), *args], capture_output=True, text=True, timeout=60, env=env)
+
+
+def test_bridge_options(bridges):
+    res = _run(bridges["k10"], "--help")
+    assert res.returncode == 0 and "--simulate" in res.stdout and "--transport local|lan|wan" in res.stdout
+    res = _run(bridges["k10"], "--domian", "3")
+    assert res.returncode == 2 and 'unknown argument "--domian"' in res.stderr and "usage:" in res.stderr
+    res = _run(bridges["k10"], "--domain", "-1")
+    assert res.returncode == 2 and "not a domain id" in res.stderr
+    res = _run(bridges["k10"], "--transport", "nosuch")
+    assert res.returncode == 2 and "one of local, lan, wan" in res.stderr
+
+
+def _cmd(*args: str) -> subprocess.CompletedProcess:
+    local = ROOT / "generated" / "k10" / "qos" / "cyclonedds" / "local.xml"
+    return subprocess.run([sys.executable, "-m", "rapidgen", "cmd", str(ROOT / "specs" / "assets" / "k10.yaml"),
+                           *args, "--domain", str(DOMAIN), "--source", "RapidWorkbench", "--timeout", "20"],
+                          cwd=ROOT, env=dict(os.environ, CYCLONEDDS_URI=f"file://{local}"), capture_output=True,
+                          text=True, timeout=120)
+
+
+def test_generated_bridge_without_simulate_runs_the_stub_handlers(bridges):
+    """Without --simulate the bridge runs handlers.rs as generated (its arguments unpacked by
+    dispatch.rs): the runtime answers its own commands, every other one COMPLETED/EXEC_FAILED
+    "not implemented"; Admin/shutdown stops it cleanly."""
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
+    bridge = BridgeProcess.of_command([str(bridges["k10"]), "--domain", str(DOMAIN)], ROOT, env)
+    try:
+        line = bridge.lines.get(timeout=30)
+        assert line and line.strip() == f"K10Red ready on domain {DOMAIN}", f"{line!r} {bridge.err[-20:]}"
+        res = _cmd("AccessControl", "requestControl")
+        assert res.returncode == 0 and "COMPLETED OK  control granted to RapidWorkbench" in res.stdout, res
+        res = _cmd("PanCam", "pointCamera", "pan=0.5")
+        assert res.returncode == 1 and res.stdout.splitlines()[1:] == [
+            "  EXECUTING", "  COMPLETED EXEC_FAILED  not implemented"], res.stdout + res.stderr
+        res = _cmd("Admin", "echo", "text=hello")
+        assert res.returncode == 0 and "COMPLETED OK  hello" in res.stdout, res.stdout + res.stderr
+        res = _cmd("Admin", "shutdown")
+        assert res.returncode == 0, res.stdout + res.stderr
+        line = bridge.lines.get(timeout=30)
+        assert line and line.strip() == "bridge stopped", f"{line!r} {bridge.err[-20:]}"
+    finally:
+        bridge.stop()
+
+
+def test_a_late_joiner_gets_every_commands_final_ack(bridges):
+    """Acks are one instance per command (keyed.rs: the blob type given Ack's key), the last 8
+    of each kept: a reader joining after 100 commands gets the final ack of each. With one
+    instance for all (cyclors' blob type as it is) it got those of the last 64 only."""
+    n = 100
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
+    bridge = BridgeProcess.of_command([str(bridges["k10"]), "--simulate", "--domain", str(DOMAIN)], ROOT, env)
+    pydir = ROOT / "generated" / "k10" / "python"
+    local = ROOT / "generated" / "k10" / "qos" / "cyclonedds" / "local.xml"
+    try:
+        line = bridge.lines.get(timeout=30)
+        assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
+        res = subprocess.run([sys.executable, "-m", "tests.rust_runtime.ground", "late-acks", str(pydir), "rapid_k10red",
+                              str(DOMAIN), str(n)], cwd=ROOT, capture_output=True, text=True, timeout=240,
+                             env=dict(os.environ, CYCLONEDDS_URI=f"file://{local}",
+                                      PYTHONPATH=f"{pydir}{os.pathsep}{ROOT}"))
+        assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-4000:]
+        got = json.loads(res.stdout.splitlines()[-1])
+    finally:
+        bridge.stop()
+    last = got["last"]
+    assert len(last) == n
+    missing = [cid for cid, ack in last.items() if not (ack or "").startswith("ACK_COMPLETED ")]
+    assert not missing, f"{len(missing)} of {n} commands' final acks not seen by the late joiner: {missing[:3]}"
+
+
+def test_regeneration_leaves_handlers_rs_byte_identical(tmp_path):
+    """handlers.rs is the user's: written once, never touched by regeneration, also when the
+    descriptor changes (dispatch.rs changes with it); deleting it brings fresh stubs."""
+    k10 = ROOT / "specs" / "assets" / "k10.yaml"
+
+    def generate(descriptor: Path) -> None:
+        res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(descriptor), "--lang", "rust", "-o",
+                              str(tmp_path / "out")], cwd=ROOT, capture_output=True, text=True, timeout=120)
+        assert res.returncode == 0, res.stderr
+
+    generate(k10)
+    handlers = tmp_path / "out" / "rust" / "bridge" / "src" / "handlers.rs"
+    stub = handlers.read_bytes()
+    assert stub.count(b"Outcome::NotImplemented") == 9  # every command the runtime does not answer
+    assert b"do not edit" not in stub
+    generate(k10)
+    assert handlers.read_bytes() == stub
+    mine = stub.replace(b"Outcome::NotImplemented", b'Outcome::Ok("mine".into())', 1) + b"// my notes\n"
+    handlers.write_bytes(mine)
+    changed = yaml.safe_load(k10.read_text(encoding="utf-8"))
+    changed["idl"] = {k: str((k10.parent / v).resolve()) if isinstance(v, str) else [str((k10.parent / x).resolve())
+                      for x in v] for k, v in changed["idl"].items()}
+    changed["subsystem_types"][0]["commands"].append({"name": "wipeLens", "description": "clean the optics"})
+    (tmp_path / "k10b.yaml").write_text(yaml.safe_dump(changed), encoding="utf-8")
+    dispatch = tmp_path / "out" / "rust" / "bridge" / "src" / "dispatch.rs"
+    before = dispatch.read_text(encoding="utf-8")
+    generate(tmp_path / "k10b.yaml")
+    assert handlers.read_bytes() == mine
+    assert "fn wipe_lens(&self, ctx: &Context) -> Outcome;" in dispatch.read_text(encoding="utf-8")
+    assert "wipe_lens" not in before
+    handlers.unlink()
+    generate(tmp_path / "k10b.yaml")
+    assert b"fn wipe_lens(" in handlers.read_bytes()

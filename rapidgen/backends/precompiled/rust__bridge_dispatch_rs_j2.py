@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/rust/bridge/dispatch.rs.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "d2dc726e43ed3940b7b3bf72f080c1bc1dba11537ea870a7084dcc0b6e379683"
+KEY = "b247b6ed4c034908e55203dd44368c2d68150ce3b4c8c51601b2763017d0f0a5"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/dispatch.rs.j2'
 
@@ -24,7 +24,7 @@ def root(context, missing=missing, environment=environment):
     yield str(t_1(environment.getattr((undefined(name='c') if l_0_c is missing else l_0_c), 'header')))
     yield '\n//! The command handlers of asset '
     yield str(environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'asset'))
-    yield ": one trait per subsystem type, one method per\n//! command with its arguments by name and type (already checked against the descriptor:\n//! types, ranges, allowed values). Implement them in handlers.rs (yours: rapidgen writes it\n//! once and never again) and return them from make_handlers().\n//!\n//! A method runs on a thread of its own and may run long. Return Outcome::Ok(text) for\n//! COMPLETED/OK (text: Ack.message, cut to 127 bytes), Outcome::Failed(why) for\n//! COMPLETED/EXEC_FAILED (a panic is answered EXEC_FAILED too); ctx.progress(text) sends an\n//! EXECUTING ack; stop early when ctx.cancelled() (ctx.sleep(d) returns false then) and\n//! return Outcome::Canceled. ctx.subsystem() names the instance addressed (two subsystems\n//! may share a type). The standard Admin, Queue and AccessControl commands are the runtime's.\n#![allow(dead_code)]\n\n"
+    yield ": one trait per subsystem type, one method per\n//! command with its arguments by name and type (already checked against the descriptor:\n//! types, ranges, allowed values). Implement them in handlers.rs (yours: rapidgen writes it\n//! once and never again) and return them from make_handlers().\n//!\n//! A method runs on a thread of its own and may run long. Return Outcome::Ok(text) for\n//! COMPLETED/OK (text: Ack.message, cut to 127 bytes), Outcome::Failed(why) for\n//! COMPLETED/EXEC_FAILED (a panic is answered EXEC_FAILED too); ctx.progress(text) sends an\n//! EXECUTING ack; stop early when ctx.cancelled() (ctx.sleep(d) returns false then) and\n//! return Outcome::Canceled. ctx.subsystem() names the instance addressed (two subsystems\n//! may share a type). The standard Admin, Queue and AccessControl commands are the runtime's.\n#![allow(dead_code)]\n// one parameter per declared command parameter, however many the descriptor gives\n#![allow(clippy::too_many_arguments)]\n\n"
     if environment.getattr((undefined(name='v') if l_0_v is missing else l_0_v), 'handlers'):
         pass
         yield 'use rapid_runtime::{Context, Handlers, Outcome, Value};\n'
@@ -126,4 +126,4 @@ def root(context, missing=missing, environment=environment):
         yield "\n// (the asset takes no commands of its own: every one is the runtime's)\nimpl Handlers for HandlerSet {}\n"
 
 blocks = {}
-debug_info = '1=20&2=22&15=24&20=31&22=35&23=37&24=40&25=43&28=46&29=50&31=53&32=57&34=61&41=76&42=80&46=86&66=90&67=94&68=98'
+debug_info = '1=20&2=22&17=24&22=31&24=35&25=37&26=40&27=43&30=46&31=50&33=53&34=57&36=61&43=76&44=80&48=86&68=90&69=94&70=98'

@@ -66,6 +66,44 @@ struct Args {
 
 const USAGE: &str = "[--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE]";
 
+/// Why the bridge did not run: --help (exit status 0), a usage error (2), a failure (1).
+#[derive(Debug)]
+pub enum Failure {
+    Help,
+    Usage(String),
+    Run(String),
+}
+
+impl From<String> for Failure {
+    fn from(text: String) -> Failure {
+        Failure::Run(text)
+    }
+}
+
+/// The program: runs the bridge, prints why it stopped when it failed; the exit status.
+pub fn main(asset: Result<Asset, String>, handlers: Arc<dyn Handlers>) -> i32 {
+    let argv0 = std::env::args().next().unwrap_or_else(|| "bridge".into());
+    let res = asset.map_err(Failure::Run).and_then(|a| run(a, handlers));
+    match res {
+        Ok(()) => {
+            println!("bridge stopped");
+            0
+        }
+        Err(Failure::Help) => {
+            println!("usage: {argv0} {USAGE}");
+            0
+        }
+        Err(Failure::Usage(text)) => {
+            eprintln!("{argv0}: {text}\nusage: {argv0} {USAGE}");
+            2
+        }
+        Err(Failure::Run(text)) => {
+            eprintln!("{argv0}: {text}");
+            1
+        }
+    }
+}
+
 fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
     let mut out = Args { simulate: false, domain: None, transport: "local".into(), tables: None };
     let mut it = args.iter().skip(1);
@@ -86,17 +124,21 @@ fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
                 out.transport = t;
             }
             "--tables" => out.tables = Some(value(a)?),
-            "-h" | "--help" => return Err(format!("usage: {} {USAGE}", args[0])),
-            other => return Err(format!("unknown argument {other:?}; usage: {} {USAGE}", args[0])),
+            "-h" | "--help" => return Err("--help".into()),
+            other => return Err(format!("unknown argument {other:?}")),
         }
     }
     Ok(out)
 }
 
 /// Runs the bridge until a shutdown command; `handlers` unless `--simulate`.
-pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), String> {
+pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
     let argv: Vec<String> = std::env::args().collect();
-    let args = parse(&argv, asset.transports)?;
+    let args = match parse(&argv, asset.transports) {
+        Ok(a) => a,
+        Err(h) if h == "--help" => return Err(Failure::Help),
+        Err(e) => return Err(Failure::Usage(e)),
+    };
     let text = match &args.tables {
         Some(f) => std::fs::read_to_string(f).map_err(|e| format!("{f}: {e}"))?,
         None => asset.tables_json.to_string(),
@@ -115,7 +157,8 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), String> {
     let name = tables.tables.name.clone();
     let serial = convert::now_us().div_euclid(1_000_000) as i32; // (as Python: the start time)
     let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;
-    let outbox = Arc::new(DdsOutbox::new(&dp, &name, serial).map_err(|e| e.to_string())?);
+    let options = Options::default();
+    let outbox = Arc::new(DdsOutbox::new(&dp, &name, serial, options.window).map_err(|e| e.to_string())?);
 
     // configs first (transient-local): commanders read the CommandConfig to find the asset
     let hdr = convert::header(&name, &name, serial, 0);
@@ -129,7 +172,7 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), String> {
 
     let stop = Arc::new(AtomicBool::new(false));
     let sim = if args.simulate {
-        let source = Source { name: name.clone(), serial, qos: Box::new(asset.qos) };
+        let source = Source { name: name.clone(), serial, qos: asset.qos };
         Some(telemetry::start(&dp, &tables, source, asset.customs, stop.clone()).map_err(|e| e.to_string())?)
     } else {
         None
@@ -140,7 +183,8 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), String> {
     };
     let handlers: Arc<dyn Handlers> = if args.simulate { Arc::new(Simulated) } else { handlers };
     let manager = CommandManager::new(Arc::new(tables.tables), handlers, outbox.clone(),
-                                      Options { on_shutdown: Some(on_shutdown), ..Options::default() })?;
+                                      Options { on_shutdown: Some(on_shutdown), ..options })
+        .map_err(Failure::Run)?;
     manager.publish_states();
     let commands = dp.topic("rapid_command", "rapid::Command", true).map_err(|e| e.to_string())?;
     let reader = dp

@@ -108,11 +108,22 @@ impl Participant {
         Ok(Topic(check(&format!("topic {name}"), topic)?))
     }
 
+    /// A WITH_KEY topic whose samples are instances by key, as a typed topic's (keyed.rs):
+    /// `key` reads a sample's key members, `md5` when their largest encoding exceeds 16 bytes.
+    pub fn keyed_topic(&self, name: &str, type_name: &str, key: crate::keyed::KeyOf, md5: bool) -> Result<Topic, DdsError> {
+        let t = self.topic(name, type_name, true)?;
+        // SAFETY: a blob topic; its type's samples are made only by writers created after this
+        unsafe { crate::keyed::make_keyed(t.0, key, md5) }.map_err(|e| DdsError(format!("topic {name}: {e}")))?;
+        Ok(t)
+    }
+
     pub fn writer(&self, topic: &Topic, side: Side) -> Result<Writer, DdsError> {
-        let q = Qos::new(None, Some(side));
-        // SAFETY: valid entities and qos
-        let w = unsafe { dds_create_writer(self.publisher, topic.0, q.0, std::ptr::null()) };
-        Ok(Writer { w: check("writer", w)?, topic: topic.0 })
+        self.writers(topic, side).make()
+    }
+
+    /// What makes writers of `topic` later, apart from the participant (ack writer generations).
+    pub fn writers(&self, topic: &Topic, side: Side) -> Writers {
+        Writers { publisher: self.publisher, topic: topic.0, side }
     }
 
     pub fn reader(&self, topic: &Topic, side: Side) -> Result<Reader, DdsError> {
@@ -135,6 +146,27 @@ impl Drop for Participant {
 #[derive(Clone, Copy)]
 pub struct Topic(dds_entity_t);
 
+/// Makes writers of one topic with one QoS side.
+#[derive(Clone, Copy)]
+pub struct Writers {
+    publisher: dds_entity_t,
+    topic: dds_entity_t,
+    side: Side,
+}
+
+// SAFETY: entity handles (integers); Cyclone locks internally
+unsafe impl Send for Writers {}
+unsafe impl Sync for Writers {}
+
+impl Writers {
+    pub fn make(&self) -> Result<Writer, DdsError> {
+        let q = Qos::new(None, Some(self.side));
+        // SAFETY: valid entities and qos
+        let w = unsafe { dds_create_writer(self.publisher, self.topic, q.0, std::ptr::null()) };
+        Ok(Writer { w: check("writer", w)?, topic: self.topic })
+    }
+}
+
 #[derive(Clone, Copy)]
 pub struct Writer {
     w: dds_entity_t,
@@ -146,6 +178,13 @@ unsafe impl Send for Writer {}
 unsafe impl Sync for Writer {}
 
 impl Writer {
+    /// Deletes the writer (its history goes with it); Cyclone lingers in the call until its
+    /// readers have acknowledged what it wrote.
+    pub fn delete(self) -> Result<(), DdsError> {
+        // SAFETY: a writer entity, deleted once (the value is consumed)
+        check("delete writer", unsafe { dds_delete(self.w) }).map(|_| ())
+    }
+
     /// Writes one sample given as its CDR bytes (encapsulation header included).
     pub fn write(&self, bytes: &[u8]) -> Result<(), DdsError> {
         // SAFETY: the sertype is the topic's; from_ser_iov copies the bytes into a new serdata,

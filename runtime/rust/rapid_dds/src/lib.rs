@@ -9,6 +9,8 @@ pub mod bridge;
 pub mod convert;
 pub mod dds;
 pub mod images;
+pub mod keyed;
+mod md5;
 pub mod outbox;
 pub mod tables_json;
 pub mod telemetry;

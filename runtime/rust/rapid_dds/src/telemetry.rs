@@ -40,7 +40,7 @@ pub struct Source {
     pub name: String,
     pub serial: i32,
     /// the writer side of a topic's QoS profile (the generated asset::topic_qos)
-    pub qos: Box<dyn Fn(&str) -> Option<Side>>,
+    pub qos: fn(&str) -> Option<Side>,
 }
 
 enum Kind {

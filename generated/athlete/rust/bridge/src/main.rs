@@ -26,7 +26,7 @@ fn writer_side(topic: &str) -> Option<Side> {
     })
 }
 
-fn run() -> Result<(), String> {
+fn asset() -> Result<Asset, String> {
     let mut configs = Vec::new();
     for (topic, bytes) in asset::configs().map_err(|e| format!("configs: {e}"))? {
         let t = asset::TOPICS.iter().find(|t| t.topic == topic).ok_or(format!("config {topic}: not a topic"))?;
@@ -42,13 +42,9 @@ fn run() -> Result<(), String> {
             make: Box::new(move || Ok(bytes.clone())),
         })
         .collect();
-    let asset = Asset { tables_json: tables::JSON, configs, qos: writer_side, transports: transports::ALL, customs };
-    bridge::run(asset, Arc::new(handlers::make_handlers()))
+    Ok(Asset { tables_json: tables::JSON, configs, qos: writer_side, transports: transports::ALL, customs })
 }
 
 fn main() {
-    if let Err(e) = run() {
-        eprintln!("{}: {e}", env!("CARGO_BIN_NAME"));
-        std::process::exit(1);
-    }
+    std::process::exit(bridge::main(asset(), Arc::new(handlers::make_handlers())));
 }

@@ -11,6 +11,8 @@
 //! return Outcome::Canceled. ctx.subsystem() names the instance addressed (two subsystems
 //! may share a type). The standard Admin, Queue and AccessControl commands are the runtime's.
 #![allow(dead_code)]
+// one parameter per declared command parameter, however many the descriptor gives
+#![allow(clippy::too_many_arguments)]
 
 use rapid_runtime::{Context, Handlers, Outcome, Value};
 
