@@ -21,6 +21,7 @@ VECTORS = ROOT / "tests" / "vectors" / "rapid.json"
 K10 = ROOT / "generated" / "k10"
 PKG = "rapid_k10red"
 FLAGS = "-Wall -Wextra -Werror"
+RELEASE = "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"  # as tests/cpp_runtime/build.py (why there)
 JOBS = str(max(1, min(4, os.cpu_count() or 1)))
 
 
@@ -32,7 +33,7 @@ def _run(cmd: list[str], timeout: float = 600) -> subprocess.CompletedProcess:
 
 def _cmake(src: Path, build: Path, *defs: str) -> None:
     _run(["cmake", "-S", str(src), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
-          f"-DCMAKE_CXX_FLAGS={FLAGS}", *defs])
+          f"-DCMAKE_CXX_FLAGS={FLAGS}", RELEASE, *defs])
     _run(["cmake", "--build", str(build), "-j", JOBS])
 
 

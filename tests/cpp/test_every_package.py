@@ -1,4 +1,5 @@
-"""Every generated C++ package in generated/ builds warning-free (-Wall -Wextra -Werror).
+"""Every generated C++ package in generated/ builds warning-free (-Wall -Wextra -Werror,
+optimized: -O1, conftest.RELEASE).
 
 The RAPID set's and K10's packages are built by the session fixture (conftest.py); the other
 seeds' packages are built here, one CMake build each, in the run's temp folder."""
