@@ -7,6 +7,8 @@ an enclave of a `rapidgen secure` keystore, in a private network namespace (only
 - `rapidgen conform --enclave RapidWorkbench` (granted command and audit on K10Red): every
   required check passes; the checks that speak as a second source are unsupported (the
   bridge binds cmdSrc to the certificate: one enclave is one source).
+- `rapidgen spy echo --enclave RapidWorkbench` (granted watch) reads K10's positions; without
+  an enclave, nothing.
 - Without an enclave, or with one the deployment did not grant commanding K10Red (Outsider:
   watch only; Conformance: audit only), nothing runs: cmd finds no asset; conform finds none
   or says that DDS Security refused its command writer."""
@@ -33,6 +35,12 @@ def _conform(enclave: str | None) -> dict:
                      *extra], "env": {}}
 
 
+def _spy(enclave: str | None) -> dict:
+    extra = ["--enclave", enclave] if enclave else []
+    return {"argv": [sys.executable, "-m", "rapidgen", "spy", "echo", "rapid_position_sample", "--asset", K10,
+                     "--domain", str(DOMAIN), "--count", "1", "--seconds", "20", "--json", *extra], "env": {}}
+
+
 @pytest.fixture(scope="module")
 def secured(keystores, programs, tmp_path_factory) -> dict:
     enclaves = keystores["main"] / "enclaves"
@@ -41,7 +49,8 @@ def secured(keystores, programs, tmp_path_factory) -> dict:
         "bridge_env": {"RAPID_SECURITY_KEYSTORE": str(keystores["main"])}, "ready_s": 60,
         "cases": {"cmd": _cmd(str(enclaves / "RapidWorkbench")), "cmd_no_enclave": _cmd(None),
                   "cmd_watch_only": _cmd(str(enclaves / "Outsider")),
-                  "conform_no_enclave": _conform(None), "conform_audit_only": _conform(str(enclaves / "Conformance"))},
+                  "conform_no_enclave": _conform(None),
+                  "spy": _spy(str(enclaves / "RapidWorkbench")), "spy_no_enclave": _spy(None), "conform_audit_only": _conform(str(enclaves / "Conformance"))},
         # after the cases (the scenario's watch slot): alone, as a conformance run is
         "watch": _conform(str(enclaves / "RapidWorkbench"))})
 
@@ -69,3 +78,11 @@ def test_without_a_grant_the_tools_find_no_asset(secured, name):
     case = secured["cases"][name]
     assert case["rc"] != 0, case
     assert "COMPLETED OK" not in case["stdout"] and "every required check passed" not in case["stdout"], case
+
+
+def test_spy_with_an_enclave_reads_the_secured_bridge_s_telemetry(secured):
+    case = secured["cases"]["spy"]
+    assert '"topic": "rapid_position_sample"' in case["stdout"] or "rapid_position_sample" in case["stdout"], case
+    assert "K10Red" in case["stdout"], case
+    stranger = secured["cases"]["spy_no_enclave"]
+    assert "K10Red" not in stranger["stdout"], stranger
