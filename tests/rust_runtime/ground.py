@@ -10,6 +10,10 @@ Prints one JSON document; the test asserts on it. CHECK:
                few acks, whatever their command) only those of the last commands.
   every        every command of the dictionary with valid arguments (tests.runtime.ground's
                `commands`): the acks of each
+  ack-writers N  sends N Admin/noOp commands, then counts the asset's live rapid_ack writers
+               (DCPSPublication, rapidgen.live.discovery)
+  picture TOPIC  the first ImageSensorSample on TOPIC: its MIME type, the metadata's size and
+               the picture's own (tests.runtime.test_simulate_telemetry decodes it whole)
 """
 from __future__ import annotations
 
@@ -42,11 +46,57 @@ def late_acks(rapid, tables, qos, domain: int, n: int) -> dict:
     return {"sent": sent, "last": {cid: last.get(cid) for cid in sent}}
 
 
+def ack_writers(rapid, tables, qos, domain: int, n: int) -> dict:
+    from cyclonedds.domain import DomainParticipant
+
+    from rapid_runtime.acks import COMPLETED
+    from rapid_runtime.commander import Commander
+    from rapidgen.live.discovery import Discovery
+    c = Commander(rapid, qos, tables.name, "RapidWorkbench", domain)
+    assert c.wait_for_asset(10), "no bridge matched"
+    finals = 0
+    for _ in range(n):
+        cid = c.send("Admin", "noOp", [])
+        finals += any(a[0] == COMPLETED for a in c.wait_final(cid, 10))
+    c.close()
+    dp = DomainParticipant(domain)  # kept: the built-in readers die with it
+    d = Discovery(dp)
+    counts: list[int] = []
+    end = time.monotonic() + 8
+    # discovery, and deletions (after the readers acknowledged), take a moment: until the
+    # count has held for 1.5 s
+    while time.monotonic() < end and not (len(counts) >= 4 and len(set(counts[-4:])) == 1):
+        time.sleep(0.5)
+        d.poll()
+        counts.append(sum(1 for e in d.endpoints.values() if e.kind == "writer" and e.topic == "rapid_ack"
+                          and tables.partition in e.partitions))
+    return {"answered": finals, "ack_writers": counts[-1] if counts else 0}
+
+
+def picture(rapid, qos, domain: int, topic: str) -> dict:
+    from rapid_runtime.dds import Node
+    from tests.runtime.test_simulate_telemetry import picture_size
+    reader = Node(rapid, qos, domain).reader(topic, rapid.ImageSensorSample)
+    got: list = []
+    end = time.monotonic() + 15
+    while time.monotonic() < end and not got:
+        got = reader.take(N=4)
+        time.sleep(0.05)
+    if not got:
+        return {"picture": None}
+    s = got[-1]
+    return {"mime": s.mimeType, "meta": [s.meta.width, s.meta.height], "picture": picture_size(s.mimeType, bytes(s.data))}
+
+
 def main() -> int:
     check, pydir, package, domain = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
     _pkg, rapid, tables, qos = load(pydir, package)
     if check == "late-acks":
         out = late_acks(rapid, tables, qos, domain, int(sys.argv[5]))
+    elif check == "ack-writers":
+        out = ack_writers(rapid, tables, qos, domain, int(sys.argv[5]))
+    elif check == "picture":
+        out = picture(rapid, qos, domain, sys.argv[5])
     elif check == "every":
         out = commands(rapid, tables, qos, domain)
     else:

@@ -2,6 +2,7 @@
 //! configs, QoS profiles, transports, extension types) and the user's handlers:
 //!
 //!   <crate>_bridge [--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE]
+//!                  [--command-window N]
 //!
 //! The configs go out first (transient-local: commanders read the CommandConfig to find the
 //! asset), then the manager's states; commands are read in the asset's partition and handed
@@ -58,13 +59,14 @@ impl Handlers for Simulated {
 }
 
 struct Args {
+    window: Option<usize>,
     simulate: bool,
     domain: Option<u32>,
     transport: String,
     tables: Option<String>,
 }
 
-const USAGE: &str = "[--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE]";
+const USAGE: &str = "[--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE] [--command-window N]";
 
 /// Why the bridge did not run: --help (exit status 0), a usage error (2), a failure (1).
 #[derive(Debug)]
@@ -105,7 +107,7 @@ pub fn main(asset: Result<Asset, String>, handlers: Arc<dyn Handlers>) -> i32 {
 }
 
 fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
-    let mut out = Args { simulate: false, domain: None, transport: "local".into(), tables: None };
+    let mut out = Args { window: None, simulate: false, domain: None, transport: "local".into(), tables: None };
     let mut it = args.iter().skip(1);
     while let Some(a) = it.next() {
         let mut value = |name: &str| it.next().cloned().ok_or(format!("{name} wants a value"));
@@ -124,6 +126,10 @@ fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
                 out.transport = t;
             }
             "--tables" => out.tables = Some(value(a)?),
+            "--command-window" => {
+                let n = value(a)?;
+                out.window = Some(n.parse().ok().filter(|n| *n > 0).ok_or(format!("--command-window {n:?}: a count of commands, at least 1"))?);
+            }
             "-h" | "--help" => return Err("--help".into()),
             other => return Err(format!("unknown argument {other:?}")),
         }
@@ -157,7 +163,10 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
     let name = tables.tables.name.clone();
     let serial = convert::now_us().div_euclid(1_000_000) as i32; // (as Python: the start time)
     let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;
-    let options = Options::default();
+    let mut options = Options::default();
+    if let Some(w) = args.window {
+        options.window = w; // commands remembered (repeated cmdIds); also sizes the ack writer generations
+    }
     let outbox = Arc::new(DdsOutbox::new(&dp, &name, serial, options.window).map_err(|e| e.to_string())?);
 
     // configs first (transient-local): commanders read the CommandConfig to find the asset
