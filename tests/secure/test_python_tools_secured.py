@@ -23,10 +23,10 @@ from tests.secure.conftest import DOMAIN, ROOT, run_scenario
 K10 = str(ROOT / "specs" / "assets" / "k10.yaml")
 
 
-def _cmd(enclave: str | None) -> dict:
+def _cmd(enclave: str | None, wait: str = "15") -> dict:
     extra = ["--enclave", enclave] if enclave else []
     return {"argv": [sys.executable, "-m", "rapidgen", "cmd", K10, "AccessControl", "requestControl",
-                     "--source", "RapidWorkbench", "--domain", str(DOMAIN), "--timeout", "15", *extra], "env": {}}
+                     "--source", "RapidWorkbench", "--domain", str(DOMAIN), "--timeout", wait, *extra], "env": {}}
 
 
 def _conform(enclave: str | None) -> dict:
@@ -35,10 +35,11 @@ def _conform(enclave: str | None) -> dict:
                      *extra], "env": {}}
 
 
-def _spy(enclave: str | None) -> dict:
+def _spy(enclave: str | None, wait: str = "20") -> dict:
+    """(a refused tool waits all of `wait`: on loopback discovery takes well under a second)"""
     extra = ["--enclave", enclave] if enclave else []
     return {"argv": [sys.executable, "-m", "rapidgen", "spy", "echo", "rapid_position_sample", "--asset", K10,
-                     "--domain", str(DOMAIN), "--count", "1", "--seconds", "20", "--json", *extra], "env": {}}
+                     "--domain", str(DOMAIN), "--count", "1", "--seconds", wait, "--json", *extra], "env": {}}
 
 
 @pytest.fixture(scope="module")
@@ -47,10 +48,11 @@ def secured(keystores, programs, tmp_path_factory) -> dict:
     return run_scenario(tmp_path_factory.mktemp("python_tools"), {
         "bridge": [str(programs["bridge"]), "--simulate", "--domain", str(DOMAIN), "--seconds", "150"],
         "bridge_env": {"RAPID_SECURITY_KEYSTORE": str(keystores["main"])}, "ready_s": 60,
-        "cases": {"cmd": _cmd(str(enclaves / "RapidWorkbench")), "cmd_no_enclave": _cmd(None),
-                  "cmd_watch_only": _cmd(str(enclaves / "Outsider")),
+        "cases": {"cmd": _cmd(str(enclaves / "RapidWorkbench")), "cmd_no_enclave": _cmd(None, "8"),
+                  "cmd_watch_only": _cmd(str(enclaves / "Outsider"), "8"),
                   "conform_no_enclave": _conform(None),
-                  "spy": _spy(str(enclaves / "RapidWorkbench")), "spy_no_enclave": _spy(None), "conform_audit_only": _conform(str(enclaves / "Conformance"))},
+                  "spy": _spy(str(enclaves / "RapidWorkbench")), "spy_no_enclave": _spy(None, "8"),
+                  "conform_audit_only": _conform(str(enclaves / "Conformance"))},
         # after the cases (the scenario's watch slot): alone, as a conformance run is
         "watch": _conform(str(enclaves / "RapidWorkbench"))})
 
