@@ -22,6 +22,7 @@ from pathlib import Path
 import pytest
 import yaml
 
+from tests.cpp_runtime.build import hostile_descriptor
 from tests.runtime.live import BridgeProcess
 from tests.rust.conftest import cargo
 
@@ -29,6 +30,10 @@ ROOT = Path(__file__).resolve().parents[2]
 RUNTIME = ROOT / "runtime" / "rust"
 DOMAIN = 72
 SEEDS = ("k10", "chariot", "athlete", "eva-suit", "robonaut2", "xarm2")
+# and K10 with subsystem types, commands and parameters named like keywords, the generated
+# code's own names and the crates it uses, names starting with a digit, text that ends
+# comments and strings (the C++ bridge's hostile descriptor)
+HOSTILE = "hostile"
 # the workspace: the bridges are members; what they reach by path is not (runtime/ has
 # crates of its own, and a types crate as a member would resolve its optional RustDDS)
 WORKSPACE = """[workspace]
@@ -51,9 +56,14 @@ def _package(folder: Path) -> str:
     raise AssertionError(f"no package name in {folder / 'Cargo.toml'}")
 
 
+def _descriptor(ws: Path, seed: str) -> Path:
+    return ws / "hostile.yaml" if seed == HOSTILE else ROOT / "specs" / "assets" / f"{seed}.yaml"
+
+
 @pytest.fixture(scope="module")
 def bridges(rust_target, tmp_path_factory) -> dict[str, Path]:
-    """seed -> its bridge's binary, all built by one cargo run."""
+    """seed (and HOSTILE) -> its bridge's binary, all built by one cargo run; "ws": the
+    workspace (the hostile descriptor and its generated QoS files are there)."""
     libclang = os.environ.get("LIBCLANG_PATH") or _libclang()
     if libclang is None or shutil.which("cmake") is None:
         pytest.fail("cyclors builds Cyclone DDS with cmake and bindgen: Debian's cmake and libclang-14-dev "
@@ -62,13 +72,14 @@ def bridges(rust_target, tmp_path_factory) -> dict[str, Path]:
     (ws / "generated").mkdir()
     (ws / "runtime").symlink_to(ROOT / "runtime")
     (ws / "generated" / "rapid").symlink_to(ROOT / "generated" / "rapid")
+    (ws / "hostile.yaml").write_text(yaml.safe_dump(hostile_descriptor(), allow_unicode=True), encoding="utf-8")
     start = time.monotonic()
-    for seed in SEEDS:
-        res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(ROOT / "specs/assets" / f"{seed}.yaml"),
-                              "--lang", "rust", "-o", str(ws / "generated" / seed)],
+    for seed in (*SEEDS, HOSTILE):
+        res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(_descriptor(ws, seed)),
+                              "--lang", "rust" if seed != HOSTILE else "rust,qos", "-o", str(ws / "generated" / seed)],
                              cwd=ROOT, capture_output=True, text=True, timeout=300)
         assert res.returncode == 0, res.stdout + res.stderr
-    print(f"\nrapidgen generate --lang rust, {len(SEEDS)} seeds: {time.monotonic() - start:.1f} s")
+    print(f"\nrapidgen generate --lang rust, {len(SEEDS) + 1} descriptors: {time.monotonic() - start:.1f} s")
     (ws / "Cargo.toml").write_text(WORKSPACE, encoding="utf-8")
     shutil.copy(RUNTIME / "rapid_dds" / "Cargo.lock", ws / "Cargo.lock")
     env = dict(os.environ, CARGO_TARGET_DIR=str(rust_target), CARGO_TERM_COLOR="never", LIBCLANG_PATH=libclang)
@@ -80,23 +91,25 @@ def bridges(rust_target, tmp_path_factory) -> dict[str, Path]:
                              timeout=1800, stdin=subprocess.DEVNULL)
         if res.returncode == 0:
             break
-    print(f"cargo build of the {len(SEEDS)} bridges (debug, one workspace): {time.monotonic() - start:.1f} s")
+    print(f"cargo build of the {len(SEEDS) + 1} bridges (debug, one workspace): {time.monotonic() - start:.1f} s")
     assert res.returncode == 0, res.stderr[-4000:]
     warnings = [line for line in res.stderr.splitlines() if line.startswith("warning")]
     assert not warnings, res.stderr[-4000:]  # the generated code compiles clean
-    return {seed: rust_target / "debug" / _package(ws / "generated" / seed / "rust" / "bridge") for seed in SEEDS}
+    out = {seed: rust_target / "debug" / _package(ws / "generated" / seed / "rust" / "bridge") for seed in (*SEEDS, HOSTILE)}
+    return {**out, "ws": ws}
 
 
-def _conform(binary: Path, seed: str, tmp_path: Path) -> dict[str, dict]:
+def _conform(bridges: dict[str, Path], seed: str, tmp_path: Path) -> dict[str, dict]:
+    binary, ws = bridges[seed], bridges["ws"]
     env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}  # the bridge's own `local`
     bridge = BridgeProcess.of_command([str(binary), "--simulate", "--domain", str(DOMAIN)], ROOT, env)
     try:
         line = bridge.lines.get(timeout=30)
         assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
         report = tmp_path / f"conform-{seed}.json"
-        local = ROOT / "generated" / seed / "qos" / "cyclonedds" / "local.xml"
+        local = (ws if seed == HOSTILE else ROOT) / "generated" / seed / "qos" / "cyclonedds" / "local.xml"
         start = time.monotonic()
-        res = subprocess.run([sys.executable, "-m", "rapidgen", "conform", str(ROOT / "specs/assets" / f"{seed}.yaml"),
+        res = subprocess.run([sys.executable, "-m", "rapidgen", "conform", str(_descriptor(ws, seed)),
                               "--domain", str(DOMAIN), "--json", str(report)],
                              cwd=ROOT, env=dict(os.environ, CYCLONEDDS_URI=f"file://{local}"), capture_output=True,
                              text=True, timeout=600)
@@ -107,16 +120,16 @@ def _conform(binary: Path, seed: str, tmp_path: Path) -> dict[str, dict]:
         bridge.stop()
 
 
-@pytest.mark.parametrize("seed", SEEDS)
+@pytest.mark.parametrize("seed", (*SEEDS, HOSTILE))
 def test_conform_judges_the_generated_rust_bridge(bridges, seed, tmp_path):
-    checks = _conform(bridges[seed], seed, tmp_path)
+    checks = _conform(bridges, seed, tmp_path)
     status = {cid: c["outcome"] for cid, c in checks.items()}
     print(f"{seed}: " + ", ".join(f"{cid} {st}" for cid, st in status.items()))
     assert len(status) >= 54 and status.get("TEL-01") == "PASS" and status.get("DDS-06") == "PASS", status
     failed = {cid: f"{st}: {checks[cid].get('message') or ''}"[:300] for cid, st in status.items()
               if st not in ("PASS", "UNSUPPORTED")}
     assert not failed, failed
-    if seed == "k10":  # the seed with every kind of check: commands, queue, access control, images, extension
+    if seed in ("k10", HOSTILE):  # the seed with every kind of check: commands, queue, access control, images, extension
         assert all(status.get(f"TEL-0{i}") == "PASS" for i in range(1, 9)), status
         assert any(c.startswith("QUE-") and st == "PASS" for c, st in status.items()), status
 
@@ -283,3 +296,17 @@ def test_simulated_pictures_decode_whole(bridges, seed, package, topic, want):
     finally:
         bridge.stop()
     assert [got.get("mime"), got.get("meta"), got.get("picture")] == want, got
+
+
+def test_hostile_descriptor_names_are_valid_rust(bridges):
+    """The hostile descriptor's bridge (it compiled without a warning and passes conform
+    above): every name a usable, distinct Rust name."""
+    dispatch = (bridges["ws"] / "generated" / HOSTILE / "rust" / "bridge" / "src" / "dispatch.rs").read_text(
+        encoding="utf-8")
+    assert "fn delete(&self, ctx: &Context, ctx_: &str, this: f32, my_arg: i32, my_arg_: i64, arg_9lives: [f64; 3], " \
+           "ber: [f32; 9], assert: bool) -> Outcome;" in dispatch
+    assert "fn class_handler(&self, ctx: &Context) -> Outcome;" in dispatch
+    assert "fn class_handler_(&self, ctx: &Context) -> Outcome;" in dispatch  # distinct names
+    assert "pub trait ClassHandler: Send + Sync {" in dispatch and "pub trait ClassHandlerHandler: Send + Sync {" in dispatch
+    assert "fn do_it(&self, ctx: &Context, std: &str, rapid_runtime: f64) -> Outcome;" in dispatch
+    assert '("class", "do-it") => self.class.do_it(ctx, arg!(ctx, 0, String), arg!(ctx, 1, Double)),' in dispatch

@@ -96,6 +96,18 @@ class BridgeView:
     transports: list[tuple[str, str, str]]  # (name, its literal, const name)
 
 
+def _snake(name: str, fallback: str) -> str:
+    """A snake_case Rust name from a descriptor name; one that would start with a digit gets
+    `fallback_` before it (`9lives` -> `arg_9lives`, as the C++ bridge's)."""
+    s = namer.snake(name)
+    return s if s[:1].isalpha() else f"{fallback}_{s}"
+
+
+def _camel(name: str, fallback: str) -> str:
+    s = namer.camel(name)
+    return s if s[:1].isalpha() else fallback + s
+
+
 def _param_doc(name: str, p: TypedValue) -> str:
     parts = [f"`{name}` ({p.name + ', ' if p.name != name else ''}{p.type})"]
     if p.unit:
@@ -122,16 +134,16 @@ def build(loaded: "LoadedAsset", crate: str, configs: list) -> BridgeView:
         cmds = [c for c in t.commands if not (t.standard and (t.name, c.name) in RUNTIME_BUILTINS)]
         if not cmds:
             continue
-        trait = top.claim(namer.camel(t.name) + "Handler", f"handler trait of {t.name}")
-        impl = top.claim(namer.camel(t.name), f"implementation of {t.name}")
+        trait = top.claim(_camel(t.name, "Type") + "Handler", f"handler trait of {t.name}")
+        impl = top.claim(_camel(t.name, "Type"), f"implementation of {t.name}")
         scope = namer.Scope(f"trait {trait}", namer.KEYWORDS)
         methods = []
         for c in cmds:
-            method = scope.claim(namer.snake(c.name), c.name)
+            method = scope.claim(_snake(c.name, "command"), c.name)
             args = namer.Scope(f"{trait}::{method}", namer.KEYWORDS | {CONTEXT})
             params = []
             for p in c.parameters:
-                name = args.claim(namer.snake(p.name), p.name)
+                name = args.claim(_snake(p.name, "arg"), p.name)
                 rtype, variant = DATA_TYPES[p.type]
                 params.append(ParamView(name, rtype, variant, p.type == "RAPID_STRING", _param_doc(name, p)))
             doc = [f"{t.name}/{c.name}: {c.description or 'no description'}"]
@@ -144,7 +156,7 @@ def build(loaded: "LoadedAsset", crate: str, configs: list) -> BridgeView:
         title = f"Subsystem type {t.name}: {t.description or 'no description'} (subsystems: " \
                 f"{', '.join(subs_of.get(t.name, []))})"
         handlers.append(HandlerView(rust_str(t.name), rust_comment(title), trait, impl,
-                                    members.claim(namer.snake(t.name), t.name), methods))
+                                    members.claim(_snake(t.name, "type"), t.name), methods))
     function = {c.topic: c.function for c in configs}  # literal topic -> function
     config_views = [ConfigView(rust_str(topic), rust_str(type_name), function[rust_str(topic)])
                     for topic, (type_name, _value) in loaded.configs.items()]
