@@ -12,6 +12,7 @@ Prints one JSON document; the test asserts on it. CHECK:
                `commands`): the acks of each
   ack-writers N  sends N Admin/noOp commands, then counts the asset's live rapid_ack writers
                (DCPSPublication, rapidgen.live.discovery)
+  position     the latest rapid_position_sample: its pose's xyz and its values by key
   picture TOPIC  the first ImageSensorSample on TOPIC: its MIME type, the metadata's size and
                the picture's own (tests.runtime.test_simulate_telemetry decodes it whole)
 """
@@ -73,6 +74,23 @@ def ack_writers(rapid, tables, qos, domain: int, n: int) -> dict:
     return {"answered": finals, "ack_writers": counts[-1] if counts else 0}
 
 
+def position(rapid, tables, qos, domain: int) -> dict:
+    from rapid_runtime.dds import Node
+    reader = Node(rapid, qos, domain).reader("rapid_position_sample", rapid.PositionSample)
+    keys = next(t for t in tables.telemetry if t["kind"] == "position")["values"]
+    got: list = []
+    end = time.monotonic() + 5
+    while time.monotonic() < end and not got:
+        time.sleep(1.2)  # at 1 Hz: one sent after the drive
+        got = reader.take(N=16)
+    if not got:
+        return {"xyz": None}
+    s = got[-1]
+    return {"xyz": [round(x, 3) for x in s.pose.xyz],
+            "values": {k["name"]: round(v.value, 3) for k, v in zip(keys, s.values)
+                       if isinstance(v.value, float)}}
+
+
 def picture(rapid, qos, domain: int, topic: str) -> dict:
     from rapid_runtime.dds import Node
     from tests.runtime.test_simulate_telemetry import picture_size
@@ -95,6 +113,8 @@ def main() -> int:
         out = late_acks(rapid, tables, qos, domain, int(sys.argv[5]))
     elif check == "ack-writers":
         out = ack_writers(rapid, tables, qos, domain, int(sys.argv[5]))
+    elif check == "position":
+        out = position(rapid, tables, qos, domain)
     elif check == "picture":
         out = picture(rapid, qos, domain, sys.argv[5])
     elif check == "every":

@@ -310,3 +310,28 @@ def test_hostile_descriptor_names_are_valid_rust(bridges):
     assert "pub trait ClassHandler: Send + Sync {" in dispatch and "pub trait ClassHandlerHandler: Send + Sync {" in dispatch
     assert "fn do_it(&self, ctx: &Context, std: &str, rapid_runtime: f64) -> Outcome;" in dispatch
     assert '("class", "do-it") => self.class.do_it(ctx, arg!(ctx, 0, String), arg!(ctx, 1, Double)),' in dispatch
+
+
+def test_a_simulated_drive_moves_the_reported_position(bridges):
+    """--simulate: Mobility/simpleMove drives the body (bridge::Simulated, 0.5 m/s) and the
+    position samples report it: the pose's xyz and the odometer value key."""
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
+    bridge = BridgeProcess.of_command([str(bridges["k10"]), "--simulate", "--domain", str(DOMAIN)], ROOT, env)
+    pydir = ROOT / "generated" / "k10" / "python"
+    local = ROOT / "generated" / "k10" / "qos" / "cyclonedds" / "local.xml"
+    try:
+        line = bridge.lines.get(timeout=30)
+        assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
+        res = _cmd("AccessControl", "requestControl")
+        assert res.returncode == 0, res.stdout + res.stderr
+        res = _cmd("Mobility", "simpleMove", "frame=site", "xyt=1,0,0")
+        assert res.returncode == 0 and "COMPLETED OK  arrived at 1.00, 0.00" in res.stdout, res.stdout + res.stderr
+        res = subprocess.run([sys.executable, "-m", "tests.rust_runtime.ground", "position", str(pydir), "rapid_k10red",
+                              str(DOMAIN)], cwd=ROOT, capture_output=True, text=True, timeout=120,
+                             env=dict(os.environ, CYCLONEDDS_URI=f"file://{local}",
+                                      PYTHONPATH=f"{pydir}{os.pathsep}{ROOT}"))
+        assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-4000:]
+        got = json.loads(res.stdout.splitlines()[-1])
+    finally:
+        bridge.stop()
+    assert got["xyz"] == [1.0, 0.0, 0.0] and got["values"]["odometer"] == 1.0 and got["values"]["speed"] == 0.0, got

@@ -4,12 +4,12 @@ types. Literals only; every string goes through rust_str."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING
 
 from rapidgen.asset.spec import CustomTelemetry
-from rapidgen.backends.cpp.bridge import plausible
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.rust import namer
+from rapidgen.backends.rust.plausible import plausible
 from rapidgen.backends.rust.typemap import float_literal
 from rapidgen.model import ir
 
@@ -126,8 +126,8 @@ def build(loaded: "LoadedAsset", b: "Builder", library: "QosSpec | None" = None)
 
 
 def _simulated(loaded: "LoadedAsset", b: "Builder") -> list[CustomView]:
-    """Extension telemetry's messages with plausible values of the asset's own types, as the
-    C++ bridge's (cpp/bridge.py plausible()); a config the tables compute is among configs()."""
+    """Extension telemetry's messages with plausible values of the asset's own types
+    (plausible.py); a config the tables compute is among configs()."""
     out = []
     for t, topics, msgs in zip(loaded.spec.telemetry, loaded.telemetry_topics, loaded.telemetry_messages):
         if not isinstance(t, CustomTelemetry):
@@ -139,7 +139,6 @@ def _simulated(loaded: "LoadedAsset", b: "Builder") -> list[CustomView]:
             d = b.model.get(type_name)
             if not isinstance(d, ir.Struct):
                 continue
-            # plausible() reads the model and the type map only, which both builders have
-            value = b.value(ir.TypeRef(type_name, "struct"), plausible(cast(Any, b), d, loaded.spec.name, 0))
+            value = b.value(ir.TypeRef(type_name, "struct"), plausible(b, d, loaded.spec.name, 0))
             out.append(CustomView(rust_str(topic), b.path(type_name), value))
     return out

@@ -24,7 +24,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rapidgen.asset.spec import TypedValue
-from rapidgen.backends.cpp.bridge import RUNTIME_BUILTINS
 from rapidgen.backends.escape import rust_comment, rust_str
 from rapidgen.backends.rust import namer
 
@@ -47,6 +46,11 @@ DATA_TYPES = {  # RAPID DataType -> (the method's parameter type, the Value vari
     "RAPID_VEC3d": ("[f64; 3]", "Vec3d"),
     "RAPID_MAT33f": ("[f32; 9]", "Mat33f"),
 }
+# Standard commands the runtime answers itself (rapid_runtime's manager), less stopAllMotion:
+# the runtime cancels motion, then the handler stops the hardware (as the C++ bridge's).
+RUNTIME_BUILTINS = {("Admin", "echo"), ("Admin", "noOp"), ("Admin", "shutdown"), ("Queue", "cancelAll"),
+                    ("AccessControl", "requestControl"), ("AccessControl", "grabControl"),
+                    ("AccessControl", "releaseControl"), ("AccessControl", "transferControl")}
 CONTEXT = "ctx"  # every handler method's context parameter
 BRIDGE_NAMES = {"HandlerSet", "make_handlers", "Context", "Outcome", "Value", "Handlers"}
 

@@ -11,13 +11,13 @@
 //! set, else the transport's generated XML (loopback only for `local`, the default).
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use rapid_runtime::{CommandManager, Context, Handlers, Options, Outcome, Value};
 
 use crate::dds::{Participant, Side};
-use crate::telemetry::{self, Custom, Source};
+use crate::telemetry::{self, Body, Custom, Source};
 use crate::{convert, tables_json, DdsOutbox};
 
 /// What the generated crate gives the bridge.
@@ -34,26 +34,71 @@ pub struct Asset {
     pub customs: Vec<Custom>,
 }
 
-/// Handlers of a simulated robot: every command completes OK, a Mobility move (a Vec3d
-/// argument) drives at 10 m/s until there or told to stop (the queue checks need a command
-/// that holds the queue).
-pub struct Simulated;
+/// Handlers of a simulated robot, as the Python runtime's simulate.py: Mobility simpleMove and
+/// move drive the body to x, y and heading (xyt), move6DOF to x, y (xyz), at DRIVE_SPEED and
+/// TURN_SPEED, until there or told to stop; stopAllMotion stops it; anything else completes
+/// after a short pause. Position telemetry reports the body.
+pub struct Simulated {
+    pub body: Arc<Mutex<Body>>,
+}
+
+pub const DRIVE_SPEED: f64 = 0.5; // m/s
+pub const TURN_SPEED: f64 = 0.5; // rad/s
+const TICK: Duration = Duration::from_millis(50);
+
+impl Simulated {
+    fn drive(&self, ctx: &Context, x: f64, y: f64, th: Option<f64>) -> Outcome {
+        let dt = TICK.as_secs_f64();
+        loop {
+            {
+                let mut b = self.body.lock().unwrap_or_else(|e| e.into_inner());
+                let (dx, dy) = (x - b.xyz[0], y - b.xyz[1]);
+                let dist = dx.hypot(dy);
+                let goal = th.unwrap_or(b.heading);
+                let dth = (goal - b.heading + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+                if dist < 1e-3 && dth.abs() < 1e-3 {
+                    b.velocity = [0.0; 3];
+                    return Outcome::Ok(format!("arrived at {x:.2}, {y:.2}"));
+                }
+                let step = dist.min(DRIVE_SPEED * dt);
+                if dist > 0.0 {
+                    b.xyz[0] += dx / dist * step;
+                    b.xyz[1] += dy / dist * step;
+                    b.odometer += step;
+                    b.velocity = [dx / dist * DRIVE_SPEED, dy / dist * DRIVE_SPEED, 0.0];
+                } else {
+                    b.velocity = [0.0; 3];
+                }
+                b.heading += dth.clamp(-TURN_SPEED * dt, TURN_SPEED * dt);
+            }
+            if !ctx.sleep(TICK) {
+                self.body.lock().unwrap_or_else(|e| e.into_inner()).velocity = [0.0; 3];
+                return Outcome::Canceled;
+            }
+        }
+    }
+}
 
 impl Handlers for Simulated {
     fn execute(&self, ctx: &Context) -> Outcome {
-        let metres = ctx.args().iter().find_map(|v| match v {
-            Value::Vec3d(x) => Some((x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()),
+        let vec3 = ctx.args().iter().find_map(|v| match v {
+            Value::Vec3d(x) if x.iter().all(|c| c.is_finite()) => Some(*x),
             _ => None,
         });
-        match metres {
-            Some(m) if ctx.type_name() == "Mobility" && m.is_finite() => {
-                if ctx.sleep(Duration::from_secs_f64(m.min(1e6) / 10.0)) {
-                    Outcome::Ok(format!("{m:.0} m driven (simulated)"))
+        match (ctx.type_name(), ctx.command(), vec3) {
+            ("Mobility", "stopAllMotion", _) => {
+                self.body.lock().unwrap_or_else(|e| e.into_inner()).velocity = [0.0; 3];
+                Outcome::Ok("stopped (simulated)".into())
+            }
+            ("Mobility", "simpleMove" | "move", Some(v)) => self.drive(ctx, v[0], v[1], Some(v[2])),
+            ("Mobility", "move6DOF", Some(v)) => self.drive(ctx, v[0], v[1], None),
+            _ => {
+                if ctx.sleep(TICK) {
+                    Outcome::Ok("done (simulated)".into())
                 } else {
                     Outcome::Canceled
                 }
             }
-            _ => Outcome::Ok(String::new()),
         }
     }
 }
@@ -180,8 +225,9 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
     }
 
     let stop = Arc::new(AtomicBool::new(false));
+    let body = Arc::new(Mutex::new(Body::default()));
     let sim = if args.simulate {
-        let source = Source { name: name.clone(), serial, qos: asset.qos };
+        let source = Source { body: body.clone(), name: name.clone(), serial, qos: asset.qos };
         Some(telemetry::start(&dp, &tables, source, asset.customs, stop.clone()).map_err(|e| e.to_string())?)
     } else {
         None
@@ -190,7 +236,7 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         let stop = stop.clone();
         Arc::new(move || stop.store(true, Ordering::SeqCst)) as Arc<dyn Fn() + Send + Sync>
     };
-    let handlers: Arc<dyn Handlers> = if args.simulate { Arc::new(Simulated) } else { handlers };
+    let handlers: Arc<dyn Handlers> = if args.simulate { Arc::new(Simulated { body }) } else { handlers };
     let manager = CommandManager::new(Arc::new(tables.tables), handlers, outbox.clone(),
                                       Options { on_shutdown: Some(on_shutdown), ..options })
         .map_err(Failure::Run)?;

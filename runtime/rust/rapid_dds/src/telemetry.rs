@@ -6,9 +6,10 @@
 //! size and MIME type, with the camera's state) at their rate, or every IDLE_PERIOD seconds
 //! when none is declared and no command of the subsystem takes pictures; extension (custom)
 //! entries from samples the bridge makes (the generated types), header replaced; a text
-//! message at start (and at a declared rate). A still body: the handlers move nothing yet.
+//! message at start (and at a declared rate). Position samples report the body
+//! bridge::Simulated drives (speed and odometer value keys too); joints stay at rest.
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -26,6 +27,19 @@ use crate::tables_json::{Asset, Telemetry, TelemetryValue};
 pub const IDLE_PERIOD: f64 = 5.0;
 const TICK: Duration = Duration::from_millis(50);
 
+/// The simulated robot's body, in the site frame: what position samples report.
+#[derive(Clone, Debug, Default)]
+pub struct Body {
+    /// m
+    pub xyz: [f64; 3],
+    /// rad
+    pub heading: f64,
+    /// m/s
+    pub velocity: [f64; 3],
+    /// m driven
+    pub odometer: f64,
+}
+
 /// An extension entry's message made by the bridge (it knows the generated type): a sample
 /// whose header is replaced (`convert::with_header`) before it goes out.
 pub struct Custom {
@@ -37,6 +51,8 @@ pub struct Custom {
 
 /// What the publishing thread needs to know of the asset.
 pub struct Source {
+    /// the simulated robot's body (bridge::Simulated drives it)
+    pub body: Arc<Mutex<Body>>,
     pub name: String,
     pub serial: i32,
     /// the writer side of a topic's QoS profile (the generated asset::topic_qos)
@@ -44,7 +60,7 @@ pub struct Source {
 }
 
 enum Kind {
-    Position { values: Vec<rapid::ParameterUnion>, rot: [f32; 9] },
+    Position { values: Vec<(String, rapid::ParameterUnion)>, encoding: String },
     Agent(Vec<rapid::ParameterUnion>),
     Joint { positions: Vec<f32>, fields: Vec<String> },
     Image { state: Writer, meta: rapid::ImageMetadata, mime: String, frame: u32 },
@@ -92,20 +108,38 @@ pub fn plausible(v: &TelemetryValue) -> rapid::ParameterUnion {
     convert::union(&value)
 }
 
-/// The identity rotation in a pose encoding (QUAT: x, y, z, w; M33: the identity matrix;
-/// Euler angles and NONE: zeros), in Transform3D's nine floats.
-fn identity(encoding: &str) -> [f32; 9] {
+/// A rotation by `heading` about z in a pose encoding, in Transform3D's nine floats (QUAT:
+/// x, y, z, w; M33: row-major; XYZ and ZYX: the angles in that order; NONE and others: zeros).
+fn rotation(encoding: &str, heading: f64) -> [f32; 9] {
     let mut r = [0.0f32; 9];
+    let (s, c) = heading.sin_cos();
     match encoding {
-        "RAPID_ROT_QUAT" => r[3] = 1.0,
-        "RAPID_ROT_M33" => {
-            r[0] = 1.0;
-            r[4] = 1.0;
-            r[8] = 1.0;
+        "RAPID_ROT_QUAT" => {
+            let (hs, hc) = (heading / 2.0).sin_cos();
+            r[2] = hs as f32;
+            r[3] = hc as f32;
         }
+        "RAPID_ROT_M33" => r = [c as f32, -s as f32, 0.0, s as f32, c as f32, 0.0, 0.0, 0.0, 1.0],
+        "RAPID_ROT_XYZ" => r[2] = heading as f32,
+        "RAPID_ROT_ZYX" => r[0] = heading as f32,
         _ => {}
     }
     r
+}
+
+fn identity(encoding: &str) -> [f32; 9] {
+    rotation(encoding, 0.0)
+}
+
+/// A number value key's value as its DataType holds it.
+fn with_number(v: &rapid::ParameterUnion, x: f64) -> rapid::ParameterUnion {
+    match v {
+        rapid::ParameterUnion::D(_) => rapid::ParameterUnion::D(x),
+        rapid::ParameterUnion::F(_) => rapid::ParameterUnion::F(x as f32),
+        rapid::ParameterUnion::I(_) => rapid::ParameterUnion::I(x.round() as i32),
+        rapid::ParameterUnion::Ll(_) => rapid::ParameterUnion::Ll(x.round() as i64),
+        other => other.clone(),
+    }
 }
 
 fn period(rate: Option<f64>, idle: f64) -> Duration {
@@ -113,6 +147,7 @@ fn period(rate: Option<f64>, idle: f64) -> Duration {
 }
 
 struct Publisher {
+    body: Arc<Mutex<Body>>,
     name: String,
     serial: i32,
     jobs: Vec<Job>,
@@ -128,12 +163,22 @@ impl Publisher {
         let le = Endianness::Little;
         let enc = |e: cdr::EncodeError| e.to_string();
         match kind {
-            Kind::Position { values, rot } => {
+            Kind::Position { values, encoding } => {
+                let b = self.body.lock().unwrap_or_else(|e| e.into_inner()).clone();
+                let speed = b.velocity[0].hypot(b.velocity[1]);
+                let values = values
+                    .iter()
+                    .map(|(name, v)| match name.as_str() {
+                        "speed" => with_number(v, speed),
+                        "odometer" => with_number(v, b.odometer),
+                        _ => v.clone(),
+                    })
+                    .collect();
                 let s = rapid::PositionSample {
                     hdr,
-                    pose: rapid::Transform3D { xyz: [0.0; 3], rot: *rot },
-                    velocity: rapid::Transform3D::default(),
-                    values: values.clone(),
+                    pose: rapid::Transform3D { xyz: b.xyz, rot: rotation(encoding, b.heading) },
+                    velocity: rapid::Transform3D { xyz: b.velocity, rot: [0.0; 9] },
+                    values,
                 };
                 cdr::serialize(&s, le).map_err(enc)
             }
@@ -216,7 +261,7 @@ pub fn start(
     customs: Vec<Custom>,
     stop: Arc<AtomicBool>,
 ) -> Result<JoinHandle<()>, DdsError> {
-    let mut p = Publisher { name: src.name.clone(), serial: src.serial, jobs: Vec::new() };
+    let mut p = Publisher { body: src.body.clone(), name: src.name.clone(), serial: src.serial, jobs: Vec::new() };
     let now = Instant::now();
     let mut once = Vec::new();
     for t in &asset.telemetry {
@@ -229,8 +274,8 @@ pub fn start(
         match t.kind.as_str() {
             "position" => {
                 if let Some(s) = topic("sample") {
-                    let values = t.values.iter().map(plausible).collect();
-                    job(s, "rapid::PositionSample", t.rate, Kind::Position { values, rot: identity(&t.pose_encoding) })?;
+                    let values = t.values.iter().map(|v| (v.name.clone(), plausible(v))).collect();
+                    job(s, "rapid::PositionSample", t.rate, Kind::Position { values, encoding: t.pose_encoding.clone() })?;
                 }
             }
             "agent" => {
