@@ -335,3 +335,32 @@ def test_a_simulated_drive_moves_the_reported_position(bridges):
     finally:
         bridge.stop()
     assert got["xyz"] == [1.0, 0.0, 0.0] and got["values"]["odometer"] == 1.0 and got["values"]["speed"] == 0.0, got
+
+
+def test_the_intake_survives_fuzzed_and_undecodable_commands(bridges):
+    """A rogue on the partition writes 2000 mutated Commands (tests/security/rogue.py, seeded:
+    Cyclone's own writer keys and sends several hundred of them), then 20 whose cmdId is
+    invalid UTF-8: the bridge does not panic, drops what the codec refuses and logs that once
+    per writer, and still answers a valid command."""
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
+    bridge = BridgeProcess.of_command([str(bridges["k10"]), "--simulate", "--domain", str(DOMAIN)], ROOT, env)
+    pydir = ROOT / "generated" / "k10" / "python"
+    local = ROOT / "generated" / "k10" / "qos" / "cyclonedds" / "local.xml"
+    rogue_env = dict(os.environ, CYCLONEDDS_URI=f"file://{local}", PYTHONPATH=f"{pydir}{os.pathsep}{ROOT}")
+    try:
+        line = bridge.lines.get(timeout=30)
+        assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
+        for mode, n in (("fuzz", "2000"), ("bad-command", "20")):
+            res = subprocess.run([sys.executable, "-m", "tests.security.rogue", mode, str(pydir), "rapid_k10red",
+                                  str(DOMAIN), "5", n], cwd=ROOT, capture_output=True, text=True, timeout=240,
+                                 env=rogue_env)
+            assert res.returncode == 0 and f"rogue done {n}" in res.stdout, res.stdout[-2000:] + res.stderr[-2000:]
+        assert _cmd("AccessControl", "requestControl").returncode == 0
+        res = _cmd("Admin", "echo", "text=alive")
+        assert res.returncode == 0 and "COMPLETED OK  alive" in res.stdout, res.stdout + res.stderr
+    finally:
+        bridge.stop()
+    err = "\n".join(bridge.err)
+    assert "panicked" not in err, err[-3000:]
+    dropped = [e for e in bridge.err if "dropped an undecodable Command" in e]
+    assert len(dropped) == 2, dropped  # once for each of the two rogue writers, not once a sample
