@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 from rapidgen.asset.spec import CustomTelemetry
 from rapidgen.backends.escape import rust_str
 from rapidgen.backends.rust import namer
-from rapidgen.backends.rust.plausible import plausible
+from rapidgen.backends.plausible import plausible
 from rapidgen.backends.rust.typemap import float_literal
 from rapidgen.model import ir
 

@@ -1,7 +1,8 @@
 """Plausible values of an asset's own (extension) types, for the messages a simulated robot
-publishes (asset::simulated()): chosen by member name and type as the Python simulator's
-plausible() does. The same rule as the C++ bridge's (backends/cpp/bridge.py), which a back end
-may not import (tests/unit/test_layering.py): the two belong in one shared backend module."""
+publishes: chosen by member name and type as the Python simulator's plausible() does, at the
+site's origin. One rule for the C++ and Rust bridges' simulators (a module the back ends
+share: tests/unit/test_layering.py's SHARED_BACKEND). `b` is the back end's builder: its
+types (real()) and model."""
 from __future__ import annotations
 
 import re
