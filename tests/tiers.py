@@ -43,6 +43,8 @@ NEEDS: dict[str, frozenset[str]] = {k: frozenset(v.split()) for k, v in {
     "tests/spy/": "dds",
     "tests/streams/": "compiler dds",
     "tests/unit/": "",
+    "tests/idl/": "",
+    "tests/cmd/": "dds",
     # files that differ from their folder
     "tests/cdr/test_cyclone.py": "dds",
     "tests/cpp/test_fastdds_limits.py": "compiler dds",
@@ -69,7 +71,6 @@ NEEDS: dict[str, frozenset[str]] = {k: frozenset(v.split()) for k, v in {
     "tests/security/test_live_helpers.py": "dds compiler",
     "tests/security/test_live_spy.py": "dds",
     "tests/security/test_writer.py::test_kill_at_every_mutation_leaves_exactly_old_or_new_output": "slow",
-    "tests/unit/test_parse_state.py": "",
     # hypothesis and mutation campaigns: the full run has them, the fast tier not
     "tests/security/test_escaping.py::test_arbitrary_descriptor_text_generates_safe_files": "slow",
     "tests/security/test_escaping.py::test_arbitrary_idl_text_generates_safe_code": "slow",

@@ -6,7 +6,7 @@ while that was made from the very grammar read now; otherwise they are built fro
 grammar by lark (rapidgen.idl.larkgrammar, about 0.3 s). lark is imported only then, or
 for an input the tables reject, whose error lark's own parser explains.
 `python -m rapidgen.idl.larkgrammar --write` refreshes the packaged tables, `--check` says
-if they are stale (tests/unit/test_idl_tables.py too).
+if they are stale (tests/idl/test_idl_tables.py too).
 """
 from __future__ import annotations
 
