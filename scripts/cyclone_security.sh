@@ -24,7 +24,9 @@ PATCH="$ROOT/scripts/cyclone-fastdds-dh.patch"
 
 STAMP="$PREFIX/.installed"
 WANT="$(printf '%s %s %s' "$CRATE_SHA256" "$BINDING" "$(sha256sum "$PATCH" "$0" | cut -d' ' -f1 | tr '\n' ' ')")"
-if [ -f "$STAMP" ] && [ "$(cat "$STAMP")" = "$WANT" ]; then
+LIBRARY_PY="$("$VENV/bin/python" -c 'import importlib.util as u; s = u.find_spec("cyclonedds"); print(s.submodule_search_locations[0] if s else "")')/__library__.py"
+# done when the stamp matches and the binding is still the one built here (pip may have put the wheel back)
+if [ -f "$STAMP" ] && [ "$(cat "$STAMP")" = "$WANT" ] && grep -qF "$PREFIX/lib/libddsc.so" "$LIBRARY_PY" 2>/dev/null; then
     exit 0
 fi
 echo "setup: building Cyclone DDS 11.0.1 with DDS Security for the Python tools (once)" >&2
