@@ -31,7 +31,9 @@ and relinks what the oracle runs; afterwards the file and its object are put bac
 - conform: K10's generated C++ bridge (--simulate, its built-in loopback profile, a journal
   folder of its own) on the mutant, judged by `rapidgen conform specs/assets/k10.yaml
   --allow-motion` (the unmutated tools, cyclonedds on loopback); `both` runs conform only on
-  what the cases let live.
+  what the cases let live;
+- suite: the whole logic suite (the runtime's own unit tests besides the cases), no DDS:
+  not a protocol oracle, a second look at survivors (`--mutant ID ... --oracle suite`).
 
 A mutant is killed when its oracle fails, hangs past its bound, or the bridge does not
 start or dies. The score is killed / judged with bench/mutation.py's 95% Wilson interval;
@@ -89,7 +91,8 @@ class Mutant:
     rule: str
 
     def change(self) -> str:
-        return f"- {self.original.strip()} | + {self.mutated.strip()}"[:300]
+        added = " \\n ".join(ln.strip() for ln in self.mutated.strip().splitlines())  # (break/continue: a line more)
+        return f"- {self.original.strip()} | + {added}"[:300]
 
 
 # ---- the mutants ------------------------------------------------------------------------------
@@ -246,24 +249,26 @@ class Unbuilt(Exception):
     """The mutant compiled and does not link (a definition commented out): not a program."""
 
 
-def spec_oracle(b: Builds) -> tuple[bool, str]:
-    """(killed, why): the cases replayed by the logic suite linked with the mutant."""
+def spec_oracle(b: Builds, suite: str = "spec") -> tuple[bool, str]:
+    """(killed, why): the cases replayed by the logic suite linked with the mutant (suite
+    "spec"), or that whole suite, the runtime's own unit tests besides the cases ("suite")."""
     if b.build(b.tests, "logic").returncode != 0:
         raise Unbuilt("logic")
+    only = ["--gtest_filter=Spec*"] if suite == "spec" else []
     try:
-        run = subprocess.run([str(b.tests / "logic"), "--gtest_filter=Spec*", "--gtest_brief=1", "--gtest_fail_fast"],
-                             capture_output=True,
-                             text=True, timeout=SPEC_TIMEOUT, env=dict(os.environ, RAPID_SPEC_CASES=str(b.cases)))
+        run = subprocess.run([str(b.tests / "logic"), *only, "--gtest_brief=1", "--gtest_fail_fast"], capture_output=True,
+                             text=True, timeout=SPEC_TIMEOUT * (1 if suite == "spec" else 3),
+                             env=dict(os.environ, RAPID_SPEC_CASES=str(b.cases)))
     except subprocess.TimeoutExpired:
-        return True, "spec: hung"
+        return True, f"{suite}: hung"
     if run.returncode == 0:
         return False, ""
     failed = re.findall(r"^\[  FAILED  \] (\S+.*?)(?:, where GetParam\(\) = (.*))?$", run.stdout, re.M)
     if failed:
         name, param = failed[0]
-        return True, "spec: " + (param or name)[:200]
+        return True, f"{suite}: " + (param or name)[:200]
     tail = (run.stdout + run.stderr).strip().splitlines()
-    return True, f"spec: exit {run.returncode} " + (tail[-1][:150] if tail else "")
+    return True, f"{suite}: exit {run.returncode} " + (tail[-1][:150] if tail else "")
 
 
 def conform_oracle(b: Builds, domain: int) -> tuple[bool, str]:
@@ -326,6 +331,8 @@ def conform_oracle(b: Builds, domain: int) -> tuple[bool, str]:
 
 
 def judge(b: Builds, oracle: str, domain: int) -> tuple[bool, str]:
+    if oracle == "suite":
+        return spec_oracle(b, "suite")
     if oracle in ("spec", "both"):
         killed, why = spec_oracle(b)
         if killed or oracle == "spec":
@@ -369,7 +376,8 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--sample", type=int, default=200, help="mutants judged (walking a seeded order of all)")
     p.add_argument("--seed", type=int, default=1)
-    p.add_argument("--oracle", choices=("spec", "conform", "both"), default="both")
+    p.add_argument("--oracle", choices=("spec", "conform", "both", "suite"), default="both",
+                   help="suite: the whole logic suite (the runtime's unit tests and the cases), to review survivors")
     p.add_argument("--domain", type=int, default=59, help="DDS domain of the conform oracle (loopback only, < 102)")
     p.add_argument("--jobs", type=int, default=1, help="build jobs (the campaign's builds run under nice)")
     p.add_argument("--mutant", action="append", default=[], help="judge these mutants (FILE:LINE:K) only")
@@ -405,7 +413,7 @@ def main(argv: list[str] | None = None) -> int:
               f"{len(logs)} lie in a log call and {len(tests)} in test-only code (not judged); "
               f"judging {min(args.sample, len(order)) if not args.mutant else len(order)} of the other "
               f"{len(order) if not args.mutant else len(wire)} with the {args.oracle} oracle", flush=True)
-        b.setup(bridge=args.oracle != "spec")
+        b.setup(bridge=args.oracle not in ("spec", "suite"))
         print(f"built in {time.monotonic() - t0:.0f} s", flush=True)
         baseline, why = judge(b, args.oracle, args.domain)
         if baseline:
