@@ -75,7 +75,12 @@ class Node:
     def _writer_qos(self, topic: str, keep_last: int | None, blocking: float | None) -> Qos:
         q = self.qos.writer(topic)
         if keep_last is not None:
-            q = q + Qos(Policy.History.KeepLast(keep_last))
+            # Cyclone keeps for a late-joining reader what durability_service.history says
+            # (default: the last sample per instance), not the writer's history: both, or a
+            # late commander gets COMPLETED without the EXECUTING before it
+            q = q + Qos(Policy.History.KeepLast(keep_last),
+                        Policy.DurabilityService(cleanup_delay=0, history=Policy.History.KeepLast(keep_last),
+                                                 max_samples=-1, max_instances=-1, max_samples_per_instance=-1))
         if blocking is not None:
             q = q + Qos(Policy.Reliability.Reliable(max_blocking_time=duration(seconds=blocking)))
         return q

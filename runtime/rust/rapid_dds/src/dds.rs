@@ -58,9 +58,15 @@ impl Qos {
                     dds_durability_kind_DDS_DURABILITY_VOLATILE
                 };
                 dds_qset_durability(q, d);
-                match s.depth {
-                    Some(n) => dds_qset_history(q, dds_history_kind_DDS_HISTORY_KEEP_LAST, n),
-                    None => dds_qset_history(q, dds_history_kind_DDS_HISTORY_KEEP_ALL, 0),
+                let (kind, depth) = match s.depth {
+                    Some(n) => (dds_history_kind_DDS_HISTORY_KEEP_LAST, n),
+                    None => (dds_history_kind_DDS_HISTORY_KEEP_ALL, 0),
+                };
+                dds_qset_history(q, kind, depth);
+                // What a late-joining reader gets is durability_service's history in Cyclone
+                // (default: the last sample per instance), not the writer's: the same depth
+                if s.transient_local {
+                    dds_qset_durability_service(q, 0, kind, depth, -1, -1, -1);
                 }
             }
             Qos(q)
