@@ -1,0 +1,48 @@
+"""Where the suite's CPU goes: a pytest plugin that appends, per test, the CPU seconds of the
+test's process and of the children it waited for (compilers under cmake, bridges, conform
+runs), and a summary by file. docs/testing.md, "Where CI time goes", has a run's figures.
+
+    PYTHONPATH=bench CPU_BY_TEST=/tmp/cpu.jsonl bash scripts/test -p cpu_by_test
+    python bench/cpu_by_test.py /tmp/cpu.jsonl [TOP]
+
+A shared build is counted in the first test that asks for it (its setup)."""
+from __future__ import annotations
+
+import collections
+import json
+import os
+import resource
+import sys
+import time
+
+import pytest
+
+
+def _cpu() -> float:
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item, nextitem):
+    t0, c0 = time.monotonic(), _cpu()
+    yield
+    with open(os.environ.get("CPU_BY_TEST", "cpu_by_test.jsonl"), "a", encoding="utf-8") as f:
+        f.write(json.dumps({"id": item.nodeid, "cpu": round(_cpu() - c0, 2),
+                            "wall": round(time.monotonic() - t0, 2)}) + "\n")
+
+
+def main() -> int:
+    rows = [json.loads(line) for line in open(sys.argv[1], encoding="utf-8")]
+    top = int(sys.argv[2]) if len(sys.argv) > 2 else 20
+    by_file: collections.Counter[str] = collections.Counter()
+    for r in rows:
+        by_file[r["id"].split("::")[0]] += r["cpu"]
+    print(f"{len(rows)} tests, {sum(r['cpu'] for r in rows) / 60:.1f} CPU-minutes")
+    for name, cpu in by_file.most_common(top):
+        print(f"{cpu:8.1f} s  {name}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
