@@ -159,20 +159,29 @@ def conform_oracle(work: Path, mutant: str, domain: int) -> tuple[bool, str]:
             return True, "conform: the bridge died"
         if res.returncode == 0:
             return False, ""
-        try:
-            checks = json.loads(report.read_text())["checks"]
-            bad = [c["id"] for c in checks if c.get("outcome") in ("FAIL", "ERROR")]
-        except (OSError, ValueError, KeyError, TypeError):
-            bad = [res.stdout.strip().splitlines()[-1][:120] if res.stdout.strip() else f"exit {res.returncode}"]
-        return True, "conform: " + ", ".join(bad[:6])
+        return True, conform_finding(report, res.stdout, res.returncode)
     finally:
-        bridge.terminate()
-        try:
-            bridge.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            bridge.kill()
-            bridge.wait()
-        shutil.rmtree(state, ignore_errors=True)
+        stop_bridge(bridge, state)
+
+
+def conform_finding(report: Path, output: str, code: int) -> str:
+    """What a failed conform run found: its failed checks, else its last line (both campaigns)."""
+    try:
+        checks = json.loads(report.read_text())["checks"]
+        bad = [c["id"] for c in checks if c.get("outcome") in ("FAIL", "ERROR")]
+    except (OSError, ValueError, KeyError, TypeError):
+        bad = [output.strip().splitlines()[-1][:120] if output.strip() else f"exit {code}"]
+    return "conform: " + ", ".join(bad[:6])
+
+
+def stop_bridge(bridge: subprocess.Popen, state) -> None:
+    bridge.terminate()
+    try:
+        bridge.wait(timeout=20)
+    except subprocess.TimeoutExpired:
+        bridge.kill()
+        bridge.wait()
+    shutil.rmtree(state, ignore_errors=True)
 
 
 def wilson(k: int, n: int, z: float = 1.96) -> tuple[float, float]:

@@ -60,7 +60,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "bench"))
-from mutation import wilson  # noqa: E402  (the Python campaign's interval)
+from mutation import conform_finding, stop_bridge, wilson  # noqa: E402  (shared with the Python campaign)
 
 # The protocol logic of runtime/cpp/src: file -> the lines mutated (None: all). value.cpp only
 # where it checks an argument's shape and limits (the rest formats values for texts).
@@ -314,20 +314,9 @@ def conform_oracle(b: Builds, domain: int) -> tuple[bool, str]:
             return True, f"conform: the bridge died (exit {bridge.returncode})"
         if runner.returncode == 0:
             return False, ""
-        try:
-            checks = json.loads(report.read_text())["checks"]
-            bad = [c["id"] for c in checks if c.get("outcome") in ("FAIL", "ERROR")]
-        except (OSError, ValueError, KeyError, TypeError):
-            bad = [out.strip().splitlines()[-1][:120] if out.strip() else f"exit {runner.returncode}"]
-        return True, "conform: " + ", ".join(bad[:6])
+        return True, conform_finding(report, out, runner.returncode)
     finally:
-        bridge.terminate()
-        try:
-            bridge.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            bridge.kill()
-            bridge.wait()
-        shutil.rmtree(state, ignore_errors=True)
+        stop_bridge(bridge, state)
 
 
 def judge(b: Builds, oracle: str, domain: int) -> tuple[bool, str]:
