@@ -15,6 +15,7 @@ import struct
 import sys
 import threading
 import time
+from typing import Any
 
 from cyclonedds._clayer import ddspy_write
 from cyclonedds.core import DDSException
@@ -96,10 +97,10 @@ class Bridge:
                  journal: str | None = None, stop_timeout_ms: int = STOP_TIMEOUT_MS,
                  shutdown_timeout_ms: int = SHUTDOWN_TIMEOUT_MS, identities: Identities | None = None) -> None:
         """journal: the restart journal's folder (journal.py; None: no journal, nothing in
-        flight survives a crash). identities: a secured bridge's ground sources (identity.py):
-        a command runs only when its cmdSrc is the identity of the certificate that wrote it. stop_timeout_ms: a told-to-stop handler's bound when its
+        flight survives a crash). stop_timeout_ms: a told-to-stop handler's bound when its
         command declares none; shutdown_timeout_ms: how long stop() waits for the handlers
-        (docs/runtime.md, "Handler faults")."""
+        (docs/runtime.md, "Handler faults"). identities: a secured bridge's ground sources
+        (identity.py): a command runs only when its cmdSrc is the certificate that wrote it."""
         self.shutdown_timeout = shutdown_timeout_ms / 1000.0
         self.tables, self.rapid, self.handlers = tables, rapid, handlers
         self.name = tables.name
@@ -123,6 +124,7 @@ class Bridge:
         self._reader: ReaderThread | None = None
         self.identities = identities
         self._writers: dict[int, bytes] = {}  # publication handle -> the writer's GUID prefix (secured)
+        self._command_reader: Any = None  # the command DataReader, made at start()
         # inline: a command arriving at an empty door is handled on the reader thread (intake.py)
         self.intake = Intake(self.manager, self.log, inline=True)
         self.ack_writers: AckWriters | None = None  # made at start(): commanders wait to match it
@@ -251,7 +253,9 @@ class Bridge:
                 found = self._command_reader.get_matched_publication_data(handle)
             except Exception:  # cyclonedds raises DDSException for a writer no longer matched
                 found = None
-            prefix = found.key.bytes[:12] if found is not None else b""
+            if found is None:
+                return b""  # (not kept: refused now, looked up again next time)
+            prefix = found.key.bytes[:12]
             if len(self._writers) >= 4096:  # writers come and go: forget them all now and then
                 self._writers.clear()
             self._writers[handle] = prefix
@@ -661,7 +665,7 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None, module: st
         bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain, command_window=args.command_window,
                         journal=journal, stop_timeout_ms=args.stop_timeout,
                         shutdown_timeout_ms=args.shutdown_timeout, identities=identities).start()
-    except Exception as exc:  # cyclonedds' DDSException: with an enclave, the plugins refused it
+    except DDSException as exc:  # with an enclave: the security plugins refused it
         if enclave is None:
             raise
         print(f"bridge: DDS Security refused this participant's keystore ({enclave}): {exc}; Cyclone's own "
