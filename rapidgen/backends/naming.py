@@ -76,3 +76,20 @@ class Scope:
         for name, owner in self.owner.items():
             if not self.usable(name):
                 raise NameCollision(f"{self.label}: '{name}' (for {owner}) is not a usable {self.LANGUAGE} name")
+
+
+def param_summary(name: str, p, quote: str = "") -> str:
+    """A command parameter described for a handler's doc comment (the C++ and Rust bridges):
+    its name in the code (between `quote`s), descriptor name if other, type, unit, range,
+    allowed values, default and description. Unescaped: each back end passes it through its
+    own comment escaper."""
+    parts = [f"{quote}{name}{quote} ({p.name + ', ' if p.name != name else ''}{p.type})"]
+    if p.unit:
+        parts.append(f"[{p.unit}]")
+    if p.min is not None or p.max is not None:
+        parts.append(f"range [{p.min if p.min is not None else '-inf'}, {p.max if p.max is not None else 'inf'}]")
+    if p.allowed:
+        parts.append("one of " + ", ".join(map(str, p.allowed)))
+    if p.has_default:
+        parts.append(f"default {p.default!r}")
+    return " ".join(parts) + (f": {p.description}" if p.description else "")

@@ -31,6 +31,7 @@ from rapidgen.asset.spec import (CustomTelemetry, ImageTelemetry, JointTelemetry
 from rapidgen.backends.cpp import asset as asset_tables
 from rapidgen.backends.cpp import namer, streams
 from rapidgen.backends.escape import cpp_comment, cpp_str
+from rapidgen.backends.naming import param_summary
 from rapidgen.backends.plausible import plausible
 from rapidgen.model import ir
 
@@ -245,16 +246,7 @@ def build(loaded: "LoadedAsset", b: "Builder", package: str, assets: asset_table
 
 
 def _param_doc(name: str, p: TypedValue) -> str:
-    parts = [f"{name} ({p.name + ', ' if p.name != name else ''}{p.type})"]
-    if p.unit:
-        parts.append(f"[{p.unit}]")
-    if p.min is not None or p.max is not None:
-        parts.append(f"range [{p.min if p.min is not None else '-inf'}, {p.max if p.max is not None else 'inf'}]")
-    if p.allowed:
-        parts.append("one of " + ", ".join(map(str, p.allowed)))
-    if p.has_default:
-        parts.append(f"default {p.default!r}")
-    return cpp_comment(" ".join(parts) + (f": {p.description}" if p.description else ""))
+    return cpp_comment(param_summary(name, p))
 
 
 def _tables(loaded: "LoadedAsset", qos_of: dict[str, str]) -> list[str]:

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 from rapidgen.asset.spec import TypedValue
 from rapidgen.backends.escape import rust_comment, rust_str
+from rapidgen.backends.naming import param_summary
 from rapidgen.backends.rust import namer
 
 if TYPE_CHECKING:
@@ -113,16 +114,7 @@ def _camel(name: str, fallback: str) -> str:
 
 
 def _param_doc(name: str, p: TypedValue) -> str:
-    parts = [f"`{name}` ({p.name + ', ' if p.name != name else ''}{p.type})"]
-    if p.unit:
-        parts.append(f"[{p.unit}]")
-    if p.min is not None or p.max is not None:
-        parts.append(f"range [{p.min if p.min is not None else '-inf'}, {p.max if p.max is not None else 'inf'}]")
-    if p.allowed:
-        parts.append("one of " + ", ".join(map(str, p.allowed)))
-    if p.has_default:
-        parts.append(f"default {p.default!r}")
-    return rust_comment(" ".join(parts) + (f": {p.description}" if p.description else ""))
+    return rust_comment(param_summary(name, p, quote="`"))
 
 
 def build(loaded: "LoadedAsset", crate: str, configs: list) -> BridgeView:
