@@ -287,6 +287,7 @@ class Bridge:
                     except Exception:  # a reader that left without acknowledging; cyclonedds 11 raises oddly here
                         pass
                 self._acks().close()
+            self.node.deliver(ACK_DELIVERY)  # the last telemetry and states, as the acks above
         finally:
             if self._reader is not None and threading.current_thread() is not self._reader.thread:
                 self._reader.stop()

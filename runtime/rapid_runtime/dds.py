@@ -6,6 +6,7 @@ from __future__ import annotations
 import importlib
 import os
 import threading
+import time
 
 from cyclonedds.core import GuardCondition, InstanceState, ReadCondition, SampleState, ViewState, WaitSet
 from cyclonedds.domain import DomainParticipant
@@ -84,6 +85,22 @@ class Node:
         if blocking is not None:
             q = q + Qos(Policy.Reliability.Reliable(max_blocking_time=duration(seconds=blocking)))
         return q
+
+    def deliver(self, seconds: float) -> None:
+        """Wait, at most `seconds` in all, until every reliable reader has acknowledged what the
+        shared writers wrote: a sample lost on the way is resent only while its writer lives, so
+        a bridge that exits right after its last telemetry would leave some readers without it."""
+        end = time.monotonic() + seconds
+        with self._lock:
+            writers = list(self._writers.values())
+        for w in writers:
+            left = end - time.monotonic()
+            if left <= 0:
+                return
+            try:
+                w.wait_for_acks(duration(seconds=left))
+            except Exception:  # a reader that left without acknowledging; cyclonedds 11 raises oddly here
+                pass
 
     @staticmethod
     def delete(entity) -> None:
