@@ -105,7 +105,7 @@ def _bridge(asset: "LoadedAsset", c: CrateView, a: "AssetView") -> list[Generate
              GeneratedFile(f"{b}/src/tables.rs", render("rust", "bridge/tables.rs.j2", c=c, v=v,
                                                         tables_json=tables.json_text(asset)))]
     files += [GeneratedFile(f"{b}/src/{name}.rs", render("rust", f"bridge/{name}.rs.j2", c=c, v=v))
-              for name in ("dispatch", "main", "transports")]
+              for name in ("dispatch", "main", "cmd", "transports")]
     files.append(GeneratedFile(f"{b}/src/handlers.rs", render("rust", "bridge/handlers.rs.j2", c=c, v=v),
                                user_owned=True))
     return files

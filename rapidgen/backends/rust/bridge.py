@@ -11,6 +11,8 @@
     bridge/src/main.rs         main(): the configs (asset::configs), QoS, transports and
                                extension telemetry for --simulate (asset::simulated),
                                rapid_dds::bridge::run
+    bridge/src/cmd.rs          main() of `<crate>_cmd`, the ground-side program (rapid_dds::cmd on
+                               the same tables and transports)
     bridge/src/transports.rs   the qos target's Cyclone DDS XML per transport (added by embed())
     bridge/src/handlers.rs     the user's: written once (user_owned), stubs answering
                                EXEC_FAILED "not implemented"
@@ -94,6 +96,7 @@ class ConfigView:
 class BridgeView:
     crate: str  # the types crate
     bridge: str  # this crate (and binary)
+    cmd: str  # the ground-side binary
     asset: str  # for comments
     runtime_path: str  # runtime/rust, relative to the bridge's folder
     handlers: list[HandlerView]
@@ -157,6 +160,6 @@ def build(loaded: "LoadedAsset", crate: str, configs: list) -> BridgeView:
     config_views = [ConfigView(rust_str(topic), rust_str(type_name), function[rust_str(topic)])
                     for topic, (type_name, _value) in loaded.configs.items()]
     consts = namer.Scope("transports", namer.KEYWORDS)
-    return BridgeView(crate, crate + "_bridge", rust_comment(loaded.spec.name), RUNTIME, handlers,
+    return BridgeView(crate, crate + "_bridge", crate + "_cmd", rust_comment(loaded.spec.name), RUNTIME, handlers,
                       config_views,
                       [(t, rust_str(t), consts.claim(namer.upper(t), t)) for t in TRANSPORTS])

@@ -198,13 +198,7 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
     let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{where_}: {e}"))?;
     let tables = tables_json::asset_of(&json).map_err(|e| format!("{where_}: {e}"))?;
     let domain = args.domain.unwrap_or(tables.tables.domain.max(0) as u32);
-    if std::env::var_os("CYCLONEDDS_URI").is_none() {
-        if let Some((_, xml)) = asset.transports.iter().find(|(n, _)| *n == args.transport) {
-            // Cyclone takes the configuration itself in CYCLONEDDS_URI (no XML declaration)
-            let body = xml.find("<CycloneDDS").map(|i| &xml[i..]).unwrap_or(xml);
-            std::env::set_var("CYCLONEDDS_URI", body);
-        }
-    }
+    crate::dds::use_transport(asset.transports, &args.transport);
     let name = tables.tables.name.clone();
     let serial = convert::now_us().div_euclid(1_000_000) as i32; // (as Python: the start time)
     let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;

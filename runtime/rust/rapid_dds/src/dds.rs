@@ -3,6 +3,7 @@
 //! history) in one partition. The transport is Cyclone's: CYCLONEDDS_URI (the generated
 //! qos/cyclonedds/local.xml keeps it on 127.0.0.1).
 use std::ffi::CString;
+use std::time::Duration;
 
 use cyclors::*;
 
@@ -132,6 +133,18 @@ impl Participant {
         Writers { publisher: self.publisher, topic: topic.0, side }
     }
 
+    /// Blocks a thread until `reader` holds a sample (Waiter::wait), instead of polling it.
+    pub fn waiter(&self, reader: &Reader) -> Result<Waiter, DdsError> {
+        // SAFETY: valid entities; the waitset and condition belong to the participant and
+        // go with it
+        unsafe {
+            let ws = check("waitset", dds_create_waitset(self.dp))?;
+            let cond = check("read condition", dds_create_readcondition(reader.0, DDS_ANY_STATE))?;
+            check("waitset attach", dds_waitset_attach(ws, cond, 0))?;
+            Ok(Waiter(ws))
+        }
+    }
+
     pub fn reader(&self, topic: &Topic, side: Side) -> Result<Reader, DdsError> {
         let q = Qos::new(None, Some(side));
         // SAFETY: valid entities and qos
@@ -184,6 +197,18 @@ unsafe impl Send for Writer {}
 unsafe impl Sync for Writer {}
 
 impl Writer {
+    /// How many readers are matched now.
+    pub fn matched(&self) -> u32 {
+        // SAFETY: a writer entity and a status struct to fill
+        unsafe {
+            let mut st: dds_publication_matched_status_t = std::mem::zeroed();
+            if dds_get_publication_matched_status(self.w, &mut st) < 0 {
+                return 0;
+            }
+            st.current_count
+        }
+    }
+
     /// Deletes the writer (its history goes with it); Cyclone lingers in the call until its
     /// readers have acknowledged what it wrote.
     pub fn delete(self) -> Result<(), DdsError> {
@@ -214,6 +239,18 @@ pub struct Reader(dds_entity_t);
 unsafe impl Send for Reader {}
 
 impl Reader {
+    /// How many writers are matched now.
+    pub fn matched(&self) -> u32 {
+        // SAFETY: a reader entity and a status struct to fill
+        unsafe {
+            let mut st: dds_subscription_matched_status_t = std::mem::zeroed();
+            if dds_get_subscription_matched_status(self.0, &mut st) < 0 {
+                return 0;
+            }
+            st.current_count
+        }
+    }
+
     /// The next sample's CDR bytes and the handle of the writer that sent it; None when there
     /// is none now (a sample without data, a dispose or unregister, is passed over).
     pub fn take(&self) -> Option<(Vec<u8>, u64)> {
@@ -240,6 +277,34 @@ impl Reader {
                     return Some((b, info.publication_handle));
                 }
             }
+        }
+    }
+}
+
+/// A waitset on one reader's samples (Participant::waiter).
+pub struct Waiter(dds_entity_t);
+
+// SAFETY: entity handle (integer)
+unsafe impl Send for Waiter {}
+
+impl Waiter {
+    /// True once the reader holds a sample (at once when it already does), false after `timeout`.
+    pub fn wait(&self, timeout: Duration) -> bool {
+        let ns = i64::try_from(timeout.as_nanos()).unwrap_or(i64::MAX);
+        // SAFETY: a waitset entity; no attachment array is asked for
+        unsafe { dds_waitset_wait(self.0, std::ptr::null_mut(), 0, ns) > 0 }
+    }
+}
+
+/// Cyclone's configuration when CYCLONEDDS_URI is not set: the named transport's XML (the
+/// generated qos target's cyclonedds/<name>.xml; `local` keeps DDS on loopback). Call before
+/// the first participant.
+pub fn use_transport(transports: &[(&str, &str)], name: &str) {
+    if std::env::var_os("CYCLONEDDS_URI").is_none() {
+        if let Some((_, xml)) = transports.iter().find(|(n, _)| *n == name) {
+            // Cyclone takes the configuration itself in CYCLONEDDS_URI (no XML declaration)
+            let body = xml.find("<CycloneDDS").map(|i| &xml[i..]).unwrap_or(xml);
+            std::env::set_var("CYCLONEDDS_URI", body);
         }
     }
 }

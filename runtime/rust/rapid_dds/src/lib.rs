@@ -6,6 +6,8 @@
 //! blob topics), encoded and decoded by the generated codec.
 
 pub mod bridge;
+pub mod client;
+pub mod cmd;
 pub mod convert;
 pub mod dds;
 pub mod images;

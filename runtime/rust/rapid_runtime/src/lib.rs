@@ -9,6 +9,7 @@
 //! manager hands its [`Outbox`]; the asset's code implements [`Handlers`].
 
 pub mod access;
+pub mod args;
 pub mod command;
 pub mod handlers;
 pub mod journal;
