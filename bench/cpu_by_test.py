@@ -1,6 +1,7 @@
 """Where the suite's CPU goes: a pytest plugin that appends, per test, the CPU seconds of the
 test's process and of the children it waited for (compilers under cmake, bridges, conform
-runs), and a summary by file. docs/testing.md, "Where CI time goes", has a run's figures.
+runs), when it started and on which xdist worker; a summary by file, and each worker's idle
+time (between its tests, and after its last one until the run's end). docs/testing.md, "Where CI time goes", has a run's figures.
 
     PYTHONPATH=bench CPU_BY_TEST=/tmp/cpu.jsonl bash scripts/test -p cpu_by_test
     python bench/cpu_by_test.py /tmp/cpu.jsonl [TOP]
@@ -25,11 +26,11 @@ def _cpu() -> float:
 
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_protocol(item, nextitem):
-    t0, c0 = time.monotonic(), _cpu()
+    start, t0, c0 = time.time(), time.monotonic(), _cpu()
     yield
     with open(os.environ.get("CPU_BY_TEST", "cpu_by_test.jsonl"), "a", encoding="utf-8") as f:
-        f.write(json.dumps({"id": item.nodeid, "cpu": round(_cpu() - c0, 2),
-                            "wall": round(time.monotonic() - t0, 2)}) + "\n")
+        f.write(json.dumps({"id": item.nodeid, "cpu": round(_cpu() - c0, 2), "wall": round(time.monotonic() - t0, 2),
+                            "start": round(start, 2), "worker": os.environ.get("PYTEST_XDIST_WORKER", "")}) + "\n")
 
 
 def main() -> int:
@@ -41,6 +42,16 @@ def main() -> int:
     print(f"{len(rows)} tests, {sum(r['cpu'] for r in rows) / 60:.1f} CPU-minutes")
     for name, cpu in by_file.most_common(top):
         print(f"{cpu:8.1f} s  {name}")
+    timed = [r for r in rows if "start" in r]
+    if timed:
+        first, last = min(r["start"] for r in timed), max(r["start"] + r["wall"] for r in timed)
+        print(f"{last - first:.0f} s from the first test's start to the last one's end")
+        for worker in sorted({r["worker"] for r in timed}):
+            mine = sorted((r for r in timed if r["worker"] == worker), key=lambda r: r["start"])
+            busy = sum(r["wall"] for r in mine)
+            end = mine[-1]["start"] + mine[-1]["wall"]
+            print(f"  worker {worker or '-'}: busy {busy:.0f} s, idle {end - first - busy:.0f} s between tests, "
+                  f"done {last - end:.0f} s before the end (last: {mine[-1]['id']})")
     return 0
 
 
