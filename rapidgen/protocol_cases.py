@@ -15,6 +15,7 @@ import importlib.util
 import json
 import os
 import sys
+import zlib
 from pathlib import Path
 
 import jsonschema
@@ -31,6 +32,8 @@ DEFAULT_SOURCE = "RapidWorkbench"
 # steps only a driver can take (a live runner cannot make a handler return, restart the asset or
 # fill its door); expectations it cannot see (calls, retired, log, pending) it skips
 OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse"}
+# a journal record's keys in the order the runtimes write them (docs/runtime.md, "Restarts")
+RECORD_KEYS = ("k", "id", "src", "asset", "serial", "c", "m")
 
 
 class CaseError(Exception):
@@ -132,6 +135,46 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
     return out
 
 
+def journal_line(record: dict) -> str:
+    """A journal line as docs/runtime.md ("Restarts") defines it: the CRC-32 (zlib's) of the
+    compact, ASCII-escaped JSON record in 8 lowercase hex digits, a space, the JSON, a newline."""
+    text = json.dumps(record, separators=(",", ":"), ensure_ascii=True)
+    return f"{zlib.crc32(text.encode()):08x} {text}\n"
+
+
+def _journal(case: dict, seed: str, source: str) -> dict | None:
+    """The journal the asset's first start finds (the case's `journal:`): its file name (one per
+    asset and domain; the drivers start on domain 0) and its text: a record (`k`, fields left
+    out filled in) as the runtimes write it, `json:` a record's JSON text with its CRC added,
+    `raw:` a line written as it is, `torn:` bytes without a newline."""
+    if "journal" not in case:
+        return None
+    name = seed_tables(seed).name
+    text = ""
+    for entry in case["journal"]:
+        if "raw" in entry:  # a line as it is (a damaged one)
+            text += entry["raw"] + "\n"
+            continue
+        if "torn" in entry:  # a line's first bytes only, without its newline (a write cut short)
+            text += entry["torn"]
+            continue
+        if "json" in entry:  # a record's JSON text as some writer spelled it, its CRC added
+            text += f"{zlib.crc32(entry['json'].encode()):08x} {entry['json']}\n"
+            continue
+        rec = dict(entry)
+        if rec["k"] in ("q", "x", "c"):
+            rec.setdefault("src", source)
+            rec.setdefault("asset", name)
+            rec.setdefault("serial", 1)
+            if rec["k"] == "c":
+                rec.setdefault("c", "ACK_COMPLETED_OK")
+                rec.setdefault("m", "")
+        order = [k for k in RECORD_KEYS if k in rec] + [k for k in rec if k not in RECORD_KEYS]
+        text += journal_line({k: rec[k] for k in order})
+    file = "".join(c if c.isascii() and (c.isalnum() or c in "_.-") else "_" for c in name)[:64]
+    return {"file": f"{file}-domain0.journal", "text": text}
+
+
 def load_file(path: Path) -> list[dict]:
     sink = DiagnosticSink()
     shown = os.path.relpath(path, ROOT) if path.is_relative_to(ROOT) else str(path)
@@ -156,12 +199,15 @@ def load_file(path: Path) -> list[dict]:
         steps = _steps(case, seed, source, doc, path_)
         # (a case with manager options needs an asset started with them: offline only)
         # (QUEUE_BOGUS stands for a value outside QueueAction, which a typed DDS writer cannot send)
-        live = not case.get("options") and all(
+        journal = _journal(case, seed, source)
+        if journal is not None and "\r" in journal["text"]:  # (the runtimes' line splitting differs there)
+            raise CaseError(f"{doc.loc((*path_, 'journal'))}: a journal line holds a carriage return")
+        live = not case.get("options") and journal is None and all(
             s["op"] not in OFFLINE_ONLY and (s["op"] != "send" or s["handler"]["kind"] == "ok" and
                                              s["action"] != "QUEUE_BOGUS") for s in steps)
         cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
                       "rules": case.get("rules", []), "asset": seed, "options": case.get("options", {}),
-                      "live": live, "steps": steps})
+                      "live": live, "journal": journal, "steps": steps})
     return cases
 
 

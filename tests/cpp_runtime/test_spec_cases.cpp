@@ -7,8 +7,8 @@
 // (arguments already typed), from the file named by RAPID_SPEC_CASES; one test per case,
 // named Spec/Case.Replays/<file>_<case name>. Without the variable there are no cases and
 // SpecCases.Loaded fails (tests/cpp_runtime/test_cpp_runtime.py sets it). A case with a
-// `restart` step runs on the restart journal (in a temporary folder); a restart is the
-// process dying: its manager's later writes unseen, a new manager restored from the journal.
+// `restart` step or a `journal` runs on the restart journal (in a temporary folder); a restart
+// is the process dying: its manager's later writes unseen, a new manager restored from the journal.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -368,9 +368,23 @@ public:
             else
                 throw std::invalid_argument("option '" + key + "' is not known to this driver");
         }
-        // a case that restarts the asset runs with the restart journal, as the bridge does
+        // a case that restarts the asset, or starts on a journal, runs with the restart journal
+        // as the bridge does, in a state folder not made yet (the runtime makes it) unless the
+        // case's journal is written there first
+        const json& found = c.at("journal");
+        bool journaled = !found.is_null();
         for (const auto& s : c.at("steps"))
-            if (s.at("op") == "restart") journal_dir_ = temp_dir();
+            if (s.at("op") == "restart") journaled = true;
+        if (journaled) {
+            temp_ = temp_dir();
+            journal_dir_ = temp_ + "/state/rapid_runtime";
+        }
+        if (!found.is_null()) {
+            std::filesystem::create_directories(journal_dir_);
+            std::ofstream file(journal_dir_ + "/" + found.at("file").get<std::string>(), std::ios::binary);
+            file << found.at("text").get<std::string>();
+            if (!file.flush()) throw std::runtime_error("cannot write the case's journal in " + journal_dir_);
+        }
         start();
     }
     ~Replay() {  // every handler returns, then the asset shuts down (the Python driver's close())
@@ -382,7 +396,7 @@ public:
         manager().shut_down(2000);
         managers_.clear();  // (each joins its handlers' threads)
         journals_.clear();
-        if (!journal_dir_.empty()) std::filesystem::remove_all(journal_dir_);
+        if (!temp_.empty()) std::filesystem::remove_all(temp_);
     }
     Replay(const Replay&) = delete;
     Replay& operator=(const Replay&) = delete;
@@ -595,7 +609,8 @@ private:
 
     const json& case_;
     ManagerOptions options_;
-    std::string journal_dir_;  // the restart journal's folder ("": none)
+    std::string temp_;  // the case's temporary folder ("": none)
+    std::string journal_dir_;  // the restart journal's folder in it ("": none)
     Seen seen_;
     std::vector<std::unique_ptr<CollectingOutbox>> outboxes_;  // one per life of the asset, the last live
     Scripted handlers_;

@@ -146,8 +146,15 @@ class Replay:
         self.out = Outbox()
         self.handlers = Scripted(self.out.cond)
         self.tables = seed_tables(case["asset"])
-        # a case that restarts the asset runs with the restart journal, as the bridge does
-        self.journal_dir = state_dir if any(s["op"] == "restart" for s in case["steps"]) else None
+        # a case that restarts the asset, or starts on a journal, runs with the restart journal
+        # as the bridge does, in a state folder not made yet (the runtime makes it) unless
+        # the case's journal is written there first
+        self.journal_dir = None
+        if case["journal"] is not None or any(s["op"] == "restart" for s in case["steps"]):
+            self.journal_dir = state_dir / "state" / "rapid_runtime"
+        if case["journal"] is not None:
+            self.journal_dir.mkdir(parents=True)
+            (self.journal_dir / case["journal"]["file"]).write_bytes(case["journal"]["text"].encode())
         self.m = self.manager()
 
     def manager(self) -> CommandManager:

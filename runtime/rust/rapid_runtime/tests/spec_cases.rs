@@ -328,6 +328,8 @@ struct Replay<'a> {
     /// the managers of processes that died: kept (their handler threads run on) but unheard
     dead: Vec<CommandManager>,
     journal_dir: Option<PathBuf>,
+    /// the case's temporary folder, the journal's state folder inside it
+    temp: Option<PathBuf>,
 }
 
 fn options_of(case: &Json) -> Options {
@@ -383,15 +385,24 @@ impl<'a> Replay<'a> {
             release: Condvar::new(),
         });
         let gate = Arc::new(Gate { shared: shared.clone(), alive: AtomicBool::new(true) });
-        // a case that restarts the asset runs with the restart journal, as the bridge does
+        // a case that restarts the asset, or starts on a journal, runs with the restart journal as
+        // the bridge does, in a state folder not made yet (the runtime makes it) unless the case's
+        // journal is written there first
+        let found = &case["journal"];
         let restarts = case["steps"].as_array().into_iter().flatten().any(|st| s(st, "op") == "restart");
-        let journal_dir = restarts.then(|| {
+        let temp = (restarts || !found.is_null()).then(|| {
             let dir = std::env::temp_dir().join(format!("rapid-spec-journal-{}-{n}", std::process::id()));
             let _ = std::fs::remove_dir_all(&dir);
             dir
         });
+        let journal_dir = temp.as_ref().map(|t| t.join("state").join("rapid_runtime"));
+        if let (Some(dir), false) = (&journal_dir, found.is_null()) {
+            std::fs::create_dir_all(dir)
+                .and_then(|_| std::fs::write(dir.join(s(found, "file")), s(found, "text")))
+                .map_err(|e| format!("the case's journal cannot be written in {}: {e}", dir.display()))?;
+        }
         let m = manager(case, &tables, &handlers, &gate, journal_dir.as_ref())?;
-        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), journal_dir })
+        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), journal_dir, temp })
     }
 
     /// The process dies: the journal as the disk has it (no clean stop record), nothing more
@@ -550,7 +561,7 @@ impl<'a> Replay<'a> {
         for m in &self.dead {
             m.shutdown(Some(Duration::from_secs(2)));
         }
-        if let Some(dir) = &self.journal_dir {
+        if let Some(dir) = &self.temp {
             let _ = std::fs::remove_dir_all(dir);
         }
     }
