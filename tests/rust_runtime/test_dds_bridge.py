@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 import time
@@ -22,81 +21,11 @@ from pathlib import Path
 import pytest
 import yaml
 
-from tests.cpp_runtime.build import hostile_descriptor
 from tests.runtime.live import BridgeProcess
-from tests.rust.conftest import cargo
+from tests.rust_runtime.build import HOSTILE, SEEDS, descriptor as _descriptor
 
 ROOT = Path(__file__).resolve().parents[2]
-RUNTIME = ROOT / "runtime" / "rust"
 DOMAIN = 72
-SEEDS = ("k10", "chariot", "athlete", "eva-suit", "robonaut2", "xarm2")
-# and K10 with subsystem types, commands and parameters named like keywords, the generated
-# code's own names and the crates it uses, names starting with a digit, text that ends
-# comments and strings (the C++ bridge's hostile descriptor)
-HOSTILE = "hostile"
-# the workspace: the bridges are members; what they reach by path is not (runtime/ has
-# crates of its own, and a types crate as a member would resolve its optional RustDDS)
-WORKSPACE = """[workspace]
-resolver = "2"
-members = ["generated/*/rust/bridge"]
-exclude = ["runtime", "generated/rapid"]
-"""
-
-
-def _libclang() -> str | None:
-    for lib in sorted(Path("/usr/lib").glob("llvm-*/lib/libclang.so*"), reverse=True):
-        return str(lib.parent)
-    return None
-
-
-def _package(folder: Path) -> str:
-    for line in (folder / "Cargo.toml").read_text(encoding="utf-8").splitlines():
-        if line.startswith("name = "):
-            return json.loads(line.split("=", 1)[1].strip())
-    raise AssertionError(f"no package name in {folder / 'Cargo.toml'}")
-
-
-def _descriptor(ws: Path, seed: str) -> Path:
-    return ws / "hostile.yaml" if seed == HOSTILE else ROOT / "specs" / "assets" / f"{seed}.yaml"
-
-
-@pytest.fixture(scope="module")
-def bridges(rust_target, tmp_path_factory) -> dict[str, Path]:
-    """seed (and HOSTILE) -> its bridge's binary, all built by one cargo run; "ws": the
-    workspace (the hostile descriptor and its generated QoS files are there)."""
-    libclang = os.environ.get("LIBCLANG_PATH") or _libclang()
-    if libclang is None or shutil.which("cmake") is None:
-        pytest.fail("cyclors builds Cyclone DDS with cmake and bindgen: Debian's cmake and libclang-14-dev "
-                    "(scripts/apt-packages.txt) are needed")
-    ws = tmp_path_factory.mktemp("rust-bridges")
-    (ws / "generated").mkdir()
-    (ws / "runtime").symlink_to(ROOT / "runtime")
-    (ws / "generated" / "rapid").symlink_to(ROOT / "generated" / "rapid")
-    (ws / "hostile.yaml").write_text(yaml.safe_dump(hostile_descriptor(), allow_unicode=True), encoding="utf-8")
-    start = time.monotonic()
-    for seed in (*SEEDS, HOSTILE):
-        res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", str(_descriptor(ws, seed)),
-                              "--lang", "rust" if seed != HOSTILE else "rust,qos", "-o", str(ws / "generated" / seed)],
-                             cwd=ROOT, capture_output=True, text=True, timeout=300)
-        assert res.returncode == 0, res.stdout + res.stderr
-    print(f"\nrapidgen generate --lang rust, {len(SEEDS) + 1} descriptors: {time.monotonic() - start:.1f} s")
-    (ws / "Cargo.toml").write_text(WORKSPACE, encoding="utf-8")
-    shutil.copy(RUNTIME / "rapid_dds" / "Cargo.lock", ws / "Cargo.lock")
-    env = dict(os.environ, CARGO_TARGET_DIR=str(rust_target), CARGO_TERM_COLOR="never", LIBCLANG_PATH=libclang)
-    start = time.monotonic()
-    # offline first (nothing to fetch when the crates and their index entries are cached);
-    # else online: a fresh machine downloads them
-    for mode in (["--offline"], []):
-        res = subprocess.run([cargo(), "build", *mode], cwd=ws, env=env, capture_output=True, text=True,
-                             timeout=1800, stdin=subprocess.DEVNULL)
-        if res.returncode == 0:
-            break
-    print(f"cargo build of the {len(SEEDS) + 1} bridges (debug, one workspace): {time.monotonic() - start:.1f} s")
-    assert res.returncode == 0, res.stderr[-4000:]
-    warnings = [line for line in res.stderr.splitlines() if line.startswith("warning")]
-    assert not warnings, res.stderr[-4000:]  # the generated code compiles clean
-    out = {seed: rust_target / "debug" / _package(ws / "generated" / seed / "rust" / "bridge") for seed in (*SEEDS, HOSTILE)}
-    return {**out, "ws": ws}
 
 
 def _conform(bridges: dict[str, Path], seed: str, tmp_path: Path) -> dict[str, dict]:

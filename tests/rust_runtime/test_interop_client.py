@@ -1,0 +1,115 @@
+"""Interop on loopback, real processes, every way the Rust ground side meets the others: the
+generated `rapid_k10red_cmd` (rapid_dds::cmd on rapid_dds::client, Cyclone through cyclors)
+drives K10's Python bridge and K10's generated C++ bridge (Fast DDS), and `rapidgen cmd`
+(Python, cyclonedds) drives K10's generated Rust bridge, through the C++ client tests'
+scenario (tests/cpp_client/drive.py: valid, invalid, queued with APPEND/INSERT/REPLACE/DELETE,
+cancelled). Every command gets the same exit status and ack lines every way, the ones the
+protocol asks for (tests/cpp_client/test_interop.py's EXPECTED). The three run at once, on
+domains 1, 2 and 4; the refusals without an asset on domain 6.
+
+The Rust programs are the session's build (conftest.py's `bridges`: `<crate>_cmd` is built
+beside each `<crate>_bridge`), the C++ bridge the C++ tests' seeds build
+(tests/cpp_runtime/build.py seed_bridges, once per session: RAPIDGEN_CPP_SEEDS=k10 limits it
+to K10)."""
+from __future__ import annotations
+
+import os
+import subprocess
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+
+from tests.cpp_client.drive import Driver, scenario
+from tests.cpp_client.test_interop import EXPECTED, _settled
+from tests.cpp_runtime import build as B
+from tests.runtime.live import ROOT, SEEDS, BridgeProcess, python_dir
+
+pytest.importorskip("cyclonedds")
+
+PY_BRIDGE_DOMAIN, RUST_BRIDGE_DOMAIN, CPP_BRIDGE_DOMAIN, NO_ASSET_DOMAIN = 1, 2, 4, 6
+
+
+def _cmd_program(bridges: dict[str, Path]) -> Path:
+    return bridges["k10"].parent / "rapid_k10red_cmd"
+
+
+def _own_transport() -> dict[str, str]:
+    """The environment without CYCLONEDDS_URI: the Rust program's built-in `local` (loopback)."""
+    return {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
+
+
+def _rust_drives_python_bridge(cmd: Path) -> dict:
+    bridge = BridgeProcess(python_dir("k10"), SEEDS["k10"], PY_BRIDGE_DOMAIN, "--sim-speed", "1")  # (as the C++ one)
+    try:
+        bridge.wait_ready()
+        return scenario(Driver("rust", PY_BRIDGE_DOMAIN, cmd))
+    finally:
+        bridge.stop()
+
+
+def _python_drives_rust_bridge(binary: Path) -> dict:
+    bridge = BridgeProcess.of_command([str(binary), "--simulate", "--domain", str(RUST_BRIDGE_DOMAIN)], ROOT,
+                                      _own_transport())
+    try:
+        line = bridge.lines.get(timeout=30)
+        assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
+        return scenario(Driver("python", RUST_BRIDGE_DOMAIN))
+    finally:
+        bridge.stop()
+
+
+def _rust_drives_cpp_bridge(bridge_binary: Path, cmd: Path) -> dict:
+    proc = subprocess.Popen([str(bridge_binary), "--simulate", "--domain", str(CPP_BRIDGE_DOMAIN), "--seconds", "240"],
+                            env=B.dds_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().startswith("bridge ready: asset K10Red")
+        return scenario(Driver("rust", CPP_BRIDGE_DOMAIN, cmd))
+    finally:
+        proc.terminate()
+        proc.communicate(timeout=30)
+
+
+def test_same_acks_every_way(bridges, tmp_path_factory):
+    cpp_bridge = B.seed_bridges(tmp_path_factory)["k10"]
+    cmd = _cmd_program(bridges)
+    with ThreadPoolExecutor(3) as pool:
+        runs = {"Rust cmd -> Python bridge": pool.submit(_rust_drives_python_bridge, cmd),
+                "rapidgen cmd -> Rust bridge": pool.submit(_python_drives_rust_bridge, bridges["k10"]),
+                "Rust cmd -> C++ bridge": pool.submit(_rust_drives_cpp_bridge, cpp_bridge, cmd)}
+        got = {way: _settled(run.result()) for way, run in runs.items()}
+    for way, acks in got.items():
+        print(f"{way}: " + "; ".join(f"{k} -> {code} {lines}" for k, (code, lines) in acks.items()))
+    wrong = {way: {k: v for k, v in acks.items() if EXPECTED.get(k) != v} for way, acks in got.items()}
+    assert all(acks == EXPECTED for acks in got.values()), wrong
+
+
+def test_cmd_program_refuses_bad_input_with_a_clear_error(bridges):
+    """Checked before anything is sent (no asset needed: the built-in tables are the
+    dictionary); exit 2 for usage, 1 for a command the dictionary refuses; every name from
+    the command line escaped. The C++ rapid_cmd's words (tests/cpp_client/test_interop.py)."""
+    def run(*args: str) -> subprocess.CompletedProcess:
+        return subprocess.run([str(_cmd_program(bridges)), *args, "--domain", str(NO_ASSET_DOMAIN), "--discover",
+                               "0.1", "--timeout", "0.5"], capture_output=True, text=True, timeout=60,
+                              env=_own_transport())
+    res = run("--help")
+    assert res.returncode == 0 and "--action" in res.stdout
+    res = run("Admin")
+    assert res.returncode == 2 and "SUBSYSTEM and COMMAND are needed" in res.stderr
+    res = run("Admin", "echo", "--action", "SIDEWAYS")
+    assert res.returncode == 2 and "bad value for --action: SIDEWAYS" in res.stderr
+    res = run("Nowhere\x1b[2J", "echo")
+    assert res.returncode == 1 and "has no subsystem 'Nowhere\\x1b[2J'" in res.stderr and "\x1b" not in res.stderr
+    assert "no CommandConfig from K10Red within 0.1 s (domain 6); using the built-in tables" in res.stderr
+    res = run("PanCam", "wipeLens")
+    assert res.returncode == 1 and "subsystem PanCam has no command 'wipeLens' (known: " in res.stderr
+    res = run("PanCam", "pointCamera", "pan=abc", "zoom=2")
+    assert res.returncode == 1 and "pan: 'abc' is not a number" in res.stderr
+    assert "pointCamera has no parameter 'zoom'" in res.stderr
+    res = run("PanCam", "pointCamera", "pan=9")
+    assert res.returncode == 1 and "pan: 9 not in [-3.05, 3.05]" in res.stderr
+    res = run("PanCam", "pointCamera", "--action", "INSERT")
+    assert res.returncode == 1 and "QUEUE_INSERT needs a target cmdId" in res.stderr
+    res = run("Admin", "echo", "text=hi")  # the dictionary's, but no asset on the domain
+    assert res.returncode == 1 and f"no asset K10Red reads commands on domain {NO_ASSET_DOMAIN}" in res.stderr
+    assert "partition 'K10Red'" in res.stderr and "COMPLETED" not in res.stdout
