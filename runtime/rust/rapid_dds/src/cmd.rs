@@ -43,7 +43,8 @@ print its acks. Exit 0 on COMPLETED/OK, else 1 (2: usage).
   --timeout S         seconds to wait for the asset, then for completion (default 30)
   --discover S        seconds to wait for the live CommandConfig (default 2)
   --no-check          send values outside their range or allowed values
-  --no-wait           return after the first ack";
+  --no-wait           return after the first ack
+  --repeat N          benchmark: N commands one after the other; JSON latency figures";
 
 // A command lost at first contact (the writer matched the asset's reader before that reader
 // knew the writer: a volatile reader need not deliver what was written before) is sent again
@@ -66,6 +67,7 @@ struct Args {
     discover: f64,
     no_check: bool,
     no_wait: bool,
+    repeat: u64,
     words: Vec<String>,
 }
 
@@ -94,6 +96,7 @@ fn parse(argv: &[String]) -> Result<Option<Args>, String> {
         discover: 2.0,
         no_check: false,
         no_wait: false,
+        repeat: 0,
         words: Vec::new(),
     };
     let mut it = argv.iter().skip(1);
@@ -117,6 +120,7 @@ fn parse(argv: &[String]) -> Result<Option<Args>, String> {
                     "--timeout" => a.timeout = seconds(&value, false).ok_or_else(bad)?,
                     "--discover" => a.discover = seconds(&value, true).ok_or_else(bad)?,
                     "--action" => a.action = action_of(&value).ok_or_else(bad)?,
+                    "--repeat" => a.repeat = value.parse().ok().filter(|n| *n > 0).ok_or_else(bad)?,
                     _ => return Err(format!("unknown option {}", visible(k, 64))),
                 }
             }
@@ -237,6 +241,9 @@ fn run(program: &CmdProgram, a: &Args) -> Result<i32, ClientError> {
                   visible(client.asset(), 64), client.domain(), visible(client.partition(), 64), fmt_g(a.timeout));
         return Ok(1);
     }
+    if a.repeat > 0 {
+        return Ok(repeat(&client, &cmd, a));
+    }
     if !a.target.is_empty() {
         client.follow(&a.target);
     }
@@ -266,6 +273,41 @@ fn run(program: &CmdProgram, a: &Args) -> Result<i32, ClientError> {
     Ok(if last.ok() { 0 } else { 1 })
 }
 
+/// The q-th quantile (nearest rank) of sorted values.
+fn percentile(sorted: &[f64], q: f64) -> f64 {
+    if sorted.is_empty() {
+        return 0.0;
+    }
+    let i = (q * sorted.len() as f64).ceil() as usize;
+    sorted[i.clamp(1, sorted.len()) - 1]
+}
+
+/// `--repeat N`: the command N times, each awaited to its final ack (a fresh cmdId each);
+/// one JSON line as rapid_cmd's: send-to-final-ack latency, commands per second.
+fn repeat(client: &Client, cmd: &rapid_runtime::Cmd, a: &Args) -> i32 {
+    let mut us = Vec::with_capacity(a.repeat as usize);
+    let start = Instant::now();
+    for _ in 0..a.repeat {
+        let t0 = Instant::now();
+        let mut c = cmd.clone();
+        c.cmd_id.clear();
+        c.stamp = 0;
+        let Ok(id) = client.send_raw(c) else { continue };
+        let acks = client.wait_final(&id, secs(a.timeout));
+        client.forget(&id);
+        if acks.iter().any(AckEvent::is_final) {
+            us.push(t0.elapsed().as_secs_f64() * 1e6);
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let answered = us.len();
+    us.sort_by(f64::total_cmp);
+    println!("{{\"count\": {}, \"answered\": {answered}, \"p50_us\": {:.1}, \"p99_us\": {:.1}, \"max_us\": {:.1}, \
+              \"per_s\": {:.1}}}", a.repeat, percentile(&us, 0.5), percentile(&us, 0.99), percentile(&us, 1.0),
+             answered as f64 / seconds);
+    if answered as u64 == a.repeat { 0 } else { 1 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -290,5 +332,7 @@ mod tests {
         assert_eq!(shown(&Value::Vec3d([40.0, 0.5, -1.0])), "40,0.5,-1");
         assert_eq!(shown(&Value::Float(0.5)), "0.5");
         assert_eq!(shown(&Value::String("hi".into())), "'hi'");
+        assert_eq!(percentile(&[1.0, 2.0, 3.0, 4.0], 0.5), 2.0);
+        assert_eq!(percentile(&[1.0, 2.0, 3.0, 4.0], 0.99), 4.0);
     }
 }
