@@ -203,6 +203,7 @@ struct Seen {
     std::uint64_t generation = 0;  // counts changes (a waiter misses none)
     std::map<std::string, std::vector<Ack>> acks;
     std::optional<std::tuple<int, std::vector<std::string>, std::vector<std::string>>> queue;
+    std::map<std::string, std::string> statuses;  // the last QueueState's pending and active records'
     std::optional<std::pair<std::string, std::vector<std::string>>> access;
     std::vector<std::string> retired;
     std::vector<std::string> logs;
@@ -244,6 +245,9 @@ public:
         std::lock_guard<std::mutex> lock(seen_.mutex);
         if (dead_) return;
         seen_.queue.emplace(code, ids_of(pending), ids_of(active));
+        seen_.statuses.clear();
+        for (const auto* records : {&pending, &active})
+            for (const auto& r : *records) seen_.statuses[r.cmd->cmd_id] = std::string(name_of(r.status));
         seen_.bump();
     }
     void access_state(const std::string& controller, const std::vector<std::string>& requestors) override {
@@ -572,12 +576,24 @@ private:
             const auto& [code, pending, active] = *seen_.queue;
             return (!s.contains("code") || s["code"].get<int>() == code) &&
                    (!s.contains("pending") || s["pending"].get<std::vector<std::string>>() == pending) &&
-                   (!s.contains("active") || s["active"].get<std::vector<std::string>>() == active);
+                   (!s.contains("active") || s["active"].get<std::vector<std::string>>() == active) &&
+                   statuses_match(s);
         }, [&] {
             if (!seen_.queue) return std::string("none");
             const auto& [code, pending, active] = *seen_.queue;
-            return "code " + std::to_string(code) + ", pending " + show(pending) + ", active " + show(active);
+            return "code " + std::to_string(code) + ", pending " + show(pending) + ", active " + show(active) +
+                   ", statuses " + json(seen_.statuses).dump();
         });
+    }
+
+    // The records' statuses the step names, in the last QueueState (under seen_.mutex).
+    bool statuses_match(const json& s) const {
+        if (!s.contains("statuses")) return true;
+        for (const auto& [id, want] : s.at("statuses").items()) {
+            auto it = seen_.statuses.find(id);
+            if (it == seen_.statuses.end() || it->second != want.get<std::string>()) return false;
+        }
+        return true;
     }
 
     bool expect_control(const json& s) {

@@ -30,6 +30,7 @@ class Outbox:
         self.cond = threading.Condition()
         self.acks: dict[str, list[tuple[str, str, str]]] = {}
         self.queue: tuple[int, list[str], list[str]] | None = None
+        self.statuses: dict[str, str] = {}  # the last QueueState's pending and active records
         self.access: tuple[str, list[str]] | None = None
         self.retired: list[str] = []
         self.logs: list[str] = []
@@ -46,6 +47,7 @@ class Outbox:
     def queue_state(self, code, pending, active, completed):
         with self.cond:
             self.queue = (code, [c.cmd_id for c, *_ in pending], [c.cmd_id for c, *_ in active])
+            self.statuses = {c.cmd_id: status for c, _result, status in [*pending, *active]}
             self._changed()
 
     def access_state(self, controller, requestors):
@@ -225,8 +227,9 @@ class Replay:
                     return False
                 code, pending, active = out.queue
                 return (s.get("code", code) == code and s.get("pending", pending) == pending
-                        and s.get("active", active) == active)
-            self.until(f"QueueState {s}", queue_ok, lambda: out.queue)
+                        and s.get("active", active) == active and all(
+                            out.statuses.get(cid) == status for cid, status in s.get("statuses", {}).items()))
+            self.until(f"QueueState {s}", queue_ok, lambda: (out.queue, out.statuses))
         elif op == "control":
             def control_ok():
                 return out.access is not None and s.get("controller", out.access[0]) == out.access[0] and \

@@ -31,6 +31,8 @@ type Ack = (String, String, String); // status without ACK_, completion without 
 struct Seen {
     acks: HashMap<String, Vec<Ack>>,
     queue: Option<(i32, Vec<String>, Vec<String>)>,
+    /// the last QueueState's pending and active records' statuses, by cmdId
+    statuses: HashMap<String, String>,
     access: Option<(String, Vec<String>)>,
     retired: Vec<String>,
     logs: Vec<String>,
@@ -82,7 +84,10 @@ impl Outbox for Gate {
     }
     fn queue_state(&self, code: i32, pending: &[Record], active: &[Record], _completed: &[Record]) {
         let ids = |rs: &[Record]| rs.iter().map(|r| r.cmd.cmd_id.clone()).collect::<Vec<_>>();
-        self.live(|s| s.queue = Some((code, ids(pending), ids(active))));
+        self.live(|s| {
+            s.queue = Some((code, ids(pending), ids(active)));
+            s.statuses = pending.iter().chain(active).map(|r| (r.cmd.cmd_id.clone(), r.status.name().to_string())).collect();
+        });
     }
     fn access_state(&self, controller: &str, requestors: &[String]) {
         self.live(|s| s.access = Some((controller.to_string(), requestors.to_vec())));
@@ -474,6 +479,11 @@ impl<'a> Replay<'a> {
                 let code = st.get("code").and_then(Json::as_i64);
                 let pending = st.get("pending").map(strings);
                 let active = st.get("active").map(strings);
+                let statuses: Vec<(String, String)> = st
+                    .get("statuses")
+                    .and_then(Json::as_object)
+                    .map(|o| o.iter().map(|(k, v)| (k.clone(), v.as_str().unwrap_or_default().to_string())).collect())
+                    .unwrap_or_default();
                 self.until(
                     format!("QueueState {st}"),
                     |r| {
@@ -483,10 +493,11 @@ impl<'a> Replay<'a> {
                                 code.is_none_or(|w| w == *c as i64)
                                     && pending.as_ref().is_none_or(|w| w == p)
                                     && active.as_ref().is_none_or(|w| w == a)
+                                    && statuses.iter().all(|(id, w)| s.statuses.get(id) == Some(w))
                             }
                         })
                     },
-                    |r| r.peek(|s| format!("{:?}", s.queue)),
+                    |r| r.peek(|s| format!("{:?} {:?}", s.queue, s.statuses)),
                 )?;
             }
             "control" => {
