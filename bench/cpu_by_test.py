@@ -5,6 +5,10 @@ time (between its tests, and after its last one until the run's end). docs/testi
 
     PYTHONPATH=bench CPU_BY_TEST=/tmp/cpu.jsonl bash scripts/test -p cpu_by_test
     python bench/cpu_by_test.py /tmp/cpu.jsonl [TOP]
+    python bench/cpu_by_test.py /tmp/cpu.jsonl --durations > tests/durations.json
+
+--durations writes the wall seconds of each unit the xdist workers take (a file; tests/rust
+as one) that took 10 s or more: the order scripts/test hands them out in (tests/conftest.py).
 
 A shared build is counted in the first test that asks for it (its setup)."""
 from __future__ import annotations
@@ -33,8 +37,22 @@ def pytest_runtest_protocol(item, nextitem):
                             "start": round(start, 2), "worker": os.environ.get("PYTEST_XDIST_WORKER", "")}) + "\n")
 
 
+def durations(rows: list[dict], source: str) -> str:
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    from tests.conftest import _xdist_scope
+    by_scope: collections.Counter[str] = collections.Counter()
+    for r in rows:
+        by_scope[_xdist_scope(r["id"])] += r["wall"]
+    return json.dumps({"about": f"wall seconds per unit of xdist work (tests/conftest.py: _xdist_scope) in {source}; "
+                                "refresh: python bench/cpu_by_test.py RUN.jsonl --durations",
+                       "seconds": {k: round(v) for k, v in by_scope.most_common() if v >= 10}}, indent=1)
+
+
 def main() -> int:
     rows = [json.loads(line) for line in open(sys.argv[1], encoding="utf-8")]
+    if "--durations" in sys.argv[2:]:
+        print(durations(rows, "a full run on three workers"))
+        return 0
     top = int(sys.argv[2]) if len(sys.argv) > 2 else 20
     by_file: collections.Counter[str] = collections.Counter()
     for r in rows:

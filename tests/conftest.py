@@ -30,25 +30,30 @@ def _xdist_scope(nodeid: str) -> str:
     return "tests/rust" if path.startswith("tests/rust/") else path
 
 
-# The tiers that build programs or run long campaigns, handed out first: started last, one
-# of them would leave the other worker idle at the end of the run.
-_XDIST_FIRST = ("tests/conformance/", "tests/cpp", "tests/rust/", "tests/field/", "tests/secure/")
+def _measured_seconds() -> dict[str, float]:
+    """Each unit of work's wall seconds in a measured run (tests/durations.json)."""
+    import json
+    with open(Path(__file__).parent / "durations.json", encoding="utf-8") as fh:
+        return json.load(fh)["seconds"]  # type: ignore[no-any-return]
 
 
 class _XdistScheduling:
     def pytest_xdist_make_scheduler(self, config, log):
-        """scripts/test's workers take whole files (_xdist_scope), the slow tiers first;
-        xdist's loadgroup cannot group on pytest 9 (it renames node ids pytest no longer reads)."""
+        """scripts/test's workers take whole files (_xdist_scope), the longest first by a
+        measured run (tests/durations.json): one started last would leave the other workers
+        idle at the end of the run. xdist's loadgroup cannot group on pytest 9 (it renames
+        node ids pytest no longer reads)."""
         from xdist.scheduler import LoadScopeScheduling
+        seconds = _measured_seconds()
 
         class ByFile(LoadScopeScheduling):
             def _split_scope(self, nodeid: str) -> str:
                 return _xdist_scope(nodeid)
 
             def _assign_work_unit(self, node) -> None:
-                if not getattr(self, "_slow_first", False):  # (the queue is whole by the first call)
-                    self._slow_first = True
-                    for scope in [s for s in self.workqueue if not s.startswith(_XDIST_FIRST)]:
+                if not getattr(self, "_longest_first", False):  # (the queue is whole by the first call)
+                    self._longest_first = True
+                    for scope in sorted(self.workqueue, key=lambda s: -seconds.get(s, 0.0)):
                         self.workqueue.move_to_end(scope)
                 super()._assign_work_unit(node)
         config.option.loadscopereorder = False  # (by test count: the slow tiers have few tests)
