@@ -36,7 +36,7 @@ exclude = ["runtime", "generated/rapid"]
 """
 
 
-def _libclang() -> str | None:
+def libclang() -> str | None:
     for lib in sorted(Path("/usr/lib").glob("llvm-*/lib/libclang.so*"), reverse=True):
         return str(lib.parent)
     return None
@@ -56,8 +56,8 @@ def descriptor(ws: Path, seed: str) -> Path:
 def build_bridges(rust_target: Path, tmp_path_factory) -> dict[str, Path]:
     """seed (and HOSTILE) -> its bridge's binary, all built by one cargo run; "ws": the
     workspace (the hostile descriptor and its generated QoS files are there)."""
-    libclang = os.environ.get("LIBCLANG_PATH") or _libclang()
-    if libclang is None or shutil.which("cmake") is None:
+    clang = os.environ.get("LIBCLANG_PATH") or libclang()
+    if clang is None or shutil.which("cmake") is None:
         pytest.fail("cyclors builds Cyclone DDS with cmake and bindgen: Debian's cmake and libclang-14-dev "
                     "(scripts/apt-packages.txt) are needed")
     ws = tmp_path_factory.mktemp("rust-bridges")
@@ -74,7 +74,7 @@ def build_bridges(rust_target: Path, tmp_path_factory) -> dict[str, Path]:
     print(f"\nrapidgen generate --lang rust, {len(SEEDS) + 1} descriptors: {time.monotonic() - start:.1f} s")
     (ws / "Cargo.toml").write_text(WORKSPACE, encoding="utf-8")
     shutil.copy(RUNTIME / "rapid_dds" / "Cargo.lock", ws / "Cargo.lock")
-    env = dict(os.environ, CARGO_TARGET_DIR=str(rust_target), CARGO_TERM_COLOR="never", LIBCLANG_PATH=libclang)
+    env = dict(os.environ, CARGO_TARGET_DIR=str(rust_target), CARGO_TERM_COLOR="never", LIBCLANG_PATH=clang)
     start = time.monotonic()
     # offline first (nothing to fetch when the crates and their index entries are cached);
     # else online: a fresh machine downloads them

@@ -1,16 +1,17 @@
 """Interop on loopback, real processes, every way the Rust ground side meets the others: the
 generated `rapid_k10red_cmd` (rapid_dds::cmd on rapid_dds::client, Cyclone through cyclors)
 drives K10's Python bridge and K10's generated C++ bridge (Fast DDS), and `rapidgen cmd`
-(Python, cyclonedds) drives K10's generated Rust bridge, through the C++ client tests'
-scenario (tests/cpp_client/drive.py: valid, invalid, queued with APPEND/INSERT/REPLACE/DELETE,
-cancelled). Every command gets the same exit status and ack lines every way, the ones the
-protocol asks for (tests/cpp_client/test_interop.py's EXPECTED). The three run at once, on
-domains 1, 2 and 4; the refusals without an asset on domain 6.
+(Python, cyclonedds) and the C++ client (rapid_cmd, Fast DDS) drive K10's generated Rust
+bridge, through the C++ client tests' scenario (tests/cpp_client/drive.py: valid, invalid,
+queued with APPEND/INSERT/REPLACE/DELETE, cancelled). Every command gets the same exit status and ack lines every way, the ones the
+protocol asks for (tests/cpp_client/test_interop.py's EXPECTED). The three bridges run at
+once, on domains 1, 2 (the Rust one, driven by Python, then by C++) and 4; the refusals
+without an asset on domain 6.
 
 The Rust programs are the session's build (conftest.py's `bridges`: `<crate>_cmd` is built
-beside each `<crate>_bridge`), the C++ bridge the C++ tests' seeds build
-(tests/cpp_runtime/build.py seed_bridges, once per session: RAPIDGEN_CPP_SEEDS=k10 limits it
-to K10)."""
+beside each `<crate>_bridge`), the C++ bridge and client the C++ tests' seeds build
+(tests/cpp_runtime/build.py seed_bridges and client_programs, once per session:
+RAPIDGEN_CPP_SEEDS=k10 limits it to K10)."""
 from __future__ import annotations
 
 import os
@@ -24,6 +25,8 @@ from tests.cpp_client.drive import Driver, scenario
 from tests.cpp_client.test_interop import EXPECTED, _settled
 from tests.cpp_runtime import build as B
 from tests.runtime.live import ROOT, SEEDS, BridgeProcess, python_dir
+from tests.rust.conftest import cargo
+from tests.rust_runtime.build import libclang
 
 pytest.importorskip("cyclonedds")
 
@@ -48,15 +51,22 @@ def _rust_drives_python_bridge(cmd: Path) -> dict:
         bridge.stop()
 
 
-def _python_drives_rust_bridge(binary: Path) -> dict:
+def _drives_rust_bridge(binary: Path, driver: Driver) -> dict:
+    """A fresh bridge each time: the scenario's cmdIds repeat, a bridge answers a repeated one
+    from its history."""
     bridge = BridgeProcess.of_command([str(binary), "--simulate", "--domain", str(RUST_BRIDGE_DOMAIN)], ROOT,
                                       _own_transport())
     try:
         line = bridge.lines.get(timeout=30)
         assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
-        return scenario(Driver("python", RUST_BRIDGE_DOMAIN))
+        return scenario(driver)
     finally:
         bridge.stop()
+
+
+def _python_then_cpp_drive_rust_bridge(binary: Path, cpp_cmd: Path) -> tuple[dict, dict]:
+    return (_drives_rust_bridge(binary, Driver("python", RUST_BRIDGE_DOMAIN)),
+            _drives_rust_bridge(binary, Driver("cpp", RUST_BRIDGE_DOMAIN, cpp_cmd)))
 
 
 def _rust_drives_cpp_bridge(bridge_binary: Path, cmd: Path) -> dict:
@@ -72,12 +82,16 @@ def _rust_drives_cpp_bridge(bridge_binary: Path, cmd: Path) -> dict:
 
 def test_same_acks_every_way(bridges, tmp_path_factory):
     cpp_bridge = B.seed_bridges(tmp_path_factory)["k10"]
+    cpp_cmd = B.client_programs(tmp_path_factory)["cmd"]
     cmd = _cmd_program(bridges)
     with ThreadPoolExecutor(3) as pool:
-        runs = {"Rust cmd -> Python bridge": pool.submit(_rust_drives_python_bridge, cmd),
-                "rapidgen cmd -> Rust bridge": pool.submit(_python_drives_rust_bridge, bridges["k10"]),
-                "Rust cmd -> C++ bridge": pool.submit(_rust_drives_cpp_bridge, cpp_bridge, cmd)}
-        got = {way: _settled(run.result()) for way, run in runs.items()}
+        to_python = pool.submit(_rust_drives_python_bridge, cmd)
+        to_rust = pool.submit(_python_then_cpp_drive_rust_bridge, bridges["k10"], cpp_cmd)
+        to_cpp = pool.submit(_rust_drives_cpp_bridge, cpp_bridge, cmd)
+        by_python, by_cpp = to_rust.result()
+        runs = {"Rust cmd -> Python bridge": to_python.result(), "rapidgen cmd -> Rust bridge": by_python,
+                "C++ rapid_cmd -> Rust bridge": by_cpp, "Rust cmd -> C++ bridge": to_cpp.result()}
+    got = {way: _settled(acks) for way, acks in runs.items()}
     for way, acks in got.items():
         print(f"{way}: " + "; ".join(f"{k} -> {code} {lines}" for k, (code, lines) in acks.items()))
     wrong = {way: {k: v for k, v in acks.items() if EXPECTED.get(k) != v} for way, acks in got.items()}
@@ -113,3 +127,17 @@ def test_cmd_program_refuses_bad_input_with_a_clear_error(bridges):
     res = run("Admin", "echo", "text=hi")  # the dictionary's, but no asset on the domain
     assert res.returncode == 1 and f"no asset K10Red reads commands on domain {NO_ASSET_DOMAIN}" in res.stderr
     assert "partition 'K10Red'" in res.stderr and "COMPLETED" not in res.stdout
+
+
+def test_the_client_and_cmd_unit_tests(bridges, rust_target):
+    """rapid_dds's own tests (`cargo test --lib`, in the session's target folder: cyclors as
+    the bridges' build left it): the live dictionary merged with the tables, ack lines, the
+    command line, the percentiles of --repeat."""
+    env = dict(os.environ, CARGO_TARGET_DIR=str(rust_target), CARGO_TERM_COLOR="never", LIBCLANG_PATH=libclang() or "")
+    res = subprocess.run([cargo(), "test", "--offline", "--lib"], cwd=ROOT / "runtime" / "rust" / "rapid_dds", env=env,
+                         capture_output=True, text=True, timeout=1800, stdin=subprocess.DEVNULL)
+    assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-3000:]
+    for name in ("client::tests::the_live_dictionary_keeps_the_tables_limits_where_name_and_type_agree",
+                 "client::tests::acks_print_as_the_other_clients_print_them",
+                 "cmd::tests::the_command_line_reads_as_rapid_cmds"):
+        assert f"test {name} ... ok" in res.stdout, res.stdout[-3000:]

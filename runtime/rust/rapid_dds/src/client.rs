@@ -488,3 +488,65 @@ fn merged(config: &rapid::CommandConfig, given: Option<&Tables>, o: &ClientOptio
         .collect();
     t
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_live_dictionary_keeps_the_tables_limits_where_name_and_type_agree() {
+        let mut pan = Param::new("pan", rapid_runtime::DataType::Float);
+        pan.max = Some(3.05);
+        let mut tilt = Param::new("tilt", rapid_runtime::DataType::Float);
+        tilt.max = Some(1.0);
+        let point = CommandSpec { name: "pointCamera".into(), params: vec![pan.clone(), tilt], standard: false,
+                                  ..CommandSpec::default() };
+        let given = Tables {
+            name: "K10Red".into(),
+            partition: "K10Red".into(),
+            domain: 3,
+            subsystems: vec![Subsystem { name: "PanCam".into(), type_name: "PanCam".into() }],
+            types: vec![SubsystemType { name: "PanCam".into(), commands: vec![point] }],
+            access: None,
+            ..Tables::default()
+        };
+        let pair = |key: &str, t| rapid::KeyTypePair { key: key.into(), type_: t };
+        let config = rapid::CommandConfig {
+            available_subsystem_types: vec![rapid::SubsystemType {
+                name: "PanCam".into(),
+                commands: vec![
+                    rapid::CommandDef {
+                        name: "pointCamera".into(),
+                        abortable: true,
+                        suspendable: false,
+                        // tilt's type differs from the tables': the live one's, without limits
+                        parameters: vec![pair("pan", rapid::DataType::RapidFloat), pair("tilt", rapid::DataType::RapidDouble)],
+                    },
+                    rapid::CommandDef { name: "wipeLens".into(), ..rapid::CommandDef::default() },
+                ],
+            }],
+            available_subsystems: vec![rapid::Subsystem { name: "Mast".into(), subsystem_type_name: "PanCam".into() }],
+            ..rapid::CommandConfig::default()
+        };
+        let o = ClientOptions { asset: "K10Red".into(), partition: "K10Red".into(), ..ClientOptions::default() };
+        let t = merged(&config, Some(&given), &o);
+        assert_eq!(t.type_of("Mast"), Some("PanCam"));
+        assert_eq!(t.type_of("PanCam"), None);
+        let spec = t.spec(t.command("Mast", "pointCamera").expect("pointCamera"));
+        assert!(spec.abortable);
+        assert_eq!(spec.params[0], pan);
+        assert_eq!(spec.params[1], Param::new("tilt", rapid_runtime::DataType::Double));
+        assert!(t.command("Mast", "wipeLens").is_some());
+        assert_eq!(t.domain, 3);
+    }
+
+    #[test]
+    fn acks_print_as_the_other_clients_print_them() {
+        let ack = |status, completed, message: &str| AckEvent { status, completed, message: message.into() };
+        assert_eq!(ack(AckStatus::Queued, Completion::Not, "").describe(), "QUEUED");
+        assert_eq!(ack(AckStatus::Completed, Completion::Ok, "").describe(), "COMPLETED OK");
+        assert_eq!(ack(AckStatus::Completed, Completion::BadSyntax, "no\x1b").describe(), "COMPLETED BAD_SYNTAX  no\\x1b");
+        assert!(ack(AckStatus::Completed, Completion::Canceled, "").is_final());
+        assert!(!ack(AckStatus::Completed, Completion::Canceled, "").ok());
+    }
+}
