@@ -123,8 +123,10 @@ def build_serde_programs(folder: Path, crate_dir: Path, crate: str, target: Path
     text += "".join(BIN.format(name=n, path=p.as_posix()) for n, p in programs.items())
     (folder / "Cargo.toml").write_text(text, encoding="utf-8")
     shutil.copyfile(PEER_LOCK, folder / "Cargo.lock")
-    run([cargo(), "build", "--release", "--bins"], folder, target)
-    return target / "release"
+    # the dev profile, as the RustDDS peer: serde's crates built once for both (the same
+    # target folder), and no optimizer over serde_json for programs that run a few hundred vectors
+    run([cargo(), "build", "--bins"], folder, target)
+    return target / "debug"
 
 
 def build_rust_peer(target: Path) -> Path:
