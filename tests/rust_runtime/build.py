@@ -1,8 +1,9 @@
-"""The Rust bridges of tests/rust_runtime, built once per session (conftest.py's `bridges`):
+"""The Rust bridges of tests/rust_runtime, built once per run (conftest.py's `bridges`, under
+pytest-xdist once for all workers: tests/cpp_runtime/build.py once()):
 the six seeds and the C++ tests' hostile descriptor generated into one temporary Cargo
 workspace (runtime/ and the RAPID set's crate linked into it, so the bridges' paths to
 runtime/rust resolve as in generated/), built by one `cargo build` (offline when it can) in
-the session's target folder from rapid_dds's Cargo.lock: cyclors and the runtime build once
+a target folder of their own from rapid_dds's Cargo.lock: cyclors and the runtime build once
 for all, each crate's `<crate>_bridge` and `<crate>_cmd` with them."""
 from __future__ import annotations
 
@@ -53,14 +54,14 @@ def descriptor(ws: Path, seed: str) -> Path:
     return ws / "hostile.yaml" if seed == HOSTILE else ROOT / "specs" / "assets" / f"{seed}.yaml"
 
 
-def build_bridges(rust_target: Path, tmp_path_factory) -> dict[str, Path]:
-    """seed (and HOSTILE) -> its bridge's binary, all built by one cargo run; "ws": the
-    workspace (the hostile descriptor and its generated QoS files are there)."""
+def build_bridges(rust_target: Path, ws: Path) -> dict[str, Path]:
+    """seed (and HOSTILE) -> its bridge's binary, all built by one cargo run in `rust_target`
+    from the workspace made in `ws` (an empty folder; "ws" in the result: the hostile
+    descriptor and its generated QoS files are there), "target": the target folder."""
     clang = os.environ.get("LIBCLANG_PATH") or libclang()
     if clang is None or shutil.which("cmake") is None:
         pytest.fail("cyclors builds Cyclone DDS with cmake and bindgen: Debian's cmake and libclang-14-dev "
                     "(scripts/apt-packages.txt) are needed")
-    ws = tmp_path_factory.mktemp("rust-bridges")
     (ws / "generated").mkdir()
     (ws / "runtime").symlink_to(ROOT / "runtime")
     (ws / "generated" / "rapid").symlink_to(ROOT / "generated" / "rapid")
@@ -88,4 +89,4 @@ def build_bridges(rust_target: Path, tmp_path_factory) -> dict[str, Path]:
     warnings = [line for line in res.stderr.splitlines() if line.startswith("warning")]
     assert not warnings, res.stderr[-4000:]  # the generated code compiles clean
     out = {seed: rust_target / "debug" / _package(ws / "generated" / seed / "rust" / "bridge") for seed in (*SEEDS, HOSTILE)}
-    return {**out, "ws": ws}
+    return {**out, "ws": ws, "target": rust_target}

@@ -1,15 +1,21 @@
-"""The Rust bridges, built once per session for every test of the folder (build.py)."""
+"""The Rust bridges, built once per run for every test of the folder (build.py)."""
 from __future__ import annotations
 
 from pathlib import Path
 
 import pytest
 
+from tests.cpp_runtime import build as B
 from tests.rust_runtime.build import build_bridges
 
 
 @pytest.fixture(scope="session")
-def bridges(rust_target, tmp_path_factory) -> dict[str, Path]:
+def bridges(tmp_path_factory) -> dict[str, Path]:
     """seed (and build.HOSTILE) -> its bridge's binary (its `<crate>_cmd` beside it); "ws":
-    the workspace (the hostile descriptor and its generated QoS files are there)."""
-    return build_bridges(rust_target, tmp_path_factory)
+    the workspace (the hostile descriptor and its generated QoS files are there); "target":
+    the cargo target folder they were built in. Once per run: under pytest-xdist the
+    workers running test_dds_bridge.py and test_interop_client.py share one build (B.once),
+    in a target folder of its own (cyclors is built there and nowhere else)."""
+    return B.once(tmp_path_factory, "rust-bridges",  # type: ignore[no-any-return]
+                  lambda: build_bridges(B.run_folder(tmp_path_factory, "rust-bridges-target"),
+                                        B.run_folder(tmp_path_factory, "rust-bridges")))

@@ -8,7 +8,7 @@ protocol asks for (tests/cpp_client/test_interop.py's EXPECTED). The three bridg
 once, on domains 1, 2 (the Rust one, driven by Python, then by C++) and 4; the refusals
 without an asset on domain 6.
 
-The Rust programs are the session's build (conftest.py's `bridges`: `<crate>_cmd` is built
+The Rust programs are the run's build (conftest.py's `bridges`: `<crate>_cmd` is built
 beside each `<crate>_bridge`), the C++ bridge and client the C++ tests' seeds build
 (tests/cpp_runtime/build.py seed_bridges and client_programs, once per session:
 RAPIDGEN_CPP_SEEDS=k10 limits it to K10)."""
@@ -129,11 +129,11 @@ def test_cmd_program_refuses_bad_input_with_a_clear_error(bridges):
     assert "partition 'K10Red'" in res.stderr and "COMPLETED" not in res.stdout
 
 
-def test_the_client_and_cmd_unit_tests(bridges, rust_target):
-    """rapid_dds's own tests (`cargo test --lib`, in the session's target folder: cyclors as
-    the bridges' build left it): the live dictionary merged with the tables, ack lines, the
-    command line, the percentiles of --repeat."""
-    env = dict(os.environ, CARGO_TARGET_DIR=str(rust_target), CARGO_TERM_COLOR="never", LIBCLANG_PATH=libclang() or "")
+def test_the_client_and_cmd_unit_tests(bridges):
+    """rapid_dds's own tests (`cargo test --lib`, in the bridges' target folder: cyclors as
+    their build left it): the live dictionary merged with the tables, ack lines, the command
+    line, the percentiles of --repeat."""
+    env = dict(os.environ, CARGO_TARGET_DIR=str(bridges["target"]), CARGO_TERM_COLOR="never", LIBCLANG_PATH=libclang() or "")
     res = subprocess.run([cargo(), "test", "--offline", "--lib"], cwd=ROOT / "runtime" / "rust" / "rapid_dds", env=env,
                          capture_output=True, text=True, timeout=1800, stdin=subprocess.DEVNULL)
     assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-3000:]
@@ -141,3 +141,30 @@ def test_the_client_and_cmd_unit_tests(bridges, rust_target):
                  "client::tests::acks_print_as_the_other_clients_print_them",
                  "cmd::tests::the_command_line_reads_as_rapid_cmds"):
         assert f"test {name} ... ok" in res.stdout, res.stdout[-3000:]
+
+
+def test_cmd_program_says_when_two_bridges_answer(bridges):
+    """Every RAPID runtime answers a command through one ack writer: acks of one cmdId from
+    two writers mean something else answers as the asset (here a second K10 bridge on the
+    domain; a stranger in the field). The program shows every ack and says so, as `rapidgen
+    cmd` does."""
+    def run(*words: str) -> subprocess.CompletedProcess:
+        return subprocess.run([str(_cmd_program(bridges)), "--domain", str(NO_ASSET_DOMAIN), "--source",
+                               "RapidWorkbench", "--timeout", "20", *words], capture_output=True, text=True,
+                              timeout=60, env=_own_transport())
+    started = [BridgeProcess.of_command([str(bridges["k10"]), "--simulate", "--domain", str(NO_ASSET_DOMAIN)], ROOT,
+                                        _own_transport()) for _ in range(2)]
+    try:
+        for bridge in started:
+            line = bridge.lines.get(timeout=30)
+            assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
+        assert run("AccessControl", "requestControl").returncode == 0
+        # a drive of 1 s (0.5 m at 0.5 m/s): both bridges' EXECUTING are in before the first
+        # COMPLETED ends the wait
+        res = run("Mobility", "simpleMove", "frame=site", "xyt=0.5,0,0")
+    finally:
+        for bridge in started:
+            bridge.stop()
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "acks of 1-RapidWorkbench-" in res.stderr and "came from 2 writers" in res.stderr, res.stderr
+    assert res.stdout.count("  EXECUTING") == 2 and "COMPLETED OK  arrived at 0.50, 0.00" in res.stdout, res.stdout

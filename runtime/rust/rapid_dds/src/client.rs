@@ -137,9 +137,14 @@ impl Default for SendOptions {
     }
 }
 
+/// the writers counted per followed command (one answers; more say there is a stranger)
+const WRITERS_COUNTED: usize = 8;
+
 #[derive(Default)]
 struct Followed {
     acks: HashMap<String, Vec<AckEvent>>,
+    /// the DDS writers (publication handles) each followed command's acks came from
+    writers: HashMap<String, Vec<u64>>,
     strangers: u64,
 }
 
@@ -368,7 +373,16 @@ impl Client {
 
     /// Forget a command's acks (a long run keeps its memory flat).
     pub fn forget(&self, cmd_id: &str) {
-        self.lock().acks.remove(cmd_id);
+        let mut f = self.lock();
+        f.acks.remove(cmd_id);
+        f.writers.remove(cmd_id);
+    }
+
+    /// How many DDS writers the acks of cmd_id came from: 1 when only the asset answered (all
+    /// of a command's acks go through one writer in every RAPID runtime); more when something
+    /// else on the partition answers as the asset (a second bridge, a stranger).
+    pub fn writers(&self, cmd_id: &str) -> usize {
+        self.lock().writers.get(cmd_id).map_or(0, Vec::len)
     }
 
     /// Acks taken that no followed command's were.
@@ -385,14 +399,21 @@ impl Client {
     /// Takes what the ack reader holds into the followed commands' lists.
     fn pump(&self) {
         let mut f = self.lock();
-        while let Some((bytes, _)) = self.acks.take() {
+        while let Some((bytes, writer)) = self.acks.take() {
             let Ok(a) = cdr::deserialize::<rapid::Ack>(&bytes) else {
                 f.strangers += 1; // not an Ack this client can read: nobody's it follows
                 continue;
             };
             match f.acks.get_mut(&a.cmd_id) {
-                Some(list) if list.len() < ACKS_PER_COMMAND => list.push(ack_event(&a)),
-                Some(_) => {}
+                Some(list) => {
+                    if list.len() < ACKS_PER_COMMAND {
+                        list.push(ack_event(&a));
+                    }
+                    let seen = f.writers.entry(a.cmd_id).or_default();
+                    if seen.len() < WRITERS_COUNTED && !seen.contains(&writer) {
+                        seen.push(writer);
+                    }
+                }
                 None => f.strangers += 1,
             }
         }

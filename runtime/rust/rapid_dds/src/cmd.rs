@@ -259,6 +259,11 @@ fn run(program: &CmdProgram, a: &Args) -> Result<i32, ClientError> {
                      visible(&a.source, 64));
     println!("{line}");
     let acks = follow(&client, &id, secs(a.timeout), a.no_wait, Some(&cmd));
+    let writers = client.writers(&id);
+    if writers > 1 {
+        eprintln!("rapid_cmd: warning: acks of {} came from {writers} writers; only the asset should answer (a \
+                   second bridge or a stranger on the domain? DDS Security keeps strangers out)", visible(&id, 64));
+    }
     let Some(last) = acks.last() else {
         println!("  no ack within {} s", fmt_g(a.timeout));
         return Ok(1);
