@@ -75,9 +75,13 @@ def _rust_drives_cpp_bridge(bridge_binary: Path, cmd: Path) -> dict:
     try:
         assert proc.stdout.readline().startswith("bridge ready: asset K10Red")
         return scenario(Driver("rust", CPP_BRIDGE_DOMAIN, cmd))
-    finally:
+    except AssertionError as e:  # with the bridge's log (the commands it refused, from whom)
         proc.terminate()
-        proc.communicate(timeout=30)
+        raise AssertionError(f"{e}\nthe C++ bridge's log: {proc.communicate(timeout=30)[1][-3000:]}") from e
+    finally:
+        if proc.poll() is None:
+            proc.terminate()
+            proc.communicate(timeout=30)
 
 
 def test_same_acks_every_way(bridges, tmp_path_factory):
