@@ -42,6 +42,8 @@ print its acks. Exit 0 on COMPLETED/OK, else 1 (2: usage).
   --id CMDID          this command's cmdId (default: a fresh one)
   --timeout S         seconds to wait for the asset, then for completion (default 30)
   --discover S        seconds to wait for the live CommandConfig (default 2)
+  --rtt S             the link's round trip (0..600): the waits grow by 2 of them for
+                      an answer, 6 for finding the asset and its CommandConfig
   --no-check          send values outside their range or allowed values
   --no-wait           return after the first ack
   --repeat N          benchmark: N commands one after the other; JSON latency figures";
@@ -51,8 +53,19 @@ print its acks. Exit 0 on COMPLETED/OK, else 1 (2: usage).
 // with the same cmdId when no ack at all came UNANSWERED s after the send, at most
 // MAX_RESENDS times, as the other clients do (rapidgen/cmd/recover.py); a RAPID asset answers
 // at once and drops a repeated cmdId.
-const UNANSWERED: Duration = Duration::from_secs(5);
+const UNANSWERED: f64 = 5.0;
 const MAX_RESENDS: u32 = 3;
+
+// As `rapidgen cmd --rtt` (rapidgen/cmd/timing.py): a loopback wait over a link grows by what
+// the link costs: an answer a round trip, a lost packet's repair another; a late joiner's
+// first durable sample (participants, endpoints, request, history, one loss) 6.
+const ANSWER_TRIPS: f64 = 2.0;
+const DISCOVERY_TRIPS: f64 = 6.0;
+const MAX_RTT: f64 = 600.0;
+
+fn allow(seconds: f64, rtt: f64, trips: f64) -> f64 {
+    seconds + trips * rtt
+}
 
 struct Args {
     asset: String,
@@ -65,6 +78,7 @@ struct Args {
     action: QueueAction,
     timeout: f64,
     discover: f64,
+    rtt: f64,
     no_check: bool,
     no_wait: bool,
     repeat: u64,
@@ -94,6 +108,7 @@ fn parse(argv: &[String]) -> Result<Option<Args>, String> {
         action: QueueAction::Bypass,
         timeout: 30.0,
         discover: 2.0,
+        rtt: 0.0,
         no_check: false,
         no_wait: false,
         repeat: 0,
@@ -119,6 +134,7 @@ fn parse(argv: &[String]) -> Result<Option<Args>, String> {
                     "--domain" => a.domain = Some(value.parse().ok().filter(|d| *d <= 232).ok_or_else(bad)?),
                     "--timeout" => a.timeout = seconds(&value, false).ok_or_else(bad)?,
                     "--discover" => a.discover = seconds(&value, true).ok_or_else(bad)?,
+                    "--rtt" => a.rtt = seconds(&value, true).filter(|r| *r <= MAX_RTT).ok_or_else(bad)?,
                     "--action" => a.action = action_of(&value).ok_or_else(bad)?,
                     "--repeat" => a.repeat = value.parse().ok().filter(|n| *n > 0).ok_or_else(bad)?,
                     _ => return Err(format!("unknown option {}", visible(k, 64))),
@@ -150,7 +166,7 @@ fn secs(s: f64) -> Duration {
 
 /// cmd_id's acks printed as they come, until the final one (or the first, with
 /// `first_only`), or `timeout`. `resend`: the command to send again when unanswered.
-fn follow(client: &Client, cmd_id: &str, timeout: Duration, first_only: bool, resend: Option<&rapid_runtime::Cmd>) -> Vec<AckEvent> {
+fn follow(client: &Client, cmd_id: &str, timeout: Duration, first_only: bool, resend: Option<(&rapid_runtime::Cmd, Duration)>) -> Vec<AckEvent> {
     let mut end = Instant::now() + timeout;
     let mut sent = Instant::now();
     let mut resends = 0;
@@ -166,14 +182,14 @@ fn follow(client: &Client, cmd_id: &str, timeout: Duration, first_only: bool, re
             return acks;
         }
         let now = Instant::now();
-        if let Some(cmd) = resend {
-            if acks.is_empty() && resends < MAX_RESENDS && now - sent >= UNANSWERED && client.asset_matched() {
+        if let Some((cmd, unanswered)) = resend {
+            if acks.is_empty() && resends < MAX_RESENDS && now - sent >= unanswered && client.asset_matched() {
                 resends += 1;
                 sent = now;
                 end = end.max(now + timeout);
                 eprintln!("rapid_cmd: {} has not answered within {} s: the command did not reach it; sending it \
                            again with the same cmdId ({resends} of {MAX_RESENDS})", visible(client.asset(), 64),
-                          UNANSWERED.as_secs());
+                          fmt_g(unanswered.as_secs_f64()));
                 if let Err(e) = client.send_raw(cmd.clone()) {
                     eprintln!("rapid_cmd: {e}");
                 }
@@ -224,9 +240,11 @@ fn run(program: &CmdProgram, a: &Args) -> Result<i32, ClientError> {
     let own = a.asset.is_empty() || a.asset == tables.name; // else another asset: no built-in dictionary
     let options = ClientOptions { asset: a.asset.clone(), partition: a.partition.clone(), source: a.source.clone(), domain: a.domain };
     let mut client = Client::new(options, Some(tables).filter(|_| own))?;
-    if a.discover > 0.0 && !client.read_dictionary(secs(a.discover)) {
+    let (discover, find, answer) = (allow(a.discover, a.rtt, DISCOVERY_TRIPS), allow(a.timeout, a.rtt, DISCOVERY_TRIPS),
+                                    allow(a.timeout, a.rtt, ANSWER_TRIPS));
+    if a.discover > 0.0 && !client.read_dictionary(secs(discover)) {
         eprintln!("rapid_cmd: no CommandConfig from {} within {} s (domain {}){}", visible(client.asset(), 64),
-                  fmt_g(a.discover), client.domain(), if own { "; using the built-in tables" } else { "" });
+                  fmt_g(discover), client.domain(), if own { "; using the built-in tables" } else { "" });
     }
     if client.dictionary().is_none() {
         eprintln!("rapid_cmd: no command dictionary for {}: the asset publishes none (is it running? --domain, \
@@ -236,13 +254,13 @@ fn run(program: &CmdProgram, a: &Args) -> Result<i32, ClientError> {
     let how = SendOptions { action: a.action, target: a.target.clone(), cmd_id: a.id.clone(), limits: !a.no_check };
     let (subsystem, command) = (&a.words[0], &a.words[1]);
     let mut cmd = client.prepare_text(subsystem, command, &a.words[2..], &how)?; // checked before waiting
-    if !client.wait_for_asset(secs(a.timeout)) {
+    if !client.wait_for_asset(secs(find)) {
         eprintln!("rapid_cmd: no asset {} reads commands on domain {}, partition '{}' (waited {} s)",
-                  visible(client.asset(), 64), client.domain(), visible(client.partition(), 64), fmt_g(a.timeout));
+                  visible(client.asset(), 64), client.domain(), visible(client.partition(), 64), fmt_g(find));
         return Ok(1);
     }
     if a.repeat > 0 {
-        return Ok(repeat(&client, &cmd, a));
+        return Ok(repeat(&client, &cmd, a, secs(answer)));
     }
     if !a.target.is_empty() {
         client.follow(&a.target);
@@ -258,19 +276,20 @@ fn run(program: &CmdProgram, a: &Args) -> Result<i32, ClientError> {
                      if a.target.is_empty() { String::new() } else { format!(" {}", visible(&a.target, 64)) },
                      visible(&a.source, 64));
     println!("{line}");
-    let acks = follow(&client, &id, secs(a.timeout), a.no_wait, Some(&cmd));
+    let unanswered = secs(allow(UNANSWERED, a.rtt, ANSWER_TRIPS));
+    let acks = follow(&client, &id, secs(answer), a.no_wait, Some((&cmd, unanswered)));
     let writers = client.writers(&id);
     if writers > 1 {
         eprintln!("rapid_cmd: warning: acks of {} came from {writers} writers; only the asset should answer (a \
                    second bridge or a stranger on the domain? DDS Security keeps strangers out)", visible(&id, 64));
     }
     let Some(last) = acks.last() else {
-        println!("  no ack within {} s", fmt_g(a.timeout));
+        println!("  no ack within {} s", fmt_g(answer));
         return Ok(1);
     };
     if a.action == QueueAction::Delete && last.is_final() {
         println!("target {}:", visible(&a.target, 64));
-        follow(&client, &a.target, secs(3.0), false, None);
+        follow(&client, &a.target, secs(allow(3.0, a.rtt, ANSWER_TRIPS)), false, None);
     }
     if a.no_wait {
         return Ok(if !last.is_final() || last.ok() { 0 } else { 1 });
@@ -289,7 +308,7 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
 
 /// `--repeat N`: the command N times, each awaited to its final ack (a fresh cmdId each);
 /// one JSON line as rapid_cmd's: send-to-final-ack latency, commands per second.
-fn repeat(client: &Client, cmd: &rapid_runtime::Cmd, a: &Args) -> i32 {
+fn repeat(client: &Client, cmd: &rapid_runtime::Cmd, a: &Args, answer: Duration) -> i32 {
     let mut us = Vec::with_capacity(a.repeat as usize);
     let start = Instant::now();
     for _ in 0..a.repeat {
@@ -298,7 +317,7 @@ fn repeat(client: &Client, cmd: &rapid_runtime::Cmd, a: &Args) -> i32 {
         c.cmd_id.clear();
         c.stamp = 0;
         let Ok(id) = client.send_raw(c) else { continue };
-        let acks = client.wait_final(&id, secs(a.timeout));
+        let acks = client.wait_final(&id, answer);
         client.forget(&id);
         if acks.iter().any(AckEvent::is_final) {
             us.push(t0.elapsed().as_secs_f64() * 1e6);
@@ -333,6 +352,9 @@ mod tests {
                    Some("bad value for --action: SIDEWAYS"));
         assert_eq!(parse(&argv(&["A", "b", "--timeout", "0"])).err().as_deref(), Some("bad value for --timeout: 0"));
         assert_eq!(parse(&argv(&["A", "b", "--domain"])).err().as_deref(), Some("--domain needs a value"));
+        assert_eq!(parse(&argv(&["A", "b", "--rtt", "601"])).err().as_deref(), Some("bad value for --rtt: 601"));
+        let Ok(Some(a)) = parse(&argv(&["A", "b", "--rtt", "2.6"])) else { panic!("--rtt 2.6") };
+        assert_eq!(allow(a.timeout, a.rtt, ANSWER_TRIPS), 35.2);
         assert!(matches!(parse(&argv(&["--help"])), Ok(None)));
         assert_eq!(shown(&Value::Vec3d([40.0, 0.5, -1.0])), "40,0.5,-1");
         assert_eq!(shown(&Value::Float(0.5)), "0.5");
