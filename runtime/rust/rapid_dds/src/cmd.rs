@@ -11,7 +11,7 @@
 use std::time::{Duration, Instant};
 
 use rapid_runtime::text::visible;
-use rapid_runtime::value::fmt_g;
+use rapid_runtime::value::{fmt_g, py_float};
 use rapid_runtime::{QueueAction, Tables, Value};
 
 use crate::client::{AckEvent, Client, ClientError, ClientOptions, SendOptions};
@@ -156,6 +156,8 @@ fn shown(v: &Value) -> String {
         Value::String(s) => format!("'{}'", visible(s, 64)),
         Value::Vec3d(x) => list(&mut x.iter().copied()),
         Value::Mat33f(m) => list(&mut m.iter().map(|x| *x as f64)),
+        // a float as the shortest text that reads back as that float (0.2, not 0.2000000029...)
+        Value::Float(x) => py_float(x.to_string().parse().unwrap_or(*x as f64)),
         other => other.repr(),
     }
 }
@@ -358,6 +360,8 @@ mod tests {
         assert!(matches!(parse(&argv(&["--help"])), Ok(None)));
         assert_eq!(shown(&Value::Vec3d([40.0, 0.5, -1.0])), "40,0.5,-1");
         assert_eq!(shown(&Value::Float(0.5)), "0.5");
+        assert_eq!(shown(&Value::Float(0.2)), "0.2");
+        assert_eq!(shown(&Value::Float(9.0)), "9.0");
         assert_eq!(shown(&Value::String("hi".into())), "'hi'");
         assert_eq!(percentile(&[1.0, 2.0, 3.0, 4.0], 0.5), 2.0);
         assert_eq!(percentile(&[1.0, 2.0, 3.0, 4.0], 0.99), 4.0);
