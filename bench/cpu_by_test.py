@@ -51,7 +51,7 @@ def durations(rows: list[dict], source: str) -> str:
 def main() -> int:
     rows = [json.loads(line) for line in open(sys.argv[1], encoding="utf-8")]
     if "--durations" in sys.argv[2:]:
-        print(durations(rows, "a full run on three workers"))
+        print(durations(rows, f"the profiled run {os.path.basename(sys.argv[1])}"))
         return 0
     top = int(sys.argv[2]) if len(sys.argv) > 2 else 20
     by_file: collections.Counter[str] = collections.Counter()
