@@ -145,7 +145,8 @@ def journal_line(record: dict) -> str:
 def _journal(case: dict, seed: str, source: str) -> dict | None:
     """The journal the asset's first start finds (the case's `journal:`): its file name (one per
     asset and domain; the drivers start on domain 0) and its text: a record (`k`, fields left
-    out filled in) as the runtimes write it, `json:` a record's JSON text with its CRC added,
+    out filled in) as the runtimes write it, `json:` a record's JSON text with its CRC added (and `separator:`
+    instead of the space after it, a damaged one),
     `raw:` a line written as it is, `torn:` bytes without a newline."""
     if "journal" not in case:
         return None
@@ -159,7 +160,7 @@ def _journal(case: dict, seed: str, source: str) -> dict | None:
             text += entry["torn"]
             continue
         if "json" in entry:  # a record's JSON text as some writer spelled it, its CRC added
-            text += f"{zlib.crc32(entry['json'].encode()):08x} {entry['json']}\n"
+            text += f"{zlib.crc32(entry['json'].encode()):08x}{entry.get('separator', ' ')}{entry['json']}\n"
             continue
         rec = dict(entry)
         if rec["k"] in ("q", "x", "c"):
