@@ -141,6 +141,26 @@ def _topics_json() -> list[dict]:
         return json.load(fh)["topics"]
 
 
+def _every_sample_promised() -> set[str]:
+    """The topics whose writers promise every sample to every matched reader: reliable, with
+    a history of more than one sample per instance (commands, acks; configs are written once).
+    On the others (best-effort samples; reliable states keeping the last one) a reader that
+    lost a packet gets the next sample instead, and two readers may differ by it."""
+    from rapidgen.live.discovery import QosSummary
+    sys.path.insert(0, str(PYDIR))
+    try:
+        import importlib
+        qos = importlib.import_module(f"{PKG}.qos").RapidQos()
+    finally:
+        sys.path.remove(str(PYDIR))
+    promised = {"rapid_ack"}  # (the profile keeps one; the bridge's ack writers keep each command's 8)
+    for entry in _topics_json():
+        w = QosSummary.of(qos.writer(entry["topic"]))
+        if w.reliability == "Reliable" and (w.history == "KeepAll" or (w.depth or 0) > 1 or "config" in entry["topic"]):
+            promised.add(entry["topic"])
+    return promised
+
+
 def test_main_job_ran_as_the_readme_says(job):
     for (argv, want), res in zip(JOB, job["results"]):
         assert res.returncode == want, (argv, res.stdout[-1500:], res.stderr[-1500:])
@@ -162,8 +182,18 @@ def test_every_topic_recorded_with_the_bytes_sent(job):
         channels = {ch.topic: ch for ch in summary.channels.values()}
         for entry in _topics_json():  # every topic K10 declares has its channel and DDS type, in each file
             assert channels[entry["topic"]].metadata["dds_type"] == entry["type"], entry["topic"]
+    promised = _every_sample_promised()
+    assert {"rapid_command", "rapid_ack", "rapid_command_config"} <= promised
+    lossy, differ = 0, 0
     for topic, sent in job["tap"].items():  # what the independent reader got, byte for byte
-        assert Counter(by_topic.get(topic, [])) == Counter(sent), topic
+        got = Counter(by_topic.get(topic, []))
+        if topic in promised:
+            assert got == Counter(sent), topic
+        else:  # a sample one reader lost and the writer no longer holds: at most one a topic
+            odd = (got - Counter(sent)) + (Counter(sent) - got)
+            assert sum(odd.values()) <= 1, (topic, len(sent), sum(got.values()))
+            lossy, differ = lossy + len(sent), differ + sum(odd.values())
+    assert differ <= max(1, lossy // 50), (differ, lossy)  # and 2% of them in all
     for topic in ("rapid_command", "rapid_ack", "rapid_command_config", "rapid_agent_state", "rapid_position_sample",
                   "rapid_queue_state", "rapid_accesscontrol_state", "rapid_ext_arc_gps_sample"):
         assert by_topic.get(topic), f"nothing recorded on {topic}"
