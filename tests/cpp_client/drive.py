@@ -123,3 +123,27 @@ def scenario(d: Driver) -> dict[str, tuple[int, list[str]]]:
     got["releaseControl"] = d.send("AccessControl", "releaseControl")
     got["without control"] = d.send("PanCam", "pointCamera", "pan=0.3")
     return got
+
+
+def assert_refuses_bad_input(run, domain: int) -> None:
+    """The ground-side programs' refusals before anything is sent (rapid_cmd, <crate>_cmd;
+    no asset needed: the built-in tables are the dictionary): exit 2 for usage, 1 for a
+    command the dictionary refuses, every name from the command line escaped. run(*args)
+    runs the program on `domain`, where no asset is."""
+    res = run("--help")
+    assert res.returncode == 0 and "--action" in res.stdout
+    res = run("Admin")
+    assert res.returncode == 2 and "SUBSYSTEM and COMMAND are needed" in res.stderr
+    res = run("Admin", "echo", "--action", "SIDEWAYS")
+    assert res.returncode == 2 and "bad value for --action: SIDEWAYS" in res.stderr
+    res = run("Nowhere\x1b[2J", "echo")
+    assert res.returncode == 1 and "has no subsystem 'Nowhere\\x1b[2J'" in res.stderr and "\x1b" not in res.stderr
+    res = run("PanCam", "pointCamera", "pan=abc", "zoom=2")
+    assert res.returncode == 1 and "pan: 'abc' is not a number" in res.stderr
+    assert "pointCamera has no parameter 'zoom'" in res.stderr
+    res = run("PanCam", "pointCamera", "pan=9")
+    assert res.returncode == 1 and "pan: 9 not in [-3.05, 3.05]" in res.stderr
+    res = run("PanCam", "pointCamera", "--action", "INSERT")
+    assert res.returncode == 1 and "QUEUE_INSERT needs a target cmdId" in res.stderr
+    res = run("Admin", "echo", "text=hi")  # the dictionary's, but no asset on the domain
+    assert res.returncode == 1 and f"no asset K10Red reads commands on domain {domain}" in res.stderr

@@ -11,7 +11,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
-from tests.cpp_client.drive import Driver, scenario
+from tests.cpp_client.drive import Driver, assert_refuses_bad_input, scenario
 from tests.cpp_runtime import build as B
 from tests.runtime.live import SEEDS, BridgeProcess, python_dir
 
@@ -85,23 +85,7 @@ def test_cmd_program_refuses_bad_input_with_a_clear_error(programs):
     def run(*args: str) -> subprocess.CompletedProcess:
         return subprocess.run([str(programs["cmd"]), *args, "--domain", "27", "--discover", "0.1", "--timeout",
                                "0.5"], capture_output=True, text=True, timeout=60, env=B.dds_env())
-    res = run("--help")
-    assert res.returncode == 0 and "--action" in res.stdout
-    res = run("Admin")
-    assert res.returncode == 2 and "SUBSYSTEM and COMMAND are needed" in res.stderr
-    res = run("Admin", "echo", "--action", "SIDEWAYS")
-    assert res.returncode == 2 and "bad value for --action: SIDEWAYS" in res.stderr
-    res = run("Nowhere\x1b[2J", "echo")
-    assert res.returncode == 1 and "has no subsystem 'Nowhere\\x1b[2J'" in res.stderr and "\x1b" not in res.stderr
-    res = run("PanCam", "pointCamera", "pan=abc", "zoom=2")
-    assert res.returncode == 1 and "pan: 'abc' is not a number" in res.stderr
-    assert "pointCamera has no parameter 'zoom'" in res.stderr
-    res = run("PanCam", "pointCamera", "pan=9")
-    assert res.returncode == 1 and "pan: 9 not in [-3.05, 3.05]" in res.stderr
-    res = run("PanCam", "pointCamera", "--action", "INSERT")
-    assert res.returncode == 1 and "QUEUE_INSERT needs a target cmdId" in res.stderr
-    res = run("Admin", "echo", "text=hi")  # the dictionary's, but no asset on domain 27
-    assert res.returncode == 1 and "no asset K10Red reads commands on domain 27" in res.stderr
+    assert_refuses_bad_input(run, 27)
 
 
 PARTITION_DOMAIN = 86
