@@ -361,6 +361,9 @@ private:
     }
 
     void changed(std::size_t i, StreamState was, StreamState now) {
+        // Only an active stream is lost (StreamMonitor::lose): waiting then lost at two polls is
+        // a first sample and a missed deadline between them, said in the order they came
+        if (was == StreamState::Waiting && now == StreamState::Lost) changed(i, was, StreamState::Active);
         const StreamSpec& s = specs_[i];
         std::string text;
         if (now == StreamState::Lost) {
