@@ -19,7 +19,6 @@ from typing import Any
 
 from cyclonedds._clayer import ddspy_write
 from cyclonedds.core import DDSException
-from cyclonedds.util import duration
 
 from rapid_runtime import messages as M
 from rapid_runtime import texts
@@ -60,7 +59,7 @@ ACK_GENERATION_MIN = 256
 COMMAND_CACHE = 4096
 # How long a second stop() waits for the first to finish (its acks delivered, journal closed),
 # beyond the shutdown bound: the first waits at most that bound for the handlers, then at most
-# ACK_DELIVERY for the last acks to be acknowledged by their readers.
+# ACK_DELIVERY in all for the last acks, telemetry and states to be acknowledged by their readers.
 STOP_WAIT = 5.0
 ACK_DELIVERY = 2.0
 # Log lines per second; past that they are counted and the count logged (a flood of bad
@@ -281,13 +280,11 @@ class Bridge:
                 if in_flight:
                     self.log(f"stopping: {in_flight} unfinished command(s) answered"
                              + (f", {stuck} of them \"handler did not stop\"" if stuck else ""))
-                for writer in self._acks().writers():
-                    try:
-                        writer.wait_for_acks(duration(seconds=ACK_DELIVERY))
-                    except Exception:  # a reader that left without acknowledging; cyclonedds 11 raises oddly here
-                        pass
-                self._acks().close()
-            self.node.deliver(ACK_DELIVERY)  # the last telemetry and states, as the acks above
+                acks = self._acks()
+                self.node.deliver(ACK_DELIVERY, acks.writers())  # the last acks, then telemetry and states
+                acks.close()
+            else:
+                self.node.deliver(ACK_DELIVERY)  # the last telemetry and states
         finally:
             if self._reader is not None and threading.current_thread() is not self._reader.thread:
                 self._reader.stop()

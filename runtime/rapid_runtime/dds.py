@@ -86,13 +86,14 @@ class Node:
             q = q + Qos(Policy.Reliability.Reliable(max_blocking_time=duration(seconds=blocking)))
         return q
 
-    def deliver(self, seconds: float) -> None:
+    def deliver(self, seconds: float, first=()) -> None:
         """Wait, at most `seconds` in all, until every reliable reader has acknowledged what the
-        shared writers wrote: a sample lost on the way is resent only while its writer lives, so
-        a bridge that exits right after its last telemetry would leave some readers without it."""
+        writers in `first` (a bridge's ack writers), then the shared writers, wrote: a sample
+        lost on the way is resent only while its writer lives, so a bridge that exits right
+        after its last acks or telemetry would leave some readers without them."""
         end = time.monotonic() + seconds
         with self._lock:
-            writers = list(self._writers.values())
+            writers = [*first, *self._writers.values()]
         for w in writers:
             left = end - time.monotonic()
             if left <= 0:
