@@ -31,7 +31,7 @@ SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot")
 DEFAULT_SOURCE = "RapidWorkbench"
 # steps only a driver can take (a live runner cannot make a handler return, restart the asset or
 # fill its door); expectations it cannot see (calls, retired, log, pending) it skips
-OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse"}
+OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse", "offer", "open"}
 # a journal record's keys in the order the runtimes write them (docs/runtime.md, "Restarts")
 RECORD_KEYS = ("k", "id", "src", "asset", "serial", "c", "m")
 
@@ -102,11 +102,17 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
     for i, step in enumerate(case["steps"]):
         (op, body), = step.items()
         where = doc.loc((*path, "steps", i))
-        if op in ("send", "refuse"):
+        if op == "restart" and "door" in case:  # (a door serves one manager: the drivers do not rebuild it)
+            raise CaseError(f"{where}: a case with a `door:` cannot restart the asset")
+        if op in ("offer", "open") and "door" not in case:
+            raise CaseError(f"{where}: `{op}` needs the case's `door:` (the door the commands are offered at)")
+        if op in ("send", "refuse", "offer"):
             sub, _, cname = body.get("cmd", "Admin/noOp").partition("/")
             s = {"op": op, "id": body["id"], "src": body.get("src", source), "subsystem": sub, "name": cname,
                  "asset": body.get("asset", name)}
-            if op == "send":
+            if op == "offer":
+                s["writer"] = body["writer"]
+            if op in ("send", "offer"):
                 s.update(args=_typed(body.get("args", []), _params(seed, sub, cname), where),
                          action=body.get("action", "QUEUE_BYPASS"), target=body.get("target", ""),
                          handler=_handler(body.get("handler", "ok")))
@@ -120,7 +126,7 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
             out.append({"op": op, "id": body})
         elif op == "shutdown":
             out.append({"op": op, "timeout_ms": body.get("timeout_ms", -1)})
-        elif op in ("idle", "restart"):
+        elif op in ("idle", "restart", "open"):
             out.append({"op": op})
         elif op == "queue":
             out.append({"op": op, **{k: body[k] for k in ("code", "pending", "active", "statuses") if k in body}})
@@ -132,6 +138,10 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
             out.append({"op": op, "ids": body})
         elif op == "log":
             out.append({"op": op, "text": body})
+        elif op == "order":
+            out.append({"op": op, "ids": body})
+        elif op == "stopped":
+            out.append({"op": op, "count": body})
     return out
 
 
@@ -204,12 +214,13 @@ def load_file(path: Path) -> list[dict]:
         if journal is not None and "\r" in journal["text"]:  # (the runtimes' line splitting differs there)
             raise CaseError(f"{doc.loc((*path_, 'journal'))}: a journal line holds a carriage return")
         # (records' statuses: the live runner compares a QueueState's cmdIds only)
-        live = not case.get("options") and journal is None and all(
+        door = case.get("door")  # (its limits left out: the runtime's own)
+        live = not case.get("options") and journal is None and door is None and all(
             s["op"] not in OFFLINE_ONLY and "statuses" not in s and (s["op"] != "send" or s["handler"]["kind"] == "ok" and
                                              s["action"] != "QUEUE_BOGUS") for s in steps)
         cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
                       "rules": case.get("rules", []), "asset": seed, "options": case.get("options", {}),
-                      "live": live, "journal": journal, "steps": steps})
+                      "live": live, "journal": journal, "door": door, "steps": steps})
     return cases
 
 

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include <rapid_runtime/handlers.hpp>
+#include <rapid_runtime/intake.hpp>
 #include <rapid_runtime/journal.hpp>
 #include <rapid_runtime/manager.hpp>
 #include <rapid_runtime/tables.hpp>
@@ -202,6 +203,8 @@ struct Seen {
     std::condition_variable changed;
     std::uint64_t generation = 0;  // counts changes (a waiter misses none)
     std::map<std::string, std::vector<Ack>> acks;
+    std::vector<std::string> first;  // cmdIds in the order of their first ack
+    int stopped = 0;  // the asset's shutdown callback's calls (Admin/shutdown)
     std::optional<std::tuple<int, std::vector<std::string>, std::vector<std::string>>> queue;
     std::map<std::string, std::string> statuses;  // the last QueueState's pending and active records'
     std::optional<std::pair<std::string, std::vector<std::string>>> access;
@@ -235,6 +238,7 @@ public:
     void ack(const Cmd& cmd, AckStatus status, Completion completed, const std::string& message) override {
         std::lock_guard<std::mutex> lock(seen_.mutex);
         if (dead_) return;
+        if (seen_.acks.count(cmd.cmd_id) == 0) seen_.first.push_back(cmd.cmd_id);
         seen_.acks[cmd.cmd_id].push_back({std::string(name_of(status)).substr(4),  // ACK_
                                           std::string(name_of(completed)).substr(14),  // ACK_COMPLETED_
                                           message});
@@ -372,6 +376,11 @@ public:
             else
                 throw std::invalid_argument("option '" + key + "' is not known to this driver");
         }
+        options_.on_shutdown = [this] {
+            std::lock_guard<std::mutex> lock(seen_.mutex);
+            ++seen_.stopped;
+            seen_.bump();
+        };
         // a case that restarts the asset, or starts on a journal, runs with the restart journal
         // as the bridge does, in a state folder not made yet (the runtime makes it) unless the
         // case's journal is written there first
@@ -390,8 +399,17 @@ public:
             if (!file.flush()) throw std::runtime_error("cannot write the case's journal in " + journal_dir_);
         }
         start();
+        // a case with a door offers commands there as the bridge's reader does; shut until `open`
+        const json& door = c.at("door");
+        if (!door.is_null()) {
+            CollectingOutbox* out = outboxes_.back().get();
+            intake_ = std::make_unique<Intake>(manager(), [out](const std::string& t) { out->log(t); },
+                                               door.value("per_writer", PER_WRITER),
+                                               door.value("shed_answers", SHED_ANSWERS));
+        }
     }
-    ~Replay() {  // every handler returns, then the asset shuts down (the Python driver's close())
+    ~Replay() {  // the door closes, every handler returns, then the asset shuts down (Python's close())
+        intake_.reset();
         {
             std::lock_guard<std::mutex> lock(seen_.mutex);
             seen_.all_released = true;
@@ -408,13 +426,18 @@ public:
     // One step; false (with a failure reported) when an expectation was not met.
     bool step(const json& s) {
         const std::string op = s.at("op").get<std::string>();
-        if (op == "send") {
+        if (op == "send" || op == "offer") {
             Cmd c = cmd(s);
             {
                 std::lock_guard<std::mutex> lock(seen_.mutex);
                 seen_.behaviour[c.stamp] = s.at("handler");
             }
-            manager().receive(c);
+            if (op == "send")
+                manager().receive(c);
+            else
+                intake_->offer(std::move(c), s.at("writer").get<std::string>());
+        } else if (op == "open") {
+            intake_->start();
         } else if (op == "refuse") {
             manager().refuse(cmd(s), s.at("why").get<std::string>());
         } else if (op == "release") {
@@ -455,6 +478,16 @@ public:
                 auto from = seen_.logs.size() > 10 ? seen_.logs.end() - 10 : seen_.logs.begin();
                 return show(std::vector<std::string>(from, seen_.logs.end()));
             });
+        } else if (op == "order") {
+            return expect_order(s.at("ids").get<std::vector<std::string>>());
+        } else if (op == "stopped") {
+            const int want = s.at("count").get<int>();
+            int got = 0;
+            if (!until("the shutdown callback called " + std::to_string(want) + " times",
+                       [&] { return (got = seen_.stopped) >= want; }, [&] { return std::to_string(seen_.stopped); }))
+                return false;
+            return got == want || fail("the shutdown callback called " + std::to_string(want) + " times",
+                                       std::to_string(got) + " calls");
         } else {
             return fail("a step this driver knows", "step '" + op + "'");
         }
@@ -553,6 +586,19 @@ private:
         }
     }
 
+    // The cmdIds' first acks in this order (waiting until each has one).
+    bool expect_order(const std::vector<std::string>& want) {
+        std::vector<std::string> got;
+        auto firsts = [&] {
+            got.clear();
+            for (const auto& id : seen_.first)
+                if (std::find(want.begin(), want.end(), id) != want.end()) got.push_back(id);
+            return got.size() == want.size();
+        };
+        if (!until("first acks in the order " + show(want), firsts, [&] { return show(got); })) return false;
+        return got == want || fail("first acks in the order " + show(want), show(got));
+    }
+
     bool expect_acks(const json& s) {
         const std::string id = s.at("id").get<std::string>();
         const json& want = s.at("acks");
@@ -633,6 +679,7 @@ private:
     std::vector<std::unique_ptr<Journal>> journals_;
     std::vector<std::unique_ptr<CommandManager>> managers_;  // the last is the running asset
     std::int64_t sends_ = 0;
+    std::unique_ptr<Intake> intake_;  // the door, when the case has one (before the managers it serves end)
 };
 
 class Case : public ::testing::TestWithParam<CaseRef> {};

@@ -14,6 +14,7 @@ import pytest
 
 from rapid_runtime.command import Cmd
 from rapid_runtime.handlers import CommandFailed
+from rapid_runtime.intake import Intake
 from rapid_runtime.journal import Journal
 from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapidgen.protocol_cases import load_cases, seed_tables
@@ -29,6 +30,8 @@ class Outbox:
     def __init__(self) -> None:
         self.cond = threading.Condition()
         self.acks: dict[str, list[tuple[str, str, str]]] = {}
+        self.first: list[str] = []  # cmdIds in the order of their first ack
+        self.stopped = 0  # the asset's shutdown callback's calls (Admin/shutdown)
         self.queue: tuple[int, list[str], list[str]] | None = None
         self.statuses: dict[str, str] = {}  # the last QueueState's pending and active records
         self.access: tuple[str, list[str]] | None = None
@@ -40,6 +43,8 @@ class Outbox:
 
     def ack(self, cmd, status, completed, message):
         with self.cond:
+            if cmd.cmd_id not in self.acks:
+                self.first.append(cmd.cmd_id)
             self.acks.setdefault(cmd.cmd_id, []).append(
                 (status.removeprefix("ACK_"), completed.removeprefix("ACK_COMPLETED_"), message))
             self._changed()
@@ -63,6 +68,11 @@ class Outbox:
     def log(self, text):
         with self.cond:
             self.logs.append(text)
+            self._changed()
+
+    def stop(self):
+        with self.cond:
+            self.stopped += 1
             self._changed()
 
 
@@ -158,6 +168,9 @@ class Replay:
             self.journal_dir.mkdir(parents=True)
             (self.journal_dir / case["journal"]["file"]).write_bytes(case["journal"]["text"].encode())
         self.m = self.manager()
+        # a case with a door offers commands there as the bridge's reader does; shut until `open`
+        self.intake = None if case["door"] is None else Intake(self.m, self.out.log, inline=True, **case["door"])
+        self.writers: dict[str, int] = {}  # a case's writer names as writer ids (0 is the shared FIFO's)
 
     def manager(self) -> CommandManager:
         journal, recovered = None, None
@@ -166,7 +179,8 @@ class Replay:
             journal, recovered = Journal.open(self.journal_dir, self.tables.name, 0, window, self.out.log)
             assert journal is not None, self.out.logs
             journal.start(1)
-        m = CommandManager(self.tables, self.handlers, self.out, journal=journal, **self.case["options"])
+        m = CommandManager(self.tables, self.handlers, self.out, journal=journal, on_shutdown=self.out.stop,
+                           **self.case["options"])
         if recovered is not None and recovered.crashed:
             m.restore(recovered)
         return m
@@ -201,11 +215,16 @@ class Replay:
 
     def step(self, s: dict) -> None:
         op, out = s["op"], self.out
-        if op == "send":
+        if op in ("send", "offer"):
             # a send's behaviour is its command's: a repeat of a cmdId still live must not change it
             if s["id"] not in self.handlers.behaviour or self.finished(s["id"]):
                 self.handlers.behaviour[s["id"]] = s["handler"]
-            self.m.receive(self.cmd(s))
+            if op == "send":
+                self.m.receive(self.cmd(s))
+            else:
+                self.intake.offer(self.cmd(s), self.writers.setdefault(s["writer"], len(self.writers) + 1))
+        elif op == "open":
+            self.intake.start()
         elif op == "refuse":
             self.m.refuse(self.cmd(s), s["why"])
         elif op == "release":
@@ -248,10 +267,20 @@ class Replay:
         elif op == "log":
             self.until(f"a log line with {s['text']!r}", lambda: any(s["text"] in line for line in out.logs),
                        lambda: out.logs[-10:])
+        elif op == "order":
+            firsts = lambda: [cid for cid in out.first if cid in s["ids"]]  # noqa: E731
+            self.until(f"first acks in the order {s['ids']}", lambda: len(firsts()) == len(s["ids"]), firsts)
+            assert firsts() == s["ids"], f"{self.case['name']!r}: first acks in the order {firsts()}, not {s['ids']}"
+        elif op == "stopped":
+            self.until(f"the shutdown callback called {s['count']} times", lambda: out.stopped >= s["count"],
+                       lambda: out.stopped)
+            assert out.stopped == s["count"], f"{self.case['name']!r}: the shutdown callback called {out.stopped} times"
         else:
             raise AssertionError(f"unknown step {op}")
 
     def close(self) -> None:
+        if self.intake is not None:
+            self.intake.stop()
         for event in list(self.handlers.released.values()):
             event.set()
         for cid in list(self.handlers.behaviour):
@@ -267,3 +296,24 @@ def test_case(case, tmp_path):
             replay.step(s)
     finally:
         replay.close()
+
+
+@pytest.mark.parametrize("steps, error", [
+    ("[{offer: {writer: w, id: a, cmd: Admin/noOp}}]", "`offer` needs the case's `door:`"),
+    ("[{open: true}]", "`open` needs the case's `door:`"),
+])
+def test_a_door_step_without_a_door_is_a_located_error(tmp_path, steps, error):
+    from rapidgen.protocol_cases import CaseError, load_file
+    path = tmp_path / "bad.yaml"
+    path.write_text(f"asset: k10\ncases:\n  - name: no door here\n    steps: {steps}\n")
+    with pytest.raises(CaseError, match=rf"bad.yaml:4:\d+: {error}"):
+        load_file(path)
+
+
+def test_a_door_case_cannot_restart(tmp_path):
+    from rapidgen.protocol_cases import CaseError, load_file
+    path = tmp_path / "bad.yaml"
+    path.write_text("asset: k10\ncases:\n  - name: door and restart\n    door: {}\n    steps:\n"
+                    "      - open: true\n      - restart: true\n")
+    with pytest.raises(CaseError, match=r"bad.yaml:7:\d+: a case with a `door:` cannot restart"):
+        load_file(path)

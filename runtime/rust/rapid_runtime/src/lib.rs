@@ -12,6 +12,7 @@ pub mod access;
 pub mod args;
 pub mod command;
 pub mod handlers;
+pub mod intake;
 pub mod journal;
 pub mod manager;
 pub mod tables;

@@ -15,6 +15,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
+use rapid_runtime::intake::{Intake, PER_WRITER, SHED_ANSWERS};
 use rapid_runtime::journal::Log;
 use rapid_runtime::manager::COMMAND_WINDOW;
 use rapid_runtime::*;
@@ -30,6 +31,10 @@ type Ack = (String, String, String); // status without ACK_, completion without 
 #[derive(Default)]
 struct Seen {
     acks: HashMap<String, Vec<Ack>>,
+    /// cmdIds in the order of their first ack
+    first: Vec<String>,
+    /// the asset's shutdown callback's calls (Admin/shutdown)
+    stopped: usize,
     queue: Option<(i32, Vec<String>, Vec<String>)>,
     /// the last QueueState's pending and active records' statuses, by cmdId
     statuses: HashMap<String, String>,
@@ -80,7 +85,12 @@ impl Outbox for Gate {
             completion.name().trim_start_matches("ACK_COMPLETED_").to_string(),
             message.to_string(),
         );
-        self.live(|s| s.acks.entry(cmd.cmd_id.clone()).or_default().push(a));
+        self.live(|s| {
+            if !s.acks.contains_key(&cmd.cmd_id) {
+                s.first.push(cmd.cmd_id.clone());
+            }
+            s.acks.entry(cmd.cmd_id.clone()).or_default().push(a)
+        });
     }
     fn queue_state(&self, code: i32, pending: &[Record], active: &[Record], _completed: &[Record]) {
         let ids = |rs: &[Record]| rs.iter().map(|r| r.cmd.cmd_id.clone()).collect::<Vec<_>>();
@@ -329,17 +339,21 @@ struct Replay<'a> {
     shared: Arc<Shared>,
     handlers: Arc<Scripted>,
     gate: Arc<Gate>,
-    m: CommandManager,
+    m: Arc<CommandManager>,
     /// the managers of processes that died: kept (their handler threads run on) but unheard
-    dead: Vec<CommandManager>,
+    dead: Vec<Arc<CommandManager>>,
+    /// the door, when the case has one: shut until `open`
+    intake: Option<Intake<CommandManager>>,
     journal_dir: Option<PathBuf>,
     /// the case's temporary folder, the journal's state folder inside it
     temp: Option<PathBuf>,
 }
 
-fn options_of(case: &Json) -> Options {
+fn options_of(case: &Json, shared: &Arc<Shared>) -> Options {
     let o = &case["options"];
     let mut opts = Options::default();
+    let shared = shared.clone();
+    opts.on_shutdown = Some(Arc::new(move || shared.with(|s| s.stopped += 1)));
     if let Some(n) = o["window"].as_u64() {
         opts.window = n as usize;
     }
@@ -361,8 +375,8 @@ fn manager(
     handlers: &Arc<Scripted>,
     gate: &Arc<Gate>,
     journal_dir: Option<&PathBuf>,
-) -> Result<CommandManager, String> {
-    let mut opts = options_of(case);
+) -> Result<Arc<CommandManager>, String> {
+    let mut opts = options_of(case, &gate.shared);
     let mut recovered = None;
     if let Some(dir) = journal_dir {
         let g = gate.clone();
@@ -377,7 +391,7 @@ fn manager(
     if let Some(rec) = recovered.filter(|r| r.crashed) {
         m.restore(&rec);
     }
-    Ok(m)
+    Ok(Arc::new(m))
 }
 
 impl<'a> Replay<'a> {
@@ -407,7 +421,15 @@ impl<'a> Replay<'a> {
                 .map_err(|e| format!("the case's journal cannot be written in {}: {e}", dir.display()))?;
         }
         let m = manager(case, &tables, &handlers, &gate, journal_dir.as_ref())?;
-        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), journal_dir, temp })
+        // a case with a door offers commands there as the bridge's reader does; shut until `open`
+        let door = &case["door"];
+        let intake = (!door.is_null()).then(|| {
+            let g = gate.clone();
+            let log: Log = Arc::new(move |text: &str| g.log(text));
+            let limit = |key: &str, default: usize| door[key].as_u64().map_or(default, |n| n as usize);
+            Intake::new(m.clone(), log, limit("per_writer", PER_WRITER), limit("shed_answers", SHED_ANSWERS))
+        });
+        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), intake, journal_dir, temp })
     }
 
     /// The process dies: the journal as the disk has it (no clean stop record), nothing more
@@ -443,12 +465,17 @@ impl<'a> Replay<'a> {
     fn step(&mut self, st: &Json) -> Result<(), String> {
         let op = s(st, "op");
         match op.as_str() {
-            "send" => {
+            "send" | "offer" => {
                 let h = &st["handler"];
                 let b = Behaviour { kind: s(h, "kind"), text: s(h, "text"), texts: strings(&h["texts"]) };
                 self.handlers.behaviour.lock().unwrap_or_else(|e| e.into_inner()).insert(s(st, "id"), b);
-                self.m.receive(cmd_of(st)?);
+                match (&self.intake, op.as_str()) {
+                    (Some(door), "offer") => door.offer(cmd_of(st)?, &s(st, "writer")),
+                    (None, "offer") => return Err("`offer` in a case without a door".into()),
+                    _ => self.m.receive(cmd_of(st)?),
+                }
             }
+            "open" => self.intake.as_ref().ok_or("`open` in a case without a door")?.start(),
             "refuse" => self.m.refuse(cmd_of(st)?, &s(st, "why")),
             "release" => self.handlers.release(&s(st, "id")),
             "restart" => self.crash()?,
@@ -558,12 +585,31 @@ impl<'a> Replay<'a> {
                     |r| r.peek(|s| format!("{:?}", &s.logs[s.logs.len().saturating_sub(10)..])),
                 )?;
             }
+            "order" => {
+                let want = strings(&st["ids"]);
+                let firsts = |r: &Replay| r.peek(|s| s.first.iter().filter(|id| want.contains(id)).cloned().collect::<Vec<_>>());
+                self.until(format!("first acks in the order {want:?}"), |r| firsts(r).len() == want.len(), |r| format!("{:?}", firsts(r)))?;
+                if firsts(self) != want {
+                    return Err(format!("expected first acks in the order {want:?}; seen {:?}", firsts(self)));
+                }
+            }
+            "stopped" => {
+                let want = st["count"].as_u64().unwrap_or(0) as usize;
+                let got = |r: &Replay| r.peek(|s| s.stopped);
+                self.until(format!("the shutdown callback called {want} times"), |r| got(r) >= want, |r| got(r).to_string())?;
+                if got(self) != want {
+                    return Err(format!("expected the shutdown callback called {want} times; seen {}", got(self)));
+                }
+            }
             other => return Err(format!("unknown step {other}")),
         }
         Ok(())
     }
 
     fn close(self) {
+        if let Some(door) = &self.intake {
+            door.stop();
+        }
         let ids: Vec<String> = self.handlers.behaviour.lock().unwrap_or_else(|e| e.into_inner()).keys().cloned().collect();
         for id in ids {
             self.handlers.release(&id);
