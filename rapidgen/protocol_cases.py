@@ -118,7 +118,10 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
                          handler=_handler(body.get("handler", "ok")))
             else:
                 s.update(args=[], action="QUEUE_BYPASS", target="", why=body.get("why", "bridge busy"))
-            out.append(s)
+            if "times" in body:  # the same command n times, cmdIds <id>-1 ... <id>-n
+                out.extend({**s, "id": f"{body['id']}-{k}"} for k in range(1, body["times"] + 1))
+            else:
+                out.append(s)
         elif op == "acks":
             for cid, acks in body.items():
                 out.append({"op": "acks", "id": cid, "acks": [_ack(a) for a in acks]})
@@ -215,7 +218,9 @@ def load_file(path: Path) -> list[dict]:
             raise CaseError(f"{doc.loc((*path_, 'journal'))}: a journal line holds a carriage return")
         # (records' statuses: the live runner compares a QueueState's cmdIds only)
         door = case.get("door")  # (its limits left out: the runtime's own)
-        live = not case.get("options") and journal is None and door is None and all(
+        # (a burst of `times` sends is a flood to a live asset: its conform run is kept short)
+        burst = any("times" in (step.get("send") or {}) for step in case["steps"])
+        live = not case.get("options") and journal is None and door is None and not burst and all(
             s["op"] not in OFFLINE_ONLY and "statuses" not in s and (s["op"] != "send" or s["handler"]["kind"] == "ok" and
                                              s["action"] != "QUEUE_BOGUS") for s in steps)
         cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
