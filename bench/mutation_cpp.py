@@ -186,7 +186,7 @@ class Builds:
 
     def setup(self, bridge: bool) -> None:
         gen = self.work / "gen"
-        for seed in ("k10", "chariot"):
+        for seed in ("k10", "chariot", "robonaut2"):  # the spec cases' seeds
             _run([sys.executable, "-m", "rapidgen", "generate", str(ROOT / "specs" / "assets" / f"{seed}.yaml"),
                   "--lang", "cpp", "-o", str(gen / seed)])
         from rapidgen.protocol_cases import load_cases
@@ -198,7 +198,8 @@ class Builds:
         found = f"-Drapid_runtime_cpp_DIR={self.runtime}"
         _run(["cmake", "-S", str(self.work / "tests"), "-B", str(self.tests), *release, found,
               f"-DK10_BRIDGE_DIR={gen / 'k10' / 'cpp' / 'bridge'}",
-              f"-DCHARIOT_BRIDGE_DIR={gen / 'chariot' / 'cpp' / 'bridge'}"])
+              f"-DCHARIOT_BRIDGE_DIR={gen / 'chariot' / 'cpp' / 'bridge'}",
+              f"-DR2_BRIDGE_DIR={gen / 'robonaut2' / 'cpp' / 'bridge'}"])
         self.build(self.tests, "logic")
         if bridge:
             _run(["cmake", "-S", str(gen / "k10" / "cpp"), "-B", str(self.bridge), *release, found])

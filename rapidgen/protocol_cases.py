@@ -27,7 +27,8 @@ ROOT = Path(__file__).resolve().parents[1]
 SPEC = ROOT / "runtime" / "spec"
 CASES = SPEC / "cases"
 # seed -> (generated package folder, package): the tables each driver builds for that name
-SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot")}
+SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot"),
+         "robonaut2": ("robonaut2", "rapid_robonaut2")}
 DEFAULT_SOURCE = "RapidWorkbench"
 # steps only a driver can take (a live runner cannot make a handler return, restart the asset or
 # fill its door); expectations it cannot see (calls, retired, log, pending) it skips
