@@ -3,7 +3,6 @@ from pathlib import Path
 
 import pytest
 
-from tests.cpp.conftest import build_cpp_tests
 from tests.cpp_runtime import build as B
 from tests.rust.conftest import build_rust_peer
 
@@ -80,8 +79,7 @@ def update_golden(request) -> bool:
 @pytest.fixture(scope="session")
 def cpp_build(tmp_path_factory) -> Path:
     """The generated C++ packages and tests/cpp's programs (peer, vectors, fuzz, configs)."""
-    return B.once(tmp_path_factory, "cpp-tests",  # type: ignore[no-any-return]
-                  lambda: build_cpp_tests(B.run_folder(tmp_path_factory, "cpp")))
+    return B.cpp_tests(tmp_path_factory)
 
 
 @pytest.fixture(scope="session")

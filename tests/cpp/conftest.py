@@ -3,6 +3,9 @@
 Built in a pytest session temp folder (the cache lives inside the run): the RAPID set's
 package (a library, to check it compiles) and K10's (the RAPID set plus K10's extension
 IDL, what the test programs use, found with find_package), all with -Wall -Wextra -Werror.
+K10's is the run's `rapidgen generate` output (tests/cpp_runtime/build.py cpp_tests: the
+same bytes as generated/k10, test_committed_generated_tree_is_current), which K10's test
+bridge is built from too: it links this build's sanitized codec (libtypes_san.a).
 """
 from __future__ import annotations
 
@@ -48,14 +51,14 @@ def topics() -> list[dict]:
     return json.loads((K10 / "qos" / "topics.json").read_text(encoding="utf-8"))["topics"]
 
 
-def build_cpp_tests(base: Path) -> Path:
-    """The generated packages and the test programs built under base (the session's
-    `cpp_build` fixture, tests/conftest.py); returns the programs' folder."""
+def build_cpp_tests(base: Path, k10: Path = K10 / "cpp") -> Path:
+    """The generated packages and the test programs built under base, on K10's C++ package
+    `k10` (the session's `cpp_build` fixture, tests/conftest.py); returns the programs' folder."""
     if shutil.which("cmake") is None or shutil.which("g++") is None or \
             not Path("/usr/include/fastdds/dds/topic/TopicDataType.hpp").exists():
         pytest.fail("cmake, g++ and libfastrtps-dev/libfastcdr-dev are needed (scripts/setup.sh installs them)")
     _cmake(ROOT / "generated" / "rapid" / "cpp", base / "rapid_types")
-    _cmake(K10 / "cpp", base / PKG)
+    _cmake(k10, base / PKG)
     dispatch = base / "dispatch"
     dispatch.mkdir()
     types = sorted({line.split()[1] for line in vector_lines()})
@@ -65,10 +68,10 @@ def build_cpp_tests(base: Path) -> Path:
     topic_types = sorted({t["type"] for t in topics()} |
                          {v["type"] for v in vectors if isinstance(v["value"], dict) and "hdr" in v["value"]})
     (dispatch / "topics.inc").write_text("".join(f'RAPIDGEN_TYPE(::{t}, "{t}")\n' for t in topic_types))
-    asset_hpp = (K10 / "cpp" / "include" / PKG / "asset.hpp").read_text(encoding="utf-8")
+    asset_hpp = (k10 / "include" / PKG / "asset.hpp").read_text(encoding="utf-8")
     (dispatch / "configs.inc").write_text("".join(
         f"RAPIDGEN_CONFIG({fn}, {topic})\n"
         for topic, fn in re.findall(r"// The config published on (\"[^\"]*\")\.\ninline \S+ (\w+)\(\)", asset_hpp)))
     _cmake(HERE, base / "tests", f"-DPKG={PKG}", f"-D{PKG}_DIR={base / PKG}",
-           f"-DPKG_SOURCE={K10 / 'cpp'}", f"-DDISPATCH_DIR={dispatch}")
+           f"-DPKG_SOURCE={k10}", f"-DDISPATCH_DIR={dispatch}")
     return base / "tests"

@@ -7,6 +7,10 @@ in the session's temp folder, with -Wall -Wextra -Werror.
     seed_bridges(f)     every seed's <package>_bridge and the hostile descriptor's, one
                         CMake build of them all (K10's file by file, the others as unity
                         builds: seeds/CMakeLists.txt)
+    asan_runtime_dir(f) runtime/cpp under ASan/UBSan, a test build: the fault suite's runtime
+                        (conftest.py) and the core of K10's test bridge (client_programs)
+    cpp_tests(f)        tests/cpp's programs on K10's generated package (the `cpp_build`
+                        fixture), and its codec under ASan/UBSan, K10's test bridge's too
 
 `f` is pytest's tmp_path_factory. The seeds are tests.runtime.live.SEEDS (all six unless
 RAPIDGEN_CPP_SEEDS names some, comma-separated) and HOSTILE, K10 with names C++ reserves
@@ -53,8 +57,12 @@ def configure(src: Path, build: Path, *defs: str, build_type: str = "Release") -
 
 
 def build(build_dir: Path, *targets: str) -> None:
+    """The targets built, under a lock on the build folder: workers build different targets of
+    one CMake build (the seeds') and two makes in one tree race."""
     extra = [a for t in targets for a in ("--target", t)]
-    run(["cmake", "--build", str(build_dir), "-j", JOBS, *extra])
+    with open(build_dir.parent / f".{build_dir.name}.build-lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        run(["cmake", "--build", str(build_dir), "-j", JOBS, *extra])
 
 
 def needs_toolchain() -> None:
@@ -115,6 +123,51 @@ def runtime_dir(factory) -> Path:
     return _once(factory, "runtime", make)  # type: ignore[no-any-return]
 
 
+# The sanitized builds (Debug: no NDEBUG, -O1) keep line tables only, reports still say file:line.
+# CMake puts CMAKE_CXX_FLAGS_DEBUG (-g) after CMAKE_CXX_FLAGS, so a -g1 there lost to it: -g1
+# is the Debug flags themselves (compile CPU: the ASan/UBSan runtime 43.0 -> 33.8 s, the TSan
+# runtime and suites 69.0 -> 50.6 s; docs/testing.md).
+SAN_DEBUG = "-DCMAKE_CXX_FLAGS_DEBUG=-g1"
+# The sanitized runtimes' core as one translation unit: under TSan 17.7 -> 13.4 s, under
+# ASan/UBSan 35.8 -> 30.1 s (docs/testing.md, "Where CI time goes").
+UNITY = ["-DCMAKE_UNITY_BUILD=ON", "-DCMAKE_UNITY_BUILD_BATCH_SIZE=0"]
+# ASan/UBSan builds: GCC 12's -Wmaybe-uninitialized misfires on <regex> and <functional> under
+# the sanitizers. RAPID_RUNTIME_TEST_BREAKS: one sanitized runtime serves the fault suite and
+# K10's test bridge, which takes --break KIND; the breaks are off unless a bridge is told one
+# (the fault suite's handlers run on the same decisions as a plain build's).
+ASAN_FLAGS = f"{FLAGS} -Wno-maybe-uninitialized -O1 -DRAPID_RUNTIME_TEST_BREAKS"
+
+
+def asan_dir(factory) -> Path:
+    """The folder of the run's ASan/UBSan builds: runtime/ (asan_runtime_dir), tests/ (the fault suite)."""
+    return base(factory) / "asan"
+
+
+def asan_runtime_dir(factory) -> Path:
+    """runtime/cpp configured with -DRAPID_RUNTIME_SANITIZE=ON (ASan and UBSan on the core and,
+    through its PUBLIC flags, on what links it), a test build (ASAN_FLAGS), its core one unit."""
+    def make() -> Path:
+        needs_toolchain()
+        out = asan_dir(factory) / "runtime"
+        run(["cmake", "-S", str(ROOT / "runtime" / "cpp"), "-B", str(out), "-DCMAKE_BUILD_TYPE=Debug",
+             "-DRAPID_RUNTIME_SANITIZE=ON", *UNITY, f"-DCMAKE_CXX_FLAGS={ASAN_FLAGS}", SAN_DEBUG])
+        build(out)
+        return out
+    return _once(factory, "asan-runtime", make)  # type: ignore[no-any-return]
+
+
+def cpp_tests(factory) -> Path:
+    """tests/cpp's build (tests/cpp/conftest.py build_cpp_tests) on K10's package as generated
+    here; its folder's libtypes_san.a (K10_TYPES_SAN) is K10's codec under ASan/UBSan."""
+    from tests.cpp.conftest import build_cpp_tests  # (here, not above: tests/conftest.py imports both)
+    return _once(factory, "cpp-tests",  # type: ignore[no-any-return]
+                 lambda: build_cpp_tests(base(factory) / "cpp", generated(factory, "k10")))
+
+
+def k10_types_san(factory) -> Path:
+    return base(factory) / "cpp" / "tests" / "libtypes_san.a"  # (cpp_tests makes it)
+
+
 def descriptor(factory, seed: str) -> Path:
     """The seed's descriptor (HOSTILE's written to the session's folder)."""
     if seed == STREAM_RIG:
@@ -156,21 +209,40 @@ def chosen_seeds() -> list[str]:
     return [s for s in [*SEEDS, HOSTILE] if not names or s in names]
 
 
-def seed_bridges(factory) -> dict[str, Path]:
-    """Every chosen seed's bridge, built as the generated CMakeLists says (the types library
-    and <package>_bridge, found runtime), all in one CMake project (HERE/seeds)."""
-    def make() -> dict[str, Path]:
+def seeds_build(factory) -> Path:
+    """The seeds' CMake build (HERE/seeds: every chosen seed's package, the types library and
+    <package>_bridge as the generated CMakeLists says, found runtime, all in one project),
+    configured; the functions below build its targets."""
+    def make() -> Path:
         runtime = runtime_dir(factory)
-        seeds = chosen_seeds()
-        dirs = {s: generated(factory, s) for s in seeds}
+        dirs = [generated(factory, s) for s in chosen_seeds()]
         out = base(factory) / "bridges"
-        rig = generated(factory, STREAM_RIG)  # configured here, built by stream_bridges() only
+        rig = generated(factory, STREAM_RIG)  # built by stream_bridges() only
         configure(HERE / "seeds", out, f"-Drapid_runtime_cpp_DIR={runtime}",
-                  "-DSEED_DIRS=" + ";".join(str(d) for d in [*dirs.values(), rig]),
-                  f"-DPLAIN_DIR={dirs.get('k10', '')}")
+                  "-DSEED_DIRS=" + ";".join(str(d) for d in [*dirs, rig]),
+                  f"-DPLAIN_DIR={generated(factory, 'k10') if 'k10' in chosen_seeds() else ''}",
+                  f"-DSAN_RUNTIME_DIR={asan_dir(factory) / 'runtime'}",  # (both made by client_programs only)
+                  f"-DK10_TYPES_SAN={k10_types_san(factory)}")
+        return out
+    return _once(factory, "seeds-configured", make)  # type: ignore[no-any-return]
+
+
+def seed_bridges(factory) -> dict[str, Path]:
+    """Every chosen seed's bridge, in the seeds' build."""
+    def make() -> dict[str, Path]:
+        out = seeds_build(factory)
+        dirs = {s: generated(factory, s) for s in chosen_seeds()}
         build(out, *(f"{package_of(d)}_bridge" for d in dirs.values()))
         return {s: out / d.parent.name / f"{package_of(d)}_bridge" for s, d in dirs.items()}
     return _once(factory, "bridges", make)  # type: ignore[no-any-return]
+
+
+def seed_types(factory, seed: str) -> Path:
+    """A chosen seed's types library (built with the bridges; -O1, file by file, as users
+    build it: seeds/CMakeLists.txt), for tests/cpp/test_every_package.py."""
+    out, pkg = seeds_build(factory), package_of(generated(factory, seed))
+    build(out, pkg)  # (nothing to do once the bridges are built)
+    return out / seed / f"lib{pkg}.a"
 
 
 STREAM_RIG = "streamrig"  # tests/streams/rig.yaml: one input stream per loss action
@@ -270,12 +342,15 @@ def k10_cmd(factory) -> Path:
 def client_programs(factory) -> dict[str, Path]:
     """On K10's package, in the seeds' build (seeds/CMakeLists.txt): `cmd`, the ground-side
     client program with K10's tables (rapid_runtime_cpp_add_cmd), and `bridge_test`, K10's
-    generated bridge with the runtime and the codec under ASan/UBSan and --break KIND
-    (RAPID_RUNTIME_TEST_BREAKS). Fails when K10 is not among RAPIDGEN_CPP_SEEDS."""
+    generated bridge with the runtime (asan_runtime_dir's core) and the codec (cpp_tests') under
+    ASan/UBSan and --break KIND (RAPID_RUNTIME_TEST_BREAKS). Fails when K10 is not among
+    RAPIDGEN_CPP_SEEDS."""
     def make() -> dict[str, Path]:
         bridges = seed_bridges(factory)
         if "k10" not in bridges:
             pytest.fail("the C++ client tests need K10 among RAPIDGEN_CPP_SEEDS")
+        asan_runtime_dir(factory)
+        cpp_tests(factory)
         out = bridges["k10"].parent.parent
         build(out, "rapid_k10red_cmd", "rapid_k10red_bridge_test")
         return {"cmd": out / "rapid_k10red_cmd", "bridge_test": out / "rapid_k10red_bridge_test"}

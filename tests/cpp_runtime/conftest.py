@@ -31,18 +31,11 @@ def logic_under_tsan(runtime_build: Path, tmp_path_factory) -> Path:
     return B.once(tmp_path_factory, "tsan", lambda: _tsan(runtime_build, tmp_path_factory))  # type: ignore[no-any-return]
 
 
-# The sanitized runtimes' core as one translation unit, with line tables only (-g1: reports keep
-# file:line): the core's CPU under TSan 17.7 -> 13.4 s, under ASan/UBSan 35.8 -> 30.1 s
-# (docs/testing.md, "Where CI time goes"). The tests stay file by file: their fixtures are in
-# anonymous namespaces.
-UNITY = ["-DCMAKE_UNITY_BUILD=ON", "-DCMAKE_UNITY_BUILD_BATCH_SIZE=0"]
-
-
 def _tsan(runtime_build: Path, tmp_path_factory) -> Path:
     base = runtime_build.parent / "tsan"
-    flags = [f"-DCMAKE_CXX_FLAGS={B.FLAGS} -fsanitize=thread -g1 -O1", "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread"]
+    flags = [f"-DCMAKE_CXX_FLAGS={B.FLAGS} -fsanitize=thread -O1", B.SAN_DEBUG, "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread"]
     B.run(["cmake", "-S", str(B.ROOT / "runtime" / "cpp"), "-B", str(base / "runtime"), "-DCMAKE_BUILD_TYPE=Debug",
-           *UNITY, *flags])
+           *B.UNITY, *flags])
     B.build(base / "runtime")
     B.run(["cmake", "-S", str(B.HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *flags,
            f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", *B.table_dirs(tmp_path_factory)])
@@ -51,25 +44,21 @@ def _tsan(runtime_build: Path, tmp_path_factory) -> Path:
 
 
 @pytest.fixture(scope="session")
-def faults_under_sanitizers(runtime_build: Path, tmp_path_factory) -> Path:
-    """The fault-injecting handlers' suite (test_handler_faults.cpp) again, on a runtime
+def faults_under_sanitizers(tmp_path_factory) -> Path:
+    """The fault-injecting handlers' suite (test_handler_faults.cpp) again, on the run's runtime
     configured with -DRAPID_RUNTIME_SANITIZE=ON (ASan and UBSan, which reach the test through
-    rapid_runtime_cpp::core's flags). Built once per run, shared like the others."""
-    made = B.once(tmp_path_factory, "asan-faults", lambda: _sanitized(runtime_build, tmp_path_factory))
-    return made  # type: ignore[no-any-return]
+    rapid_runtime_cpp::core's flags; B.asan_runtime_dir, shared with K10's test bridge).
+    Built once per run, shared like the others."""
+    return B.once(tmp_path_factory, "asan-faults", lambda: _sanitized(tmp_path_factory))  # type: ignore[no-any-return]
 
 
-def _sanitized(runtime_build: Path, tmp_path_factory) -> Path:
-    base = runtime_build.parent / "asan"
-    # (GCC 12's -Wmaybe-uninitialized misfires on <regex> and <functional> under the sanitizers)
-    flags = [f"-DCMAKE_CXX_FLAGS={B.FLAGS} -Wno-maybe-uninitialized -g1 -O1"]
-    B.run(["cmake", "-S", str(B.ROOT / "runtime" / "cpp"), "-B", str(base / "runtime"), "-DCMAKE_BUILD_TYPE=Debug",
-           "-DRAPID_RUNTIME_SANITIZE=ON", *UNITY, *flags])
-    B.build(base / "runtime")
-    B.run(["cmake", "-S", str(B.HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *flags,
-           f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", *B.table_dirs(tmp_path_factory)])
-    B.build(base / "tests", "faults")
-    return base / "tests" / "faults"
+def _sanitized(tmp_path_factory) -> Path:
+    runtime = B.asan_runtime_dir(tmp_path_factory)
+    out = B.asan_dir(tmp_path_factory) / "tests"
+    B.run(["cmake", "-S", str(B.HERE), "-B", str(out), "-DCMAKE_BUILD_TYPE=Debug", f"-DCMAKE_CXX_FLAGS={B.ASAN_FLAGS}",
+           B.SAN_DEBUG, f"-Drapid_runtime_cpp_DIR={runtime}", *B.table_dirs(tmp_path_factory)])
+    B.build(out, "faults")
+    return out / "faults"
 
 
 @pytest.fixture(scope="session")
