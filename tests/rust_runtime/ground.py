@@ -15,6 +15,11 @@ Prints one JSON document; the test asserts on it. CHECK:
   position     the latest rapid_position_sample: its pose's xyz and its values by key
   picture TOPIC  the first ImageSensorSample on TOPIC: its MIME type, the metadata's size and
                the picture's own (tests.runtime.test_simulate_telemetry decodes it whole)
+  restart BRIDGE JOURNAL  starts the bridge (BRIDGE: its argv, JSON) on the journal folder,
+               has a noOp answered, a 200 s drive running and a noOp queued behind it, kills
+               the bridge (SIGKILL) and starts it again on the same journal: the final acks
+               then seen for each, what a repeat of the first noOp's cmdId gets, the
+               CommandConfig's serial at each start, and how the second bridge ended on SIGTERM
 """
 from __future__ import annotations
 
@@ -106,6 +111,75 @@ def picture(rapid, qos, domain: int, topic: str) -> dict:
     return {"mime": s.mimeType, "meta": [s.meta.width, s.meta.height], "picture": picture_size(s.mimeType, bytes(s.data))}
 
 
+def _started(argv: list[str]):
+    import os
+    import subprocess
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}  # the bridge's own `local` transport
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    line = proc.stdout.readline() if proc.stdout else ""
+    if "ready" not in line:
+        proc.kill()
+        raise SystemExit(f"the bridge did not start: {line!r} {proc.stderr.read() if proc.stderr else ''}")
+    return proc
+
+
+def _config_serial(rapid, qos, domain: int, timeout: float = 10) -> int | None:
+    """The CommandConfig's serial (transient-local: a new reader gets the last one)."""
+    from rapid_runtime.dds import Node
+    node = Node(rapid, qos, domain)
+    reader = node.reader("rapid_command_config", rapid.CommandConfig)
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        got = reader.take(N=8)
+        if got:
+            return int(got[-1].hdr.serial)
+        time.sleep(0.05)
+    return None
+
+
+def restart(rapid, tables, qos, domain: int, argv: list[str]) -> dict:
+    import signal
+    from rapid_runtime.commander import Commander
+    out: dict = {"serials": []}
+    first = _started(argv)
+    try:
+        c = Commander(rapid, qos, tables.name, "RapidWorkbench", domain)
+        assert c.wait_for_asset(10), "no bridge matched"
+        out["serials"].append(_config_serial(rapid, qos, domain))
+        c.wait_final(c.send("AccessControl", "requestControl", []), 10)
+        done = c.send("Admin", "noOp", [], cmd_id="done-before")
+        out["before"] = c.wait_final(done, 10)
+        drive = c.send("Mobility", "simpleMove", [("RAPID_STRING", "site"), ("RAPID_VEC3d", (100.0, 0.0, 0.0))],
+                       action="QUEUE_APPEND", cmd_id="drive")
+        behind = c.send("Admin", "noOp", [], action="QUEUE_APPEND", cmd_id="behind")
+        end = time.monotonic() + 10
+        with c.cond:  # the drive running, the noOp queued behind it
+            while not (any(a[0] == "ACK_EXECUTING" for a in c.acks.get(drive, ())) and
+                       any(a[0] == "ACK_QUEUED" for a in c.acks.get(behind, ()))) and time.monotonic() < end:
+                c.cond.wait(0.05)
+        out["at_kill"] = {cid: [list(a) for a in c.acks.get(cid, ())] for cid in (drive, behind)}
+    finally:
+        first.kill()
+        first.wait()
+    second = _started(argv)
+    try:
+        out["after"] = {cid: [list(a) for a in c.wait_final(cid, 15)] for cid in (drive, behind)}
+        out["serials"].append(_config_serial(rapid, qos, domain))
+        out["before_repeat"] = [list(a) for a in c.wait_acks(done, 1)]  # (restore writes its final ack again)
+        c.send("Admin", "noOp", [], cmd_id=done)  # answered already: its final ack again, nothing run
+        out["repeat"] = [list(a) for a in c.wait_acks(done, 2)]
+        c.close()
+    finally:
+        second.send_signal(signal.SIGTERM)
+        try:
+            out["stop_code"] = second.wait(20)
+        except Exception:
+            second.kill()
+            out["stop_code"] = second.wait()
+        out["log"] = second.stderr.read().splitlines()[-20:] if second.stderr else []
+    return out
+
+
 def main() -> int:
     check, pydir, package, domain = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
     _pkg, rapid, tables, qos = load(pydir, package)
@@ -117,6 +191,8 @@ def main() -> int:
         out = position(rapid, tables, qos, domain)
     elif check == "picture":
         out = picture(rapid, qos, domain, sys.argv[5])
+    elif check == "restart":
+        out = restart(rapid, tables, qos, domain, json.loads(sys.argv[5]))
     elif check == "every":
         out = commands(rapid, tables, qos, domain)
     else:

@@ -141,6 +141,35 @@ def test_a_late_joiner_gets_every_commands_final_ack(bridges):
     assert not missing, f"{len(missing)} of {n} commands' final acks not seen by the late joiner: {missing[:3]}"
 
 
+def test_a_restart_answers_from_the_journal(bridges, tmp_path):
+    """The restart journal (docs/runtime.md, "Restarts"), in the Rust bridge: killed (SIGKILL)
+    with a drive running and a noOp queued behind it, started again on the same journal, it
+    answers both as the other runtimes do, a repeat of a command finished before the kill
+    gets its final ack again without running, the configs come back with a larger serial,
+    and SIGTERM stops it cleanly (exit 0, the journal closed)."""
+    pydir = ROOT / "generated" / "k10" / "python"
+    local = ROOT / "generated" / "k10" / "qos" / "cyclonedds" / "local.xml"
+    argv = [str(bridges["k10"]), "--simulate", "--domain", str(DOMAIN), "--journal", str(tmp_path / "journal")]
+    res = subprocess.run([sys.executable, "-m", "tests.rust_runtime.ground", "restart", str(pydir), "rapid_k10red",
+                          str(DOMAIN), json.dumps(argv)], cwd=ROOT, capture_output=True, text=True, timeout=240,
+                         env=dict(os.environ, CYCLONEDDS_URI=f"file://{local}", PYTHONPATH=f"{pydir}{os.pathsep}{ROOT}"))
+    assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-4000:]
+    got = json.loads(res.stdout.splitlines()[-1])
+    assert got["at_kill"]["drive"][-1][0] == "ACK_EXECUTING" and got["at_kill"]["behind"][-1][0] == "ACK_QUEUED", got
+    assert got["after"]["drive"][-1] == ["ACK_COMPLETED", "ACK_COMPLETED_EXEC_FAILED",
+                                         "asset restarted while it ran; outcome unknown"], got["after"]
+    assert got["after"]["behind"][-1] == ["ACK_COMPLETED", "ACK_COMPLETED_CANCELED",
+                                          "asset restarted before it ran"], got["after"]
+    before, repeat = got["before_repeat"], got["repeat"]
+    assert [a[0] for a in repeat[len(before):]] == ["ACK_COMPLETED"] and repeat[-1][1] == "ACK_COMPLETED_OK", repeat
+    assert sum(a[0] == "ACK_EXECUTING" for a in repeat) == 1, repeat  # ran once, before the kill
+    first, second = got["serials"]
+    assert first is not None and second is not None and second > first, got["serials"]
+    assert got["stop_code"] == 0, got["log"]
+    journal = next((tmp_path / "journal").glob("*.journal"))
+    assert '"k":"stop"' in journal.read_text().splitlines()[-1], journal.read_text()[-500:]
+
+
 def test_regeneration_leaves_handlers_rs_byte_identical(tmp_path):
     """handlers.rs is the user's: written once, never touched by regeneration, also when the
     descriptor changes (dispatch.rs changes with it); deleting it brings fresh stubs."""

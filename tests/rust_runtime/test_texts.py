@@ -11,9 +11,9 @@ from rapidgen import protocol_texts as PT
 
 ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "runtime" / "rust" / "rapid_runtime" / "src"
-# What the Rust runtime does not write yet: the door's refusal and stale telemetry belong to its
-# DDS layer, still to come (docs/rust-backend.md). When they come, this set shrinks.
-NOT_YET = {"bridge_busy", "source_silent", "source_back"}
+# What the Rust runtime does not write yet: stale telemetry belongs to its DDS layer, still to
+# come (docs/rust-backend.md). When it comes, this set shrinks.
+NOT_YET = {"source_silent", "source_back"}
 
 
 def test_texts_rs_is_the_generated_one():

@@ -2,18 +2,25 @@
 //! configs, QoS profiles, transports, extension types) and the user's handlers:
 //!
 //!   <crate>_bridge [--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE]
-//!                  [--command-window N]
+//!                  [--command-window N] [--journal DIR | --no-journal]
 //!
 //! The configs go out first (transient-local: commanders read the CommandConfig to find the
 //! asset), then the manager's states; commands are read in the asset's partition and handed
-//! to the runtime's CommandManager; `--simulate` runs simulated handlers (`Simulated`) and
+//! through the door (`rapid_runtime::intake`) to the runtime's CommandManager. The restart
+//! journal (docs/runtime.md, "Restarts"; the Python and C++ bridges' file) is on by default:
+//! after a crash the commands accepted and not finished are answered, the last final acks
+//! written again, and the configs come back with a larger serial; `--simulate` runs simulated handlers (`Simulated`) and
 //! publishes simulated telemetry (`telemetry`). Cyclone's configuration is CYCLONEDDS_URI when
 //! set, else the transport's generated XML (loopback only for `local`, the default).
 use std::collections::BTreeMap;
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
+use rapid_runtime::intake::{Intake, PER_WRITER, SHED_ANSWERS};
+use rapid_runtime::journal::Log;
+use rapid_runtime::{Journal, Recovered};
 use rapid_runtime::{CommandManager, Context, Handlers, Options, Outcome, Value};
 
 use crate::dds::{Participant, Side};
@@ -109,9 +116,13 @@ struct Args {
     domain: Option<u32>,
     transport: String,
     tables: Option<String>,
+    /// the restart journal's folder (None: Journal::default_dir()); off with --no-journal
+    journal: Option<String>,
+    no_journal: bool,
 }
 
-const USAGE: &str = "[--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE] [--command-window N]";
+const USAGE: &str = "[--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE] [--command-window N] \
+                     [--journal DIR | --no-journal]";
 
 /// Why the bridge did not run: --help (exit status 0), a usage error (2), a failure (1).
 #[derive(Debug)]
@@ -152,7 +163,15 @@ pub fn main(asset: Result<Asset, String>, handlers: Arc<dyn Handlers>) -> i32 {
 }
 
 fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
-    let mut out = Args { window: None, simulate: false, domain: None, transport: "local".into(), tables: None };
+    let mut out = Args {
+        window: None,
+        simulate: false,
+        domain: None,
+        transport: "local".into(),
+        tables: None,
+        journal: None,
+        no_journal: false,
+    };
     let mut it = args.iter().skip(1);
     while let Some(a) = it.next() {
         let mut value = |name: &str| it.next().cloned().ok_or(format!("{name} wants a value"));
@@ -171,6 +190,8 @@ fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
                 out.transport = t;
             }
             "--tables" => out.tables = Some(value(a)?),
+            "--journal" => out.journal = Some(value(a)?),
+            "--no-journal" => out.no_journal = true,
             "--command-window" => {
                 let n = value(a)?;
                 out.window = Some(n.parse().ok().filter(|n| *n > 0).ok_or(format!("--command-window {n:?}: a count of commands, at least 1"))?);
@@ -178,6 +199,9 @@ fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
             "-h" | "--help" => return Err("--help".into()),
             other => return Err(format!("unknown argument {other:?}")),
         }
+    }
+    if out.no_journal && out.journal.is_some() {
+        return Err("--journal and --no-journal: one or the other".into());
     }
     Ok(out)
 }
@@ -200,12 +224,27 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
     let domain = args.domain.unwrap_or(tables.tables.domain.max(0) as u32);
     crate::dds::use_transport(asset.transports, &args.transport);
     let name = tables.tables.name.clone();
-    let serial = convert::now_us().div_euclid(1_000_000) as i32; // (as Python: the start time)
-    let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;
+    let log_name = name.clone();
+    let log: Log = Arc::new(move |text: &str| eprintln!("[{log_name}] {text}"));
     let mut options = Options::default();
     if let Some(w) = args.window {
         options.window = w; // commands remembered (repeated cmdIds); also sizes the ack writer generations
     }
+    let now = convert::now_us().div_euclid(1_000_000); // (as Python: the start time)
+    let (mut journal, recovered) = if args.no_journal {
+        (None, Recovered::default())
+    } else {
+        let dir = args.journal.as_ref().map_or_else(Journal::default_dir, PathBuf::from);
+        Journal::open(&dir, &name, domain as i32, options.window, log.clone())
+    };
+    // configs come back after a crash with a serial above any used before it
+    let serial = if recovered.last_serial > 0 { now.max(recovered.last_serial + 1) } else { now };
+    if let Some(j) = journal.as_mut() {
+        j.start(serial);
+    }
+    options.journal = journal;
+    let serial = serial as i32;
+    let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;
     let outbox = Arc::new(DdsOutbox::new(&dp, &name, serial, options.window).map_err(|e| e.to_string())?);
 
     // configs first (transient-local): commanders read the CommandConfig to find the asset
@@ -235,18 +274,29 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
                                       Options { on_shutdown: Some(on_shutdown), ..options })
         .map_err(Failure::Run)?;
     manager.publish_states();
+    if recovered.crashed {
+        // before any new command: a retried cmdId is known
+        let (answered, again) = manager.restore(&recovered);
+        log(&format!("journal: restarted after a crash; {answered} unfinished command(s) answered, {again} final ack(s) written again"));
+    }
+    let manager = Arc::new(manager);
+    // the door: a writer's flood waits in its own FIFO and is answered "bridge busy" past its
+    // share, so the other writers' commands (the operator's) keep their turn (docs/runtime.md)
+    let door = Intake::new(manager.clone(), log, PER_WRITER, SHED_ANSWERS);
+    door.start();
     let commands = dp.topic("rapid_command", "rapid::Command", true).map_err(|e| e.to_string())?;
     let reader = dp
         .reader(&commands, Side { reliable: true, transient_local: false, depth: None })
         .map_err(|e| e.to_string())?;
     println!("{name} ready on domain {domain}{}", if args.simulate { " (simulated)" } else { "" });
     let mut drops = Drops::default();
-    while !stop.load(Ordering::SeqCst) {
+    stop_on_signals();
+    while !stop.load(Ordering::SeqCst) && !SIGNALLED.load(Ordering::SeqCst) {
         let mut idle = true;
         while let Some((bytes, writer)) = reader.take() {
             idle = false;
             match convert::command_in(&bytes) {
-                Ok(cmd) => manager.receive(cmd),
+                Ok(cmd) => door.offer(cmd, &format!("{writer:x}")),
                 Err(e) => drops.dropped(&name, writer, &e.to_string()),
             }
         }
@@ -254,11 +304,33 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
             std::thread::sleep(Duration::from_micros(500));
         }
     }
+    stop.store(true, Ordering::SeqCst); // (after a signal: the telemetry thread ends too)
+    door.stop();
     manager.shutdown(None);
+    if let Some(j) = manager.release_journal() {
+        j.close(true); // every command answered: the next start begins afresh
+    }
     if let Some(t) = sim {
         let _ = t.join();
     }
     Ok(())
+}
+
+/// SIGTERM or SIGINT came: the bridge stops as after Admin/shutdown (what runs answered, the
+/// journal closed clean), as the Python and C++ bridges do.
+static SIGNALLED: AtomicBool = AtomicBool::new(false);
+
+extern "C" fn on_signal(_: libc::c_int) {
+    SIGNALLED.store(true, Ordering::SeqCst); // (an atomic store: safe in a signal handler)
+}
+
+fn stop_on_signals() {
+    let handler = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
+    // SAFETY: the handler only stores to an atomic; signal() replaces the default action
+    unsafe {
+        libc::signal(libc::SIGTERM, handler);
+        libc::signal(libc::SIGINT, handler);
+    }
 }
 
 /// Writers whose Commands are counted one by one when they do not decode; past this, as
