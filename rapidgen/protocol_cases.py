@@ -133,7 +133,7 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
         elif op in ("idle", "restart", "open"):
             out.append({"op": op})
         elif op == "queue":
-            out.append({"op": op, **{k: body[k] for k in ("code", "pending", "active", "statuses") if k in body}})
+            out.append({"op": op, **{k: body[k] for k in ("code", "pending", "active", "completed", "statuses") if k in body}})
         elif op == "control":
             out.append({"op": op, **{k: body[k] for k in ("controller", "requestors") if k in body}})
         elif op == "calls":
@@ -217,12 +217,12 @@ def load_file(path: Path) -> list[dict]:
         journal = _journal(case, seed, source)
         if journal is not None and "\r" in journal["text"]:  # (the runtimes' line splitting differs there)
             raise CaseError(f"{doc.loc((*path_, 'journal'))}: a journal line holds a carriage return")
-        # (records' statuses: the live runner compares a QueueState's cmdIds only)
+        # (records' statuses, completed records: the live runner compares the pending and active cmdIds only)
         door = case.get("door")  # (its limits left out: the runtime's own)
         # (a burst of `times` sends is a flood to a live asset: its conform run is kept short)
         burst = any("times" in (step.get("send") or {}) for step in case["steps"])
         live = not case.get("options") and journal is None and door is None and not burst and all(
-            s["op"] not in OFFLINE_ONLY and "statuses" not in s and (s["op"] != "send" or s["handler"]["kind"] == "ok" and
+            s["op"] not in OFFLINE_ONLY and "statuses" not in s and "completed" not in s and (s["op"] != "send" or s["handler"]["kind"] == "ok" and
                                              s["action"] != "QUEUE_BOGUS") for s in steps)
         cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
                       "rules": case.get("rules", []), "asset": seed, "options": case.get("options", {}),

@@ -211,6 +211,7 @@ struct Seen {
     int stopped = 0;  // the asset's shutdown callback's calls (Admin/shutdown)
     std::optional<std::tuple<int, std::vector<std::string>, std::vector<std::string>>> queue;
     std::map<std::string, std::string> statuses;  // the last QueueState's pending and active records'
+    std::vector<std::string> completed;  // the last QueueState's completed records' cmdIds
     std::optional<std::pair<std::string, std::vector<std::string>>> access;
     std::vector<std::string> retired;
     std::vector<std::string> logs;
@@ -249,10 +250,11 @@ public:
         seen_.bump();
     }
     void queue_state(int code, const std::vector<Record>& pending, const std::vector<Record>& active,
-                     const std::vector<Record>&) override {
+                     const std::vector<Record>& completed) override {
         std::lock_guard<std::mutex> lock(seen_.mutex);
         if (dead_) return;
         seen_.queue.emplace(code, ids_of(pending), ids_of(active));
+        seen_.completed = ids_of(completed);
         seen_.statuses.clear();
         for (const auto* records : {&pending, &active})
             for (const auto& r : *records) seen_.statuses[r.cmd->cmd_id] = std::string(name_of(r.status));
@@ -627,12 +629,13 @@ private:
             return (!s.contains("code") || s["code"].get<int>() == code) &&
                    (!s.contains("pending") || s["pending"].get<std::vector<std::string>>() == pending) &&
                    (!s.contains("active") || s["active"].get<std::vector<std::string>>() == active) &&
+                   (!s.contains("completed") || s["completed"].get<std::vector<std::string>>() == seen_.completed) &&
                    statuses_match(s);
         }, [&] {
             if (!seen_.queue) return std::string("none");
             const auto& [code, pending, active] = *seen_.queue;
             return "code " + std::to_string(code) + ", pending " + show(pending) + ", active " + show(active) +
-                   ", statuses " + json(seen_.statuses).dump();
+                   ", completed " + show(seen_.completed) + ", statuses " + json(seen_.statuses).dump();
         });
     }
 

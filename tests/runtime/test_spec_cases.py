@@ -34,6 +34,7 @@ class Outbox:
         self.stopped = 0  # the asset's shutdown callback's calls (Admin/shutdown)
         self.queue: tuple[int, list[str], list[str]] | None = None
         self.statuses: dict[str, str] = {}  # the last QueueState's pending and active records
+        self.completed: list[str] = []  # the last QueueState's completed records' cmdIds
         self.access: tuple[str, list[str]] | None = None
         self.retired: list[str] = []
         self.logs: list[str] = []
@@ -53,6 +54,7 @@ class Outbox:
         with self.cond:
             self.queue = (code, [c.cmd_id for c, *_ in pending], [c.cmd_id for c, *_ in active])
             self.statuses = {c.cmd_id: status for c, _result, status in [*pending, *active]}
+            self.completed = [c.cmd_id for c, *_ in completed]
             self._changed()
 
     def access_state(self, controller, requestors):
@@ -246,9 +248,10 @@ class Replay:
                     return False
                 code, pending, active = out.queue
                 return (s.get("code", code) == code and s.get("pending", pending) == pending
-                        and s.get("active", active) == active and all(
+                        and s.get("active", active) == active and s.get("completed", out.completed) == out.completed
+                        and all(
                             out.statuses.get(cid) == status for cid, status in s.get("statuses", {}).items()))
-            self.until(f"QueueState {s}", queue_ok, lambda: (out.queue, out.statuses))
+            self.until(f"QueueState {s}", queue_ok, lambda: (out.queue, out.statuses, out.completed))
         elif op == "control":
             def control_ok():
                 return out.access is not None and s.get("controller", out.access[0]) == out.access[0] and \

@@ -38,6 +38,8 @@ struct Seen {
     queue: Option<(i32, Vec<String>, Vec<String>)>,
     /// the last QueueState's pending and active records' statuses, by cmdId
     statuses: HashMap<String, String>,
+    /// the last QueueState's completed records' cmdIds
+    completed: Vec<String>,
     access: Option<(String, Vec<String>)>,
     retired: Vec<String>,
     logs: Vec<String>,
@@ -92,10 +94,11 @@ impl Outbox for Gate {
             s.acks.entry(cmd.cmd_id.clone()).or_default().push(a)
         });
     }
-    fn queue_state(&self, code: i32, pending: &[Record], active: &[Record], _completed: &[Record]) {
+    fn queue_state(&self, code: i32, pending: &[Record], active: &[Record], completed: &[Record]) {
         let ids = |rs: &[Record]| rs.iter().map(|r| r.cmd.cmd_id.clone()).collect::<Vec<_>>();
         self.live(|s| {
             s.queue = Some((code, ids(pending), ids(active)));
+            s.completed = ids(completed);
             s.statuses = pending.iter().chain(active).map(|r| (r.cmd.cmd_id.clone(), r.status.name().to_string())).collect();
         });
     }
@@ -506,6 +509,7 @@ impl<'a> Replay<'a> {
                 let code = st.get("code").and_then(Json::as_i64);
                 let pending = st.get("pending").map(strings);
                 let active = st.get("active").map(strings);
+                let completed = st.get("completed").map(strings);
                 let statuses: Vec<(String, String)> = st
                     .get("statuses")
                     .and_then(Json::as_object)
@@ -520,11 +524,12 @@ impl<'a> Replay<'a> {
                                 code.is_none_or(|w| w == *c as i64)
                                     && pending.as_ref().is_none_or(|w| w == p)
                                     && active.as_ref().is_none_or(|w| w == a)
+                                    && completed.as_ref().is_none_or(|w| *w == s.completed)
                                     && statuses.iter().all(|(id, w)| s.statuses.get(id) == Some(w))
                             }
                         })
                     },
-                    |r| r.peek(|s| format!("{:?} {:?}", s.queue, s.statuses)),
+                    |r| r.peek(|s| format!("{:?} completed {:?} {:?}", s.queue, s.completed, s.statuses)),
                 )?;
             }
             "control" => {
