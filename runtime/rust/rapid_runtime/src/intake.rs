@@ -169,25 +169,19 @@ impl<S: CommandSink> Shared<S> {
     fn shed(&self, door: &mut Door, cmd: Cmd, writer: &str) {
         if door.shed.len() < self.shed_limit {
             door.shed.push_back(cmd);
-            let n = door.shed_count.entry(writer.to_string()).or_default();
-            *n += 1;
-            if *n == 1 {
+            if first(&mut door.shed_count, writer) {
                 (self.log)(&format!(
                     "writer {} floods: {} commands waiting; answering its next ones 'bridge busy' (counted, not logged)",
                     visible(writer, 200),
                     self.per_writer
                 ));
             }
-        } else {
-            let n = door.unanswered.entry(writer.to_string()).or_default();
-            *n += 1;
-            if *n == 1 {
-                (self.log)(&format!(
-                    "writer {} floods past {} busy answers: dropping its commands unanswered (counted, not logged)",
-                    visible(writer, 200),
-                    self.shed_limit
-                ));
-            }
+        } else if first(&mut door.unanswered, writer) {
+            (self.log)(&format!(
+                "writer {} floods past {} busy answers: dropping its commands unanswered (counted, not logged)",
+                visible(writer, 200),
+                self.shed_limit
+            ));
         }
     }
 
@@ -231,4 +225,11 @@ impl<S: CommandSink> Shared<S> {
             }
         }
     }
+}
+
+/// Counts one more for the writer; true the first time (what is logged once per writer).
+fn first(counts: &mut HashMap<String, usize>, writer: &str) -> bool {
+    let n = counts.entry(writer.to_string()).or_default();
+    *n += 1;
+    *n == 1
 }
