@@ -31,7 +31,7 @@ SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot")
          "robonaut2": ("robonaut2", "rapid_robonaut2")}
 DEFAULT_SOURCE = "RapidWorkbench"
 # steps only a driver can take (a live runner cannot make a handler return, restart the asset or
-# fill its door); expectations it cannot see (calls, retired, log, pending) it skips
+# fill its door); expectations it cannot see (calls, retired, log, pending, order, stopped) it skips
 OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse", "offer", "open"}
 # a journal record's keys in the order the runtimes write them (docs/runtime.md, "Restarts")
 RECORD_KEYS = ("k", "id", "src", "asset", "serial", "c", "m")
