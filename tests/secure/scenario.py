@@ -47,7 +47,11 @@ def _env(extra: dict) -> dict:
 
 
 def _result(p: subprocess.Popen, out: str, err: str) -> dict:
-    return {"rc": p.returncode, "stdout": out, "stderr": err[-4000:]}
+    # the log's first lines (a stream's first state) and its last (the summary): a loaded
+    # machine's lost/recovered lines in between once pushed the first out of a plain tail
+    if len(err) > 6000:
+        err = err[:2000] + "\n[...]\n" + err[-4000:]
+    return {"rc": p.returncode, "stdout": out, "stderr": err}
 
 
 def main() -> int:
