@@ -22,12 +22,13 @@ compiler proved it). Both are left out of the score.
 
 Everything is built in a temporary folder, never in runtime/cpp: a copy of runtime/cpp
 (the mutated file is written there), K10's and Chariot's generated C++ packages, and three
-CMake build folders (Release, -j --jobs, under nice): the runtime's core, the logic suite
-(tests/cpp_runtime, copied) and K10's generated bridge. Each mutant recompiles its one file
-and relinks what the oracle runs; afterwards the file and its object are put back.
+CMake build folders (Release, -j --jobs, under nice): the runtime's core, the spec cases'
+driver or the logic suite (tests/cpp_runtime, copied) and K10's generated bridge. Each mutant
+recompiles its one file and relinks what the oracle runs; afterwards the file and its object
+are put back.
 
-- spec: the cases of runtime/spec replayed by the C++ driver (`logic --gtest_filter=Spec*`,
-  tests/cpp_runtime/test_spec_cases.cpp), about a second a mutant besides its compile;
+- spec: the cases of runtime/spec replayed by the C++ driver (`spec_cases`,
+  tests/cpp_runtime/test_spec_cases.cpp alone), about a second a mutant besides its compile;
 - conform: K10's generated C++ bridge (--simulate, its built-in loopback profile, a journal
   folder of its own) on the mutant, judged by `rapidgen conform specs/assets/k10.yaml
   --allow-motion` (the unmutated tools, cyclonedds on loopback); `both` runs conform only on
@@ -184,7 +185,7 @@ class Builds:
         shutil.copytree(ROOT / "tests" / "cpp_runtime", self.work / "tests",
                         ignore=shutil.ignore_patterns("*.py", "__pycache__"))
 
-    def setup(self, bridge: bool) -> None:
+    def setup(self, bridge: bool, suite: str = "spec") -> None:
         gen = self.work / "gen"
         for seed in ("k10", "chariot", "robonaut2"):  # the spec cases' seeds
             _run([sys.executable, "-m", "rapidgen", "generate", str(ROOT / "specs" / "assets" / f"{seed}.yaml"),
@@ -200,7 +201,7 @@ class Builds:
               f"-DK10_BRIDGE_DIR={gen / 'k10' / 'cpp' / 'bridge'}",
               f"-DCHARIOT_BRIDGE_DIR={gen / 'chariot' / 'cpp' / 'bridge'}",
               f"-DR2_BRIDGE_DIR={gen / 'robonaut2' / 'cpp' / 'bridge'}"])
-        self.build(self.tests, "logic")
+        self.build(self.tests, _target(suite))
         if bridge:
             _run(["cmake", "-S", str(gen / "k10" / "cpp"), "-B", str(self.bridge), *release, found])
             self.build(self.bridge, f"{PACKAGE}_bridge")
@@ -250,14 +251,20 @@ class Unbuilt(Exception):
     """The mutant compiled and does not link (a definition commented out): not a program."""
 
 
+def _target(suite: str) -> str:
+    """The spec cases' driver alone (test_spec_cases.cpp and the seeds' tables), or the whole
+    logic suite."""
+    return "spec_cases" if suite == "spec" else "logic"
+
+
 def spec_oracle(b: Builds, suite: str = "spec") -> tuple[bool, str]:
-    """(killed, why): the cases replayed by the logic suite linked with the mutant (suite
-    "spec"), or that whole suite, the runtime's own unit tests besides the cases ("suite")."""
-    if b.build(b.tests, "logic").returncode != 0:
-        raise Unbuilt("logic")
-    only = ["--gtest_filter=Spec*"] if suite == "spec" else []
+    """(killed, why): the cases replayed by their driver linked with the mutant (suite
+    "spec"), or the logic suite, the runtime's own unit tests besides the cases ("suite")."""
+    target = _target(suite)
+    if b.build(b.tests, target).returncode != 0:
+        raise Unbuilt(target)
     try:
-        run = subprocess.run([str(b.tests / "logic"), *only, "--gtest_brief=1", "--gtest_fail_fast"], capture_output=True,
+        run = subprocess.run([str(b.tests / target), "--gtest_brief=1", "--gtest_fail_fast"], capture_output=True,
                              text=True, timeout=SPEC_TIMEOUT * (1 if suite == "spec" else 3),
                              env=dict(os.environ, RAPID_SPEC_CASES=str(b.cases)))
     except subprocess.TimeoutExpired:
@@ -403,7 +410,7 @@ def main(argv: list[str] | None = None) -> int:
               f"{len(logs)} lie in a log call and {len(tests)} in test-only code (not judged); "
               f"judging {min(args.sample, len(order)) if not args.mutant else len(order)} of the other "
               f"{len(order) if not args.mutant else len(wire)} with the {args.oracle} oracle", flush=True)
-        b.setup(bridge=args.oracle not in ("spec", "suite"))
+        b.setup(bridge=args.oracle not in ("spec", "suite"), suite="suite" if args.oracle == "suite" else "spec")
         print(f"built in {time.monotonic() - t0:.0f} s", flush=True)
         baseline, why = judge(b, args.oracle, args.domain)
         if baseline:
