@@ -21,7 +21,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from tests.runtime.live import BridgeProcess
+from tests.runtime.live import SEEDS as LIVE_SEEDS
+from tests.runtime.live import BridgeProcess, python_dir
 from tests.rust_runtime.build import HOSTILE, SEEDS, descriptor as _descriptor
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -168,6 +169,43 @@ def test_a_restart_answers_from_the_journal(bridges, tmp_path):
     assert got["stop_code"] == 0, got["log"]
     journal = next((tmp_path / "journal").glob("*.journal"))
     assert '"k":"stop"' in journal.read_text().splitlines()[-1], journal.read_text()[-500:]
+
+
+def test_seven_robots_on_one_domain_three_of_them_rust_are_seen_by_spy(bridges):
+    """Seven robots on one domain (issue 38): four Python bridges (ATHLETE, Chariot, EVA suit,
+    Robonaut2) and three Rust ones (K10, X-Arm-2 and K10 with hostile names in its own
+    partition), all simulated; `rapidgen spy` with their descriptors sees every asset, each
+    with its configs, and no finding."""
+    python = ("athlete", "chariot", "eva-suit", "robonaut2")
+    rust = ("k10", "xarm2", HOSTILE)
+    ws = bridges["ws"]
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}  # the Rust bridges' own `local`
+    running: list[BridgeProcess] = []
+    try:
+        for seed in python:
+            running.append(BridgeProcess(python_dir(seed), LIVE_SEEDS[seed], DOMAIN))
+        for seed in rust:
+            running.append(BridgeProcess.of_command([str(bridges[seed]), "--simulate", "--domain", str(DOMAIN)], ROOT, env))
+        for bridge in running:
+            line = bridge.lines.get(timeout=30)
+            assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
+        local = ROOT / "generated" / "k10" / "qos" / "cyclonedds" / "local.xml"
+        assets = [a for seed in (*python, *rust) for a in ("--asset", str(_descriptor(ws, seed)))]
+        res = subprocess.run([sys.executable, "-m", "rapidgen", "spy", "--once", "--json", "--domain", str(DOMAIN),
+                              "--seconds", "5", *assets], cwd=ROOT, capture_output=True, text=True, timeout=120,
+                             env=dict(os.environ, CYCLONEDDS_URI=f"file://{local}"))
+        assert res.returncode == 0, res.stderr[-3000:]
+        snap = json.loads(res.stdout)
+    finally:
+        for bridge in running:
+            bridge.stop()
+    assert snap["findings"] == [], snap["findings"]
+    seen = {a["name"]: a for a in snap["assets"]}
+    want = {"ATHLETE", "Chariot", "EvaSuitA", "Robonaut2", "K10Red", "XArm2", "Hostile_1"}
+    assert want <= set(seen), sorted(seen)
+    for name in want:
+        roles = {t["role"] for t in seen[name]["topics"]}
+        assert "config" in roles, (name, roles)
 
 
 def test_regeneration_leaves_handlers_rs_byte_identical(tmp_path):
