@@ -264,8 +264,10 @@ def spec_oracle(b: Builds, suite: str = "spec") -> tuple[bool, str]:
     if b.build(b.tests, target).returncode != 0:
         raise Unbuilt(target)
     try:
+        # (in the campaign's own folder: a mutant that builds a journal path wrongly writes there,
+        # never in the checkout; one of seed 2's left K10Red/ in it)
         run = subprocess.run([str(b.tests / target), "--gtest_brief=1", "--gtest_fail_fast"], capture_output=True,
-                             text=True, timeout=SPEC_TIMEOUT * (1 if suite == "spec" else 3),
+                             text=True, timeout=SPEC_TIMEOUT * (1 if suite == "spec" else 3), cwd=b.work,
                              env=dict(os.environ, RAPID_SPEC_CASES=str(b.cases)))
     except subprocess.TimeoutExpired:
         return True, f"{suite}: hung"
