@@ -47,13 +47,10 @@ class Intake:
         self.unanswered: collections.Counter[int] = collections.Counter()
         self.shed_count: collections.Counter[int] = collections.Counter()
         self.stopping = False
-        self.started = False  # commands offered before start() wait for the intake thread (a C++ Intake's too)
         self._shed_turn = False
         self.thread = threading.Thread(target=self._run, daemon=True, name="rapid-intake")
 
     def start(self) -> "Intake":
-        with self.cond:
-            self.started = True
         self.thread.start()
         return self
 
@@ -69,8 +66,9 @@ class Intake:
         """alone=False: more commands were read with this one; it waits at the door with them
         (one batch for the intake thread: one journal sync), never handled inline."""
         with self.cond:
-            if self.inline and alone and self.started and not self.busy and not self.fifos and not self.shed \
-                    and not self.stopping:
+            # (commands offered before start() wait for the intake thread, as at a C++ Intake)
+            if self.inline and alone and self.thread.ident is not None and not self.busy and not self.fifos \
+                    and not self.shed and not self.stopping:
                 self.busy = True  # the intake thread waits; anything offered meanwhile queues
             else:
                 self._queue(cmd, writer)
