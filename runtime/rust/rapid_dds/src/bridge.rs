@@ -19,7 +19,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use rapid_runtime::intake::{Intake, PER_WRITER, SHED_ANSWERS};
-use rapid_runtime::journal::Log;
+use rapid_runtime::journal::{self, Log};
 use rapid_runtime::{Journal, Recovered};
 use rapid_runtime::{CommandManager, Context, Handlers, Options, Outcome, Value};
 
@@ -238,7 +238,7 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         Journal::open(&dir, &name, domain as i32, options.window, log.clone())
     };
     // configs come back after a crash with a serial above any used before it
-    let serial = if recovered.last_serial > 0 { now.max(recovered.last_serial + 1) } else { now };
+    let serial = journal::restart_serial(None, &recovered, now).unwrap_or(now);
     if let Some(j) = journal.as_mut() {
         j.start(serial);
     }

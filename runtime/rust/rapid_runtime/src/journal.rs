@@ -53,6 +53,18 @@ pub struct Recovered {
     pub crashed: bool,
 }
 
+/// The configs' serial for this start: `requested` when one was asked for; after a journal
+/// that recorded serials, one above the last it recorded (`now`, seconds, unless the clock has
+/// not passed it: a restart within the second of the last serial, or a clock set back), so a
+/// reader keeping the last config by serial takes the new ones; else None (the caller's
+/// default, the start time). As the C++ runtime's restart_serial and the Python bridge.
+pub fn restart_serial(requested: Option<i64>, recovered: &Recovered, now: i64) -> Option<i64> {
+    if requested.is_some() || recovered.last_serial <= 0 {
+        return requested;
+    }
+    Some(now.max(recovered.last_serial + 1))
+}
+
 /// A JSON value of a journal record: the format holds strings and integers only.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Field {
@@ -739,5 +751,28 @@ mod tests {
         assert_eq!(ids, ["c198", "c199"]);
         let _ = fs::remove_dir_all(&dir);
     }
-}
 
+    #[test]
+    fn configs_come_back_above_the_highest_serial_recorded() {
+        let dir = folder("serials");
+        let (log, _) = logs();
+        let now = 1000;
+        {
+            let (j, rec) = Journal::open(&dir, "A", 1, 64, log.clone());
+            let mut j = j.unwrap();
+            j.start(restart_serial(None, &rec, now).unwrap_or(now));
+            j.serial(1001);
+            j.serial(1002); // less than a second after the start
+            j.sync();
+            j.close(false); // a crash: no stop record
+        }
+        let (_, rec) = Journal::open(&dir, "A", 1, 64, log);
+        assert_eq!(rec.last_serial, 1002);
+        assert_eq!(restart_serial(None, &rec, now), Some(1003)); // the clock has not moved past it
+        assert_eq!(restart_serial(None, &rec, 5000), Some(5000));
+        assert_eq!(restart_serial(Some(42), &rec, 5000), Some(42)); // asked for: kept
+        assert_eq!(restart_serial(Some(0), &rec, 5000), Some(0));
+        assert_eq!(restart_serial(None, &Recovered::default(), 5000), None); // no journal: the start time
+        let _ = fs::remove_dir_all(&dir);
+    }
+}
