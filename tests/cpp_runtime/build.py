@@ -6,7 +6,7 @@ in the session's temp folder, with -Wall -Wextra -Werror.
     generated(f, seed)  `rapidgen generate <descriptor> --lang cpp` (the package)
     seed_bridges(f)     every seed's <package>_bridge and the hostile descriptor's, one
                         CMake build of them all (K10's file by file, the others as unity
-                        builds: seeds/CMakeLists.txt)
+                        builds: seeds/CMakeLists.txt); k10_bridge(f) K10's alone in it
     asan_runtime_dir(f) runtime/cpp under ASan/UBSan, a test build: the fault suite's runtime
                         (conftest.py) and the core of K10's test bridge (client_programs)
     cpp_tests(f)        tests/cpp's programs on K10's generated package (the `cpp_build`
@@ -243,6 +243,20 @@ def seed_types(factory, seed: str) -> Path:
     out, pkg = seeds_build(factory), package_of(generated(factory, seed))
     build(out, pkg)  # (nothing to do once the bridges are built)
     return out / seed / f"lib{pkg}.a"
+
+
+def k10_bridge(factory) -> dict[str, Path]:
+    """K10's bridge ("bridge") and types library ("types") alone, in the seeds' build (the
+    seeds' other bridges are not waited for): tests/secure's programs use them. Skips when
+    K10 is not among RAPIDGEN_CPP_SEEDS."""
+    if "k10" not in chosen_seeds():
+        pytest.skip("RAPIDGEN_CPP_SEEDS leaves out k10")
+
+    def make() -> dict[str, Path]:
+        out, pkg = seeds_build(factory), package_of(generated(factory, "k10"))
+        build(out, f"{pkg}_bridge")  # (its types library with it)
+        return {"bridge": out / "k10" / f"{pkg}_bridge", "types": out / "k10" / f"lib{pkg}.a"}
+    return _once(factory, "k10-bridge", make)  # type: ignore[no-any-return]
 
 
 STREAM_RIG = "streamrig"  # tests/streams/rig.yaml: one input stream per loss action

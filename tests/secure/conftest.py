@@ -102,7 +102,8 @@ def _tamper(path: Path, old: bytes, new: bytes) -> None:
 
 @pytest.fixture(scope="session")
 def programs(tmp_path_factory) -> dict[str, Path]:
-    """K10's generated bridge (with the runtime's security hook) and secure_ground."""
+    """K10's generated bridge (with the runtime's security hook: the seeds' build's, shared
+    with the other C++ tiers) and secure_ground; skips when RAPIDGEN_CPP_SEEDS leaves out k10."""
     from tests.cpp_runtime import build as B
     return B.once(tmp_path_factory, "secure", lambda: _programs(tmp_path_factory))  # type: ignore[no-any-return]
 
@@ -110,16 +111,17 @@ def programs(tmp_path_factory) -> dict[str, Path]:
 def _programs(tmp_path_factory) -> dict[str, Path]:
     from tests.cpp_runtime import build as B
     runtime = B.runtime_dir(tmp_path_factory)
-    k10 = B.generated(tmp_path_factory, "k10")
+    k10 = B.k10_bridge(tmp_path_factory)
     out = B.base(tmp_path_factory) / "secure"
-    B.configure(ROOT / "tests" / "secure" / "cpp", out, f"-Drapid_runtime_cpp_DIR={runtime}", f"-DK10_DIR={k10}")
-    B.build(out, "rapid_k10red_bridge", "secure_ground")
+    B.configure(ROOT / "tests" / "secure" / "cpp", out, f"-Drapid_runtime_cpp_DIR={runtime}",
+                f"-DK10_DIR={B.generated(tmp_path_factory, 'k10')}", f"-DK10_TYPES={k10['types']}")
+    B.build(out, "secure_ground")
     profiles = out / "rapid_qos_profiles.xml"
     # The generated Fast DDS profiles (the bridge carries the same built in): rapid_local is loopback only.
     B.run([sys.executable, "-m", "rapidgen", "generate", str(ROOT / "specs" / "assets" / "k10.yaml"), "--lang", "qos",
            "-o", str(out / "qos")])
     shutil.copy(next((out / "qos").rglob("fastdds/rapid_qos_profiles.xml")), profiles)
-    return {"bridge": out / "k10" / "rapid_k10red_bridge", "ground": out / "secure_ground", "profiles": profiles}
+    return {"bridge": k10["bridge"], "ground": out / "secure_ground", "profiles": profiles}
 
 
 def run_scenario(tmp: Path, spec: dict) -> dict:
