@@ -98,7 +98,7 @@ def _handler(h) -> dict:
 
 
 def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
-    name = seed_tables(seed).name
+    name = case.get("asset_name", seed_tables(seed).name)
     out: list[dict] = []
     for i, step in enumerate(case["steps"]):
         (op, body), = step.items()
@@ -109,8 +109,9 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
             raise CaseError(f"{where}: `{op}` needs the case's `door:` (the door the commands are offered at)")
         if op in ("send", "refuse", "offer"):
             sub, _, cname = body.get("cmd", "Admin/noOp").partition("/")
-            s = {"op": op, "id": body["id"], "src": body.get("src", source), "subsystem": sub, "name": cname,
-                 "asset": body.get("asset", name)}
+            src = body.get("src", source)
+            s = {"op": op, "id": body["id"], "src": src, "src_name": body.get("src_name", src), "subsystem": sub,
+                 "name": cname, "asset": body.get("asset", name)}
             if op == "offer":
                 s["writer"] = body["writer"]
             if op in ("send", "offer"):
@@ -130,7 +131,9 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
             out.append({"op": op, "id": body})
         elif op == "shutdown":
             out.append({"op": op, "timeout_ms": body.get("timeout_ms", -1)})
-        elif op in ("idle", "restart", "open"):
+        elif op == "restart":  # kill -9, or (`clean`) a clean stop, then a start on the journal
+            out.append({"op": op, "clean": body == "clean"})
+        elif op in ("idle", "open"):
             out.append({"op": op})
         elif op == "queue":
             out.append({"op": op, **{k: body[k] for k in ("code", "pending", "active", "completed", "statuses") if k in body}})
@@ -164,7 +167,7 @@ def _journal(case: dict, seed: str, source: str) -> dict | None:
     `raw:` a line written as it is, `torn:` bytes without a newline."""
     if "journal" not in case:
         return None
-    name = seed_tables(seed).name
+    name = case.get("asset_name", seed_tables(seed).name)
     text = ""
     for entry in case["journal"]:
         if "raw" in entry:  # a line as it is (a damaged one)
@@ -221,11 +224,13 @@ def load_file(path: Path) -> list[dict]:
         door = case.get("door")  # (its limits left out: the runtime's own)
         # (a burst of `times` sends is a flood to a live asset: its conform run is kept short)
         burst = any("times" in (step.get("send") or {}) for step in case["steps"])
-        live = not case.get("options") and journal is None and door is None and not burst and all(
+        # (a renamed asset or another header srcName than cmdSrc: what a live runner cannot be or send)
+        live = not case.get("options") and "asset_name" not in case and journal is None and door is None and not burst and all(
             s["op"] not in OFFLINE_ONLY and "statuses" not in s and "completed" not in s and (s["op"] != "send" or s["handler"]["kind"] == "ok" and
-                                             s["action"] != "QUEUE_BOGUS") for s in steps)
+                                             s["action"] != "QUEUE_BOGUS" and s["src_name"] == s["src"]) for s in steps)
         cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
-                      "rules": case.get("rules", []), "asset": seed, "options": case.get("options", {}),
+                      "rules": case.get("rules", []), "asset": seed,
+                      "asset_name": case.get("asset_name"), "options": case.get("options", {}),
                       "live": live, "journal": journal, "door": door, "steps": steps})
     return cases
 

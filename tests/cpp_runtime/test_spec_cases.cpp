@@ -369,7 +369,8 @@ std::string show_want(const json& acks) {
 
 class Replay {
 public:
-    explicit Replay(const json& c) : case_(c), handlers_(seen_) {
+    explicit Replay(const json& c) : case_(c), tables_(seed_tables(c.at("asset").get<std::string>())), handlers_(seen_) {
+        if (!c.at("asset_name").is_null()) tables_.name = c.at("asset_name").get<std::string>();  // (renamed)
         for (const auto& [key, v] : c.at("options").items()) {
             if (key == "window")
                 options_.window = v.get<std::size_t>();
@@ -451,7 +452,10 @@ public:
             seen_.released.insert(s.at("id").get<std::string>());
             seen_.bump();
         } else if (op == "restart") {
-            crash();
+            if (s.at("clean").get<bool>())
+                stop_and_start();
+            else
+                crash();
         } else if (op == "idle") {
             if (!manager().wait_idle(10.0)) return fail("the manager to become idle", "it did not within 10 s");
         } else if (op == "shutdown") {
@@ -519,14 +523,14 @@ private:
         ManagerOptions o = options_;
         JournalRecovered recovered;
         if (!journal_dir_.empty()) {
-            journals_.push_back(Journal::open(journal_dir_, seed_tables(case_.at("asset").get<std::string>()).name, 0,
+            journals_.push_back(Journal::open(journal_dir_, tables_.name, 0,
                                               o.window, [&out](const std::string& t) { out.log(t); }, recovered));
             if (!journals_.back()) throw std::runtime_error("the restart journal cannot be opened in " + journal_dir_);
             journals_.back()->start(1);
             o.journal = journals_.back().get();
         }
         managers_.push_back(
-            std::make_unique<CommandManager>(seed_tables(case_.at("asset").get<std::string>()), handlers_, out, o));
+            std::make_unique<CommandManager>(tables_, handlers_, out, o));
         if (recovered.crashed) managers_.back()->restore(recovered);
     }
 
@@ -543,6 +547,18 @@ private:
         start();
     }
 
+    // A clean stop as the bridge's (every command answered, the journal closed with its stop
+    // record), then a start on that journal.
+    void stop_and_start() {
+        CommandManager& old = manager();
+        old.shut_down(5000);
+        old.begin_batch();
+        Journal* journal = old.release_journal();
+        old.end_batch();
+        if (journal != nullptr) journal->close(true);
+        start();
+    }
+
     Cmd cmd(const json& s) {
         Cmd c;
         c.stamp = ++sends_;  // (hdr.timeStamp: the manager only passes it on)
@@ -553,7 +569,7 @@ private:
         for (const auto& a : s.at("args")) c.args.push_back(value_of(a));
         c.action = action_of(s.at("action").get<std::string>());
         c.target = s.at("target").get<std::string>();
-        c.src_name = c.cmd_src;
+        c.src_name = s.at("src_name").get<std::string>();
         c.asset_name = s.at("asset").get<std::string>();
         return c;
     }
@@ -677,6 +693,7 @@ private:
     }
 
     const json& case_;
+    Tables tables_;  // the seed's, under the case's asset_name if it has one
     ManagerOptions options_;
     std::string temp_;  // the case's temporary folder ("": none)
     std::string journal_dir_;  // the restart journal's folder in it ("": none)

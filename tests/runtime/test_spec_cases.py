@@ -4,6 +4,7 @@ collecting outbox and scripted handlers (runtime/spec/README.md). The C++ runtim
 the same cases (tests/cpp_runtime/test_spec_cases.cpp)."""
 from __future__ import annotations
 
+import copy
 import math
 import os
 import threading
@@ -160,6 +161,9 @@ class Replay:
         self.out = Outbox()
         self.handlers = Scripted(self.out.cond)
         self.tables = seed_tables(case["asset"])
+        if case["asset_name"] is not None:  # (the seed's tables under another asset name)
+            self.tables = copy.copy(self.tables)
+            self.tables.name = case["asset_name"]
         # a case that restarts the asset, or starts on a journal, runs with the restart journal
         # as the bridge does, in a state folder not made yet (the runtime makes it) unless
         # the case's journal is written there first
@@ -196,9 +200,20 @@ class Replay:
             os.close(journal.fd)  # (no clean stop record: the next start recovers)
         self.m = self.manager()
 
+    def stop_and_start(self) -> None:
+        """A clean stop as the bridge's (every command answered, the journal closed with its
+        stop record), then a start on that journal."""
+        old = self.m
+        old.shutdown(5.0)
+        with old.lock:
+            journal, old.journal, old.out = old.journal, None, Dead()
+        if journal is not None:
+            journal.close(clean=True)
+        self.m = self.manager()
+
     def cmd(self, s: dict) -> Cmd:
         args = tuple((a["type"], tuple(a["value"]) if isinstance(a["value"], list) else a["value"]) for a in s["args"])
-        return Cmd(s["id"], s["src"], s["subsystem"], s["name"], args, s["action"], s["target"], s["src"], s["asset"])
+        return Cmd(s["id"], s["src"], s["subsystem"], s["name"], args, s["action"], s["target"], s["src_name"], s["asset"])
 
     def finished(self, cmd_id: str) -> bool:
         with self.out.cond:
@@ -232,7 +247,7 @@ class Replay:
         elif op == "release":
             self.handlers.release_of(s["id"]).set()
         elif op == "restart":
-            self.crash()
+            self.stop_and_start() if s["clean"] else self.crash()
         elif op == "idle":
             assert self.m.wait_idle(WAIT), "the manager never became idle"
         elif op == "shutdown":

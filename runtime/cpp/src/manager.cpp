@@ -181,9 +181,8 @@ void CommandManager::receive(const Cmd& in) {
     if (closed_) return;  // shut down: the intake is closed
     if ((seen_.count(in.cmd_id) != 0 && !BROKEN(no_dedup)) || live(in.cmd_id)) {
         auto f = finals_.find(in.cmd_id);
-        // (same cmdSrc; a final restored from the journal knows its sender's srcName only)
-        const bool same = f != finals_.end() && (f->second.key.cmd_src == in.cmd_src ||
-                                                 (f->second.key.cmd_src.empty() && f->second.key.src_name == in.src_name));
+        // (the same hdr.srcName, the ack instance's key: docs/runtime.md, "Answers")
+        const bool same = f != finals_.end() && f->second.key.src_name == in.src_name;
         if (!live(in.cmd_id) && same) {
             // answered already: nothing runs; its final ack once more (a tool that missed it)
             out_.log("'" + in.cmd_id + "' sent again: answered already, its final ack written again");

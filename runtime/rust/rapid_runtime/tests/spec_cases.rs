@@ -287,7 +287,7 @@ fn cmd_of(step: &Json) -> Result<Cmd, String> {
         // a name outside the enumeration: a number outside it, as the wire would carry
         action: QueueAction::from_name(&action).unwrap_or(QueueAction::Other(99)),
         target: s(step, "target"),
-        src_name: s(step, "src"),
+        src_name: s(step, "src_name"),
         asset_name: s(step, "asset"),
         ..Cmd::default()
     })
@@ -446,6 +446,18 @@ impl<'a> Replay<'a> {
         Ok(())
     }
 
+    /// A clean stop as the bridge's (every command answered, the journal closed with its stop
+    /// record), then a start on that journal.
+    fn stop_and_start(&mut self) -> Result<(), String> {
+        self.m.shutdown(Some(Duration::from_secs(5)));
+        if let Some(journal) = self.m.release_journal() {
+            journal.close(true);
+        }
+        let m = manager(self.case, &self.tables, &self.handlers, &self.gate, self.journal_dir.as_ref())?;
+        self.dead.push(std::mem::replace(&mut self.m, m));
+        Ok(())
+    }
+
     /// Wait (woken by every write and handler call; the manager's own view in short slices)
     /// until ok, else Err with what was seen.
     fn until(&self, what: String, ok: impl Fn(&Replay) -> bool, seen: impl Fn(&Replay) -> String) -> Result<(), String> {
@@ -481,6 +493,7 @@ impl<'a> Replay<'a> {
             "open" => self.intake.as_ref().ok_or("`open` in a case without a door")?.start(),
             "refuse" => self.m.refuse(cmd_of(st)?, &s(st, "why")),
             "release" => self.handlers.release(&s(st, "id")),
+            "restart" if st["clean"].as_bool() == Some(true) => self.stop_and_start()?,
             "restart" => self.crash()?,
             "idle" => {
                 if !self.m.wait_idle(WAIT) {
@@ -683,7 +696,11 @@ fn spec_cases() {
         let start = Instant::now();
         let seed = s(case, "asset");
         let result = match tables.get(&seed) {
-            Some(t) => run_case(case, t.clone(), n),
+            // (the seed's tables under the case's asset_name, if it has one)
+            Some(t) => match case["asset_name"].as_str() {
+                Some(name) => run_case(case, Arc::new(Tables { name: name.into(), ..(**t).clone() }), n),
+                None => run_case(case, t.clone(), n),
+            },
             None => Err(format!("no tables for seed '{seed}'")),
         };
         match result {
