@@ -21,7 +21,7 @@ use std::time::Duration;
 use rapid_runtime::intake::{Intake, PER_WRITER, SHED_ANSWERS};
 use rapid_runtime::journal::{self, Log};
 use rapid_runtime::{Journal, Recovered};
-use rapid_runtime::{CommandManager, Context, Handlers, Options, Outcome, Value};
+use rapid_runtime::{CommandManager, Context, Handlers, Options, Outbox, Outcome, Value};
 
 use crate::dds::{Participant, Side};
 use crate::telemetry::{self, Body, Custom, Source};
@@ -119,6 +119,8 @@ struct Args {
     /// the restart journal's folder (None: Journal::default_dir()); off with --no-journal
     journal: Option<String>,
     no_journal: bool,
+    /// --break KIND (a test build's: the feature test-breaks; a plain build refuses any)
+    breaks: Vec<String>,
 }
 
 const USAGE: &str = "[--simulate] [--domain N] [--transport local|lan|wan] [--tables FILE] [--command-window N] \
@@ -171,6 +173,7 @@ fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
         tables: None,
         journal: None,
         no_journal: false,
+        breaks: Vec::new(),
     };
     let mut it = args.iter().skip(1);
     while let Some(a) = it.next() {
@@ -192,6 +195,7 @@ fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
             "--tables" => out.tables = Some(value(a)?),
             "--journal" => out.journal = Some(value(a)?),
             "--no-journal" => out.no_journal = true,
+            "--break" => out.breaks.push(value(a)?),
             "--command-window" => {
                 let n = value(a)?;
                 out.window = Some(n.parse().ok().filter(|n| *n > 0).ok_or(format!("--command-window {n:?}: a count of commands, at least 1"))?);
@@ -218,6 +222,12 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         Some(f) => std::fs::read_to_string(f).map_err(|e| format!("{f}: {e}"))?,
         None => asset.tables_json.to_string(),
     };
+    #[cfg(not(feature = "test-breaks"))]
+    if !args.breaks.is_empty() {
+        return Err(Failure::Run("--break is for test builds only (the cargo feature test-breaks)".into()));
+    }
+    #[cfg(feature = "test-breaks")]
+    let breaks = Arc::new(rapid_runtime::breaks::Breaks::new(&args.breaks).map_err(Failure::Usage)?);
     let where_ = args.tables.clone().unwrap_or_else(|| "the built-in tables".into());
     let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{where_}: {e}"))?;
     let tables = tables_json::asset_of(&json).map_err(|e| format!("{where_}: {e}"))?;
@@ -238,11 +248,19 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         Journal::open(&dir, &name, domain as i32, options.window, log.clone())
     };
     // configs come back after a crash with a serial above any used before it
-    let serial = journal::restart_serial(None, &recovered, now).unwrap_or(now);
+    #[cfg(feature = "test-breaks")]
+    let requested = breaks.on("zero-serial").then_some(0);
+    #[cfg(not(feature = "test-breaks"))]
+    let requested = None;
+    let serial = journal::restart_serial(requested, &recovered, now).unwrap_or(now);
     if let Some(j) = journal.as_mut() {
         j.start(serial);
     }
     options.journal = journal;
+    #[cfg(feature = "test-breaks")]
+    {
+        options.breaks = breaks.clone();
+    }
     let serial = serial as i32;
     let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;
     let outbox = Arc::new(DdsOutbox::new(&dp, &name, serial, options.window).map_err(|e| e.to_string())?);
@@ -270,7 +288,10 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         Arc::new(move || stop.store(true, Ordering::SeqCst)) as Arc<dyn Fn() + Send + Sync>
     };
     let handlers: Arc<dyn Handlers> = if args.simulate { Arc::new(Simulated { body }) } else { handlers };
-    let manager = CommandManager::new(Arc::new(tables.tables), handlers, outbox.clone(),
+    let (out, rules): (Arc<dyn Outbox>, _) = (outbox, tables.tables);
+    #[cfg(feature = "test-breaks")]
+    let (out, rules) = (breaks.outbox(out), breaks.tables(rules));
+    let manager = CommandManager::new(Arc::new(rules), handlers, out.clone(),
                                       Options { on_shutdown: Some(on_shutdown), ..options })
         .map_err(Failure::Run)?;
     manager.publish_states();
@@ -296,7 +317,11 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         while let Some((bytes, writer)) = reader.take() {
             idle = false;
             match convert::command_in(&bytes) {
-                Ok(cmd) => door.offer(cmd, &format!("{writer:x}")),
+                Ok(cmd) => {
+                    #[cfg(feature = "test-breaks")]
+                    let Some(cmd) = breaks.intake(cmd, manager.tables(), out.as_ref()) else { continue };
+                    door.offer(cmd, &format!("{writer:x}"))
+                }
                 Err(e) => drops.dropped(&name, writer, &e.to_string()),
             }
         }

@@ -10,6 +10,8 @@
 
 pub mod access;
 pub mod args;
+#[cfg(feature = "test-breaks")]
+pub mod breaks;
 pub mod command;
 pub mod handlers;
 pub mod intake;

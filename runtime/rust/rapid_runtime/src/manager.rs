@@ -86,6 +86,9 @@ pub struct Options {
     pub on_shutdown: Option<Arc<dyn Fn() + Send + Sync>>,
     /// the restart journal; None: nothing survives a crash
     pub journal: Option<Journal>,
+    /// decisions broken on purpose (test builds only: the feature test-breaks)
+    #[cfg(feature = "test-breaks")]
+    pub breaks: Arc<crate::breaks::Breaks>,
 }
 
 impl Default for Options {
@@ -98,6 +101,8 @@ impl Default for Options {
             shutdown_timeout_ms: DEFAULT_SHUTDOWN_TIMEOUT_MS,
             on_shutdown: None,
             journal: None,
+            #[cfg(feature = "test-breaks")]
+            breaks: Arc::default(),
         }
     }
 }
@@ -217,6 +222,8 @@ struct Inner {
     on_shutdown: Option<Arc<dyn Fn() + Send + Sync>>,
     has_queue: bool,
     has_control: bool,
+    #[cfg(feature = "test-breaks")]
+    breaks: Arc<crate::breaks::Breaks>,
     /// itself, for the threads it starts (handlers, the watchdog) and the contexts' progress
     me: Weak<Inner>,
     state: Mutex<State>,
@@ -277,7 +284,7 @@ impl CommandManager {
             closing: false,
             handlers_running: 0,
         };
-        Ok(CommandManager {
+        let manager = CommandManager {
             inner: Arc::new_cyclic(|me| Inner {
                 me: me.clone(),
                 tables,
@@ -291,11 +298,28 @@ impl CommandManager {
                 on_shutdown: options.on_shutdown,
                 has_queue,
                 has_control,
+                #[cfg(feature = "test-breaks")]
+                breaks: options.breaks,
                 state: Mutex::new(state),
                 idle: Condvar::new(),
                 watch: Condvar::new(),
             }),
-        })
+        };
+        #[cfg(feature = "test-breaks")]
+        if manager.inner.breaks.on("queue-lifo") {
+            let weak = manager.inner.weak();
+            let _ = thread::Builder::new().name("rapid-lifo-tick".into()).spawn(move || loop {
+                thread::sleep(Duration::from_millis(100));
+                let Some(inner) = weak.upgrade() else { return };
+                let mut st = inner.lock();
+                if st.closing {
+                    return;
+                }
+                inner.lifo_tick(&mut st);
+                inner.flush(&mut st);
+            });
+        }
+        Ok(manager)
     }
 
     pub fn tables(&self) -> &Tables {
@@ -631,6 +655,29 @@ impl Inner {
         st.outgoing.push(Write::Log(text));
     }
 
+    /// A decision broken on purpose (breaks.rs); without the feature a constant false, so
+    /// the branches on it compile to nothing.
+    #[cfg(feature = "test-breaks")]
+    fn broken(&self, kind: &str) -> bool {
+        self.breaks.on(kind)
+    }
+    #[cfg(not(feature = "test-breaks"))]
+    #[inline(always)]
+    fn broken(&self, _kind: &str) -> bool {
+        false
+    }
+
+    /// former-controller-keeps-rights: the gate asks whether the source ever held control.
+    #[cfg(feature = "test-breaks")]
+    fn held_once(&self, source: &str) -> bool {
+        self.breaks.held_once(source)
+    }
+    #[cfg(not(feature = "test-breaks"))]
+    #[inline(always)]
+    fn held_once(&self, _source: &str) -> bool {
+        false
+    }
+
     // ---- intake ----------------------------------------------------------------------------
 
     fn receive(&self, st: &mut State, cmd: Cmd) {
@@ -639,7 +686,7 @@ impl Inner {
             return;
         }
         let id = cmd.cmd_id.clone();
-        if st.seen.contains_key(&id) || st.live(&id) {
+        if (st.seen.contains_key(&id) && !self.broken("no-dedup")) || st.live(&id) {
             let live = st.live(&id);
             let final_ = st.seen.get(&id).cloned().flatten();
             match final_ {
@@ -663,6 +710,10 @@ impl Inner {
 
     /// Checks then dispatch; Some((completion, message)) when the command ends here.
     fn intake(&self, st: &mut State, cmd: &Arc<Cmd>) -> Refusal {
+        if self.broken("append-target-ignored") && cmd.action == QueueAction::Append && !cmd.target.is_empty() {
+            let untargeted = Cmd { target: String::new(), ..(**cmd).clone() };
+            return self.intake(st, &Arc::new(untargeted));
+        }
         if cmd.cmd_id.is_empty() {
             return Some((Completion::BadSyntax, texts::EMPTY_CMD_ID.into()));
         }
@@ -737,12 +788,17 @@ impl Inner {
                 if st.active == Some(old) {
                     self.cancel(st, old);
                     st.pending.push_front(id);
+                } else if self.broken("replace-at-back") {
+                    st.pending.retain(|p| *p != old);
+                    st.pending.push_back(id);
+                    self.finish_unstarted(st, old, &texts::replaced_by(&short(&cmd.cmd_id)));
                 } else {
                     let at = st.pending.iter().position(|p| *p == old).expect("pending");
                     st.pending[at] = id;
                     self.finish_unstarted(st, old, &texts::replaced_by(&short(&cmd.cmd_id)));
                 }
             }
+            QueueAction::Insert if self.broken("insert-at-back") => st.pending.push_back(id),
             QueueAction::Insert => {
                 let at = if target == HEAD {
                     Some(0)
@@ -763,13 +819,19 @@ impl Inner {
     fn authorize(&self, st: &State, source: &str, subsystem: &str, r: CommandRef) -> Option<String> {
         let type_name = self.tables.type_name(r);
         let name = &self.tables.spec(r).name;
-        if access::always_allowed(type_name, name) {
+        if access::always_allowed(type_name, name) && !self.broken("stop-needs-control") {
             return None;
         }
-        if !access::allowed(self.tables.access.as_ref(), source, subsystem, name) {
+        if !access::allowed(self.tables.access.as_ref(), source, subsystem, name) && !self.broken("allow-list-ignored") {
             return Some(texts::access_not_allowed(&short(source), &short(subsystem), &short(name)));
         }
-        if self.has_control && type_name != "AccessControl" && source != self.tables.name && !st.control.holds(source) {
+        if self.has_control
+            && !self.broken("no-control-gate")
+            && type_name != "AccessControl"
+            && source != self.tables.name
+            && !st.control.holds(source)
+            && !self.held_once(source)
+        {
             return Some(texts::access_no_control(&short(source)));
         }
         None
@@ -780,6 +842,12 @@ impl Inner {
     }
 
     fn delete(&self, st: &mut State, cmd: &Arc<Cmd>) -> Refusal {
+        if self.broken("delete-wrong-command") && st.queued_run(&cmd.target).is_some() {
+            // the running command canceled instead of the pending one named
+            if let Some(active) = st.active.map(|a| st.runs[&a].cmd.cmd_id.clone()).filter(|a| *a != cmd.target) {
+                return self.delete(st, &Arc::new(Cmd { target: active, ..(**cmd).clone() }));
+            }
+        }
         let Some(target) = st.queued_run(&cmd.target).or_else(|| st.bypass_run(&cmd.target)) else {
             return Some((Completion::BadSyntax, texts::unknown_target(&short(&cmd.target))));
         };
@@ -809,6 +877,28 @@ impl Inner {
 
     /// Start the queue's front command when nothing queued runs and the queue is not suspended.
     fn service(&self, st: &mut State) {
+        self.start_next(st);
+        self.publish_queue(st);
+        self.idle.notify_all();
+    }
+
+    fn start_next(&self, st: &mut State) {
+        if self.broken("queue-parallel") {
+            // each waiting command started at once, none waiting for the one before; kept among
+            // the bypass commands, where cancelAll and stopAllMotion still reach it
+            while !st.suspended && !st.closing {
+                let Some(id) = st.pending.pop_front() else { break };
+                st.active = Some(id);
+                self.start(st, id);
+                if !st.runs.get(&id).is_none_or(|r| r.done) && !st.bypass.contains(&id) {
+                    st.bypass.push(id);
+                }
+            }
+            return;
+        }
+        if self.broken("queue-lifo") {
+            return; // lifo_tick starts them
+        }
         while st.active.is_none() && !st.suspended && !st.closing {
             // the queue runs in order: a front command whose subsystem a bypass command holds waits, and all behind it
             let Some(&front) = st.pending.front() else { break };
@@ -818,6 +908,20 @@ impl Inner {
             st.pending.pop_front();
             st.active = Some(front);
             self.start(st, front);
+        }
+    }
+
+    /// queue-lifo: soraCore's 10 Hz executive tick, serving the newest waiting command first.
+    #[cfg(feature = "test-breaks")]
+    fn lifo_tick(&self, st: &mut State) {
+        while st.active.is_none() && !st.suspended && !st.closing {
+            let Some(&back) = st.pending.back() else { break };
+            if st.busy(&st.runs[&back].cmd.subsystem) {
+                break;
+            }
+            st.pending.pop_back();
+            st.active = Some(back);
+            self.start(st, back);
         }
         self.publish_queue(st);
         self.idle.notify_all();
@@ -976,7 +1080,13 @@ impl Inner {
         } else {
             self.complete(&mut st, id, completion, &message, true);
         }
-        self.service(&mut st);
+        if self.broken("queue-state-stale") {
+            // the handler's completion publishes nothing: the finished command stays listed
+            self.start_next(&mut st);
+            self.idle.notify_all();
+        } else {
+            self.service(&mut st);
+        }
         self.flush(&mut st);
     }
 
@@ -1239,6 +1349,10 @@ impl Inner {
             }
             Builtin::Control(op) => {
                 let src = cmd.cmd_src.as_str();
+                #[cfg(feature = "test-breaks")]
+                if let Some(outcome) = self.broken_control(st, op, &cmd) {
+                    return Some(outcome);
+                }
                 let done = match op {
                     ControlOp::Request => st.control.request(src),
                     ControlOp::Grab => st.control.grab(src),
@@ -1248,6 +1362,8 @@ impl Inner {
                         st.control.transfer(src, &new)
                     }
                 };
+                #[cfg(feature = "test-breaks")]
+                self.breaks.controller(&st.control.controller);
                 match done {
                     Ok(note) => {
                         self.publish_access(st);
@@ -1285,6 +1401,52 @@ impl Inner {
             parts.push(texts::non_abortable_running(kept));
         }
         parts.join("; ")
+    }
+
+    /// AccessControl's outcome when a break changes it (as the C++ runtime's broken_control).
+    #[cfg(feature = "test-breaks")]
+    fn broken_control(&self, st: &mut State, op: ControlOp, cmd: &Cmd) -> Refusal {
+        let (b, src) = (&self.breaks, cmd.cmd_src.as_str());
+        let (done, publish) = match op {
+            ControlOp::Request if b.on("request-steals-control") || b.on("request-unpublished") => {
+                let done = if b.on("request-steals-control") { st.control.grab(src) } else { st.control.request(src) };
+                (done, !b.on("request-unpublished"))
+            }
+            ControlOp::Grab if b.on("grab-refused") || b.on("grab-unpublished") => {
+                let holder = st.control.controller.clone();
+                if b.on("grab-refused") && !holder.is_empty() && holder != src {
+                    return Some((Completion::ExecFailed, format!("control is held by {holder}")));
+                }
+                (st.control.grab(src), !b.on("grab-unpublished"))
+            }
+            ControlOp::Release if b.on("release-by-anyone") || b.on("release-unpublished") => {
+                // release-by-anyone: on behalf of whoever holds it
+                let who = if b.on("release-by-anyone") { st.control.controller.clone() } else { src.to_string() };
+                (st.control.release(&who), !b.on("release-unpublished"))
+            }
+            ControlOp::Transfer if b.on("transfer-to-any-name") => {
+                let new = cmd.args.first().map(|v| v.str()).unwrap_or_default();
+                let done = if st.control.holds(src) {
+                    st.control.controller = new.clone(); // blank, or longer than String32: given all the same
+                    st.control.requestors.retain(|r| *r != new);
+                    Ok(texts::control_transferred(&new))
+                } else {
+                    Err(texts::no_control(src))
+                };
+                (done, true)
+            }
+            _ => return None,
+        };
+        b.controller(&st.control.controller);
+        match done {
+            Ok(note) => {
+                if publish {
+                    self.publish_access(st);
+                }
+                Some((Completion::Ok, note))
+            }
+            Err(why) => Some((Completion::ExecFailed, why)),
+        }
     }
 
     /// Motion stops first (every Mobility command canceled, abortable or not), then the handler
