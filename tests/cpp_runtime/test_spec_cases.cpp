@@ -310,6 +310,7 @@ public:
         if (kind == "ok") return Result::ok(text);
         if (kind == "fail") throw CommandFailed(text);
         if (kind == "error") throw std::runtime_error(text);
+        if (kind == "odd_error") throw 42;  // (not a std::exception)
         if (kind == "not_implemented") return Result::not_implemented();
         if (kind == "progress") {
             for (const auto& t : h.at("texts")) ctx.progress(t.get<std::string>());
@@ -323,6 +324,8 @@ public:
         if (kind == "stubborn") {  // deaf to being told to stop
             std::unique_lock<std::mutex> lock(seen_.mutex);
             seen_.changed.wait_for(lock, std::chrono::seconds(60), [&] { return seen_.is_released(id); });
+            lock.unlock();
+            if (!text.empty()) ctx.progress(text);  // (once released: after its answer, it must go nowhere)
             return Result::ok("released");
         }
         throw std::logic_error("unknown handler behaviour " + kind);

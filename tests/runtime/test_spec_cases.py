@@ -111,6 +111,8 @@ class Scripted:
             raise CommandFailed(h["text"])
         if kind == "error":
             raise RuntimeError(h["text"])
+        if kind == "odd_error":  # (not an Exception: what a C++ handler's `throw 42` is there)
+            raise OddError()
         if kind == "not_implemented":
             raise CommandFailed(NOT_IMPLEMENTED)
         if kind == "progress":
@@ -124,6 +126,8 @@ class Scripted:
             return "released"
         if kind == "stubborn":
             released.wait(60)
+            if h["text"]:  # (its progress once released: after its answer, it must go nowhere)
+                ctx.progress(h["text"])
             return "released"
         raise AssertionError(f"unknown handler behaviour {kind}")
 
@@ -146,6 +150,10 @@ def _ack_matches(seen: tuple[str, str, str], want: dict) -> bool:
     if want["message"] is None:
         return True
     return message.startswith(want["message"]) if want["prefix"] else message == want["message"]
+
+
+class OddError(BaseException):
+    """A handler's failure that is not an Exception (the `odd_error` behaviour)."""
 
 
 class Dead:

@@ -153,6 +153,8 @@ impl Handlers for Scripted {
             "ok" => Outcome::Ok(h.text),
             "fail" => Outcome::Failed(h.text),
             "error" => panic!("{}", h.text),
+            // (a payload that is no text, as a C++ handler's `throw 42`)
+            "odd_error" => std::panic::panic_any(42_i32),
             "not_implemented" => Outcome::NotImplemented,
             "progress" => {
                 for t in &h.texts {
@@ -173,6 +175,10 @@ impl Handlers for Scripted {
                 let mut r = self.released.lock().unwrap_or_else(|e| e.into_inner());
                 while !r.contains(&id) && Instant::now() < end {
                     r = self.release.wait_timeout(r, SLICE).unwrap_or_else(|e| e.into_inner()).0;
+                }
+                drop(r);
+                if !h.text.is_empty() {
+                    ctx.progress(&h.text); // (once released: after its answer, it must go nowhere)
                 }
                 Outcome::Ok("released".into())
             }
