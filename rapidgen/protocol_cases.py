@@ -31,7 +31,7 @@ SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot")
          "robonaut2": ("robonaut2", "rapid_robonaut2")}
 DEFAULT_SOURCE = "RapidWorkbench"
 # steps only a driver can take (a live runner cannot make a handler return, restart the asset or
-# fill its door); expectations it cannot see (calls, retired, log, pending, order, stopped) it skips
+# fill its door); expectations it cannot see (calls, retired, log, no_log, pending, order, stopped) it skips
 OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse", "offer", "open"}
 # a journal record's keys in the order the runtimes write them (docs/runtime.md, "Restarts")
 RECORD_KEYS = ("k", "id", "src", "asset", "serial", "c", "m")
@@ -69,7 +69,12 @@ def _params(seed: str, subsystem: str, name: str) -> list[str]:
 def _typed(args: list, types: list[str], where: SourceLoc) -> list[dict]:
     out = []
     for i, a in enumerate(args):
-        if isinstance(a, dict):
+        if isinstance(a, dict) and "json" in a:  # (a value YAML text cannot hold: a control character)
+            try:
+                out.append({"type": a["type"], "value": json.loads(a["json"])})
+            except json.JSONDecodeError as exc:
+                raise CaseError(f"{where}: argument {i + 1}'s `json` is not JSON: {exc.msg}") from None
+        elif isinstance(a, dict):
             out.append({"type": a["type"], "value": a["value"]})
         elif i < len(types):
             value = float(a) if types[i] in ("RAPID_FLOAT", "RAPID_DOUBLE") and isinstance(a, int) and \
@@ -143,7 +148,7 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
             out.append({"op": op, "calls": [{"id": c[0], "values": c[1]} for c in body]})
         elif op in ("retired", "pending"):
             out.append({"op": op, "ids": body})
-        elif op == "log":
+        elif op in ("log", "no_log"):
             out.append({"op": op, "text": body})
         elif op == "order":
             out.append({"op": op, "ids": body})

@@ -28,7 +28,7 @@ from rapidgen.textsafe import visible
 
 QUEUE_TOPIC = "rapid_queue_state"
 ACCESS_TOPIC = "rapid_accesscontrol_state"
-UNSEEN = ("calls", "retired", "log", "pending", "order", "stopped")  # expectations the wire does not show
+UNSEEN = ("calls", "retired", "log", "no_log", "pending", "order", "stopped")  # expectations the wire does not show
 MAX_RELEASES = 20  # releaseControl rounds to free control before a case (each passes it on)
 QUIET = 0.5  # s a command the case expects unanswered is watched for an ack
 

@@ -482,6 +482,11 @@ public:
             std::vector<std::string> got;
             return until_unlocked("pending " + show(want), [&] { return (got = manager().pending_ids()) == want; },
                                   [&] { return show(got); });
+        } else if (op == "no_log") {  // (at this step: what came before it has been waited for)
+            const std::string text = s.at("text").get<std::string>();
+            std::lock_guard<std::mutex> lock(seen_.mutex);
+            for (const auto& line : seen_.logs)
+                if (line.find(text) != std::string::npos) return fail("no log line with '" + text + "'", line);
         } else if (op == "log") {
             const std::string text = s.at("text").get<std::string>();
             return until("a log line with '" + text + "'", [&] {

@@ -293,6 +293,10 @@ class Replay:
         elif op == "log":
             self.until(f"a log line with {s['text']!r}", lambda: any(s["text"] in line for line in out.logs),
                        lambda: out.logs[-10:])
+        elif op == "no_log":  # (at this step: what came before it has been waited for)
+            with out.cond:
+                found = [line for line in out.logs if s["text"] in line]
+            assert not found, f"{self.case['file']}:{self.case['line']} {self.case['name']!r}: logged {found[:3]}"
         elif op == "order":
             firsts = lambda: [cid for cid in out.first if cid in s["ids"]]  # noqa: E731
             self.until(f"first acks in the order {s['ids']}", lambda: len(firsts()) == len(s["ids"]), firsts)

@@ -609,6 +609,13 @@ impl<'a> Replay<'a> {
                     |r| r.peek(|s| format!("{:?}", &s.logs[s.logs.len().saturating_sub(10)..])),
                 )?;
             }
+            // (at this step: what came before it has been waited for)
+            "no_log" => {
+                let text = s(st, "text");
+                if let Some(line) = self.peek(|s| s.logs.iter().find(|l| l.contains(&text)).cloned()) {
+                    return Err(format!("expected no log line with {text:?}; seen {line:?}"));
+                }
+            }
             "order" => {
                 let want = strings(&st["ids"]);
                 let firsts = |r: &Replay| r.peek(|s| s.first.iter().filter(|id| want.contains(id)).cloned().collect::<Vec<_>>());
