@@ -61,6 +61,7 @@ NEEDS: dict[str, frozenset[str]] = {k: frozenset(v.split()) for k, v in {
     "tests/qos/test_cyclone.py": "dds compiler",
     "tests/rust/test_interop.py": "compiler dds",
     "tests/rust/test_interop_cpp.py": "compiler dds",
+    "tests/rust_runtime/test_broken.py": "compiler dds",
     "tests/rust_runtime/test_dds_bridge.py": "compiler dds",
     "tests/rust_runtime/test_interop_client.py": "compiler dds",
     "tests/rust_runtime/test_texts.py": "",
