@@ -35,6 +35,8 @@ DEFAULT_SOURCE = "RapidWorkbench"
 OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse", "offer", "open"}
 # a journal record's keys in the order the runtimes write them (docs/runtime.md, "Restarts")
 RECORD_KEYS = ("k", "id", "src", "asset", "serial", "c", "m")
+# what names the journal's default folder, in the order the runtimes read them
+STATE_VARS = ("RAPID_STATE_DIR", "XDG_STATE_HOME", "HOME")
 
 
 class CaseError(Exception):
@@ -198,6 +200,23 @@ def _journal(case: dict, seed: str, source: str) -> dict | None:
     return {"file": f"{file}-domain0.journal", "text": text}
 
 
+def _state(case: dict) -> dict | None:
+    """Where the asset's journal is when it is started without a folder (the case's `state:`,
+    the variables set besides HOME): docs/runtime.md ("Restarts", "Where"). The drivers set
+    each of `set` to the folder of that name in the case's temporary folder, unset `unset`,
+    and write the case's journal in `dir` (relative to it)."""
+    if "state" not in case:
+        return None
+    given = [*case["state"], "HOME"]
+    if "RAPID_STATE_DIR" in given:
+        where = "RAPID_STATE_DIR"
+    elif "XDG_STATE_HOME" in given:
+        where = "XDG_STATE_HOME/rapid_runtime"
+    else:
+        where = "HOME/.local/state/rapid_runtime"
+    return {"set": {v: v for v in given}, "unset": [v for v in STATE_VARS if v not in given], "dir": where}
+
+
 def load_file(path: Path) -> list[dict]:
     sink = DiagnosticSink()
     shown = os.path.relpath(path, ROOT) if path.is_relative_to(ROOT) else str(path)
@@ -230,13 +249,13 @@ def load_file(path: Path) -> list[dict]:
         # (a burst of `times` sends is a flood to a live asset: its conform run is kept short)
         burst = any("times" in (step.get("send") or {}) for step in case["steps"])
         # (a renamed asset or another header srcName than cmdSrc: what a live runner cannot be or send)
-        live = not case.get("options") and "asset_name" not in case and journal is None and door is None and not burst and all(
+        live = not case.get("options") and "asset_name" not in case and journal is None and "state" not in case and door is None and not burst and all(
             s["op"] not in OFFLINE_ONLY and "statuses" not in s and "completed" not in s and (s["op"] != "send" or s["handler"]["kind"] == "ok" and
                                              s["action"] != "QUEUE_BOGUS" and s["src_name"] == s["src"]) for s in steps)
         cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
                       "rules": case.get("rules", []), "asset": seed,
                       "asset_name": case.get("asset_name"), "options": case.get("options", {}),
-                      "live": live, "journal": journal, "door": door, "steps": steps})
+                      "live": live, "journal": journal, "state": _state(case), "door": door, "steps": steps})
     return cases
 
 

@@ -395,12 +395,17 @@ public:
         // as the bridge does, in a state folder not made yet (the runtime makes it) unless the
         // case's journal is written there first
         const json& found = c.at("journal");
-        bool journaled = !found.is_null();
+        const json& state = c.at("state");
+        bool journaled = !found.is_null() || !state.is_null();
         for (const auto& s : c.at("steps"))
             if (s.at("op") == "restart") journaled = true;
         if (journaled) {
             temp_ = temp_dir();
-            journal_dir_ = temp_ + "/state/rapid_runtime";
+            journal_dir_ = temp_ + "/" + (state.is_null() ? "state/rapid_runtime" : state.at("dir").get<std::string>());
+        }
+        if (!state.is_null()) {  // (the journal's default folder named by these, in the case's folder)
+            for (const auto& var : state.at("unset")) set_env(var.get<std::string>(), nullptr);
+            for (const auto& [var, rel] : state.at("set").items()) set_env(var, (temp_ + "/" + rel.get<std::string>()).c_str());
         }
         if (!found.is_null()) {
             std::filesystem::create_directories(journal_dir_);
@@ -428,6 +433,10 @@ public:
         manager().shut_down(2000);
         managers_.clear();  // (each joins its handlers' threads)
         journals_.clear();
+        for (const auto& [var, value] : saved_env_) {
+            if (value) ::setenv(var.c_str(), value->c_str(), 1);
+            else ::unsetenv(var.c_str());
+        }
         if (!temp_.empty()) std::filesystem::remove_all(temp_);
     }
     Replay(const Replay&) = delete;
@@ -515,6 +524,16 @@ public:
 private:
     CommandManager& manager() { return *managers_.back(); }
 
+    // An environment variable set (nullptr: unset) for this case, its value before kept
+    void set_env(const std::string& var, const char* value) {
+        if (!saved_env_.count(var)) {
+            const char* before = std::getenv(var.c_str());
+            saved_env_[var] = before ? std::optional<std::string>(before) : std::nullopt;
+        }
+        if (value) ::setenv(var.c_str(), value, 1);
+        else ::unsetenv(var.c_str());
+    }
+
     static std::string temp_dir() {
         std::string pattern = ::testing::TempDir() + "spec-journal-XXXXXX";
         std::vector<char> buf(pattern.begin(), pattern.end());
@@ -531,7 +550,9 @@ private:
         ManagerOptions o = options_;
         JournalRecovered recovered;
         if (!journal_dir_.empty()) {
-            journals_.push_back(Journal::open(journal_dir_, tables_.name, 0,
+            // (a case with `state:` starts the asset without a folder: the runtime's default one)
+            const std::string folder = case_.at("state").is_null() ? journal_dir_ : Journal::default_dir();
+            journals_.push_back(Journal::open(folder, tables_.name, 0,
                                               o.window, [&out](const std::string& t) { out.log(t); }, recovered));
             if (!journals_.back()) throw std::runtime_error("the restart journal cannot be opened in " + journal_dir_);
             journals_.back()->start(1);
@@ -705,6 +726,7 @@ private:
     ManagerOptions options_;
     std::string temp_;  // the case's temporary folder ("": none)
     std::string journal_dir_;  // the restart journal's folder in it ("": none)
+    std::map<std::string, std::optional<std::string>> saved_env_;  // what a case's `state:` changed
     Seen seen_;
     std::vector<std::unique_ptr<CollectingOutbox>> outboxes_;  // one per life of the asset, the last live
     Scripted handlers_;

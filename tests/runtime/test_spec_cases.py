@@ -16,7 +16,7 @@ import pytest
 from rapid_runtime.command import Cmd
 from rapid_runtime.handlers import CommandFailed
 from rapid_runtime.intake import Intake
-from rapid_runtime.journal import Journal
+from rapid_runtime.journal import Journal, default_dir
 from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapidgen.protocol_cases import load_cases, seed_tables
 
@@ -176,8 +176,8 @@ class Replay:
         # as the bridge does, in a state folder not made yet (the runtime makes it) unless
         # the case's journal is written there first
         self.journal_dir = None
-        if case["journal"] is not None or any(s["op"] == "restart" for s in case["steps"]):
-            self.journal_dir = state_dir / "state" / "rapid_runtime"
+        if case["journal"] is not None or case["state"] is not None or any(s["op"] == "restart" for s in case["steps"]):
+            self.journal_dir = state_dir / (case["state"]["dir"] if case["state"] else "state/rapid_runtime")
         if case["journal"] is not None:
             self.journal_dir.mkdir(parents=True)
             (self.journal_dir / case["journal"]["file"]).write_bytes(case["journal"]["text"].encode())
@@ -190,7 +190,9 @@ class Replay:
         journal, recovered = None, None
         if self.journal_dir is not None:
             window = self.case["options"].get("window", COMMAND_WINDOW)
-            journal, recovered = Journal.open(self.journal_dir, self.tables.name, 0, window, self.out.log)
+            # (a case with `state:` starts the asset without a folder: the runtime's default one)
+            folder = default_dir() if self.case["state"] is not None else self.journal_dir
+            journal, recovered = Journal.open(folder, self.tables.name, 0, window, self.out.log)
             assert journal is not None, self.out.logs
             journal.start(1)
         m = CommandManager(self.tables, self.handlers, self.out, journal=journal, on_shutdown=self.out.stop,
@@ -319,7 +321,12 @@ class Replay:
 
 
 @pytest.mark.parametrize("case", CASES, ids=[f"{c['file'][:-5]}:{c['name']}" for c in CASES])
-def test_case(case, tmp_path):
+def test_case(case, tmp_path, monkeypatch):
+    if case["state"] is not None:  # (the journal's default folder named by these, in tmp_path)
+        for var in case["state"]["unset"]:
+            monkeypatch.delenv(var, raising=False)
+        for var, rel in case["state"]["set"].items():
+            monkeypatch.setenv(var, str(tmp_path / rel))
     replay = Replay(case, tmp_path)
     try:
         for s in case["steps"]:

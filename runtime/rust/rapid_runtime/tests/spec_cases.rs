@@ -356,6 +356,8 @@ struct Replay<'a> {
     journal_dir: Option<PathBuf>,
     /// the case's temporary folder, the journal's state folder inside it
     temp: Option<PathBuf>,
+    /// the environment a case's `state:` changed, as it was
+    saved_env: Vec<(String, Option<std::ffi::OsString>)>,
 }
 
 fn options_of(case: &Json, shared: &Arc<Shared>) -> Options {
@@ -390,7 +392,9 @@ fn manager(
     if let Some(dir) = journal_dir {
         let g = gate.clone();
         let log: Log = Arc::new(move |text: &str| g.log(text));
-        let (journal, rec) = Journal::open(dir, &tables.name, 0, opts.window, log);
+        // (a case with `state:` starts the asset without a folder: the runtime's default one)
+        let dir = if case["state"].is_null() { dir.clone() } else { Journal::default_dir() };
+        let (journal, rec) = Journal::open(&dir, &tables.name, 0, opts.window, log);
         let mut journal = journal.ok_or("the journal did not open (see the log)")?;
         journal.start(1);
         opts.journal = Some(journal);
@@ -417,13 +421,29 @@ impl<'a> Replay<'a> {
         // the bridge does, in a state folder not made yet (the runtime makes it) unless the case's
         // journal is written there first
         let found = &case["journal"];
+        let state = &case["state"];
         let restarts = case["steps"].as_array().into_iter().flatten().any(|st| s(st, "op") == "restart");
-        let temp = (restarts || !found.is_null()).then(|| {
+        let temp = (restarts || !found.is_null() || !state.is_null()).then(|| {
             let dir = std::env::temp_dir().join(format!("rapid-spec-journal-{}-{n}", std::process::id()));
             let _ = std::fs::remove_dir_all(&dir);
             dir
         });
-        let journal_dir = temp.as_ref().map(|t| t.join("state").join("rapid_runtime"));
+        let journal_dir = temp.as_ref().map(|t| match state["dir"].as_str() {
+            Some(dir) => t.join(dir),
+            None => t.join("state").join("rapid_runtime"),
+        });
+        let mut saved_env = Vec::new();
+        if let Some(t) = temp.as_ref().filter(|_| !state.is_null()) {
+            // (the journal's default folder named by these, in the case's folder; one case at a time)
+            for var in state["unset"].as_array().into_iter().flatten().filter_map(Json::as_str) {
+                saved_env.push((var.to_string(), std::env::var_os(var)));
+                std::env::remove_var(var);
+            }
+            for (var, rel) in state["set"].as_object().into_iter().flatten() {
+                saved_env.push((var.clone(), std::env::var_os(var)));
+                std::env::set_var(var, t.join(rel.as_str().unwrap_or_default()));
+            }
+        }
         if let (Some(dir), false) = (&journal_dir, found.is_null()) {
             std::fs::create_dir_all(dir)
                 .and_then(|_| std::fs::write(dir.join(s(found, "file")), s(found, "text")))
@@ -438,7 +458,7 @@ impl<'a> Replay<'a> {
             let limit = |key: &str, default: usize| door[key].as_u64().map_or(default, |n| n as usize);
             Intake::new(m.clone(), log, limit("per_writer", PER_WRITER), limit("shed_answers", SHED_ANSWERS))
         });
-        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), intake, journal_dir, temp })
+        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), intake, journal_dir, temp, saved_env })
     }
 
     /// The process dies: the journal as the disk has it (no clean stop record), nothing more
@@ -648,6 +668,12 @@ impl<'a> Replay<'a> {
         self.m.shutdown(Some(Duration::from_secs(2)));
         for m in &self.dead {
             m.shutdown(Some(Duration::from_secs(2)));
+        }
+        for (var, value) in self.saved_env.iter().rev() {
+            match value {
+                Some(v) => std::env::set_var(var, v),
+                None => std::env::remove_var(var),
+            }
         }
         if let Some(dir) = &self.temp {
             let _ = std::fs::remove_dir_all(dir);
