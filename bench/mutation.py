@@ -120,8 +120,9 @@ def spec_oracle(work: Path, mutant: str) -> tuple[bool, str]:
     env = _env(work, mutant)
     env["RAPID_SPEC_WAIT"] = "5"  # a case waits this long for what does not come (a loaded machine needs seconds)
     try:
-        res = subprocess.run([sys.executable, "-m", "pytest", "tests/runtime/test_spec_cases.py", "-x", "-q",
-                              "-p", "no:cacheprovider", "-p", "no:randomly"], cwd=ROOT, env=env,
+        # (in the campaign's folder: a mutant that builds a path wrongly writes there, not in the checkout)
+        res = subprocess.run([sys.executable, "-m", "pytest", str(ROOT / "tests/runtime/test_spec_cases.py"), "-x", "-q",
+                              "--rootdir", str(ROOT), "-p", "no:cacheprovider", "-p", "no:randomly"], cwd=work, env=env,
                              capture_output=True, text=True, timeout=SPEC_TIMEOUT)
     except subprocess.TimeoutExpired:
         return True, "spec: hung"
