@@ -25,7 +25,9 @@ Everything is built in a temporary folder, never in runtime/cpp: a copy of runti
 CMake build folders (Release, -j --jobs, under nice): the runtime's core, the spec cases'
 driver or the logic suite (tests/cpp_runtime, copied) and K10's generated bridge. Each mutant
 recompiles its one file and relinks what the oracle runs; afterwards the file and its object
-are put back.
+are put back. With --prebuilt (tests/cpp_runtime/test_mutation.py passes the pytest run's
+build of tests/cpp_runtime) the seeds' tables and the cases' driver are linked from that build
+instead of compiled again: no mutant changes them.
 
 - spec: the cases of runtime/spec replayed by the C++ driver (`spec_cases`,
   tests/cpp_runtime/test_spec_cases.cpp alone), about a second a mutant besides its compile;
@@ -170,8 +172,8 @@ def _test_only_lines(lines: list[str]) -> set[int]:
 class Builds:
     """The runtime copy and its three build folders in `work`."""
 
-    def __init__(self, work: Path, jobs: int) -> None:
-        self.work, self.jobs = work, jobs
+    def __init__(self, work: Path, jobs: int, prebuilt: str | None = None) -> None:
+        self.work, self.jobs, self.prebuilt = work, jobs, prebuilt
         self.src = work / "runtime" / "src"
         self.runtime, self.tests, self.bridge = work / "build" / "runtime", work / "build" / "tests", work / "build" / "bridge"
         self.objects = self.runtime / "CMakeFiles" / "rapid_runtime_core.dir" / "src"
@@ -200,7 +202,8 @@ class Builds:
         _run(["cmake", "-S", str(self.work / "tests"), "-B", str(self.tests), *release, found,
               f"-DK10_BRIDGE_DIR={gen / 'k10' / 'cpp' / 'bridge'}",
               f"-DCHARIOT_BRIDGE_DIR={gen / 'chariot' / 'cpp' / 'bridge'}",
-              f"-DR2_BRIDGE_DIR={gen / 'robonaut2' / 'cpp' / 'bridge'}"])
+              f"-DR2_BRIDGE_DIR={gen / 'robonaut2' / 'cpp' / 'bridge'}",
+              *([f"-DSPEC_PREBUILT={self.prebuilt}"] if self.prebuilt else [])])
         self.build(self.tests, _target(suite))
         if bridge:
             _run(["cmake", "-S", str(gen / "k10" / "cpp"), "-B", str(self.bridge), *release, found])
@@ -383,6 +386,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--where", help="sample the mutants of FILE, of its lines FIRST-LAST (pending.cpp:17-29) or of a function "
                    "(pending.cpp:insert_after)")
     p.add_argument("--json", help="write every verdict here")
+    p.add_argument("--prebuilt", metavar="DIR", help="a build of tests/cpp_runtime (its logic target built) whose "
+                   "tables and cases' driver are linked instead of compiled")
     args = p.parse_args(argv)
     if args.where and args.where.partition(":")[0] not in FILES:
         print(f"error: --where {args.where}: not one of {', '.join(FILES)}", file=sys.stderr)
@@ -392,7 +397,7 @@ def main(argv: list[str] | None = None) -> int:
     work = Path(tempfile.mkdtemp(prefix="rapid-cpp-mutants-"))
     try:
         t0 = time.monotonic()
-        b = Builds(work, args.jobs)
+        b = Builds(work, args.jobs, args.prebuilt)
         b.copy()
         wire, logs, tests = make_mutants(b.src)
         by_id = {m.id: m for m in [*wire, *logs, *tests]}

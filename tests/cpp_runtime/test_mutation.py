@@ -8,8 +8,8 @@ misplaced insert is killed: an oracle that passes everything would kill none. Ev
 built in the script's own temporary folder, runtime/cpp is only read.
 
 In the default run the cases alone judge (the spec oracle: the script builds a runtime core
-and the cases' driver of its own, about 40 CPU-s); RAPIDGEN_MUTATION_CPP=1 adds conform
-against a bridge built on each mutant (about 3 minutes on 2 cores)."""
+of its own and links the run's tables and cases' driver, --prebuilt: about 25 CPU-s);
+RAPIDGEN_MUTATION_CPP=1 adds conform against a bridge built on each mutant (about 3 minutes on 2 cores)."""
 from __future__ import annotations
 
 import json
@@ -27,11 +27,12 @@ DOMAIN = 59  # (Fast DDS: below 102)
 ORACLE = "both" if os.environ.get("RAPIDGEN_MUTATION_CPP") == "1" else "spec"
 
 
-def test_insert_after_mutants_are_killed(tmp_path):
-    B.needs_toolchain()
+def test_insert_after_mutants_are_killed(tmp_path, runtime_build):
     out = tmp_path / "verdicts.json"
+    # (the run's tables and cases' driver linked, not compiled again: runtime_build, conftest.py)
     res = subprocess.run([sys.executable, "bench/mutation_cpp.py", "--where", "pending.cpp:insert_after", "--sample", "3",
-                          "--oracle", ORACLE, "--domain", str(DOMAIN), "--jobs", B.JOBS, "--json", str(out)],
+                          "--oracle", ORACLE, "--domain", str(DOMAIN), "--jobs", B.JOBS, "--json", str(out),
+                          "--prebuilt", str(runtime_build)],
                          cwd=B.ROOT, capture_output=True, text=True, timeout=1200, env=B.dds_env())
     assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-3000:]
     got = json.loads(out.read_text())
