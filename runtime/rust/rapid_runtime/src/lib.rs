@@ -13,6 +13,7 @@ pub mod args;
 #[cfg(feature = "test-breaks")]
 pub mod breaks;
 pub mod command;
+pub mod configs;
 pub mod handlers;
 pub mod intake;
 pub mod journal;
@@ -25,6 +26,7 @@ pub mod value;
 pub mod vocabulary;
 
 pub use command::Cmd;
+pub use configs::Serials;
 pub use handlers::{Context, Handlers, Outcome};
 pub use journal::{Journal, JournalEntry, Recovered};
 pub use manager::{CommandManager, Options, Outbox, Record};
