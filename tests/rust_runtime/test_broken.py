@@ -8,22 +8,23 @@ need the DDS layer.
 One feature-enabled build of K10's bridge, in the target folder of the folder's bridges
 (cyclors is not built again; the runtime, its DDS layer and the bridge are), under a package
 name of its own so that the plain `rapid_k10red_bridge` the other tests run stays as it is.
-One bridge per kind (a failure is then the kind's alone), two at a time on domains 73 and 74,
-each run the checks of its area (--only CMD-, the checks it builds on included): the full
-suite's judgment of the unbroken bridge is test_dds_bridge.py's. The longest runs start
-first; crash-on-bad-input last (its bridge dies: its domain is not used again).
+One bridge per kind (a failure is then the kind's alone), each run the checks of its area
+(--only CMD-, the checks it builds on included): the full suite's judgment of the unbroken
+bridge is test_dds_bridge.py's. The runs wait on discovery and the checks' windows far more
+than they compute, so PARALLEL run at a time, the longest first, on domains 73 and 74.
 
-Domains 73 and 74 are also tests/rust/test_interop.py's and among tests/cpp_client/
-test_broken.py's, whose K10Red bridges would answer this runner: bridges and runner here
-carry a Cyclone domain tag of this run's own (Discovery/Tag, added to K10's loopback
-configuration), so they and the participants of any other test or run on those domains
-ignore each other."""
+Each kind's bridge and runner carry a Cyclone domain tag of their own (Discovery/Tag, added
+to K10's loopback configuration): participants with another tag, or none, ignore them and
+are ignored. So the runs sharing a domain do not see each other, nor does a run see the
+participant a crashed bridge leaves until its lease ends, nor the other tests on domains 73
+and 74 (tests/rust/test_interop.py's, and among tests/cpp_client/test_broken.py's, whose
+K10Red bridges would otherwise answer this runner)."""
 from __future__ import annotations
 
 import json
 import os
-import queue
 import re
+import resource
 import shutil
 import subprocess
 import time
@@ -40,26 +41,33 @@ from tests.rust_runtime.build import RUNTIME
 BREAKS_RS = RUNTIME / "rapid_runtime" / "src" / "breaks.rs"
 KINDS = dict(re.findall(r'\("([a-z0-9-]+)", "([A-Z]+-\d\d)"\)', BREAKS_RS.read_text(encoding="utf-8")))
 DOMAINS = (73, 74)
+PARALLEL = 4
 PACKAGE = "rapid_k10red_bridge_breaks"
 CRASH = "crash-on-bad-input"
 # runs that wait out a command's answer (CMD-14 and CMD-16's 10 s) start first
-LONG = ("every-20th-lost", "nan-unanswered", "long-ack-message")
+LONG = (CRASH, "nan-unanswered", "every-20th-lost")
+LOCAL = ROOT / "generated" / "k10" / "qos" / "cyclonedds" / "local.xml"  # the bridge's built-in `local`
 
 
-# K10's loopback configuration (the bridge's built-in `local`) and this run's domain tag
-CYCLONE = (f"file://{ROOT / 'generated' / 'k10' / 'qos' / 'cyclonedds' / 'local.xml'},"
-           f'<CycloneDDS><Domain id="any"><Discovery><Tag>rapidgen-rust-broken-{os.getpid()}</Tag>'
-           "</Discovery></Domain></CycloneDDS>")
+def _cyclone(kind: str) -> str:
+    """K10's loopback configuration with a domain tag of this run's and kind's own."""
+    tag = f"rapidgen-rust-broken-{os.getpid()}-{kind}"
+    return f'file://{LOCAL},<CycloneDDS><Domain id="any"><Discovery><Tag>{tag}</Tag></Discovery></Domain></CycloneDDS>'
+
+
+def _children_cpu() -> float:
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
 
 
 def _area(check: str) -> str:
     return check.split("-")[0] + "-"
 
 
-def _conform(domain: int, out: Path, only: str) -> dict:
-    """`rapidgen conform` on K10 (tests.conformance.harness.conform's run, in this run's tag)."""
+def _conform(domain: int, cyclone: str, out: Path, only: str) -> dict:
+    """`rapidgen conform` on K10 (tests.conformance.harness.conform's run, in the kind's tag)."""
     report = out / "conform.json"
-    env = dict(env_for(python_dir("k10"), "rapid_k10red"), CYCLONEDDS_URI=CYCLONE)
+    env = dict(env_for(python_dir("k10"), "rapid_k10red"), CYCLONEDDS_URI=cyclone)
     res = subprocess.run([*RAPIDGEN, "conform", str(DESCRIPTORS["k10"]), "--domain", str(domain), "--json", str(report),
                           "--only", only], cwd=ROOT, env=env, capture_output=True, text=True, timeout=240)
     data = json.loads(report.read_text()) if report.exists() else None
@@ -84,37 +92,35 @@ def broken_bridge(bridges, tmp_path_factory) -> Path:
     shutil.copy(bridges["ws"] / "Cargo.toml", ws / "Cargo.toml")
     shutil.copy(bridges["ws"] / "Cargo.lock", ws / "Cargo.lock")
     env = dict(os.environ, CARGO_TARGET_DIR=str(bridges["target"]), CARGO_TERM_COLOR="never")
-    start = time.monotonic()
+    start, cpu = time.monotonic(), _children_cpu()
     for mode in (["--offline"], []):  # (as build.py: offline when the crates are cached)
         res = subprocess.run([cargo(), "build", *mode, "--bin", PACKAGE, "--features", "rapid_dds/test-breaks"],
                              cwd=ws, env=env, capture_output=True, text=True, timeout=1800, stdin=subprocess.DEVNULL)
         if res.returncode == 0:
             break
-    print(f"\ncargo build of K10's bridge with test-breaks: {time.monotonic() - start:.1f} s")
+    print(f"\ncargo build of K10's bridge with test-breaks: {time.monotonic() - start:.1f} s, "
+          f"{_children_cpu() - cpu:.1f} s CPU")
     assert res.returncode == 0, res.stderr[-4000:]
     assert not [line for line in res.stderr.splitlines() if line.startswith("warning")], res.stderr[-4000:]
     return Path(bridges["target"]) / "debug" / PACKAGE
 
 
 def _run(args) -> dict:
-    kind, program, free, out = args
-    domain = free.get(timeout=600)  # (none back: every bridge before it died; fails, not hangs)
+    kind, domain, program, out = args
     folder = out / kind
     folder.mkdir()
-    env = dict(os.environ, CYCLONEDDS_URI=CYCLONE)
+    env = dict(os.environ, CYCLONEDDS_URI=_cyclone(kind))
     proc = subprocess.Popen([str(program), "--simulate", "--break", kind, "--domain", str(domain),
                              "--journal", str(folder / "state")],
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         ready = proc.stdout.readline()
         assert "ready on domain" in ready, (kind, ready, proc.stderr.read()[-2000:] if not ready else "")
-        run = _conform(domain, folder, _area(KINDS[kind]))  # its area: the checks it builds on run first
+        run = _conform(domain, _cyclone(kind), folder, _area(KINDS[kind]))  # its area: the checks it builds on first
     finally:
         if proc.poll() is None:
             proc.terminate()
         _, err = proc.communicate(timeout=60)
-        if proc.returncode == 0:  # one that died leaves its participant until its lease ends
-            free.put(domain)
     run["bridge_status"], run["bridge_err"] = proc.returncode, err
     return run
 
@@ -122,14 +128,13 @@ def _run(args) -> dict:
 @pytest.fixture(scope="module")
 def broken_runs(broken_bridge, tmp_path_factory):
     out = tmp_path_factory.mktemp("rust-broken")
-    free: queue.Queue[int] = queue.Queue()
-    for d in DOMAINS:
-        free.put(d)
-    order = sorted(KINDS, key=lambda k: (k == CRASH, k not in LONG))
-    start = time.monotonic()
-    with ThreadPoolExecutor(len(DOMAINS)) as pool:
-        runs = dict(zip(order, pool.map(_run, [(k, broken_bridge, free, out) for k in order])))
-    print(f"\n{len(runs)} broken Rust bridges judged in {time.monotonic() - start:.1f} s")
+    order = sorted(KINDS, key=lambda k: k not in LONG)
+    start, cpu = time.monotonic(), _children_cpu()
+    with ThreadPoolExecutor(PARALLEL) as pool:
+        jobs = [(k, DOMAINS[i % len(DOMAINS)], broken_bridge, out) for i, k in enumerate(order)]
+        runs = dict(zip(order, pool.map(_run, jobs)))
+    print(f"\n{len(runs)} broken Rust bridges judged in {time.monotonic() - start:.1f} s, "
+          f"{_children_cpu() - cpu:.1f} s CPU (bridges and runners)")
     return runs
 
 
