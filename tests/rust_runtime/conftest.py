@@ -1,12 +1,21 @@
 """The Rust bridges, built once per run for every test of the folder (build.py)."""
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
 
 from tests.cpp_runtime import build as B
-from tests.rust_runtime.build import build_bridges
+from tests.rust_runtime.build import build_bridges, libclang
+
+# One LIBCLANG_PATH for every cargo run in the bridges' target folder (the tests' own builds,
+# rapid_dds's unit tests, the test-breaks bridge): bindgen's build script reruns whenever it
+# changes, set or unset, and bindgen, cyclors, rapid_dds and every bridge above them compile
+# again (about 7 CPU-s each time).
+_CLANG = libclang()
+if _CLANG and not os.environ.get("LIBCLANG_PATH"):
+    os.environ["LIBCLANG_PATH"] = _CLANG
 
 
 @pytest.fixture(scope="session")
