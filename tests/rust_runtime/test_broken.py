@@ -162,12 +162,16 @@ def test_broken_rust_bridge_fails_its_check(broken_runs, kind):
         assert run["bridge_status"] == 0, run["bridge_err"][-2000:]
 
 
-def test_plain_bridge_refuses_breaks(bridges):
-    """Only a test build takes --break: the generated bridge refuses to start with one."""
+def test_plain_bridge_refuses_breaks(bridges, broken_bridge):
+    """Only a test build takes --break: the generated bridge refuses to start with one, and
+    has none of the kinds in it (their names are in the test build only)."""
     env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
     res = subprocess.run([str(bridges["k10"]), "--break", "wrong-ack-order", "--domain", "73", "--no-journal"],
                          capture_output=True, text=True, timeout=60, env=env)
     assert res.returncode == 1 and "--break is for test builds only" in res.stderr, res.stderr
+    plain, test_build = Path(bridges["k10"]).read_bytes(), broken_bridge.read_bytes()
+    assert [k for k in KINDS if k.encode() in plain] == []
+    assert [k for k in KINDS if k.encode() not in test_build] == []
 
 
 def test_unknown_kind_is_a_usage_error(broken_bridge):

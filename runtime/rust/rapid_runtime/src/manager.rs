@@ -53,6 +53,29 @@ pub const DEFAULT_STOP_TIMEOUT_MS: u64 = 2000;
 /// How long a shutdown waits for the handlers told to stop, by default.
 pub const DEFAULT_SHUTDOWN_TIMEOUT_MS: u64 = 5000;
 
+/// A decision broken on purpose (breaks.rs, the feature test-breaks): `broken!(self, "kind")`
+/// asks whether the kind is on, `broken!(self, held_once(source))` former-controller-keeps-
+/// rights' question. Without the feature both are the constant `false`: a plain build has
+/// neither the kinds' names nor a branch on them (as the C++ runtime's BROKEN macro).
+#[cfg(feature = "test-breaks")]
+macro_rules! broken {
+    ($inner:expr, held_once($source:expr)) => {
+        $inner.breaks.held_once($source)
+    };
+    ($inner:expr, $kind:literal) => {
+        $inner.breaks.on($kind)
+    };
+}
+#[cfg(not(feature = "test-breaks"))]
+macro_rules! broken {
+    ($inner:expr, $($any:tt)*) => {
+        NOTHING_BROKEN
+    };
+}
+/// (a constant rather than the literal: clippy would ask for `!false` to be simplified away)
+#[cfg(not(feature = "test-breaks"))]
+const NOTHING_BROKEN: bool = false;
+
 /// One QueueState record: the command and its result and status.
 #[derive(Clone, Debug)]
 pub struct Record {
@@ -655,28 +678,6 @@ impl Inner {
         st.outgoing.push(Write::Log(text));
     }
 
-    /// A decision broken on purpose (breaks.rs); without the feature a constant false, so
-    /// the branches on it compile to nothing.
-    #[cfg(feature = "test-breaks")]
-    fn broken(&self, kind: &str) -> bool {
-        self.breaks.on(kind)
-    }
-    #[cfg(not(feature = "test-breaks"))]
-    #[inline(always)]
-    fn broken(&self, _kind: &str) -> bool {
-        false
-    }
-
-    /// former-controller-keeps-rights: the gate asks whether the source ever held control.
-    #[cfg(feature = "test-breaks")]
-    fn held_once(&self, source: &str) -> bool {
-        self.breaks.held_once(source)
-    }
-    #[cfg(not(feature = "test-breaks"))]
-    #[inline(always)]
-    fn held_once(&self, _source: &str) -> bool {
-        false
-    }
 
     // ---- intake ----------------------------------------------------------------------------
 
@@ -686,7 +687,7 @@ impl Inner {
             return;
         }
         let id = cmd.cmd_id.clone();
-        if (st.seen.contains_key(&id) && !self.broken("no-dedup")) || st.live(&id) {
+        if (st.seen.contains_key(&id) && !broken!(self, "no-dedup")) || st.live(&id) {
             let live = st.live(&id);
             let final_ = st.seen.get(&id).cloned().flatten();
             match final_ {
@@ -710,7 +711,7 @@ impl Inner {
 
     /// Checks then dispatch; Some((completion, message)) when the command ends here.
     fn intake(&self, st: &mut State, cmd: &Arc<Cmd>) -> Refusal {
-        if self.broken("append-target-ignored") && cmd.action == QueueAction::Append && !cmd.target.is_empty() {
+        if broken!(self, "append-target-ignored") && cmd.action == QueueAction::Append && !cmd.target.is_empty() {
             let untargeted = Cmd { target: String::new(), ..(**cmd).clone() };
             return self.intake(st, &Arc::new(untargeted));
         }
@@ -788,7 +789,7 @@ impl Inner {
                 if st.active == Some(old) {
                     self.cancel(st, old);
                     st.pending.push_front(id);
-                } else if self.broken("replace-at-back") {
+                } else if broken!(self, "replace-at-back") {
                     st.pending.retain(|p| *p != old);
                     st.pending.push_back(id);
                     self.finish_unstarted(st, old, &texts::replaced_by(&short(&cmd.cmd_id)));
@@ -798,7 +799,7 @@ impl Inner {
                     self.finish_unstarted(st, old, &texts::replaced_by(&short(&cmd.cmd_id)));
                 }
             }
-            QueueAction::Insert if self.broken("insert-at-back") => st.pending.push_back(id),
+            QueueAction::Insert if broken!(self, "insert-at-back") => st.pending.push_back(id),
             QueueAction::Insert => {
                 let at = if target == HEAD {
                     Some(0)
@@ -819,19 +820,14 @@ impl Inner {
     fn authorize(&self, st: &State, source: &str, subsystem: &str, r: CommandRef) -> Option<String> {
         let type_name = self.tables.type_name(r);
         let name = &self.tables.spec(r).name;
-        if access::always_allowed(type_name, name) && !self.broken("stop-needs-control") {
+        if access::always_allowed(type_name, name) && !broken!(self, "stop-needs-control") {
             return None;
         }
-        if !access::allowed(self.tables.access.as_ref(), source, subsystem, name) && !self.broken("allow-list-ignored") {
+        if !access::allowed(self.tables.access.as_ref(), source, subsystem, name) && !broken!(self, "allow-list-ignored") {
             return Some(texts::access_not_allowed(&short(source), &short(subsystem), &short(name)));
         }
-        if self.has_control
-            && !self.broken("no-control-gate")
-            && type_name != "AccessControl"
-            && source != self.tables.name
-            && !st.control.holds(source)
-            && !self.held_once(source)
-        {
+        let holds = st.control.holds(source) || broken!(self, held_once(source));
+        if self.has_control && !broken!(self, "no-control-gate") && type_name != "AccessControl" && source != self.tables.name && !holds {
             return Some(texts::access_no_control(&short(source)));
         }
         None
@@ -842,7 +838,7 @@ impl Inner {
     }
 
     fn delete(&self, st: &mut State, cmd: &Arc<Cmd>) -> Refusal {
-        if self.broken("delete-wrong-command") && st.queued_run(&cmd.target).is_some() {
+        if broken!(self, "delete-wrong-command") && st.queued_run(&cmd.target).is_some() {
             // the running command canceled instead of the pending one named
             if let Some(active) = st.active.map(|a| st.runs[&a].cmd.cmd_id.clone()).filter(|a| *a != cmd.target) {
                 return self.delete(st, &Arc::new(Cmd { target: active, ..(**cmd).clone() }));
@@ -883,7 +879,7 @@ impl Inner {
     }
 
     fn start_next(&self, st: &mut State) {
-        if self.broken("queue-parallel") {
+        if broken!(self, "queue-parallel") {
             // each waiting command started at once, none waiting for the one before; kept among
             // the bypass commands, where cancelAll and stopAllMotion still reach it
             while !st.suspended && !st.closing {
@@ -896,7 +892,7 @@ impl Inner {
             }
             return;
         }
-        if self.broken("queue-lifo") {
+        if broken!(self, "queue-lifo") {
             return; // lifo_tick starts them
         }
         while st.active.is_none() && !st.suspended && !st.closing {
@@ -1080,7 +1076,7 @@ impl Inner {
         } else {
             self.complete(&mut st, id, completion, &message, true);
         }
-        if self.broken("queue-state-stale") {
+        if broken!(self, "queue-state-stale") {
             // the handler's completion publishes nothing: the finished command stays listed
             self.start_next(&mut st);
             self.idle.notify_all();
