@@ -309,6 +309,9 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
     let reader = dp
         .reader(&commands, Side { reliable: true, transient_local: false, depth: None })
         .map_err(|e| e.to_string())?;
+    // woken by a command's arrival (a waitset), not by polling: a poll's sleep was most of a
+    // command's latency (bench/rust_bridge.py); the stop flags are read at least every TICK
+    let arrived = dp.waiter(&reader).map_err(|e| e.to_string())?;
     println!("{name} ready on domain {domain}{}", if args.simulate { " (simulated)" } else { "" });
     let mut drops = Drops::default();
     stop_on_signals();
@@ -326,7 +329,7 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
             }
         }
         if idle {
-            std::thread::sleep(Duration::from_micros(500));
+            arrived.wait(TICK);
         }
     }
     stop.store(true, Ordering::SeqCst); // (after a signal: the telemetry thread ends too)
