@@ -105,8 +105,8 @@ class Scripted:
             self.cond.notify_all()
         h = self.behaviour.get(cid, {"kind": "ok", "text": "", "texts": []})
         kind, released = h["kind"], self.release_of(cid)
-        if kind == "ok":
-            return h["text"]
+        if kind == "ok":  # (no text: a handler that returns nothing, None in Python)
+            return h["text"] or None
         if kind == "fail":
             raise CommandFailed(h["text"])
         if kind == "error":
