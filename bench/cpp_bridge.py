@@ -182,6 +182,27 @@ def door_said(log: Path) -> str:
     return "; ".join(ln[:160] for ln in lines)
 
 
+def flood_and_memory(client, log: Path, pid: int, flood: int, rss: int, name: str) -> tuple[dict, list[int], int]:
+    """`flood` commands back to back, then `rss` more in tenths (256 in flight), the bridge's
+    VmRSS after each: (the flood's figures, [RSS before, after each tenth] in KiB, acks lost),
+    printed as it goes. `client(*args)` runs rapid_cmd and returns its JSON line."""
+    fl = client("--flood", str(flood))
+    lost = fl["lost"]
+    door = door_said(log)
+    print(f"{name} flood: {fl['sent']} echoes written back to back, {fl['final']} final acks ({fl['ok']} OK), "
+          f"{fl['lost']} lost, {fl['per_s']:.0f} commands/s" + (f"; the door: {door}" if door else ""), flush=True)
+    step = max(1, rss // 10)
+    figures = [rss_kib(pid)]
+    for _ in range(10 if rss else 0):
+        lost += client("--flood", str(step), "--window", "256")["lost"]
+        figures.append(rss_kib(pid))
+    if len(figures) > 1:
+        print(f"RSS of the {name}: {figures[0] / 1024:.1f} MiB before; after "
+              + ", ".join(f"{(i + 1) * step}: {k / 1024:.1f}" for i, k in enumerate(figures[1:])) + " MiB "
+              f"({(figures[-1] - figures[1]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
+    return fl, figures, lost
+
+
 def columns(perf, floors: dict, bridge: dict) -> str:
     """The round trips side by side (p50 / p99 us) and the bridge's p50 over each floor's."""
     heads = ["ddsperf (Cyclone C)", "Fast DDS 1 ack, main", "Fast DDS 2 acks, main", "Fast DDS 1 ack, listener",
@@ -275,24 +296,9 @@ def main() -> int:
                   f"one at a time; the bridge spent {(cpu1 - cpu0) / per * 1e6:.0f} us of CPU and "
                   f"{(sw1 - sw0) / per:.1f} context switches a command", flush=True)
             print(columns(perf, floors, lat), flush=True)
-            fl = client("--flood", str(args.flood))
+            fl, _, flood_lost = flood_and_memory(client, log, bridge.pid, args.flood, args.rss, "bridge")
             out["flood"] = fl
-            lost += fl["lost"]
-            door = door_said(log)
-            print(f"flood: {fl['sent']} echoes written back to back, {fl['final']} final acks ({fl['ok']} OK), "
-                  f"{fl['lost']} lost, {fl['per_s']:.0f} commands/s" + (f"; the door: {door}" if door else ""),
-                  flush=True)
-            step = max(1, args.rss // 10)
-            before = rss_kib(bridge.pid)
-            figures = []
-            for i in range(10 if args.rss else 0):
-                got = client("--flood", str(step), "--window", "256")
-                lost += got["lost"]
-                figures.append(rss_kib(bridge.pid))
-            if figures:
-                print(f"RSS of the bridge: {before / 1024:.1f} MiB before; after "
-                      + ", ".join(f"{(i + 1) * step}: {k / 1024:.1f}" for i, k in enumerate(figures)) + " MiB "
-                      f"({(figures[-1] - figures[0]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
+            lost += flood_lost
         finally:
             stop(bridge)
         if has_journal:  # the same path with the restart journal on: what a default bridge costs

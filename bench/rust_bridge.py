@@ -35,8 +35,8 @@ import tempfile
 from datetime import datetime, timezone
 from pathlib import Path
 
-from cpp_bridge import (ECHO, SOURCE, build as build_cpp, cpu_and_switches, ddsperf, door_said, git_head,
-                        rss_kib, run, stop, take_control)
+from cpp_bridge import (ECHO, SOURCE, build as build_cpp, cpu_and_switches, ddsperf, flood_and_memory, git_head,
+                        run, stop, take_control)
 
 ROOT = Path(__file__).resolve().parents[1]
 RUST = ROOT / "runtime" / "rust"
@@ -161,25 +161,9 @@ def main() -> int:
         proc, log = start(rust_bridge, args.domain, env, ["--no-journal"], tmp, "Rust-flood")
         try:
             take_control(cmd, args.domain, env)
-            fl = client("--flood", str(args.flood))
-            out["flood"] = fl
-            lost += fl["lost"]
-            door = door_said(log)
-            print(f"Rust bridge flood: {fl['sent']} echoes written back to back, {fl['final']} final acks "
-                  f"({fl['ok']} OK), {fl['lost']} lost, {fl['per_s']:.0f} commands/s" + (f"; the door: {door}" if door else ""),
-                  flush=True)
-            step = max(1, args.rss // 10)
-            before = rss_kib(proc.pid)
-            figures = []
-            for _ in range(10 if args.rss else 0):
-                got_ = client("--flood", str(step), "--window", "256")
-                lost += got_["lost"]
-                figures.append(rss_kib(proc.pid))
-            if figures:
-                out["rss_kib"] = [before, *figures]
-                print(f"RSS of the Rust bridge: {before / 1024:.1f} MiB before; after "
-                      + ", ".join(f"{(i + 1) * step}: {k / 1024:.1f}" for i, k in enumerate(figures)) + " MiB "
-                      f"({(figures[-1] - figures[0]) / 1024:+.1f} MiB from the first tenth to the last)", flush=True)
+            out["flood"], out["rss_kib"], flood_lost = flood_and_memory(client, log, proc.pid, args.flood, args.rss,
+                                                                        "Rust bridge")
+            lost += flood_lost
         finally:
             stop(proc, "the Rust bridge")
     print("load average at the end: " + " ".join(f"{x:.2f}" for x in os.getloadavg()), flush=True)
