@@ -30,7 +30,7 @@ from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
 from rapid_runtime.identity import Identities, IdentitiesError
 from rapid_runtime.images import describe as describe_image
 from rapid_runtime.intake import Intake
-from rapid_runtime.journal import Journal, Recovered, default_dir
+from rapid_runtime.journal import Journal, Recovered, default_dir, restart_serial
 from rapid_runtime.manager import COMMAND_WINDOW, SHUTDOWN_TIMEOUT_MS, STOP_TIMEOUT_MS, CommandManager
 from rapid_runtime.security import SecurityUnavailable, enclave_from_environment, use_enclave
 from rapid_runtime.tables import Tables
@@ -109,8 +109,7 @@ class Bridge:
         self.recovered = Recovered()
         if journal is not None:
             self.journal, self.recovered = Journal.open(journal, self.name, domain, command_window, self.log)
-        if serial is None and self.recovered.last_serial:
-            serial = max(int(time.time()), self.recovered.last_serial + 1)  # configs come back with a new serial
+        serial = restart_serial(serial, self.recovered)  # configs come back with a new serial
         self.serials = Serials(serial, issued=self.journal.serial if self.journal is not None else None)
         if self.journal is not None:
             self.journal.start(self.serials.start)

@@ -89,6 +89,15 @@ class Recovered:
     crashed: bool = False  # the journal did not end with a clean stop
 
 
+def restart_serial(requested: int | None, recovered: Recovered, now: float | None = None) -> int | None:
+    """The configs' serial at a start: the one asked for; else, when the journal knows a
+    serial, one past it and no smaller than the time in seconds (configs come back with a new
+    serial, as the C++ and Rust runtimes' restart_serial); else None (the bridge's default)."""
+    if requested is not None or recovered.last_serial <= 0:
+        return requested
+    return max(int(time.time() if now is None else now), recovered.last_serial + 1)
+
+
 def _record(e: Entry) -> dict:
     rec = {"k": e.state, "id": e.cmd_id, "src": e.src_name, "asset": e.asset_name, "serial": e.serial}
     if e.state == "c":
