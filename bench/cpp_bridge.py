@@ -159,6 +159,16 @@ def start_bridge(exe: Path, domain: int, env: dict, extra: list[str], tmp: str):
     return bridge, log
 
 
+def echoes(cmd: Path, domain: int, env: dict, *extra: str) -> dict:
+    """rapid_cmd sending Admin/echo as `extra` says (--repeat N, --flood N): its JSON figures."""
+    res = subprocess.run([str(cmd), *ECHO, "--domain", str(domain), "--source", SOURCE, "--timeout", "120", *extra],
+                         capture_output=True, text=True, env=env, timeout=3600)
+    lines = [ln for ln in res.stdout.splitlines() if ln.startswith("{")]
+    if not lines:
+        raise SystemExit(f"bench: rapid_cmd said {res.stdout[-1000:]} {res.stderr[-2000:]}")
+    return json.loads(lines[-1])
+
+
 def take_control(cmd: Path, domain: int, env: dict) -> None:
     granted = subprocess.run([str(cmd), "AccessControl", "requestControl", "--domain", str(domain), "--source", SOURCE],
                              capture_output=True, text=True, env=env, timeout=120)
@@ -240,13 +250,8 @@ def main() -> int:
     env = {k: v for k, v in os.environ.items() if not k.startswith(("FASTDDS_", "FASTRTPS_"))}  # built-in rapid_local
     print(f"commit {git_head()}, {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC", flush=True)
 
-    def client(*extra: str, words=ECHO) -> dict:
-        res = subprocess.run([str(cmd), *words, "--domain", str(args.domain), "--source", SOURCE, "--timeout", "120",
-                              *extra], capture_output=True, text=True, env=env, timeout=3600)
-        lines = [ln for ln in res.stdout.splitlines() if ln.startswith("{")]
-        if not lines:
-            raise SystemExit(f"bench: rapid_cmd said {res.stdout[-1000:]} {res.stderr[-2000:]}")
-        return json.loads(lines[-1])
+    def client(*extra: str) -> dict:
+        return echoes(cmd, args.domain, env, *extra)
 
     print("load average at the start: " + " ".join(f"{x:.2f}" for x in os.getloadavg()), flush=True)
     if args.ddsperf_seconds > 0:

@@ -35,8 +35,8 @@ import tempfile
 from datetime import datetime, timezone
 from pathlib import Path
 
-from cpp_bridge import (ECHO, SOURCE, build as build_cpp, cpu_and_switches, ddsperf, flood_and_memory, git_head,
-                        run, stop, take_control)
+from cpp_bridge import (build as build_cpp, cpu_and_switches, ddsperf, echoes, flood_and_memory, git_head, run,
+                        stop, take_control)
 
 ROOT = Path(__file__).resolve().parents[1]
 RUST = ROOT / "runtime" / "rust"
@@ -104,12 +104,7 @@ def main() -> int:
     print("load average at the start: " + " ".join(f"{x:.2f}" for x in os.getloadavg()), flush=True)
 
     def client(*extra: str) -> dict:
-        res = subprocess.run([str(cmd), *ECHO, "--domain", str(args.domain), "--source", SOURCE, "--timeout", "120",
-                              *extra], capture_output=True, text=True, env=env, timeout=3600)
-        lines = [ln for ln in res.stdout.splitlines() if ln.startswith("{")]
-        if not lines:
-            raise SystemExit(f"bench: rapid_cmd said {res.stdout[-1000:]} {res.stderr[-2000:]}")
-        return json.loads(lines[-1])
+        return echoes(cmd, args.domain, env, *extra)
 
     perf = None
     if args.ddsperf_seconds > 0:
