@@ -84,13 +84,7 @@ pub fn coerce(t: DataType, v: &Value) -> Option<Value> {
     if v.data_type() == t {
         return Some(v.clone());
     }
-    let x = match *v {
-        Value::Double(x) => Some(x),
-        Value::Float(x) => Some(x as f64),
-        Value::Int(x) => Some(x as f64),
-        Value::LongLong(x) => Some(x as f64),
-        _ => None,
-    };
+    let x = v.number();
     match (t, v) {
         (DataType::Double, _) => x.map(Value::Double),
         (DataType::Float, _) => {

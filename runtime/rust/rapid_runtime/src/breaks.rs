@@ -201,13 +201,7 @@ fn converted(to: DataType, v: &Value) -> Option<Value> {
     if v.data_type() == to {
         return None;
     }
-    let x = match *v {
-        Value::Double(x) => Some(x),
-        Value::Float(x) => Some(x as f64),
-        Value::Int(x) => Some(x as f64),
-        Value::LongLong(x) => Some(x as f64),
-        _ => None,
-    };
+    let x = v.number();
     match (to, x) {
         (DataType::String, _) => Some(Value::String(v.str())),
         (DataType::Double, Some(x)) => Some(Value::Double(x)),

@@ -79,7 +79,8 @@ impl Value {
         }
     }
 
-    fn number(&self) -> Option<f64> {
+    /// A numeric value as f64 (what range checks and conversions read); None for the rest.
+    pub(crate) fn number(&self) -> Option<f64> {
         match *self {
             Value::Double(x) => Some(x),
             Value::Float(x) => Some(x as f64),
