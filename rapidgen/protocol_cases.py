@@ -217,6 +217,24 @@ def _state(case: dict) -> dict | None:
     return {"set": {v: v for v in given}, "unset": [v for v in STATE_VARS if v not in given], "dir": where}
 
 
+def _live(case: dict, steps: list[dict]) -> bool:
+    """Whether a live runner can replay the case against a running asset (README, "Live replay")."""
+    # an asset started with options, under another name, on a journal or a state folder, with
+    # a door; a burst of `times` sends (a flood to a live asset: its conform run is kept short)
+    if any(k in case for k in ("options", "asset_name", "journal", "state", "door")) or \
+            any("times" in (step.get("send") or {}) for step in case["steps"]):
+        return False
+    for s in steps:
+        # (records' statuses, completed records: the runner compares the pending and active cmdIds only)
+        if s["op"] in OFFLINE_ONLY or "statuses" in s or "completed" in s:
+            return False
+        # a scripted handler, a QueueAction outside the enumeration (a typed DDS writer cannot send
+        # it), another header srcName than cmdSrc: what a runner cannot make an asset do or send
+        if s["op"] == "send" and (s["handler"]["kind"] != "ok" or s["action"] == "QUEUE_BOGUS" or s["src_name"] != s["src"]):
+            return False
+    return True
+
+
 def load_file(path: Path) -> list[dict]:
     sink = DiagnosticSink()
     shown = os.path.relpath(path, ROOT) if path.is_relative_to(ROOT) else str(path)
@@ -239,19 +257,11 @@ def load_file(path: Path) -> list[dict]:
         seed = case.get("asset", data.get("asset", "k10"))
         source = case.get("source", data.get("source", DEFAULT_SOURCE))
         steps = _steps(case, seed, source, doc, path_)
-        # (a case with manager options needs an asset started with them: offline only)
-        # (QUEUE_BOGUS stands for a value outside QueueAction, which a typed DDS writer cannot send)
         journal = _journal(case, seed, source)
         if journal is not None and "\r" in journal["text"]:  # (the runtimes' line splitting differs there)
             raise CaseError(f"{doc.loc((*path_, 'journal'))}: a journal line holds a carriage return")
-        # (records' statuses, completed records: the live runner compares the pending and active cmdIds only)
         door = case.get("door")  # (its limits left out: the runtime's own)
-        # (a burst of `times` sends is a flood to a live asset: its conform run is kept short)
-        burst = any("times" in (step.get("send") or {}) for step in case["steps"])
-        # (a renamed asset or another header srcName than cmdSrc: what a live runner cannot be or send)
-        live = not case.get("options") and "asset_name" not in case and journal is None and "state" not in case and door is None and not burst and all(
-            s["op"] not in OFFLINE_ONLY and "statuses" not in s and "completed" not in s and (s["op"] != "send" or s["handler"]["kind"] == "ok" and
-                                             s["action"] != "QUEUE_BOGUS" and s["src_name"] == s["src"]) for s in steps)
+        live = _live(case, steps)
         cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
                       "rules": case.get("rules", []), "asset": seed,
                       "asset_name": case.get("asset_name"), "options": case.get("options", {}),
