@@ -356,8 +356,33 @@ struct Replay<'a> {
     journal_dir: Option<PathBuf>,
     /// the case's temporary folder, the journal's state folder inside it
     temp: Option<PathBuf>,
-    /// the environment a case's `state:` changed, as it was
-    saved_env: Vec<(String, Option<std::ffi::OsString>)>,
+    /// the environment a case's `state:` changed, put back when the replay ends (also early)
+    _env: SavedEnv,
+}
+
+/// Environment variables as they were before a case changed them: restored when dropped.
+#[derive(Default)]
+struct SavedEnv(Vec<(String, Option<std::ffi::OsString>)>);
+
+impl SavedEnv {
+    fn set(&mut self, var: &str, value: Option<&std::path::Path>) {
+        self.0.push((var.to_string(), std::env::var_os(var)));
+        match value {
+            Some(v) => std::env::set_var(var, v),
+            None => std::env::remove_var(var),
+        }
+    }
+}
+
+impl Drop for SavedEnv {
+    fn drop(&mut self) {
+        for (var, value) in self.0.iter().rev() {
+            match value {
+                Some(v) => std::env::set_var(var, v),
+                None => std::env::remove_var(var),
+            }
+        }
+    }
 }
 
 fn options_of(case: &Json, shared: &Arc<Shared>) -> Options {
@@ -432,16 +457,14 @@ impl<'a> Replay<'a> {
             Some(dir) => t.join(dir),
             None => t.join("state").join("rapid_runtime"),
         });
-        let mut saved_env = Vec::new();
+        let mut env = SavedEnv::default();
         if let Some(t) = temp.as_ref().filter(|_| !state.is_null()) {
             // (the journal's default folder named by these, in the case's folder; one case at a time)
             for var in state["unset"].as_array().into_iter().flatten().filter_map(Json::as_str) {
-                saved_env.push((var.to_string(), std::env::var_os(var)));
-                std::env::remove_var(var);
+                env.set(var, None);
             }
             for (var, rel) in state["set"].as_object().into_iter().flatten() {
-                saved_env.push((var.clone(), std::env::var_os(var)));
-                std::env::set_var(var, t.join(rel.as_str().unwrap_or_default()));
+                env.set(var, Some(&t.join(rel.as_str().unwrap_or_default())));
             }
         }
         if let (Some(dir), false) = (&journal_dir, found.is_null()) {
@@ -458,7 +481,7 @@ impl<'a> Replay<'a> {
             let limit = |key: &str, default: usize| door[key].as_u64().map_or(default, |n| n as usize);
             Intake::new(m.clone(), log, limit("per_writer", PER_WRITER), limit("shed_answers", SHED_ANSWERS))
         });
-        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), intake, journal_dir, temp, saved_env })
+        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), intake, journal_dir, temp, _env: env })
     }
 
     /// The process dies: the journal as the disk has it (no clean stop record), nothing more
@@ -668,12 +691,6 @@ impl<'a> Replay<'a> {
         self.m.shutdown(Some(Duration::from_secs(2)));
         for m in &self.dead {
             m.shutdown(Some(Duration::from_secs(2)));
-        }
-        for (var, value) in self.saved_env.iter().rev() {
-            match value {
-                Some(v) => std::env::set_var(var, v),
-                None => std::env::remove_var(var),
-            }
         }
         if let Some(dir) = &self.temp {
             let _ = std::fs::remove_dir_all(dir);
