@@ -370,6 +370,31 @@ std::string show_want(const json& acks) {
 
 // ---- the replay ------------------------------------------------------------------------------------
 
+// Environment variables as they were before a case changed them: put back when destroyed.
+class SavedEnv {
+public:
+    SavedEnv() = default;
+    SavedEnv(const SavedEnv&) = delete;
+    SavedEnv& operator=(const SavedEnv&) = delete;
+    ~SavedEnv() {
+        for (const auto& [var, value] : before_) {
+            if (value) ::setenv(var.c_str(), value->c_str(), 1);
+            else ::unsetenv(var.c_str());
+        }
+    }
+    void set(const std::string& var, const char* value) {  // (nullptr: unset)
+        if (!before_.count(var)) {
+            const char* was = std::getenv(var.c_str());
+            before_[var] = was ? std::optional<std::string>(was) : std::nullopt;
+        }
+        if (value) ::setenv(var.c_str(), value, 1);
+        else ::unsetenv(var.c_str());
+    }
+
+private:
+    std::map<std::string, std::optional<std::string>> before_;
+};
+
 class Replay {
 public:
     explicit Replay(const json& c) : case_(c), tables_(seed_tables(c.at("asset").get<std::string>())), handlers_(seen_) {
@@ -404,8 +429,8 @@ public:
             journal_dir_ = temp_ + "/" + (state.is_null() ? "state/rapid_runtime" : state.at("dir").get<std::string>());
         }
         if (!state.is_null()) {  // (the journal's default folder named by these, in the case's folder)
-            for (const auto& var : state.at("unset")) set_env(var.get<std::string>(), nullptr);
-            for (const auto& [var, rel] : state.at("set").items()) set_env(var, (temp_ + "/" + rel.get<std::string>()).c_str());
+            for (const auto& var : state.at("unset")) env_.set(var.get<std::string>(), nullptr);
+            for (const auto& [var, rel] : state.at("set").items()) env_.set(var, (temp_ + "/" + rel.get<std::string>()).c_str());
         }
         if (!found.is_null()) {
             std::filesystem::create_directories(journal_dir_);
@@ -433,10 +458,6 @@ public:
         manager().shut_down(2000);
         managers_.clear();  // (each joins its handlers' threads)
         journals_.clear();
-        for (const auto& [var, value] : saved_env_) {
-            if (value) ::setenv(var.c_str(), value->c_str(), 1);
-            else ::unsetenv(var.c_str());
-        }
         if (!temp_.empty()) std::filesystem::remove_all(temp_);
     }
     Replay(const Replay&) = delete;
@@ -523,16 +544,6 @@ public:
 
 private:
     CommandManager& manager() { return *managers_.back(); }
-
-    // An environment variable set (nullptr: unset) for this case, its value before kept
-    void set_env(const std::string& var, const char* value) {
-        if (!saved_env_.count(var)) {
-            const char* before = std::getenv(var.c_str());
-            saved_env_[var] = before ? std::optional<std::string>(before) : std::nullopt;
-        }
-        if (value) ::setenv(var.c_str(), value, 1);
-        else ::unsetenv(var.c_str());
-    }
 
     static std::string temp_dir() {
         std::string pattern = ::testing::TempDir() + "spec-journal-XXXXXX";
@@ -726,7 +737,7 @@ private:
     ManagerOptions options_;
     std::string temp_;  // the case's temporary folder ("": none)
     std::string journal_dir_;  // the restart journal's folder in it ("": none)
-    std::map<std::string, std::optional<std::string>> saved_env_;  // what a case's `state:` changed
+    SavedEnv env_;  // what a case's `state:` changed, put back when the replay ends (also if it fails to start)
     Seen seen_;
     std::vector<std::unique_ptr<CollectingOutbox>> outboxes_;  // one per life of the asset, the last live
     Scripted handlers_;
