@@ -18,6 +18,7 @@ pub mod handlers;
 pub mod intake;
 pub mod journal;
 pub mod manager;
+pub mod stream;
 pub mod tables;
 pub mod text;
 pub mod texts;
