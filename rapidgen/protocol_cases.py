@@ -31,7 +31,8 @@ SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot")
          "robonaut2": ("robonaut2", "rapid_robonaut2")}
 DEFAULT_SOURCE = "RapidWorkbench"
 # steps only a driver can take (a live runner cannot make a handler return, restart the asset or
-# fill its door); expectations it cannot see (calls, retired, log, no_log, pending, order, stopped) it skips
+# fill its door); a case with expectations it cannot see (serial, files) is offline only; others
+# it cannot see (calls, retired, log, no_log, pending, order, stopped) it skips
 OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse", "offer", "open"}
 # a journal record's keys in the order the runtimes write them (docs/runtime.md, "Restarts")
 RECORD_KEYS = ("k", "id", "src", "asset", "serial", "c", "m")
@@ -156,6 +157,12 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
             out.append({"op": op, "ids": body})
         elif op == "stopped":
             out.append({"op": op, "count": body})
+        elif op == "serial":  # the configs' serial since the latest start: a number, or the clock's seconds then
+            out.append({"op": op, "clock": body == "clock", "value": 0 if body == "clock" else body})
+        elif op == "files":
+            if not any(k in case for k in ("journal", "state")) and not any("restart" in st for st in case["steps"]):
+                raise CaseError(f"{where}: `files` needs a journal folder (the case's `journal:`, `state:` or a restart)")
+            out.append({"op": op, "names": body})
     return out
 
 
@@ -168,15 +175,22 @@ def journal_line(record: dict) -> str:
 
 def _journal(case: dict, seed: str, source: str) -> dict | None:
     """The journal the asset's first start finds (the case's `journal:`): its file name (one per
-    asset and domain; the drivers start on domain 0) and its text: a record (`k`, fields left
-    out filled in) as the runtimes write it, `json:` a record's JSON text with its CRC added (and `separator:`
-    instead of the space after it, a damaged one),
-    `raw:` a line written as it is, `torn:` bytes without a newline."""
-    if "journal" not in case:
+    asset and domain; the drivers start on domain 0), its text, and `new`: the text of the
+    `<file>.new` a crash in the middle of a compaction left (`journal_new:`), or None."""
+    if "journal" not in case and "journal_new" not in case:
         return None
     name = case.get("asset_name", seed_tables(seed).name)
+    file = "".join(c if c.isascii() and (c.isalnum() or c in "_.-") else "_" for c in name)[:64]
+    new = _journal_text(case["journal_new"], name, source) if "journal_new" in case else None
+    return {"file": f"{file}-domain0.journal", "text": _journal_text(case.get("journal", []), name, source), "new": new}
+
+
+def _journal_text(entries: list, name: str, source: str) -> str:
+    """Journal lines: a record (`k`, fields left out filled in) as the runtimes write it, `json:`
+    a record's JSON text with its CRC added (and `separator:` instead of the space after it, a
+    damaged one), `raw:` a line written as it is, `torn:` bytes without a newline."""
     text = ""
-    for entry in case["journal"]:
+    for entry in entries:
         if "raw" in entry:  # a line as it is (a damaged one)
             text += entry["raw"] + "\n"
             continue
@@ -196,8 +210,7 @@ def _journal(case: dict, seed: str, source: str) -> dict | None:
                 rec.setdefault("m", "")
         order = [k for k in RECORD_KEYS if k in rec] + [k for k in rec if k not in RECORD_KEYS]
         text += journal_line({k: rec[k] for k in order})
-    file = "".join(c if c.isascii() and (c.isalnum() or c in "_.-") else "_" for c in name)[:64]
-    return {"file": f"{file}-domain0.journal", "text": text}
+    return text
 
 
 def _state(case: dict) -> dict | None:
@@ -220,13 +233,13 @@ def _state(case: dict) -> dict | None:
 def _live(case: dict, steps: list[dict]) -> bool:
     """Whether a live runner can replay the case against a running asset (README, "Live replay")."""
     # an asset started with options, under another name, on a journal or a state folder, with
-    # a door; a burst of `times` sends (a flood to a live asset: its conform run is kept short)
-    if any(k in case for k in ("options", "asset_name", "journal", "state", "door")) or \
+    # a door or a given serial; a burst of `times` sends (a flood to a live asset: its conform run is kept short)
+    if any(k in case for k in ("options", "asset_name", "journal", "journal_new", "state", "door", "serial")) or \
             any("times" in (step.get("send") or {}) for step in case["steps"]):
         return False
     for s in steps:
         # (records' statuses, completed records: the runner compares the pending and active cmdIds only)
-        if s["op"] in OFFLINE_ONLY or "statuses" in s or "completed" in s:
+        if s["op"] in OFFLINE_ONLY or s["op"] in ("serial", "files") or "statuses" in s or "completed" in s:
             return False
         # a scripted handler, a QueueAction outside the enumeration (a typed DDS writer cannot send
         # it), another header srcName than cmdSrc: what a runner cannot make an asset do or send
@@ -258,13 +271,14 @@ def load_file(path: Path) -> list[dict]:
         source = case.get("source", data.get("source", DEFAULT_SOURCE))
         steps = _steps(case, seed, source, doc, path_)
         journal = _journal(case, seed, source)
-        if journal is not None and "\r" in journal["text"]:  # (the runtimes' line splitting differs there)
+        if journal is not None and "\r" in journal["text"] + (journal["new"] or ""):  # (the runtimes' line splitting differs there)
             raise CaseError(f"{doc.loc((*path_, 'journal'))}: a journal line holds a carriage return")
         door = case.get("door")  # (its limits left out: the runtime's own)
         live = _live(case, steps)
         cases.append({"file": path.name, "line": doc.loc(path_).line, "name": case["name"],
                       "rules": case.get("rules", []), "asset": seed,
                       "asset_name": case.get("asset_name"), "options": case.get("options", {}),
+                      "serial": case.get("serial"),
                       "live": live, "journal": journal, "state": _state(case), "door": door, "steps": steps})
     return cases
 

@@ -19,8 +19,12 @@
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
+#include <fnmatch.h>
+
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -37,6 +41,7 @@
 #include <rapid_runtime/intake.hpp>
 #include <rapid_runtime/journal.hpp>
 #include <rapid_runtime/manager.hpp>
+#include <rapid_runtime/serials.hpp>
 #include <rapid_runtime/tables.hpp>
 #include <rapid_runtime/value.hpp>
 
@@ -437,6 +442,11 @@ public:
             std::ofstream file(journal_dir_ + "/" + found.at("file").get<std::string>(), std::ios::binary);
             file << found.at("text").get<std::string>();
             if (!file.flush()) throw std::runtime_error("cannot write the case's journal in " + journal_dir_);
+            if (!found.at("new").is_null()) {  // (what a crash in the middle of a compaction left)
+                std::ofstream left(journal_dir_ + "/" + found.at("file").get<std::string>() + ".new", std::ios::binary);
+                left << found.at("new").get<std::string>();
+                if (!left.flush()) throw std::runtime_error("cannot write the case's .new file in " + journal_dir_);
+            }
         }
         start();
         // a case with a door offers commands there as the bridge's reader does; shut until `open`
@@ -536,6 +546,14 @@ public:
                 return false;
             return got == want || fail("the shutdown callback called " + std::to_string(want) + " times",
                                        std::to_string(got) + " calls");
+        } else if (op == "serial") {
+            const bool clock = s.at("clock").get<bool>();
+            const std::int64_t want = s.at("value").get<std::int64_t>();
+            if (clock ? std::llabs(serial_ - started_) <= 2 : serial_ == want) return true;
+            return fail(clock ? "the configs' serial at the clock" : "the configs' serial " + std::to_string(want),
+                        std::to_string(serial_));
+        } else if (op == "files") {
+            return expect_files(s.at("names").get<std::vector<std::string>>());
         } else {
             return fail("a step this driver knows", "step '" + op + "'");
         }
@@ -544,6 +562,22 @@ public:
 
 private:
     CommandManager& manager() { return *managers_.back(); }
+
+    // The journal folder holds as many files as `patterns`, each matched by one of them and
+    // each of them matching one (`*`: any run of characters).
+    bool expect_files(const std::vector<std::string>& patterns) {
+        std::vector<std::string> names;
+        if (std::filesystem::exists(journal_dir_))
+            for (const auto& e : std::filesystem::directory_iterator(journal_dir_)) names.push_back(e.path().filename());
+        std::sort(names.begin(), names.end());
+        auto match = [](const std::string& p, const std::string& n) { return ::fnmatch(p.c_str(), n.c_str(), 0) == 0; };
+        bool ok = names.size() == patterns.size();
+        for (const auto& n : names)
+            ok = ok && std::any_of(patterns.begin(), patterns.end(), [&](const std::string& p) { return match(p, n); });
+        for (const auto& p : patterns)
+            ok = ok && std::any_of(names.begin(), names.end(), [&](const std::string& n) { return match(p, n); });
+        return ok || fail("the journal folder holding " + show(patterns), show(names));
+    }
 
     static std::string temp_dir() {
         std::string pattern = ::testing::TempDir() + "spec-journal-XXXXXX";
@@ -566,9 +600,17 @@ private:
             journals_.push_back(Journal::open(folder, tables_.name, 0,
                                               o.window, [&out](const std::string& t) { out.log(t); }, recovered));
             if (!journals_.back()) throw std::runtime_error("the restart journal cannot be opened in " + journal_dir_);
-            journals_.back()->start(1);
             o.journal = journals_.back().get();
         }
+        // the configs' serial as the bridge chooses it (dds/src/bridge.cpp): the one asked for,
+        // else past the journal's last, else the clock's
+        started_ = std::time(nullptr);
+        const std::int64_t asked = case_.at("serial").is_null() ? -1 : case_.at("serial").get<std::int64_t>();
+        std::function<void(std::int32_t)> issued;
+        if (o.journal != nullptr) issued = [j = o.journal](std::int32_t s) { j->serial(s); };
+        Serials serials(restart_serial(asked, recovered, started_), {}, std::move(issued));
+        serial_ = serials.start();
+        if (o.journal != nullptr) o.journal->start(serial_);
         managers_.push_back(
             std::make_unique<CommandManager>(tables_, handlers_, out, o));
         if (recovered.crashed) managers_.back()->restore(recovered);
@@ -737,6 +779,8 @@ private:
     ManagerOptions options_;
     std::string temp_;  // the case's temporary folder ("": none)
     std::string journal_dir_;  // the restart journal's folder in it ("": none)
+    std::int64_t serial_ = 0;  // the configs' serial at the latest start
+    std::int64_t started_ = 0;  // and when (seconds)
     SavedEnv env_;  // what a case's `state:` changed, put back when the replay ends (also if it fails to start)
     Seen seen_;
     std::vector<std::unique_ptr<CollectingOutbox>> outboxes_;  // one per life of the asset, the last live

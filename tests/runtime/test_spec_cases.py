@@ -5,6 +5,7 @@ the same cases (tests/cpp_runtime/test_spec_cases.cpp)."""
 from __future__ import annotations
 
 import copy
+import fnmatch
 import math
 import os
 import threading
@@ -16,7 +17,8 @@ import pytest
 from rapid_runtime.command import Cmd
 from rapid_runtime.handlers import CommandFailed
 from rapid_runtime.intake import Intake
-from rapid_runtime.journal import Journal, default_dir
+from rapid_runtime.configs import Serials
+from rapid_runtime.journal import Journal, Recovered, default_dir, restart_serial
 from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapidgen.protocol_cases import load_cases, seed_tables
 
@@ -181,6 +183,9 @@ class Replay:
         if case["journal"] is not None:
             self.journal_dir.mkdir(parents=True)
             (self.journal_dir / case["journal"]["file"]).write_bytes(case["journal"]["text"].encode())
+            if case["journal"]["new"] is not None:  # (what a crash in the middle of a compaction left)
+                (self.journal_dir / (case["journal"]["file"] + ".new")).write_bytes(case["journal"]["new"].encode())
+        self.serial, self.started = 0, 0.0  # the configs' serial at the latest start, and when
         self.m = self.manager()
         # a case with a door offers commands there as the bridge's reader does; shut until `open`
         self.intake = None if case["door"] is None else Intake(self.m, self.out.log, inline=True, **case["door"])
@@ -194,7 +199,14 @@ class Replay:
             folder = default_dir() if self.case["state"] is not None else self.journal_dir
             journal, recovered = Journal.open(folder, self.tables.name, 0, window, self.out.log)
             assert journal is not None, self.out.logs
-            journal.start(1)
+        # the configs' serial as the bridge chooses it (rapid_runtime.bridge): the one asked for,
+        # else past the journal's last, else the clock's
+        self.started = time.time()
+        serials = Serials(restart_serial(self.case["serial"], recovered or Recovered()),
+                          issued=journal.serial if journal is not None else None)
+        self.serial = serials.start
+        if journal is not None:
+            journal.start(serials.start)
         m = CommandManager(self.tables, self.handlers, self.out, journal=journal, on_shutdown=self.out.stop,
                            **self.case["options"])
         if recovered is not None and recovered.crashed:
@@ -307,6 +319,14 @@ class Replay:
             self.until(f"the shutdown callback called {s['count']} times", lambda: out.stopped >= s["count"],
                        lambda: out.stopped)
             assert out.stopped == s["count"], f"{self.case['name']!r}: the shutdown callback called {out.stopped} times"
+        elif op == "serial":
+            ok = abs(self.serial - self.started) <= 2 if s["clock"] else self.serial == s["value"]
+            assert ok, f"{self.case['name']!r}: the configs' serial is {self.serial}, not {'the clock' if s['clock'] else s['value']}"
+        elif op == "files":
+            names = sorted(p.name for p in self.journal_dir.iterdir()) if self.journal_dir.exists() else []
+            ok = len(names) == len(s["names"]) and all(any(fnmatch.fnmatchcase(n, p) for p in s["names"]) for n in names) \
+                and all(any(fnmatch.fnmatchcase(n, p) for n in names) for p in s["names"])
+            assert ok, f"{self.case['name']!r}: the journal folder holds {names}, not {s['names']}"
         else:
             raise AssertionError(f"unknown step {op}")
 

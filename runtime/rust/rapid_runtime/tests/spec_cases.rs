@@ -356,6 +356,8 @@ struct Replay<'a> {
     journal_dir: Option<PathBuf>,
     /// the case's temporary folder, the journal's state folder inside it
     temp: Option<PathBuf>,
+    /// the latest start's serial
+    start: Start,
     /// the environment a case's `state:` changed, put back when the replay ends (also early)
     _env: SavedEnv,
 }
@@ -411,7 +413,7 @@ fn manager(
     handlers: &Arc<Scripted>,
     gate: &Arc<Gate>,
     journal_dir: Option<&PathBuf>,
-) -> Result<Arc<CommandManager>, String> {
+) -> Result<(Arc<CommandManager>, Start), String> {
     let mut opts = options_of(case, &gate.shared);
     let mut recovered = None;
     if let Some(dir) = journal_dir {
@@ -420,16 +422,39 @@ fn manager(
         // (a case with `state:` starts the asset without a folder: the runtime's default one)
         let dir = if case["state"].is_null() { dir.clone() } else { Journal::default_dir() };
         let (journal, rec) = Journal::open(&dir, &tables.name, 0, opts.window, log);
-        let mut journal = journal.ok_or("the journal did not open (see the log)")?;
-        journal.start(1);
-        opts.journal = Some(journal);
+        opts.journal = Some(journal.ok_or("the journal did not open (see the log)")?);
         recovered = Some(rec);
+    }
+    // the configs' serial as the bridge chooses it (rapid_dds's bridge.rs): the one asked for,
+    // else past the journal's last, else the clock's
+    let at = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs() as i64);
+    let asked = case["serial"].as_i64();
+    let serial = journal::restart_serial(asked, recovered.as_ref().unwrap_or(&journal::Recovered::default()), at).unwrap_or(at);
+    if let Some(j) = opts.journal.as_mut() {
+        j.start(serial);
     }
     let m = CommandManager::new(tables.clone(), handlers.clone(), gate.clone(), opts)?;
     if let Some(rec) = recovered.filter(|r| r.crashed) {
         m.restore(&rec);
     }
-    Ok(Arc::new(m))
+    Ok((Arc::new(m), Start { serial, at }))
+}
+
+/// The configs' serial at a start, and the clock's seconds then.
+#[derive(Clone, Copy)]
+struct Start {
+    serial: i64,
+    at: i64,
+}
+
+/// A file name matched by a pattern whose `*` stands for any run of characters.
+fn glob(pattern: &str, name: &str) -> bool {
+    match pattern.split_once('*') {
+        None => pattern == name,
+        Some((head, rest)) => {
+            name.starts_with(head) && (0..=name.len() - head.len()).any(|k| name.is_char_boundary(head.len() + k) && glob(rest, &name[head.len() + k..]))
+        }
+    }
 }
 
 impl<'a> Replay<'a> {
@@ -471,8 +496,13 @@ impl<'a> Replay<'a> {
             std::fs::create_dir_all(dir)
                 .and_then(|_| std::fs::write(dir.join(s(found, "file")), s(found, "text")))
                 .map_err(|e| format!("the case's journal cannot be written in {}: {e}", dir.display()))?;
+            if let Some(left) = found["new"].as_str() {
+                // (what a crash in the middle of a compaction left)
+                std::fs::write(dir.join(format!("{}.new", s(found, "file"))), left)
+                    .map_err(|e| format!("the case's .new file cannot be written in {}: {e}", dir.display()))?;
+            }
         }
-        let m = manager(case, &tables, &handlers, &gate, journal_dir.as_ref())?;
+        let (m, start) = manager(case, &tables, &handlers, &gate, journal_dir.as_ref())?;
         // a case with a door offers commands there as the bridge's reader does; shut until `open`
         let door = &case["door"];
         let intake = (!door.is_null()).then(|| {
@@ -481,7 +511,7 @@ impl<'a> Replay<'a> {
             let limit = |key: &str, default: usize| door[key].as_u64().map_or(default, |n| n as usize);
             Intake::new(m.clone(), log, limit("per_writer", PER_WRITER), limit("shed_answers", SHED_ANSWERS))
         });
-        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), intake, journal_dir, temp, _env: env })
+        Ok(Replay { case, tables, shared, handlers, gate, m, dead: Vec::new(), intake, journal_dir, temp, start, _env: env })
     }
 
     /// The process dies: the journal as the disk has it (no clean stop record), nothing more
@@ -490,7 +520,8 @@ impl<'a> Replay<'a> {
         self.gate.alive.store(false, Ordering::SeqCst);
         drop(self.m.release_journal());
         self.gate = Arc::new(Gate { shared: self.shared.clone(), alive: AtomicBool::new(true) });
-        let m = manager(self.case, &self.tables, &self.handlers, &self.gate, self.journal_dir.as_ref())?;
+        let (m, start) = manager(self.case, &self.tables, &self.handlers, &self.gate, self.journal_dir.as_ref())?;
+        self.start = start;
         self.dead.push(std::mem::replace(&mut self.m, m));
         Ok(())
     }
@@ -502,7 +533,8 @@ impl<'a> Replay<'a> {
         if let Some(journal) = self.m.release_journal() {
             journal.close(true);
         }
-        let m = manager(self.case, &self.tables, &self.handlers, &self.gate, self.journal_dir.as_ref())?;
+        let (m, start) = manager(self.case, &self.tables, &self.handlers, &self.gate, self.journal_dir.as_ref())?;
+        self.start = start;
         self.dead.push(std::mem::replace(&mut self.m, m));
         Ok(())
     }
@@ -673,6 +705,29 @@ impl<'a> Replay<'a> {
                 self.until(format!("the shutdown callback called {want} times"), |r| got(r) >= want, |r| got(r).to_string())?;
                 if got(self) != want {
                     return Err(format!("expected the shutdown callback called {want} times; seen {}", got(self)));
+                }
+            }
+            "serial" => {
+                let clock = st["clock"].as_bool().unwrap_or(false);
+                let want = st["value"].as_i64().unwrap_or(-1);
+                let ok = if clock { (self.start.serial - self.start.at).abs() <= 2 } else { self.start.serial == want };
+                if !ok {
+                    let what = if clock { "the clock's".to_string() } else { want.to_string() };
+                    return Err(format!("expected the configs' serial {what}; seen {}", self.start.serial));
+                }
+            }
+            "files" => {
+                let patterns = strings(&st["names"]);
+                let mut names: Vec<String> = match self.journal_dir.as_ref().map(std::fs::read_dir) {
+                    Some(Ok(dir)) => dir.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect(),
+                    _ => Vec::new(),
+                };
+                names.sort();
+                let ok = names.len() == patterns.len()
+                    && names.iter().all(|n| patterns.iter().any(|p| glob(p, n)))
+                    && patterns.iter().all(|p| names.iter().any(|n| glob(p, n)));
+                if !ok {
+                    return Err(format!("expected the journal folder holding {patterns:?}; seen {names:?}"));
                 }
             }
             other => return Err(format!("unknown step {other}")),
