@@ -203,6 +203,7 @@ class Builds:
               f"-DK10_BRIDGE_DIR={gen / 'k10' / 'cpp' / 'bridge'}",
               f"-DCHARIOT_BRIDGE_DIR={gen / 'chariot' / 'cpp' / 'bridge'}",
               f"-DR2_BRIDGE_DIR={gen / 'robonaut2' / 'cpp' / 'bridge'}",
+              f"-DODDITY_BRIDGE_DIR={ROOT / 'generated' / 'spec-oddity' / 'cpp' / 'bridge'}",  # (committed)
               *([f"-DSPEC_PREBUILT={self.prebuilt}"] if self.prebuilt else [])])
         self.build(self.tests, _target(suite))
         if bridge:

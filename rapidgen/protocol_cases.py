@@ -27,8 +27,9 @@ ROOT = Path(__file__).resolve().parents[1]
 SPEC = ROOT / "runtime" / "spec"
 CASES = SPEC / "cases"
 # seed -> (generated package folder, package): the tables each driver builds for that name
+# (oddity: not a robot, runtime/spec/assets/oddity.yaml, the shapes no seed robot has)
 SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot"),
-         "robonaut2": ("robonaut2", "rapid_robonaut2")}
+         "robonaut2": ("robonaut2", "rapid_robonaut2"), "oddity": ("spec-oddity", "rapid_oddity")}
 DEFAULT_SOURCE = "RapidWorkbench"
 # steps only a driver can take (a live runner cannot make a handler return, restart the asset or
 # fill its door); a case with expectations it cannot see (serial, files) is offline only; others

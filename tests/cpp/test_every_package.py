@@ -15,7 +15,10 @@ from tests.cpp.conftest import ROOT, _cmake
 from tests.cpp_runtime import build as B
 
 BUILT_BY_FIXTURE = {"rapid", "k10"}
-PACKAGES = sorted(p.parent.parent.name for p in (ROOT / "generated").glob("*/cpp/CMakeLists.txt"))
+# (spec-oddity is not a robot: the spec cases' tables, whose tables.cpp the C++ spec driver
+# builds warning-free in tests/cpp_runtime; its package is the seeds' generator's output)
+PACKAGES = sorted(p.parent.parent.name for p in (ROOT / "generated").glob("*/cpp/CMakeLists.txt")
+                  if not p.parent.parent.name.startswith("spec-"))
 
 
 def test_every_target_of_the_project_has_a_cpp_package():

@@ -56,6 +56,9 @@ const ::rapid_runtime::Tables& tables();
 namespace rapid_robonaut2::bridge {
 const ::rapid_runtime::Tables& tables();
 }
+namespace rapid_oddity::bridge {
+const ::rapid_runtime::Tables& tables();
+}
 
 using namespace rapid_runtime;
 using json = nlohmann::json;
@@ -70,6 +73,7 @@ const Tables& seed_tables(const std::string& seed) {
     if (seed == "k10") return rapid_k10red::bridge::tables();
     if (seed == "chariot") return rapid_chariot::bridge::tables();
     if (seed == "robonaut2") return rapid_robonaut2::bridge::tables();
+    if (seed == "oddity") return rapid_oddity::bridge::tables();
     throw std::invalid_argument("no tables for seed '" + seed + "' in this driver (add them to CMakeLists.txt)");
 }
 
