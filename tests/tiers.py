@@ -64,6 +64,7 @@ NEEDS: dict[str, frozenset[str]] = {k: frozenset(v.split()) for k, v in {
     "tests/rust_runtime/test_broken.py": "compiler dds",
     "tests/rust_runtime/test_dds_bridge.py": "compiler dds",
     "tests/rust_runtime/test_interop_client.py": "compiler dds",
+    "tests/rust_runtime/test_streams.py": "compiler dds",
     "tests/rust_runtime/test_texts.py": "",
     "tests/runtime/test_spec_cases.py": "",
     "tests/runtime/test_texts.py": "",

@@ -99,7 +99,7 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
 def _bridge(asset: "LoadedAsset", c: CrateView, a: "AssetView") -> list[GeneratedFile]:
     """The bridge crate (bridge.py): generated files, and the user's handlers.rs written once."""
     from rapidgen.backends.rust import bridge, tables
-    v = bridge.build(asset, c.crate, a.configs)
+    v = bridge.build(asset, c.crate, a.configs, a.stream_types)
     b = bridge.BRIDGE
     files = [GeneratedFile(f"{b}/Cargo.toml", render("rust", "bridge/Cargo.toml.j2", c=c, v=v)),
              GeneratedFile(f"{b}/src/tables.rs", render("rust", "bridge/tables.rs.j2", c=c, v=v,

@@ -3,7 +3,7 @@ it publishes, the command dictionary, and the computed configs as values of the 
 types. Literals only; every string goes through rust_str."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from rapidgen.asset.spec import CustomTelemetry
@@ -71,6 +71,8 @@ class AssetView:
     configs: list[ConfigView]
     profiles: list[QosView]  # the QoS library's profiles the topics name (none without a library)
     simulated: list[CustomView]  # extension telemetry a simulated robot publishes
+    # scoped IDL name -> the type's path (crate::rapid::PositionSample), of the streams' types
+    stream_types: dict[str, str] = field(default_factory=dict)
 
 
 def _opt_str(text: str | None) -> str:
@@ -122,7 +124,8 @@ def build(loaded: "LoadedAsset", b: "Builder", library: "QosSpec | None" = None)
                                 rust_str(topic), rust_str(type_name), b.value(t, value)))
     return AssetView(rust_str(spec.name), spec.domain, rust_str(spec.partition),
                      [(rust_str(s.name), rust_str(s.type)) for s in loaded.subsystems], topics, commands, views,
-                     _profiles([p.qos for p in pubs], library), _simulated(loaded, b))
+                     _profiles([p.qos for p in pubs], library), _simulated(loaded, b),
+                     {s.type: b.path(s.type) for s in loaded.streams})
 
 
 def _simulated(loaded: "LoadedAsset", b: "Builder") -> list[CustomView]:

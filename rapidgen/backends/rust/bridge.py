@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 from rapidgen.asset.spec import TypedValue
 from rapidgen.backends.escape import rust_comment, rust_str
 from rapidgen.backends.naming import param_summary
-from rapidgen.backends.rust import namer
+from rapidgen.backends.rust import namer, streams
 
 if TYPE_CHECKING:
     from rapidgen.asset import LoadedAsset
@@ -102,6 +102,7 @@ class BridgeView:
     handlers: list[HandlerView]
     configs: list[ConfigView]
     transports: list[tuple[str, str, str]]  # (name, its literal, const name)
+    streams: "streams.StreamsView | None" = None  # the setpoint streams (streams.py)
 
 
 def _snake(name: str, fallback: str) -> str:
@@ -120,10 +121,12 @@ def _param_doc(name: str, p: TypedValue) -> str:
     return rust_comment(param_summary(name, p, quote="`"))
 
 
-def build(loaded: "LoadedAsset", crate: str, configs: list) -> BridgeView:
-    """The bridge's view; `configs` are asset.rs's ConfigViews (their functions are called)."""
-    top = namer.Scope("crate root of the bridge", namer.KEYWORDS | BRIDGE_NAMES | {"dispatch", "handlers",
-                                                                                   "transports", "main"})
+def build(loaded: "LoadedAsset", crate: str, configs: list, stream_types: dict[str, str] | None = None) -> BridgeView:
+    """The bridge's view; `configs` are asset.rs's ConfigViews (their functions are called);
+    `stream_types`: the streams' types' paths (asset.py's AssetView.stream_types)."""
+    glue = streams.GLUE if loaded.streams else set()
+    top = namer.Scope("crate root of the bridge", namer.KEYWORDS | BRIDGE_NAMES | glue | {"dispatch", "handlers",
+                                                                                          "transports", "main"})
     members = namer.Scope("HandlerSet", namer.KEYWORDS)
     subs_of: dict[str, list[str]] = {}
     for s in loaded.subsystems:
@@ -162,4 +165,5 @@ def build(loaded: "LoadedAsset", crate: str, configs: list) -> BridgeView:
     consts = namer.Scope("transports", namer.KEYWORDS)
     return BridgeView(crate, crate + "_bridge", crate + "_cmd", rust_comment(loaded.spec.name), RUNTIME, handlers,
                       config_views,
-                      [(t, rust_str(t), consts.claim(namer.upper(t), t)) for t in TRANSPORTS])
+                      [(t, rust_str(t), consts.claim(namer.upper(t), t)) for t in TRANSPORTS],
+                      streams.build(loaded, crate, stream_types or {}, top))

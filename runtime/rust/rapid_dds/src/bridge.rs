@@ -23,9 +23,12 @@ use rapid_runtime::journal::{self, Log};
 use rapid_runtime::{Journal, Recovered};
 use rapid_runtime::{CommandManager, Context, Handlers, Options, Outbox, Outcome, Value};
 
-use crate::dds::{Participant, Side};
+use crate::dds::{DdsError, Participant, Side};
+use crate::stream::{Env, Hooks, StreamSet};
+use crate::stream_sim::{Fill, SimStreams};
 use crate::telemetry::{self, Body, Custom, Source};
 use crate::{convert, tables_json, DdsOutbox};
+use rapid_runtime::stream::StreamSpec;
 
 /// What the generated crate gives the bridge.
 pub struct Asset {
@@ -39,6 +42,17 @@ pub struct Asset {
     pub transports: &'static [(&'static str, &'static str)],
     /// extension telemetry made from the crate's own types (`--simulate`)
     pub customs: Vec<Custom>,
+}
+
+/// The asset's setpoint streams, as the generated glue (dispatch.rs stream_glue) gives them.
+pub struct Streams {
+    pub specs: &'static [StreamSpec],
+    /// the readers (the user's callbacks) and output writers of the real robot
+    pub real: Box<dyn FnOnce(&mut StreamSet) -> Result<(), DdsError>>,
+    /// the same under --simulate: setpoints to the simulated robot; the outputs' fills
+    pub sim: Box<dyn FnOnce(&mut StreamSet, &Arc<SimStreams>) -> Result<Vec<(f64, Fill)>, DdsError>>,
+    /// the user's on_state and agent values (the real robot's)
+    pub hooks: Hooks,
 }
 
 /// Handlers of a simulated robot, as the Python runtime's simulate.py: Mobility simpleMove and
@@ -142,8 +156,16 @@ impl From<String> for Failure {
 
 /// The program: runs the bridge, prints why it stopped when it failed; the exit status.
 pub fn main(asset: Result<Asset, String>, handlers: Arc<dyn Handlers>) -> i32 {
+    finish(asset.map_err(Failure::Run).and_then(|a| run(a, handlers, None)))
+}
+
+/// main() of an asset with setpoint streams (docs/realtime.md).
+pub fn main_with_streams(asset: Result<Asset, String>, handlers: Arc<dyn Handlers>, streams: Streams) -> i32 {
+    finish(asset.map_err(Failure::Run).and_then(|a| run(a, handlers, Some(streams))))
+}
+
+fn finish(res: Result<(), Failure>) -> i32 {
     let argv0 = std::env::args().next().unwrap_or_else(|| "bridge".into());
-    let res = asset.map_err(Failure::Run).and_then(|a| run(a, handlers));
     match res {
         Ok(()) => {
             println!("bridge stopped");
@@ -210,8 +232,9 @@ fn parse(args: &[String], transports: &[(&str, &str)]) -> Result<Args, String> {
     Ok(out)
 }
 
-/// Runs the bridge until a shutdown command; `handlers` unless `--simulate`.
-pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
+/// Runs the bridge until a shutdown command; `handlers` unless `--simulate`; `streams`: the
+/// asset's setpoint streams (the user's callbacks, or the simulated robot's).
+pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) -> Result<(), Failure> {
     let argv: Vec<String> = std::env::args().collect();
     let args = match parse(&argv, asset.transports) {
         Ok(a) => a,
@@ -277,8 +300,41 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
 
     let stop = Arc::new(AtomicBool::new(false));
     let body = Arc::new(Mutex::new(Body::default()));
+    // the streams' readers and writers before the telemetry (the simulated AgentState carries
+    // their keys); their reporting thread once the command manager exists (stopAllMotion)
+    let mut sim_streams = None;
+    let mut stream_set = match streams {
+        None => None,
+        Some(st) => {
+            let env = Env::of(&tables, &name, serial, log.clone(), asset.qos);
+            let err = |e: DdsError| Failure::Run(e.to_string());
+            if args.simulate {
+                let sim = SimStreams::new(st.specs, &tables.tables, body.clone(), joint_rest(&tables));
+                let me = sim.clone();
+                let specs = st.specs;
+                let hooks = Hooks {
+                    on_state: Some(Box::new(move |s: &StreamSpec, state| {
+                        if let Some(i) = specs.iter().position(|x| x.name == s.name) {
+                            me.on_state(i, s, state);
+                        }
+                    })),
+                    agent_values: None,
+                    periodic_agent: false, // the simulated telemetry's AgentState carries the keys
+                };
+                let mut set = StreamSet::new(&dp, env, st.specs, hooks).map_err(err)?;
+                let fills = (st.sim)(&mut set, &sim).map_err(err)?;
+                sim_streams = Some((sim, fills));
+                Some(set)
+            } else {
+                let mut set = StreamSet::new(&dp, env, st.specs, st.hooks).map_err(err)?;
+                (st.real)(&mut set).map_err(err)?;
+                Some(set)
+            }
+        }
+    };
     let sim = if args.simulate {
-        let source = Source { body: body.clone(), name: name.clone(), serial, qos: asset.qos };
+        let agent_values = stream_set.as_ref().map(|s| s.values());
+        let source = Source { body: body.clone(), name: name.clone(), serial, qos: asset.qos, agent_values };
         Some(telemetry::start(&dp, &tables, source, asset.customs, stop.clone()).map_err(|e| e.to_string())?)
     } else {
         None
@@ -301,6 +357,14 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         log(&format!("journal: restarted after a crash; {answered} unfinished command(s) answered, {again} final ack(s) written again"));
     }
     let manager = Arc::new(manager);
+    if let Some(set) = stream_set.as_mut() {
+        set.set_manager(manager.clone());
+        set.start().map_err(|e| e.to_string())?;
+    }
+    if let Some((sim, fills)) = sim_streams.take() {
+        sim.start(fills).map_err(|e| e.to_string())?;
+        sim_streams = Some((sim, Vec::new()));
+    }
     // the door: a writer's flood waits in its own FIFO and is answered "bridge busy" past its
     // share, so the other writers' commands (the operator's) keep their turn (docs/runtime.md)
     let door = Intake::new(manager.clone(), log, PER_WRITER, SHED_ANSWERS);
@@ -333,6 +397,12 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         }
     }
     stop.store(true, Ordering::SeqCst); // (after a signal: the telemetry thread ends too)
+    if let Some((sim, _)) = sim_streams {
+        sim.stop();
+    }
+    if let Some(mut set) = stream_set {
+        set.stop(); // (before the manager: a loss's stopAllMotion is not sent to a stopped one)
+    }
     door.stop();
     manager.shutdown(None);
     if let Some(j) = manager.release_journal() {
@@ -342,6 +412,19 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>) -> Result<(), Failure> {
         let _ = t.join();
     }
     Ok(())
+}
+
+/// The first joint entry's joints at rest (JointSample output streams under --simulate).
+fn joint_rest(asset: &tables_json::Asset) -> Vec<f64> {
+    let Some(t) = asset.telemetry.iter().find(|t| t.kind == "joint") else { return Vec::new() };
+    t.joints
+        .iter()
+        .map(|j| match (j.min, j.max) {
+            (Some(lo), _) if lo > 0.0 => lo,
+            (_, Some(hi)) if hi < 0.0 => hi,
+            _ => 0.0,
+        })
+        .collect()
 }
 
 /// SIGTERM or SIGINT came: the bridge stops as after Admin/shutdown (what runs answered, the

@@ -124,6 +124,11 @@ impl Participant {
         Ok(t)
     }
 
+    /// The participant's entity (stream.rs makes its own subscribers and publishers in it).
+    pub(crate) fn handle(&self) -> dds_entity_t {
+        self.dp
+    }
+
     pub fn writer(&self, topic: &Topic, side: Side) -> Result<Writer, DdsError> {
         self.writers(topic, side).make()
     }
@@ -197,6 +202,11 @@ unsafe impl Send for Writer {}
 unsafe impl Sync for Writer {}
 
 impl Writer {
+    /// A writer made elsewhere in the crate (stream.rs: the streams' QoS) and its topic.
+    pub(crate) fn from_raw(w: dds_entity_t, topic: dds_entity_t) -> Writer {
+        Writer { w, topic }
+    }
+
     /// How many readers are matched now.
     pub fn matched(&self) -> u32 {
         // SAFETY: a writer entity and a status struct to fill

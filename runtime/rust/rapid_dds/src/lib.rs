@@ -5,6 +5,8 @@
 //! the asset's configs published transient-local. Samples travel as their CDR bytes (cyclors'
 //! blob topics), encoded and decoded by the generated codec.
 
+#[cfg(feature = "alloc-count")]
+pub mod alloc_count;
 pub mod bridge;
 pub mod client;
 pub mod cmd;
@@ -14,6 +16,8 @@ pub mod images;
 pub mod keyed;
 mod md5;
 pub mod outbox;
+pub mod stream;
+pub mod stream_sim;
 pub mod tables_json;
 pub mod telemetry;
 

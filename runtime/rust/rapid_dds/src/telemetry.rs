@@ -57,11 +57,16 @@ pub struct Source {
     pub serial: i32,
     /// the writer side of a topic's QoS profile (the generated asset::topic_qos)
     pub qos: fn(&str) -> Option<Side>,
+    /// values merged into AgentState by key (the setpoint streams' state and missed keys)
+    pub agent_values: Option<AgentValues>,
 }
+
+/// Agent values by key, asked for at each AgentState.
+pub type AgentValues = Arc<dyn Fn() -> Vec<(String, Value)> + Send + Sync>;
 
 enum Kind {
     Position { values: Vec<(String, rapid::ParameterUnion)>, encoding: String },
-    Agent(Vec<rapid::ParameterUnion>),
+    Agent(Vec<(String, rapid::ParameterUnion)>),
     Joint { positions: Vec<f32>, fields: Vec<String> },
     Image { state: Writer, meta: rapid::ImageMetadata, mime: String, frame: u32 },
     Text { category: String },
@@ -147,6 +152,7 @@ fn period(rate: Option<f64>, idle: f64) -> Duration {
 }
 
 struct Publisher {
+    agent_values: Option<AgentValues>,
     body: Arc<Mutex<Body>>,
     name: String,
     serial: i32,
@@ -182,7 +188,14 @@ impl Publisher {
                 };
                 cdr::serialize(&s, le).map_err(enc)
             }
-            Kind::Agent(values) => cdr::serialize(&rapid::AgentState { hdr, values: values.clone() }, le).map_err(enc),
+            Kind::Agent(values) => {
+                let given = self.agent_values.as_ref().map(|f| f()).unwrap_or_default();
+                let values = values
+                    .iter()
+                    .map(|(k, v)| given.iter().find(|(g, _)| g == k).map_or_else(|| v.clone(), |(_, x)| convert::union(x)))
+                    .collect();
+                cdr::serialize(&rapid::AgentState { hdr, values }, le).map_err(enc)
+            }
             Kind::Joint { positions, fields } => {
                 let n = positions.len();
                 let mut s = rapid::JointSample { hdr, angle_pos: positions.clone(), ..Default::default() };
@@ -261,7 +274,7 @@ pub fn start(
     customs: Vec<Custom>,
     stop: Arc<AtomicBool>,
 ) -> Result<JoinHandle<()>, DdsError> {
-    let mut p = Publisher { body: src.body.clone(), name: src.name.clone(), serial: src.serial, jobs: Vec::new() };
+    let mut p = Publisher { agent_values: src.agent_values.clone(), body: src.body.clone(), name: src.name.clone(), serial: src.serial, jobs: Vec::new() };
     let now = Instant::now();
     let mut once = Vec::new();
     for t in &asset.telemetry {
@@ -280,7 +293,7 @@ pub fn start(
             }
             "agent" => {
                 if let Some(s) = topic("state") {
-                    job(s, "rapid::AgentState", t.rate, Kind::Agent(t.values.iter().map(plausible).collect()))?;
+                    job(s, "rapid::AgentState", t.rate, Kind::Agent(t.values.iter().map(|v| (v.name.clone(), plausible(v))).collect()))?;
                 }
             }
             "joint" => {

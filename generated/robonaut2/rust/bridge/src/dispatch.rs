@@ -93,3 +93,136 @@ impl Handlers for HandlerSet {
         }
     }
 }
+
+// ---- setpoint streams (docs/realtime.md) ---------------------------------------------------
+
+use ::std::sync::Arc;
+
+use rapid_dds::bridge::Streams as StreamGlue;
+use rapid_dds::stream::{Hooks, StreamSet};
+use rapid_dds::stream_sim::{Fill, SimStreams};
+pub use rapid_runtime::stream::{LossAction, StreamSpec, StreamState};
+use rapid_robonaut2::cdr::{self, Cdr};
+
+/// The asset's setpoint streams (docs/realtime.md), read outside the command queue with
+/// DEADLINE and LIVELINESS QoS. Each input stream's method is called for every finite sample
+/// (a sample with a NaN or an infinity never reaches it) on Cyclone DDS's receive thread:
+/// keep it short and lock-free (copy the setpoint where the control loop reads it). The
+/// runtime watches the deadline: on a loss it runs the declared action (stop: on_state()
+/// is your cue to bring the driven joints to rest, and Mobility/stopAllMotion goes through
+/// the command manager when the asset has Mobility; hold: keep the last setpoint), sends a
+/// TextMessage and reports the state in AgentState. Every method has a default body: a
+/// handlers.rs written before a stream was declared still compiles. Give yours to the bridge
+/// with `HandlerSet {..}.with_streams(..)` in make_handlers(). Under --simulate the simulated
+/// robot takes the samples instead and writes the output streams.
+pub trait Streams: Send + Sync {
+    /// handPose: rapid::PositionSample on 'rapid_position_sample-handPose' from XArm2, 500 Hz, deadline 10 ms, lease 100 ms, on loss: stop
+    /// Drives subsystem RightArm.
+    /// the operator's hand pose from the X-Arm-2, setpoint of the right tool
+    fn hand_pose(&self, sample: &rapid_robonaut2::rapid::PositionSample) {
+        let _ = sample;
+    }
+
+    /// A stream with on_loss stop or hold changed state: lost (the declared action is being
+    /// taken) or active (first sample, recovered). Runs on the runtime's reporting thread.
+    /// Not called for on_loss none: the runtime only reports those.
+    fn on_state(&self, stream: &StreamSpec, state: StreamState) {
+        let _ = (stream, state);
+    }
+
+    /// Your agent values: the runtime publishes AgentState with the streams' state keys and
+    /// these (the others: their declared defaults) at the agent telemetry's rate.
+    fn agent_values(&self) -> ::std::vec::Vec<(::std::string::String, rapid_runtime::Value)> {
+        ::std::vec::Vec::new()
+    }
+}
+
+/// The asset's streams, by index.
+pub const STREAMS: &[StreamSpec] = &[
+    StreamSpec { name: "handPose", input: true, type_name: "rapid::PositionSample", topic: "rapid_position_sample-handPose", partition: "XArm2", rate_hz: 500.0, deadline_ms: 10.0, liveliness_ms: 100.0, on_loss: LossAction::Stop, subsystem: "RightArm", state_key: "handPoseStream", missed_key: "handPoseMissed" },
+];
+
+/// What the bridge runs: the command handlers and, when given, the stream callbacks.
+/// make_handlers() returns either this or a bare HandlerSet (no callbacks: samples are
+/// counted and watched only).
+pub struct Dispatch {
+    pub handlers: HandlerSet,
+    pub streams: ::core::option::Option<Arc<dyn Streams>>,
+}
+
+impl HandlerSet {
+    /// These handlers with `streams` taking the input streams' samples.
+    pub fn with_streams(self, streams: impl Streams + 'static) -> Dispatch {
+        Dispatch { handlers: self, streams: ::core::option::Option::Some(Arc::new(streams)) }
+    }
+}
+
+impl ::core::convert::From<HandlerSet> for Dispatch {
+    fn from(handlers: HandlerSet) -> Self {
+        Dispatch { handlers, streams: ::core::option::Option::None }
+    }
+}
+
+fn decode<T: Cdr>(bytes: &[u8]) -> ::core::result::Result<T, ::std::string::String> {
+    cdr::deserialize(bytes).map_err(|e| e.to_string())
+}
+
+/// Every float of a PositionSample finite (its values' too).
+fn finite_position(s: &rapid_robonaut2::rapid::PositionSample) -> bool {
+    use rapid_dds::stream::{finite_f32, finite_f64};
+    finite_f64(&s.pose.xyz)
+        && finite_f32(&s.pose.rot)
+        && finite_f64(&s.velocity.xyz)
+        && finite_f32(&s.velocity.rot)
+        && s.values.iter().all(|v| match v {
+            rapid_robonaut2::rapid::ParameterUnion::D(x) => x.is_finite(),
+            rapid_robonaut2::rapid::ParameterUnion::F(x) => x.is_finite(),
+            rapid_robonaut2::rapid::ParameterUnion::Vec3d(x) => finite_f64(x),
+            rapid_robonaut2::rapid::ParameterUnion::Mat33f(x) => finite_f32(x),
+            _ => true,
+        })
+}
+
+/// The glue: the handlers for the command manager, the streams for rapid_dds::bridge.
+pub fn stream_glue(d: Dispatch) -> (Arc<dyn rapid_runtime::Handlers>, StreamGlue) {
+    let user = d.streams;
+    let real = {
+        let user = user.clone();
+        ::std::boxed::Box::new(move |set: &mut StreamSet| -> ::core::result::Result<(), rapid_dds::dds::DdsError> {
+            {
+                let user = user.clone();
+                set.read::<rapid_robonaut2::rapid::PositionSample, _>(0, decode, finite_position, move |s| {
+                    if let ::core::option::Option::Some(u) = &user {
+                        u.hand_pose(s);
+                    }
+                })?;
+            }
+            let _ = (&user, &set);
+            ::core::result::Result::Ok(())
+        })
+    };
+    let sim = ::std::boxed::Box::new(
+        move |set: &mut StreamSet, sim: &Arc<SimStreams>| -> ::core::result::Result<::std::vec::Vec<(f64, Fill)>, rapid_dds::dds::DdsError> {
+            {
+                let sim = sim.clone();
+                set.read::<rapid_robonaut2::rapid::PositionSample, _>(0, decode, finite_position, move |s| sim.position(0, s.pose.xyz))?;
+            }
+            #[allow(unused_mut)]
+            let mut fills: ::std::vec::Vec<(f64, Fill)> = ::std::vec::Vec::new();
+            let _ = (sim, &set);
+            ::core::result::Result::Ok(fills)
+        },
+    );
+    let hooks = Hooks {
+        on_state: user.clone().map(|u| {
+            ::std::boxed::Box::new(move |s: &StreamSpec, state: StreamState| u.on_state(s, state))
+                as ::std::boxed::Box<dyn Fn(&StreamSpec, StreamState) + Send + Sync>
+        }),
+        agent_values: user.map(|u| {
+            ::std::boxed::Box::new(move || u.agent_values())
+                as ::std::boxed::Box<dyn Fn() -> ::std::vec::Vec<(::std::string::String, rapid_runtime::Value)> + Send + Sync>
+        }),
+        periodic_agent: true,
+    };
+    (Arc::new(d.handlers), StreamGlue { specs: STREAMS, real, sim, hooks })
+}

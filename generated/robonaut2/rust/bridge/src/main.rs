@@ -7,8 +7,6 @@ mod handlers;
 mod tables;
 mod transports;
 
-use std::sync::Arc;
-
 use rapid_robonaut2::asset::{self, QosHistory};
 use rapid_dds::bridge::{self, Asset};
 use rapid_dds::dds::Side;
@@ -46,5 +44,7 @@ fn asset() -> Result<Asset, String> {
 }
 
 fn main() {
-    std::process::exit(bridge::main(asset(), Arc::new(handlers::make_handlers())));
+    // make_handlers() gives a HandlerSet, or one with stream callbacks (HandlerSet::with_streams)
+    let (handlers, streams) = dispatch::stream_glue(handlers::make_handlers().into());
+    std::process::exit(bridge::main_with_streams(asset(), handlers, streams));
 }

@@ -68,3 +68,142 @@ impl Handlers for HandlerSet {
         }
     }
 }
+
+// ---- setpoint streams (docs/realtime.md) ---------------------------------------------------
+
+use ::std::sync::Arc;
+
+use rapid_dds::bridge::Streams as StreamGlue;
+use rapid_dds::stream::{Hooks, OutputStream, SampleGuard, StreamSet};
+use rapid_dds::stream_sim::{Fill, SimStreams};
+pub use rapid_runtime::stream::{LossAction, StreamSpec, StreamState};
+use rapid_xarm2::cdr::{self, Cdr};
+
+/// The asset's setpoint streams (docs/realtime.md), read outside the command queue with
+/// DEADLINE and LIVELINESS QoS. Each input stream's method is called for every finite sample
+/// (a sample with a NaN or an infinity never reaches it) on Cyclone DDS's receive thread:
+/// keep it short and lock-free (copy the setpoint where the control loop reads it). The
+/// runtime watches the deadline: on a loss it runs the declared action (stop: on_state()
+/// is your cue to bring the driven joints to rest, and Mobility/stopAllMotion goes through
+/// the command manager when the asset has Mobility; hold: keep the last setpoint), sends a
+/// TextMessage and reports the state in AgentState. Every method has a default body: a
+/// handlers.rs written before a stream was declared still compiles. Give yours to the bridge
+/// with `HandlerSet {..}.with_streams(..)` in make_handlers(). Under --simulate the simulated
+/// robot takes the samples instead and writes the output streams.
+pub trait Streams: Send + Sync {
+    /// A stream with on_loss stop or hold changed state: lost (the declared action is being
+    /// taken) or active (first sample, recovered). Runs on the runtime's reporting thread.
+    /// Not called for on_loss none: the runtime only reports those.
+    fn on_state(&self, stream: &StreamSpec, state: StreamState) {
+        let _ = (stream, state);
+    }
+
+    /// Your agent values: the runtime publishes AgentState with the streams' state keys and
+    /// these (the others: their declared defaults) at the agent telemetry's rate.
+    fn agent_values(&self) -> ::std::vec::Vec<(::std::string::String, rapid_runtime::Value)> {
+        ::std::vec::Vec::new()
+    }
+}
+
+/// The asset's streams, by index.
+pub const STREAMS: &[StreamSpec] = &[
+    StreamSpec { name: "handPose", input: false, type_name: "rapid::PositionSample", topic: "rapid_position_sample-handPose", partition: "XArm2", rate_hz: 500.0, deadline_ms: 10.0, liveliness_ms: 100.0, on_loss: LossAction::None, subsystem: "", state_key: "", missed_key: "" },
+];
+
+/// What the bridge runs: the command handlers and, when given, the stream callbacks.
+/// make_handlers() returns either this or a bare HandlerSet (no callbacks: samples are
+/// counted and watched only).
+pub struct Dispatch {
+    pub handlers: HandlerSet,
+    pub streams: ::core::option::Option<Arc<dyn Streams>>,
+}
+
+impl HandlerSet {
+    /// These handlers with `streams` taking the input streams' samples.
+    pub fn with_streams(self, streams: impl Streams + 'static) -> Dispatch {
+        Dispatch { handlers: self, streams: ::core::option::Option::Some(Arc::new(streams)) }
+    }
+}
+
+impl ::core::convert::From<HandlerSet> for Dispatch {
+    fn from(handlers: HandlerSet) -> Self {
+        Dispatch { handlers, streams: ::core::option::Option::None }
+    }
+}
+
+static HAND_POSE_STREAM: OutputStream<rapid_xarm2::rapid::PositionSample> = OutputStream::new(encode::<rapid_xarm2::rapid::PositionSample>, |s, name, stamp| header_of(&mut s.hdr, name, stamp));
+
+/// Output stream handPose: rapid::PositionSample on 'rapid_position_sample-handPose', 500 Hz, deadline 10 ms, lease 100 ms
+/// the operator's right-hand pose, every second cycle of the 1 kHz loop
+///
+/// The one sample, to fill in place (kept for the whole run: its sequences keep their
+/// capacity); drop it, or call its send(), before send_hand_pose().
+pub fn hand_pose_sample() -> SampleGuard<'static, rapid_xarm2::rapid::PositionSample> {
+    HAND_POSE_STREAM.sample()
+}
+
+/// Stamps hdr.timeStamp and writes hand_pose_sample()'s sample; false before the bridge
+/// started or after it stopped, or when Cyclone DDS refused it.
+pub fn send_hand_pose() -> bool {
+    HAND_POSE_STREAM.send()
+}
+
+fn decode<T: Cdr>(bytes: &[u8]) -> ::core::result::Result<T, ::std::string::String> {
+    cdr::deserialize(bytes).map_err(|e| e.to_string())
+}
+
+fn encode<T: Cdr>(v: &T) -> ::core::result::Result<::std::vec::Vec<u8>, ::std::string::String> {
+    cdr::serialize(v, cdr::Endianness::Little).map_err(|e| e.to_string())
+}
+
+/// An output sample's header: the asset's names (when given), the time (when not 0).
+fn header_of(hdr: &mut rapid_xarm2::rapid::Header, name: &str, stamp: i64) {
+    if !name.is_empty() {
+        hdr.src_name = name.into();
+        hdr.asset_name = name.into();
+    }
+    if stamp != 0 {
+        hdr.time_stamp = stamp;
+    }
+}
+
+/// The glue: the handlers for the command manager, the streams for rapid_dds::bridge.
+pub fn stream_glue(d: Dispatch) -> (Arc<dyn rapid_runtime::Handlers>, StreamGlue) {
+    let user = d.streams;
+    let real = {
+        let user = user.clone();
+        ::std::boxed::Box::new(move |set: &mut StreamSet| -> ::core::result::Result<(), rapid_dds::dds::DdsError> {
+            set.output(0, &HAND_POSE_STREAM)?;
+            let _ = (&user, &set);
+            ::core::result::Result::Ok(())
+        })
+    };
+    let sim = ::std::boxed::Box::new(
+        move |set: &mut StreamSet, sim: &Arc<SimStreams>| -> ::core::result::Result<::std::vec::Vec<(f64, Fill)>, rapid_dds::dds::DdsError> {
+            #[allow(unused_mut)]
+            let mut fills: ::std::vec::Vec<(f64, Fill)> = ::std::vec::Vec::new();
+            set.output(0, &HAND_POSE_STREAM)?;
+            fills.push((0.002, ::std::boxed::Box::new(|sim: &SimStreams, t: f64| {
+                let mut s = HAND_POSE_STREAM.sample();
+                let (xyz, rot) = sim.pose_at(t);
+                s.pose.xyz = xyz;
+                s.pose.rot = rot;
+                s.send();
+            })));
+            let _ = (sim, &set);
+            ::core::result::Result::Ok(fills)
+        },
+    );
+    let hooks = Hooks {
+        on_state: user.clone().map(|u| {
+            ::std::boxed::Box::new(move |s: &StreamSpec, state: StreamState| u.on_state(s, state))
+                as ::std::boxed::Box<dyn Fn(&StreamSpec, StreamState) + Send + Sync>
+        }),
+        agent_values: user.map(|u| {
+            ::std::boxed::Box::new(move || u.agent_values())
+                as ::std::boxed::Box<dyn Fn() -> ::std::vec::Vec<(::std::string::String, rapid_runtime::Value)> + Send + Sync>
+        }),
+        periodic_agent: true,
+    };
+    (Arc::new(d.handlers), StreamGlue { specs: STREAMS, real, sim, hooks })
+}

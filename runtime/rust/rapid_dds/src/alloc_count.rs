@@ -1,0 +1,116 @@
+//! Heap allocations counted per thread, for the setpoint bench only (bench/rust_setpoint.py;
+//! feature `alloc-count`, off in every other build). Two counters:
+//!
+//! - [`rust_allocs`]: Rust's own allocations (the codec, the runtime, the callback), through
+//!   [`Counting`], which the bench's program installs with `#[global_allocator]`;
+//! - [`all_allocs`]: every malloc of the thread, Cyclone DDS's C library included: malloc and
+//!   friends defined here take the place of glibc's for the whole program (as the C++ bench's
+//!   bench/setpoint/alloc_count.cpp), each counts, then calls glibc's own. Rust's allocations
+//!   reach malloc too, so this count includes the first.
+//!
+//! Both counters are thread-locals without destructors (plain TLS: reading or bumping one
+//! never allocates).
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::ffi::c_void;
+
+thread_local! {
+    static RUST: Cell<u64> = const { Cell::new(0) };
+    static ALL: Cell<u64> = const { Cell::new(0) };
+}
+
+fn bump(c: &'static std::thread::LocalKey<Cell<u64>>) {
+    let _ = c.try_with(|c| c.set(c.get() + 1));
+}
+
+/// Rust allocations on this thread so far (with `#[global_allocator] static A: Counting`).
+pub fn rust_allocs() -> u64 {
+    RUST.try_with(|c| c.get()).unwrap_or(0)
+}
+
+/// Every malloc, calloc, realloc and aligned allocation on this thread so far.
+pub fn all_allocs() -> u64 {
+    ALL.try_with(|c| c.get()).unwrap_or(0)
+}
+
+/// The system allocator, counting each allocation and reallocation on the calling thread.
+pub struct Counting;
+
+// SAFETY: forwards every call to System unchanged
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        bump(&RUST);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        bump(&RUST);
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        bump(&RUST);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+extern "C" {
+    fn __libc_malloc(n: usize) -> *mut c_void;
+    fn __libc_calloc(n: usize, size: usize) -> *mut c_void;
+    fn __libc_realloc(p: *mut c_void, n: usize) -> *mut c_void;
+    fn __libc_memalign(align: usize, n: usize) -> *mut c_void;
+}
+
+/// # Safety
+/// malloc's contract (glibc's own does the work).
+#[no_mangle]
+pub unsafe extern "C" fn malloc(n: usize) -> *mut c_void {
+    bump(&ALL);
+    unsafe { __libc_malloc(n) }
+}
+
+/// # Safety
+/// calloc's contract.
+#[no_mangle]
+pub unsafe extern "C" fn calloc(n: usize, size: usize) -> *mut c_void {
+    bump(&ALL);
+    unsafe { __libc_calloc(n, size) }
+}
+
+/// # Safety
+/// realloc's contract.
+#[no_mangle]
+pub unsafe extern "C" fn realloc(p: *mut c_void, n: usize) -> *mut c_void {
+    bump(&ALL);
+    unsafe { __libc_realloc(p, n) }
+}
+
+/// # Safety
+/// memalign's contract.
+#[no_mangle]
+pub unsafe extern "C" fn memalign(align: usize, n: usize) -> *mut c_void {
+    bump(&ALL);
+    unsafe { __libc_memalign(align, n) }
+}
+
+/// # Safety
+/// aligned_alloc's contract.
+#[no_mangle]
+pub unsafe extern "C" fn aligned_alloc(align: usize, n: usize) -> *mut c_void {
+    bump(&ALL);
+    unsafe { __libc_memalign(align, n) }
+}
+
+/// # Safety
+/// posix_memalign's contract.
+#[no_mangle]
+pub unsafe extern "C" fn posix_memalign(out: *mut *mut c_void, align: usize, n: usize) -> i32 {
+    bump(&ALL);
+    let p = unsafe { __libc_memalign(align, n) };
+    if p.is_null() {
+        return 12; // ENOMEM
+    }
+    unsafe { *out = p };
+    0
+}

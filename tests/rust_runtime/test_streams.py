@@ -1,0 +1,173 @@
+"""Setpoint streams in the Rust runtime (docs/realtime.md "In the Rust runtime"), real
+processes on loopback: tests/streams/rig.yaml's Rust bridge (one input stream per loss
+action, from the folder's shared build: build.RIG) under --simulate, tests/streams/pilot.py
+(Cyclone DDS, Python) writing its three streams in partition RigPilot, tests/streams/watch.py
+reading the rig's AgentState, TextMessages, acks and body position. One run, in order:
+
+- non-finite samples: drive's writer sends NaN rotations around a new target x = -1: dropped,
+  reported once, the stream lost for want of a finite sample (stop: stopAllMotion, the body
+  halts and does not turn back), the other streams active; a finite sample recovers it;
+- a missed deadline (the writers paused, alive): each stream lost in its action's words,
+  stopAllMotion for drive only, the state and missed keys in AgentState; resumed: recovered;
+- a killed writer: lost on the deadline, then "its writer is gone" (LIVELINESS, 600 ms lease);
+- the bridge's summary per stream at SIGTERM, exit status 0.
+
+Domain 82 is shared (tests/cpp_client/test_broken.py's range 73-82), so every process here
+carries a Cyclone discovery tag of this run's own: participants with another tag or none
+ignore them and are ignored."""
+from __future__ import annotations
+
+import json
+import os
+import queue
+import re
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+from tests.rust_runtime.build import OLD_HANDLERS, RIG
+from tests.streams.test_setpoint_stream import RIG as RIG_YAML
+from tests.streams.test_setpoint_stream import Watcher, latest, python_package, texts_until
+
+ROOT = Path(__file__).resolve().parents[2]
+DOMAIN = 82
+ACTIONS = {"drive": "motion stopped", "arm": "holding the last setpoint", "mast": "no action"}
+
+
+def _env(py: Path) -> tuple[Path, str, dict]:
+    pkg, name, env = python_package(RIG_YAML, py)
+    tag = f"rapidgen-rust-streams-{os.getpid()}"
+    env["CYCLONEDDS_URI"] += f',<CycloneDDS><Domain id="any"><Discovery><Tag>{tag}</Tag></Discovery></Domain></CycloneDDS>'
+    return pkg, name, env
+
+
+class TaggedWatcher(Watcher):
+    """watch.py on the rig's partition, with the run's tag."""
+
+    def __init__(self, pkg: Path, name: str, env: dict) -> None:
+        self.proc = subprocess.Popen([sys.executable, "-m", "tests.streams.watch", str(pkg), name, str(DOMAIN), "",
+                                      "rapid_position_sample"], cwd=ROOT, env=env, stdout=subprocess.PIPE, text=True)
+        self.events = queue.Queue()
+        self.history = []
+        threading.Thread(target=self._pump, daemon=True).start()
+        assert "ready" in self.next(30)
+
+
+def agent_all(state: str):
+    return lambda e: "agent" in e and all(e["agent"].get(f"{n}Stream") == state for n in ACTIONS)
+
+
+def body_x(watcher: Watcher, seconds: float) -> float:
+    return latest(watcher, seconds)["rapid_position_sample"][0]
+
+
+def test_loss_actions_non_finite_and_summary(bridges, tmp_path):
+    pkg, name, env = _env(tmp_path / "py")
+    rig = subprocess.Popen([str(bridges[RIG]), "--simulate", "--domain", str(DOMAIN), "--no-journal"], cwd=ROOT,
+                           env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    watcher = pilot = None
+    try:
+        assert rig.stdout is not None
+        ready = rig.stdout.readline()
+        assert "ready on domain 82 (simulated)" in ready, ready + (rig.stderr.read() if rig.poll() is not None else "")
+        watcher = TaggedWatcher(pkg, name, env)
+        watcher.until(agent_all("waiting"), 15, "AgentState: every stream waiting before any writer")
+        pilot = subprocess.Popen([sys.executable, "-m", "tests.streams.pilot", str(pkg), name, str(DOMAIN)], cwd=ROOT,
+                                 env=env, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        assert pilot.stdin is not None and pilot.stdout is not None
+        assert "ready" in pilot.stdout.readline()
+
+        def send(command: str) -> None:
+            pilot.stdin.write(command + "\n")
+            pilot.stdin.flush()
+
+        watcher.until(agent_all("active"), 15, "AgentState: every stream active")
+        texts_until(watcher, {n: "active" for n in ACTIONS}, 5, "a TextMessage per stream saying active")
+        watcher.until(lambda e: e.get("position") == "rapid_position_sample" and e["xyz"][0] > 0.05, 10,
+                      "the body moving toward drive's x = 2")
+
+        # NaN and Inf: never handed on (the body would turn back toward x = -1), lost on the deadline
+        send("nan drive")
+        dropped = texts_until(watcher, {"drive": "samples with NaN or Inf dropped"}, 10, "drive's NaN reported")["drive"]
+        assert "WARN" in dropped["level"] and dropped["text"].endswith("lost without a finite one in 200 ms")
+        lost = texts_until(watcher, {"drive": "lost (no finite sample within its 200 ms deadline"}, 10,
+                           "drive lost for want of a finite sample")["drive"]
+        assert lost["text"].endswith("motion stopped") and "WARN" in lost["level"], lost
+        stop = watcher.seen_or_until(lambda e: e.get("ack") == "stream-drive-stop-1" and "COMPLETED" in e["status"],
+                                     10, "Mobility/stopAllMotion run for drive")
+        assert "OK" in stop["completed"] and "stopped" in stop["message"]
+        agent = watcher.until(lambda e: "agent" in e and e["agent"].get("driveStream") == "lost", 10, "drive lost")
+        assert agent["agent"]["driveMissed"] >= 1
+        assert (agent["agent"]["armStream"], agent["agent"]["mastStream"]) == ("active", "active")
+        x0, x1 = body_x(watcher, 0.5), body_x(watcher, 1.5)
+        assert 0 < x1 < 1.99 and abs(x1 - x0) < 1e-6, (x0, x1)  # halted (stop), not turning back
+        send("finite drive")
+        texts_until(watcher, {"drive": "recovered"}, 10, "drive recovered")
+        watcher.until(lambda e: e.get("position") == "rapid_position_sample" and e["xyz"][0] > x1 + 0.02, 10,
+                      "the body moving again")
+
+        # a missed deadline, the writers alive
+        send("pause drive arm mast")
+        lost = texts_until(watcher, {n: "lost (no sample within its 200 ms deadline" for n in ACTIONS}, 10,
+                           "a TextMessage per stream saying lost on its deadline")
+        for n, action in ACTIONS.items():
+            assert lost[n]["text"].endswith(action) and "WARN" in lost[n]["level"], lost[n]
+        watcher.seen_or_until(lambda e: e.get("ack") == "stream-drive-stop-2" and "COMPLETED" in e["status"], 10,
+                              "stopAllMotion for drive again")
+        agent = watcher.until(agent_all("lost"), 10, "AgentState: every stream lost")
+        assert all(agent["agent"][f"{n}Missed"] >= 1 for n in ACTIONS), agent
+        x0, x1 = body_x(watcher, 0.5), body_x(watcher, 1.0)
+        assert abs(x1 - x0) < 1e-6, (x0, x1)
+        send("resume drive arm mast")
+        texts_until(watcher, {n: "recovered" for n in ACTIONS}, 10, "a TextMessage per stream saying recovered")
+        watcher.until(agent_all("active"), 10, "AgentState: every stream active again")
+
+        # the writer killed: the deadline goes first, then the 600 ms lease
+        pilot.kill()
+        pilot.wait()
+        texts_until(watcher, {n: "lost (no sample within" for n in ACTIONS}, 10, "every stream lost on its deadline")
+        gone = texts_until(watcher, {n: "its writer is gone (no liveliness within 600 ms)" for n in ACTIONS}, 10,
+                           "a TextMessage per stream saying its writer is gone")
+        assert all("WARN" in g["level"] for g in gone.values())
+        watcher.until(agent_all("lost"), 10, "AgentState: every stream lost again")
+        acks = {e["ack"] for e in watcher.history if "ack" in e}
+        assert acks >= {"stream-drive-stop-1", "stream-drive-stop-2", "stream-drive-stop-3"}, acks
+        assert all(a.startswith("stream-drive-stop-") for a in acks), acks  # hold and none send nothing
+
+        rig.terminate()
+        _, err = rig.communicate(timeout=20)
+        assert rig.returncode == 0, err[-2000:]
+        summary = {m.group(1): [int(x) for x in m.groups()[1:]] for m in re.finditer(
+            r"stream (\w+): (\d+) samples, (\d+) deadlines missed, (\d+) losses, (\d+) non-finite dropped", err)}
+        assert set(summary) == set(ACTIONS), err[-2000:]
+        assert summary["drive"][2] >= 3 and summary["drive"][3] >= 5, summary  # NaN, pause, kill; the NaN run
+        assert summary["arm"][3] == 0 and summary["mast"][2] >= 2, summary
+        assert "panicked" not in err, err[-2000:]
+    finally:
+        if pilot is not None and pilot.poll() is None:
+            pilot.kill()
+            pilot.wait()
+        if watcher is not None:
+            watcher.stop()
+        if rig.poll() is None:
+            rig.kill()
+            rig.wait()
+
+
+def test_generated_stream_glue(bridges):
+    """The rig's generated glue: trait Streams with a default body per input stream, and its
+    fresh handlers.rs handing its callbacks over (with_streams). The folder's build compiled
+    Robonaut 2's committed handlers.rs, which predates its stream's glue (a bare HandlerSet):
+    a handlers.rs written before a stream was declared still compiles."""
+    gen = bridges["ws"] / "generated" / RIG / "rust" / "bridge" / "src"
+    dispatch = (gen / "dispatch.rs").read_text(encoding="utf-8")
+    for method, t in (("drive", "PositionSample"), ("arm", "JointSample"), ("mast", "PositionSample")):
+        assert re.search(rf"fn {method}\(&self, sample: &rapid_streamrig::rapid::{t}\) \{{\n\s+let _ = sample;", dispatch)
+    handlers = (gen / "handlers.rs").read_text(encoding="utf-8")
+    assert ".with_streams(SetpointStreams)" in handlers and "pub fn make_handlers() -> Dispatch" in handlers
+    built = (bridges["ws"] / OLD_HANDLERS).read_text(encoding="utf-8")
+    assert built == (ROOT / OLD_HANDLERS).read_text(encoding="utf-8")
+    assert "pub fn make_handlers() -> HandlerSet" in built and "with_streams" not in built
+    assert "fn hand_pose(&self" in (bridges["ws"] / OLD_HANDLERS).with_name("dispatch.rs").read_text(encoding="utf-8")
