@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/rust/bridge/dispatch.rs.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "fee0889cc70b6b5a776f47c299dba8fdfa0123e1e219bc8142f07572a936b5f1"
+KEY = "19f5eb56afe4f518fcbd1545b2760ca49cfb54ea445f9ad9f865e62b72d0f4a3"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/dispatch.rs.j2'
 
@@ -252,9 +252,11 @@ def root(context, missing=missing, environment=environment):
         if ('other' in context.call(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'kinds'), inputs=True)):
             pass
             yield '\n/// Another message type: handed on as it is (its handler checks what it uses).\nfn finite_any<T>(_: &T) -> bool {\n    true\n}\n'
-        yield '\n/// The glue: the handlers for the command manager, the streams for rapid_dds::bridge.\npub fn stream_glue(d: '
+        yield '\n/// The glue: the handlers for the command manager, the streams for rapid_dds::bridge (from\n/// what make_handlers() returns: a HandlerSet, or one with_streams).\npub fn stream_glue(d: impl ::core::convert::Into<'
         yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'dispatch'))
-        yield ') -> (Arc<dyn rapid_runtime::Handlers>, StreamGlue) {\n    let user = d.streams;\n    let real = {\n        let user = user.clone();\n        ::std::boxed::Box::new(move |set: &mut StreamSet| -> ::core::result::Result<(), rapid_dds::dds::DdsError> {\n'
+        yield '>) -> (Arc<dyn rapid_runtime::Handlers>, StreamGlue) {\n    let d: '
+        yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'dispatch'))
+        yield ' = d.into();\n    let user = d.streams;\n    let real = {\n        let user = user.clone();\n        ::std::boxed::Box::new(move |set: &mut StreamSet| -> ::core::result::Result<(), rapid_dds::dds::DdsError> {\n'
         for l_1_s in environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'inputs'):
             _loop_vars = {}
             pass
@@ -335,9 +337,9 @@ def root(context, missing=missing, environment=environment):
         l_1_s = missing
         yield '            let _ = (sim, &set);\n            ::core::result::Result::Ok(fills)\n        },\n    );\n    let hooks = Hooks {\n        on_state: user.clone().map(|u| {\n            ::std::boxed::Box::new(move |s: &StreamSpec, state: StreamState| u.'
         yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'state_hook'))
-        yield '(s, state))\n                as ::std::boxed::Box<dyn Fn(&StreamSpec, StreamState) + Send + Sync>\n        }),\n        agent_values: user.map(|u| {\n            ::std::boxed::Box::new(move || u.'
+        yield '(s, state))\n                as rapid_dds::stream::StateHook\n        }),\n        agent_values: user.map(|u| {\n            ::std::boxed::Box::new(move || u.'
         yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'values_hook'))
-        yield '())\n                as ::std::boxed::Box<dyn Fn() -> ::std::vec::Vec<(::std::string::String, rapid_runtime::Value)> + Send + Sync>\n        }),\n        periodic_agent: true,\n    };\n    (Arc::new(d.handlers), StreamGlue { specs: STREAMS, real, sim, hooks })\n}\n'
+        yield '())\n                as rapid_dds::stream::ValuesHook\n        }),\n        periodic_agent: true,\n    };\n    (Arc::new(d.handlers), StreamGlue { specs: STREAMS, real, sim, hooks })\n}\n'
 
 blocks = {}
-debug_info = '1=21&2=23&17=25&22=32&24=36&25=38&26=41&27=44&30=47&31=51&33=54&34=58&36=62&43=77&44=81&48=87&68=91&69=95&70=99&82=124&83=126&90=130&97=137&103=139&110=141&111=143&112=146&113=150&115=154&123=160&129=162&136=164&137=168&144=172&146=174&151=176&152=180&156=182&158=184&161=187&163=191&165=198&166=202&170=209&171=211&172=215&175=217&177=219&178=221&185=225&192=228&202=230&205=233&212=235&213=237&214=239&215=241&220=243&223=246&229=248&238=252&243=254&246=258&248=264&253=267&254=271&262=277&265=281&266=284&267=290&268=293&270=302&278=309&279=313&280=317&281=319&282=321&286=324&300=333&304=335'
+debug_info = '1=21&2=23&17=25&22=32&24=36&25=38&26=41&27=44&30=47&31=51&33=54&34=58&36=62&43=77&44=81&48=87&68=91&69=95&70=99&82=124&83=126&90=130&97=137&103=139&110=141&111=143&112=146&113=150&115=154&123=160&129=162&136=164&137=168&144=172&146=174&151=176&152=180&156=182&158=184&161=187&163=191&165=198&166=202&170=209&171=211&172=215&175=217&177=219&178=221&185=225&192=228&202=230&205=233&212=235&213=237&214=239&215=241&220=243&223=246&229=248&239=252&240=254&245=256&248=260&250=266&255=269&256=273&264=279&267=283&268=286&269=292&270=295&272=304&280=311&281=315&282=319&283=321&284=323&288=326&302=335&306=337'

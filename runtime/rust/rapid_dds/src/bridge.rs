@@ -44,13 +44,18 @@ pub struct Asset {
     pub customs: Vec<Custom>,
 }
 
+/// Makes the real robot's stream readers (the user's callbacks) and output writers.
+pub type RealSetup = Box<dyn FnOnce(&mut StreamSet) -> Result<(), DdsError>>;
+/// Makes them under --simulate (setpoints to the simulated robot); the outputs' fills.
+pub type SimSetup = Box<dyn FnOnce(&mut StreamSet, &Arc<SimStreams>) -> Result<Vec<(f64, Fill)>, DdsError>>;
+
 /// The asset's setpoint streams, as the generated glue (dispatch.rs stream_glue) gives them.
 pub struct Streams {
     pub specs: &'static [StreamSpec],
     /// the readers (the user's callbacks) and output writers of the real robot
-    pub real: Box<dyn FnOnce(&mut StreamSet) -> Result<(), DdsError>>,
+    pub real: RealSetup,
     /// the same under --simulate: setpoints to the simulated robot; the outputs' fills
-    pub sim: Box<dyn FnOnce(&mut StreamSet, &Arc<SimStreams>) -> Result<Vec<(f64, Fill)>, DdsError>>,
+    pub sim: SimSetup,
     /// the user's on_state and agent values (the real robot's)
     pub hooks: Hooks,
 }

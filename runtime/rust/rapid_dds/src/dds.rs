@@ -233,7 +233,8 @@ impl Writer {
         unsafe {
             let mut st: *const ddsi_sertype = std::ptr::null();
             check("sertype", dds_get_entity_sertype(self.topic, &mut st))?;
-            let from = (*(*st).serdata_ops).from_ser_iov.ok_or(DdsError("no from_ser_iov".into()))?;
+            // (ok_or_else: an eager error String was one allocation per write)
+            let from = (*(*st).serdata_ops).from_ser_iov.ok_or_else(|| DdsError("no from_ser_iov".into()))?;
             let iov = ddsrt_iovec_t { iov_base: bytes.as_ptr() as *mut _, iov_len: bytes.len() as _ };
             let sd = from(st, ddsi_serdata_kind_SDK_DATA, 1, &iov, bytes.len());
             check("write", dds_writecdr(self.w, sd))?;

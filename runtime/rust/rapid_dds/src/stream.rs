@@ -91,13 +91,18 @@ impl Env {
     }
 }
 
+/// The on_state hook: a stream and its new state.
+pub type StateHook = Box<dyn Fn(&StreamSpec, StreamState) + Send + Sync>;
+/// Agent values by key.
+pub type ValuesHook = Box<dyn Fn() -> Vec<(String, Value)> + Send + Sync>;
+
 /// What the generated glue tells the stream set about the user's code.
 pub struct Hooks {
     /// A stream with on_loss stop or hold changed state (lost: the declared action is being
     /// taken; active: first sample or recovered). Not called for on_loss none.
-    pub on_state: Option<Box<dyn Fn(&StreamSpec, StreamState) + Send + Sync>>,
+    pub on_state: Option<StateHook>,
     /// The asset's own agent values, under the stream keys (none: declared defaults).
-    pub agent_values: Option<Box<dyn Fn() -> Vec<(String, Value)> + Send + Sync>>,
+    pub agent_values: Option<ValuesHook>,
     /// false: AgentState only when a stream's state or missed count changed (the simulated
     /// robot publishes it at the agent entry's rate, the stream keys merged in).
     pub periodic_agent: bool,

@@ -167,8 +167,10 @@ fn header_of(hdr: &mut rapid_xarm2::rapid::Header, name: &str, stamp: i64) {
     }
 }
 
-/// The glue: the handlers for the command manager, the streams for rapid_dds::bridge.
-pub fn stream_glue(d: Dispatch) -> (Arc<dyn rapid_runtime::Handlers>, StreamGlue) {
+/// The glue: the handlers for the command manager, the streams for rapid_dds::bridge (from
+/// what make_handlers() returns: a HandlerSet, or one with_streams).
+pub fn stream_glue(d: impl ::core::convert::Into<Dispatch>) -> (Arc<dyn rapid_runtime::Handlers>, StreamGlue) {
+    let d: Dispatch = d.into();
     let user = d.streams;
     let real = {
         let user = user.clone();
@@ -197,11 +199,11 @@ pub fn stream_glue(d: Dispatch) -> (Arc<dyn rapid_runtime::Handlers>, StreamGlue
     let hooks = Hooks {
         on_state: user.clone().map(|u| {
             ::std::boxed::Box::new(move |s: &StreamSpec, state: StreamState| u.on_state(s, state))
-                as ::std::boxed::Box<dyn Fn(&StreamSpec, StreamState) + Send + Sync>
+                as rapid_dds::stream::StateHook
         }),
         agent_values: user.map(|u| {
             ::std::boxed::Box::new(move || u.agent_values())
-                as ::std::boxed::Box<dyn Fn() -> ::std::vec::Vec<(::std::string::String, rapid_runtime::Value)> + Send + Sync>
+                as rapid_dds::stream::ValuesHook
         }),
         periodic_agent: true,
     };

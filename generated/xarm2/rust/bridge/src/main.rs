@@ -45,6 +45,6 @@ fn asset() -> Result<Asset, String> {
 
 fn main() {
     // make_handlers() gives a HandlerSet, or one with stream callbacks (HandlerSet::with_streams)
-    let (handlers, streams) = dispatch::stream_glue(handlers::make_handlers().into());
+    let (handlers, streams) = dispatch::stream_glue(handlers::make_handlers());
     std::process::exit(bridge::main_with_streams(asset(), handlers, streams));
 }
