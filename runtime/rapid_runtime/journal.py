@@ -110,6 +110,9 @@ def _line(record: dict) -> bytes:
     return f"{zlib.crc32(text.encode()):08x} {text}\n".encode()
 
 
+_LONE_SURROGATE = re.compile("[\ud800-\udfff]")  # (json.loads joins the pairs: what is left is alone)
+
+
 def _parse(raw: bytes) -> dict | None:
     """A sound line's record, or None (wrong CRC, not JSON, wrong shape, no newline)."""
     if not raw.endswith(b"\n") or len(raw) < 11 or raw[8:9] != b" ":
@@ -127,6 +130,10 @@ def _parse(raw: bytes) -> dict | None:
         ok = all(isinstance(rec.get(f), str) for f in ("id", "src", "asset")) and isinstance(rec.get("serial"), int)
         if rec["k"] == "c":
             ok = ok and isinstance(rec.get("c"), str) and isinstance(rec.get("m"), str)
+        if ok:  # (a surrogate escaped on its own, in a journal no runtime wrote, is U+FFFD as in C++ and Rust)
+            for f in ("id", "src", "asset", "c", "m"):
+                if f in rec:
+                    rec[f] = _LONE_SURROGATE.sub("\ufffd", rec[f])
         return rec if ok else None
     if rec["k"] == "s":
         return rec if isinstance(rec.get("serial"), int) else None
