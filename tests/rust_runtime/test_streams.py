@@ -12,6 +12,9 @@ reading the rig's AgentState, TextMessages, acks and body position. One run, in 
 - a killed writer: lost on the deadline, then "its writer is gone" (LIVELINESS, 600 ms lease);
 - the bridge's summary per stream at SIGTERM, exit status 0.
 
+And the seeds' hand pose, Rust to Rust (domain 84, tagged as well): X-Arm 2's output stream
+under --simulate read by Robonaut 2's bridge, lost with its writer frozen, recovered.
+
 Domain 82 is shared (tests/cpp_client/test_broken.py's range 73-82), so every process here
 carries a Cyclone discovery tag of this run's own: participants with another tag or none
 ignore them and are ignored."""
@@ -21,6 +24,7 @@ import json
 import os
 import queue
 import re
+import signal
 import subprocess
 import sys
 import threading
@@ -33,6 +37,8 @@ from tests.streams.test_setpoint_stream import Watcher, latest, python_package, 
 
 ROOT = Path(__file__).resolve().parents[2]
 DOMAIN = 82
+SEED_DOMAIN = 84  # shared with tests/field/test_restart.py: tagged too
+R2_LOCAL = ROOT / "generated" / "robonaut2" / "python" / "rapid_robonaut2" / "qos_files" / "cyclonedds" / "local.xml"
 ACTIONS = {"drive": "motion stopped", "arm": "holding the last setpoint", "mast": "no action"}
 
 
@@ -44,11 +50,12 @@ def _env(py: Path) -> tuple[Path, str, dict]:
 
 
 class TaggedWatcher(Watcher):
-    """watch.py on the rig's partition, with the run's tag."""
+    """watch.py on the package's own partition (its `topics` printed too), with a tag in env."""
 
-    def __init__(self, pkg: Path, name: str, env: dict) -> None:
-        self.proc = subprocess.Popen([sys.executable, "-m", "tests.streams.watch", str(pkg), name, str(DOMAIN), "",
-                                      "rapid_position_sample"], cwd=ROOT, env=env, stdout=subprocess.PIPE, text=True)
+    def __init__(self, pkg: Path, name: str, env: dict, domain: int = DOMAIN,
+                 topics: tuple[str, ...] = ("rapid_position_sample",)) -> None:
+        self.proc = subprocess.Popen([sys.executable, "-m", "tests.streams.watch", str(pkg), name, str(domain), "",
+                                      *topics], cwd=ROOT, env=env, stdout=subprocess.PIPE, text=True)
         self.events = queue.Queue()
         self.history = []
         threading.Thread(target=self._pump, daemon=True).start()
@@ -57,6 +64,18 @@ class TaggedWatcher(Watcher):
 
 def agent_all(state: str):
     return lambda e: "agent" in e and all(e["agent"].get(f"{n}Stream") == state for n in ACTIONS)
+
+
+def latest_events(watcher: Watcher, seconds: float) -> list[dict]:
+    """Every event seen within the next `seconds`."""
+    out = []
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        try:
+            out.append(watcher.next(max(0.01, end - time.monotonic())))
+        except queue.Empty:
+            break
+    return out
 
 
 def body_x(watcher: Watcher, seconds: float) -> float:
@@ -171,3 +190,55 @@ def test_generated_stream_glue(bridges):
     assert built == (ROOT / OLD_HANDLERS).read_text(encoding="utf-8")
     assert "pub fn make_handlers() -> HandlerSet" in built and "with_streams" not in built
     assert "fn hand_pose(&self" in (bridges["ws"] / OLD_HANDLERS).with_name("dispatch.rs").read_text(encoding="utf-8")
+
+
+def test_seed_streams_x_arm_2_simulated_drives_robonaut_2(bridges):
+    """The seeds' hand pose, Rust to Rust: X-Arm 2's bridge under --simulate writes its output
+    stream handPose (500 Hz, from the kept sample), Robonaut 2's bridge without --simulate
+    (its committed handlers.rs: no callbacks, samples counted and watched) reads it in
+    partition XArm2: active, lost with the writer frozen (SIGSTOP: no sample within 10 ms,
+    on_loss stop), recovered (SIGCONT), in AgentState and TextMessages. Domain 84, tagged."""
+    env = dict(os.environ, CYCLONEDDS_URI=f"file://{R2_LOCAL},<CycloneDDS><Domain id=\"any\"><Discovery>"
+               f"<Tag>rapidgen-rust-seed-streams-{os.getpid()}</Tag></Discovery></Domain></CycloneDDS>")
+    r2 = subprocess.Popen([str(bridges["robonaut2"]), "--domain", str(SEED_DOMAIN), "--no-journal"], cwd=ROOT,
+                          env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    writer = watcher = None
+    try:
+        assert r2.stdout is not None and "ready" in r2.stdout.readline()
+        watcher = TaggedWatcher(R2_LOCAL.parents[3], "rapid_robonaut2", env, SEED_DOMAIN, ())
+        agent = lambda state: lambda e: "agent" in e and e["agent"].get("handPoseStream") == state  # noqa: E731
+        watcher.until(agent("waiting"), 15, "AgentState 'waiting' before any writer")
+        writer = subprocess.Popen([str(bridges["xarm2"]), "--simulate", "--domain", str(SEED_DOMAIN), "--no-journal"],
+                                  cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        assert writer.stdout is not None and "ready" in writer.stdout.readline()
+        watcher.until(agent("active"), 15, "AgentState 'active': the simulated X-Arm 2's hand pose arrives")
+        # ("recovered" when a loaded machine made the 10 ms deadline pass before the reporter looked)
+        watcher.seen_or_until(lambda e: "text" in e and re.search(r"handPose (active|recovered)", e["text"]), 10,
+                              "a TextMessage saying active")
+        os.kill(writer.pid, signal.SIGSTOP)
+        text = watcher.until(lambda e: "text" in e and "handPose lost" in e["text"], 10, "a TextMessage saying lost")
+        assert text["text"].endswith("motion stopped") and "WARN" in text["level"], text
+        lost = watcher.until(agent("lost"), 10, "AgentState 'lost'")
+        assert lost["agent"]["handPoseMissed"] >= 1
+        # (a loaded machine may miss the 10 ms deadline before the freeze; frozen, it stays lost)
+        frozen = latest_events(watcher, 1.5)
+        assert not any("text" in e and "recovered" in e["text"] for e in frozen), frozen
+        assert [e for e in frozen if "agent" in e][-1]["agent"]["handPoseStream"] == "lost", frozen
+        os.kill(writer.pid, signal.SIGCONT)
+        watcher.until(lambda e: "text" in e and "handPose recovered" in e["text"], 10, "a TextMessage saying recovered")
+        watcher.until(agent("active"), 10, "AgentState 'active' again")
+        r2.terminate()
+        _, err = r2.communicate(timeout=20)
+        assert r2.returncode == 0, err[-2000:]
+        m = re.search(r"stream handPose: (\d+) samples, (\d+) deadlines missed, (\d+) losses", err)
+        assert m and int(m.group(1)) >= 1 and int(m.group(3)) >= 1, err[-2000:]
+    finally:
+        if writer is not None:
+            os.kill(writer.pid, signal.SIGCONT)
+            writer.kill()
+            writer.wait()
+        if watcher is not None:
+            watcher.stop()
+        if r2.poll() is None:
+            r2.kill()
+            r2.wait()
