@@ -92,7 +92,7 @@ def build_bridges(rust_target: Path, ws: Path) -> dict[str, Path]:
                              timeout=1800, stdin=subprocess.DEVNULL)
         if res.returncode == 0:
             break
-    print(f"cargo build of the {len(SEEDS) + 1} bridges (debug, one workspace): {time.monotonic() - start:.1f} s")
+    print(f"cargo build of the {len(SEEDS) + 2} bridges (debug, one workspace): {time.monotonic() - start:.1f} s")
     assert res.returncode == 0, res.stderr[-4000:]
     warnings = [line for line in res.stderr.splitlines() if line.startswith("warning")]
     assert not warnings, res.stderr[-4000:]  # the generated code compiles clean

@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/rust/bridge/dispatch.rs.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "19f5eb56afe4f518fcbd1545b2760ca49cfb54ea445f9ad9f865e62b72d0f4a3"
+KEY = "0dd409ecb1a1e70cb5825f2a796277401d8878330ebc6a1a0862c16523d96028"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/dispatch.rs.j2'
 
@@ -326,10 +326,14 @@ def root(context, missing=missing, environment=environment):
             yield '.sample();\n'
             if (environment.getattr(l_1_s, 'kind') == 'position'):
                 pass
-                yield '                let (xyz, rot) = sim.pose_at(t);\n                s.pose.xyz = xyz;\n                s.pose.rot = rot;\n'
+                yield '                let (xyz, rot) = sim.pose_at('
+                yield str(environment.getattr(l_1_s, 'index'))
+                yield ', t);\n                s.pose.xyz = xyz;\n                s.pose.rot = rot;\n'
             elif (environment.getattr(l_1_s, 'kind') == 'joint'):
                 pass
-                yield '                sim.joints_at(t, &mut s.angle_pos);\n'
+                yield '                sim.joints_at('
+                yield str(environment.getattr(l_1_s, 'index'))
+                yield ', t, &mut s.angle_pos);\n'
             else:
                 pass
                 yield '                let _ = (sim, t);\n'
@@ -342,4 +346,4 @@ def root(context, missing=missing, environment=environment):
         yield '())\n                as rapid_dds::stream::ValuesHook\n        }),\n        periodic_agent: true,\n    };\n    (Arc::new(d.handlers), StreamGlue { specs: STREAMS, real, sim, hooks })\n}\n'
 
 blocks = {}
-debug_info = '1=21&2=23&17=25&22=32&24=36&25=38&26=41&27=44&30=47&31=51&33=54&34=58&36=62&43=77&44=81&48=87&68=91&69=95&70=99&82=124&83=126&90=130&97=137&103=139&110=141&111=143&112=146&113=150&115=154&123=160&129=162&136=164&137=168&144=172&146=174&151=176&152=180&156=182&158=184&161=187&163=191&165=198&166=202&170=209&171=211&172=215&175=217&177=219&178=221&185=225&192=228&202=230&205=233&212=235&213=237&214=239&215=241&220=243&223=246&229=248&239=252&240=254&245=256&248=260&250=266&255=269&256=273&264=279&267=283&268=286&269=292&270=295&272=304&280=311&281=315&282=319&283=321&284=323&288=326&302=335&306=337'
+debug_info = '1=21&2=23&17=25&22=32&24=36&25=38&26=41&27=44&30=47&31=51&33=54&34=58&36=62&43=77&44=81&48=87&68=91&69=95&70=99&82=124&83=126&90=130&97=137&103=139&110=141&111=143&112=146&113=150&115=154&123=160&129=162&136=164&137=168&144=172&146=174&151=176&152=180&156=182&158=184&161=187&163=191&165=198&166=202&170=209&171=211&172=215&175=217&177=219&178=221&185=225&192=228&202=230&205=233&212=235&213=237&214=239&215=241&220=243&223=246&229=248&239=252&240=254&245=256&248=260&250=266&255=269&256=273&264=279&267=283&268=286&269=292&270=295&272=304&280=311&281=315&282=319&283=321&284=323&285=326&288=328&289=331&302=339&306=341'

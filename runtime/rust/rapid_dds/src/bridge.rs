@@ -25,7 +25,7 @@ use rapid_runtime::{CommandManager, Context, Handlers, Options, Outbox, Outcome,
 
 use crate::dds::{DdsError, Participant, Side};
 use crate::stream::{Env, Hooks, StreamSet};
-use crate::stream_sim::{Fill, SimStreams};
+use crate::stream_sim::{Fill, Parts, SimStreams};
 use crate::telemetry::{self, Body, Custom, Source};
 use crate::{convert, tables_json, DdsOutbox};
 use rapid_runtime::stream::StreamSpec;
@@ -308,13 +308,14 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
     // the streams' readers and writers before the telemetry (the simulated AgentState carries
     // their keys); their reporting thread once the command manager exists (stopAllMotion)
     let mut sim_streams = None;
+    let parts = Arc::new(Mutex::new(Parts::of(&tables))); // what the streams move, the telemetry reports
     let mut stream_set = match streams {
         None => None,
         Some(st) => {
             let env = Env::of(&tables, &name, serial, log.clone(), asset.qos);
             let err = |e: DdsError| Failure::Run(e.to_string());
             if args.simulate {
-                let sim = SimStreams::new(st.specs, &tables.tables, body.clone(), joint_rest(&tables));
+                let sim = SimStreams::new(st.specs, &tables, body.clone(), parts.clone());
                 let me = sim.clone();
                 let specs = st.specs;
                 let hooks = Hooks {
@@ -339,7 +340,8 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
     };
     let sim = if args.simulate {
         let agent_values = stream_set.as_ref().map(|s| s.values());
-        let source = Source { body: body.clone(), name: name.clone(), serial, qos: asset.qos, agent_values };
+        let source = Source { body: body.clone(), name: name.clone(), serial, qos: asset.qos, agent_values,
+                              parts: stream_set.as_ref().map(|_| parts.clone()) };
         Some(telemetry::start(&dp, &tables, source, asset.customs, stop.clone()).map_err(|e| e.to_string())?)
     } else {
         None
@@ -417,19 +419,6 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
         let _ = t.join();
     }
     Ok(())
-}
-
-/// The first joint entry's joints at rest (JointSample output streams under --simulate).
-fn joint_rest(asset: &tables_json::Asset) -> Vec<f64> {
-    let Some(t) = asset.telemetry.iter().find(|t| t.kind == "joint") else { return Vec::new() };
-    t.joints
-        .iter()
-        .map(|j| match (j.min, j.max) {
-            (Some(lo), _) if lo > 0.0 => lo,
-            (_, Some(hi)) if hi < 0.0 => hi,
-            _ => 0.0,
-        })
-        .collect()
 }
 
 /// SIGTERM or SIGINT came: the bridge stops as after Admin/shutdown (what runs answered, the

@@ -20,6 +20,7 @@ use rapid_types::rapid;
 use crate::convert;
 use crate::dds::{DdsError, Participant, Side, Writer};
 use crate::images;
+use crate::stream_sim::Parts;
 use crate::tables_json::{Asset, Telemetry, TelemetryValue};
 
 /// Seconds between samples of an entry without a declared rate (extension samples, cameras
@@ -59,15 +60,17 @@ pub struct Source {
     pub qos: fn(&str) -> Option<Side>,
     /// values merged into AgentState by key (the setpoint streams' state and missed keys)
     pub agent_values: Option<AgentValues>,
+    /// joint positions and subsystems' own poses the setpoint streams move (stream_sim.rs)
+    pub parts: Option<Arc<Mutex<Parts>>>,
 }
 
 /// Agent values by key, asked for at each AgentState.
 pub type AgentValues = Arc<dyn Fn() -> Vec<(String, Value)> + Send + Sync>;
 
 enum Kind {
-    Position { values: Vec<(String, rapid::ParameterUnion)>, encoding: String },
+    Position { values: Vec<(String, rapid::ParameterUnion)>, encoding: String, subsystem: String },
     Agent(Vec<(String, rapid::ParameterUnion)>),
-    Joint { positions: Vec<f32>, fields: Vec<String> },
+    Joint { positions: Vec<f32>, fields: Vec<String>, entry: usize },
     Image { state: Writer, meta: rapid::ImageMetadata, mime: String, frame: u32 },
     Text { category: String },
     Custom(Box<dyn Fn() -> Result<Vec<u8>, String> + Send>),
@@ -153,6 +156,7 @@ fn period(rate: Option<f64>, idle: f64) -> Duration {
 
 struct Publisher {
     agent_values: Option<AgentValues>,
+    parts: Option<Arc<Mutex<Parts>>>,
     body: Arc<Mutex<Body>>,
     name: String,
     serial: i32,
@@ -169,8 +173,13 @@ impl Publisher {
         let le = Endianness::Little;
         let enc = |e: cdr::EncodeError| e.to_string();
         match kind {
-            Kind::Position { values, encoding } => {
-                let b = self.body.lock().unwrap_or_else(|e| e.into_inner()).clone();
+            Kind::Position { values, encoding, subsystem } => {
+                let mut b = self.body.lock().unwrap_or_else(|e| e.into_inner()).clone();
+                // a subsystem a stream moves reports its own pose (at rest: no heading, no speed)
+                let own = self.parts.as_ref().and_then(|p| p.lock().unwrap_or_else(|e| e.into_inner()).poses.get(subsystem.as_str()).copied());
+                if let Some(xyz) = own {
+                    b = Body { xyz, ..Body::default() };
+                }
                 let speed = b.velocity[0].hypot(b.velocity[1]);
                 let values = values
                     .iter()
@@ -196,7 +205,13 @@ impl Publisher {
                     .collect();
                 cdr::serialize(&rapid::AgentState { hdr, values }, le).map_err(enc)
             }
-            Kind::Joint { positions, fields } => {
+            Kind::Joint { positions, fields, entry } => {
+                if let Some(p) = &self.parts {
+                    // where the setpoint streams moved them
+                    if let Some(now) = p.lock().unwrap_or_else(|e| e.into_inner()).joints.get(*entry) {
+                        *positions = now.iter().map(|x| *x as f32).collect();
+                    }
+                }
                 let n = positions.len();
                 let mut s = rapid::JointSample { hdr, angle_pos: positions.clone(), ..Default::default() };
                 for f in fields.iter() {
@@ -274,9 +289,10 @@ pub fn start(
     customs: Vec<Custom>,
     stop: Arc<AtomicBool>,
 ) -> Result<JoinHandle<()>, DdsError> {
-    let mut p = Publisher { agent_values: src.agent_values.clone(), body: src.body.clone(), name: src.name.clone(), serial: src.serial, jobs: Vec::new() };
+    let mut p = Publisher { agent_values: src.agent_values.clone(), parts: src.parts.clone(), body: src.body.clone(), name: src.name.clone(), serial: src.serial, jobs: Vec::new() };
     let now = Instant::now();
     let mut once = Vec::new();
+    let mut joints = 0; // joint entries so far (Parts::joints is by joint entry)
     for t in &asset.telemetry {
         let topic = |role: &str| t.topics.get(role).cloned();
         let mut job = |topic: String, type_name: &str, rate: Option<f64>, kind: Kind| -> Result<(), DdsError> {
@@ -288,7 +304,8 @@ pub fn start(
             "position" => {
                 if let Some(s) = topic("sample") {
                     let values = t.values.iter().map(|v| (v.name.clone(), plausible(v))).collect();
-                    job(s, "rapid::PositionSample", t.rate, Kind::Position { values, encoding: t.pose_encoding.clone() })?;
+                    let kind = Kind::Position { values, encoding: t.pose_encoding.clone(), subsystem: t.subsystem.clone() };
+                    job(s, "rapid::PositionSample", t.rate, kind)?;
                 }
             }
             "agent" => {
@@ -297,9 +314,11 @@ pub fn start(
                 }
             }
             "joint" => {
+                let entry = joints;
+                joints += 1;
                 if let Some(s) = topic("sample") {
                     let positions = t.joints.iter().map(|j| joint_rest(j.min, j.max) as f32).collect();
-                    job(s, "rapid::JointSample", t.rate, Kind::Joint { positions, fields: t.fields.clone() })?;
+                    job(s, "rapid::JointSample", t.rate, Kind::Joint { positions, fields: t.fields.clone(), entry })?;
                 }
             }
             "image" => image(dp, &src, t, takes_pictures(asset, &t.subsystem), &mut p, now)?,
@@ -341,7 +360,7 @@ pub fn start(
 }
 
 /// A joint's resting position: zero, or the middle of its limits when zero is outside them.
-fn joint_rest(min: Option<f64>, max: Option<f64>) -> f64 {
+pub(crate) fn joint_rest(min: Option<f64>, max: Option<f64>) -> f64 {
     let v = TelemetryValue { name: String::new(), data_type: DataType::Double, min, max, allowed: Vec::new(), default: None };
     number(&v)
 }

@@ -187,7 +187,7 @@ pub fn stream_glue(d: impl ::core::convert::Into<Dispatch>) -> (Arc<dyn rapid_ru
             set.output(0, &HAND_POSE_STREAM)?;
             fills.push((0.002, ::std::boxed::Box::new(|sim: &SimStreams, t: f64| {
                 let mut s = HAND_POSE_STREAM.sample();
-                let (xyz, rot) = sim.pose_at(t);
+                let (xyz, rot) = sim.pose_at(0, t);
                 s.pose.xyz = xyz;
                 s.pose.rot = rot;
                 s.send();
