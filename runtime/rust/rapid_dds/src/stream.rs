@@ -744,3 +744,42 @@ impl Drop for StreamSet {
         self.stop();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Default)]
+    struct Sample {
+        name: String,
+        stamp: i64,
+        values: Vec<f32>,
+    }
+
+    static OUT: OutputStream<Sample> = OutputStream::new(
+        |s| Ok(s.values.iter().flat_map(|x| x.to_le_bytes()).collect()),
+        |s, name, stamp| {
+            if !name.is_empty() {
+                s.name = name.into();
+            }
+            if stamp != 0 {
+                s.stamp = stamp;
+            }
+        },
+    );
+
+    #[test]
+    fn an_output_stream_keeps_its_sample_and_sends_nothing_before_the_bridge_attaches() {
+        OUT.sample().values = vec![1.0; 64];
+        assert!(!OUT.send()); // no writer yet: false, nothing stamped
+        assert!(!OUT.sample().send());
+        let s = OUT.sample();
+        assert_eq!((s.values.len(), s.stamp, s.name.as_str()), (64, 0, "")); // kept as filled
+    }
+
+    #[test]
+    fn finite_checks() {
+        assert!(finite_f32(&[1.0, -2.0]) && finite_f64(&[]) && finite_f64(&[1e300]));
+        assert!(!finite_f32(&[0.0, f32::NAN]) && !finite_f64(&[f64::NEG_INFINITY]));
+    }
+}

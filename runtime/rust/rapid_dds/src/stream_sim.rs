@@ -254,40 +254,41 @@ impl SimStreams {
     }
 
     fn move_parts(&self) {
-        let dt = TICK.as_secs_f64();
         while !self.stop.load(Ordering::SeqCst) {
-            {
-                let g = lock(&self.goals);
-                if let Some([x, y]) = g.body {
-                    let mut b = lock(&self.body);
-                    let (dx, dy) = (x - b.xyz[0], y - b.xyz[1]);
-                    let dist = dx.hypot(dy);
-                    if dist < 1e-3 {
-                        b.velocity = [0.0; 3];
-                    } else {
-                        let step = dist.min(DRIVE_SPEED * dt);
-                        b.xyz[0] += dx / dist * step;
-                        b.xyz[1] += dy / dist * step;
-                        b.odometer += step;
-                        b.velocity = [dx / dist * DRIVE_SPEED, dy / dist * DRIVE_SPEED, 0.0];
-                    }
-                }
-                let mut parts = lock(&self.parts);
-                for (name, goal) in &g.poses {
-                    if let (Some(goal), Some(at)) = (goal, parts.poses.get_mut(name)) {
-                        step_toward(at, goal, DRIVE_SPEED * dt);
-                    }
-                }
-                for (e, joints) in g.joints.iter().enumerate() {
-                    for (j, goal) in joints.iter().enumerate() {
-                        if let (Some(goal), Some(at)) = (goal, parts.joints.get_mut(e).and_then(|v| v.get_mut(j))) {
-                            let d = goal - *at;
-                            *at += d.clamp(-JOINT_SPEED * dt, JOINT_SPEED * dt);
-                        }
-                    }
+            self.step(TICK.as_secs_f64());
+            std::thread::sleep(TICK);
+        }
+    }
+
+    /// `dt` seconds pass: the body, subsystems' poses and joints approach their setpoints.
+    fn step(&self, dt: f64) {
+        let g = lock(&self.goals);
+        if let Some([x, y]) = g.body {
+            let mut b = lock(&self.body);
+            let (dx, dy) = (x - b.xyz[0], y - b.xyz[1]);
+            let dist = dx.hypot(dy);
+            if dist < 1e-3 {
+                b.velocity = [0.0; 3];
+            } else {
+                let step = dist.min(DRIVE_SPEED * dt);
+                b.xyz[0] += dx / dist * step;
+                b.xyz[1] += dy / dist * step;
+                b.odometer += step;
+                b.velocity = [dx / dist * DRIVE_SPEED, dy / dist * DRIVE_SPEED, 0.0];
+            }
+        }
+        let mut parts = lock(&self.parts);
+        for (name, goal) in &g.poses {
+            if let (Some(goal), Some(at)) = (goal, parts.poses.get_mut(name)) {
+                step_toward(at, goal, DRIVE_SPEED * dt);
+            }
+        }
+        for (e, joints) in g.joints.iter().enumerate() {
+            for (j, goal) in joints.iter().enumerate() {
+                if let (Some(goal), Some(at)) = (goal, parts.joints.get_mut(e).and_then(|v| v.get_mut(j))) {
+                    *at += (goal - *at).clamp(-JOINT_SPEED * dt, JOINT_SPEED * dt);
                 }
             }
-            std::thread::sleep(TICK);
         }
     }
 
@@ -306,5 +307,99 @@ impl SimStreams {
             }
             std::thread::sleep(Duration::from_secs_f64((soonest - t0.elapsed().as_secs_f64()).clamp(0.0, 0.1)));
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tables_json::asset_of;
+
+    fn spec(name: &'static str, type_name: &'static str, subsystem: &'static str, on_loss: LossAction) -> StreamSpec {
+        StreamSpec { name, input: true, type_name, topic: "t", partition: "P", rate_hz: 50.0, deadline_ms: 200.0,
+                     liveliness_ms: 600.0, on_loss, subsystem, state_key: "", missed_key: "" }
+    }
+
+    /// tests/streams/rig.yaml's shape: a Mobility, an Arm with three joints (one entry, frames
+    /// Arm/...), a Mast with a position entry of its own.
+    fn rig() -> Asset {
+        let j = serde_json::json!({
+            "name": "Rig", "partition": "Rig", "types": [],
+            "subsystems": [{"name": "Mobility", "type": "Mobility"}, {"name": "Arm", "type": "Arm"},
+                           {"name": "Mast", "type": "Arm"}],
+            "telemetry": [
+                {"kind": "position", "topics": {"sample": "rapid_position_sample"}},
+                {"kind": "position", "subsystem": "Mast", "topics": {"sample": "rapid_position_sample-mastHead"}},
+                {"kind": "joint", "topics": {"sample": "rapid_joint_sample"}, "joints": [
+                    {"frame": "Arm/Joint0", "min": -2.0, "max": 2.0}, {"frame": "Arm/Joint1", "min": -2.0, "max": 2.0},
+                    {"frame": "Arm/Joint2", "min": -2.0, "max": 2.0}]}
+            ]
+        });
+        asset_of(&j).unwrap()
+    }
+
+    #[test]
+    fn a_stream_drives_what_its_subsystem_names() {
+        let a = rig();
+        assert_eq!(joints_of(&a, "Arm"), vec![(0, 0), (0, 1), (0, 2)]); // by frame
+        assert_eq!(joints_of(&a, ""), vec![(0, 0), (0, 1), (0, 2)]); // none named: the first entry's
+        assert!(joints_of(&a, "Mast").is_empty());
+        let specs = [spec("drive", "rapid::PositionSample", "Mobility", LossAction::Stop),
+                     spec("mast", "rapid::PositionSample", "Mast", LossAction::None),
+                     spec("arm", "rapid::JointSample", "Arm", LossAction::Stop)];
+        let parts = Arc::new(Mutex::new(Parts::of(&a)));
+        let sim = SimStreams::new(&specs, &a, Arc::new(Mutex::new(Body::default())), parts.clone());
+        assert_eq!(sim.drives, vec![Drives::Body, Drives::Pose("Mast".into()), Drives::Joints(vec![(0, 0), (0, 1), (0, 2)])]);
+        assert_eq!(lock(&parts).poses.get("Mast"), Some(&[0.0; 3])); // reported from the start
+    }
+
+    #[test]
+    fn setpoints_are_approached_clamped_and_halted_by_stop() {
+        let a = rig();
+        let specs = [spec("drive", "rapid::PositionSample", "", LossAction::Stop),
+                     spec("mast", "rapid::PositionSample", "Mast", LossAction::Hold),
+                     spec("arm", "rapid::JointSample", "Arm", LossAction::Stop)];
+        let body = Arc::new(Mutex::new(Body::default()));
+        let parts = Arc::new(Mutex::new(Parts::of(&a)));
+        let sim = SimStreams::new(&specs, &a, body.clone(), parts.clone());
+        sim.position(0, [2.0, 0.0, 9.0]);
+        sim.position(1, [0.0, 0.0, 1.0]);
+        sim.joints(2, &[5.0, -0.5]); // clamped to 2; the third joint has no setpoint
+        sim.step(1.0);
+        assert_eq!(lock(&body).xyz, [DRIVE_SPEED, 0.0, 0.0]); // x, y only
+        assert_eq!(lock(&parts).poses["Mast"], [0.0, 0.0, DRIVE_SPEED]);
+        assert_eq!(lock(&parts).joints[0], vec![JOINT_SPEED, -0.5, 0.0]);
+        sim.step(5.0);
+        assert_eq!(lock(&parts).joints[0], vec![2.0, -0.5, 0.0]);
+        sim.position(0, [2.0, 0.0, 0.0]);
+        sim.joints(2, &[-2.0, -2.0, -2.0]);
+        // lost: stop halts what the stream drives, hold lets it go on
+        for (i, s) in specs.iter().enumerate() {
+            sim.on_state(i, s, StreamState::Lost);
+        }
+        let x = lock(&body).xyz[0];
+        sim.step(1.0);
+        assert_eq!(lock(&body).xyz[0], x);
+        assert_eq!(lock(&parts).joints[0], vec![2.0, -0.5, 0.0]);
+        assert_eq!(lock(&parts).poses["Mast"], [0.0, 0.0, 1.0]); // hold: reached its setpoint
+    }
+
+    #[test]
+    fn outputs_carry_the_simulated_state() {
+        let a = rig();
+        let mut out = spec("pose", "rapid::PositionSample", "", LossAction::None);
+        out.input = false;
+        let mut joints = spec("joints", "rapid::JointSample", "Arm", LossAction::None);
+        joints.input = false;
+        let body = Arc::new(Mutex::new(Body { xyz: [1.0, 2.0, 3.0], ..Body::default() }));
+        let sim = SimStreams::new(&[out, joints], &a, body, Arc::new(Mutex::new(Parts::of(&a))));
+        let (xyz, _) = sim.pose_at(0, 0.0);
+        assert_eq!(xyz, [1.1, 2.0, 3.0]); // the body, 10 cm out at t = 0
+        sim.position(0, [9.0, 9.0, 9.0]); // an output stream's own pose is never a setpoint
+        sim.step(1.0);
+        assert_eq!(sim.pose_at(0, 0.0).0, [1.1, 2.0, 3.0]);
+        let mut v = Vec::new();
+        sim.joints_at(1, 2.5, &mut v); // a quarter period: +0.2 rad
+        assert_eq!(v, vec![0.2f32; 3]);
     }
 }
