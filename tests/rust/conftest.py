@@ -89,7 +89,7 @@ def rust_build(tmp_path_factory, rust_target) -> Path:
     """The test programs built against K10's crate; returns their folder."""
     start = time.monotonic()
     out = build_programs(tmp_path_factory.mktemp("rust-harness"), K10, CRATE, rust_target,
-                         {"configs": HERE / "src" / "configs.rs"})
+                         {"configs": HERE / "src" / "configs.rs", "reuse": HERE / "src" / "reuse.rs"})
     print(f"\nrust: cargo build of {CRATE} and the test programs took {time.monotonic() - start:.1f} s")
     return out
 

@@ -27,6 +27,13 @@ def test_random_and_truncated_bytes_never_panic_nor_overallocate(rust_build):
     # both outcomes occur: the loop really exercised the decoders' refusals and successes
     assert counts["decoded"] > 2 * 264 and counts["refused"] > 10_000
     assert counts["over"] == 0
+    assert counts["differ"] == 0  # decode_into a kept value: deserialize's outcome, every input
+
+
+def test_decode_into_and_serialize_into_reuse_kept_values_without_allocating(rust_build):
+    res = subprocess.run([str(rust_build / "reuse")], capture_output=True, text=True, timeout=60)
+    assert res.returncode == 0, res.stdout[-4000:] + res.stderr[-4000:]
+    assert res.stdout.split() == ["ok"]
 
 
 def _filled(default: object, given: object) -> object:

@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/rust/_decls.rs.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "6f49eb2aa4558bffb043408cf8cec2eaafa417f9eaaaab3d51b0298f0c662e66"
+KEY = "fcc5c8ab7d4d6af0239e6b890e3b44877969f92fa3c32794af0e75410ea28d0d"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = '_decls.rs.j2'
 
@@ -270,7 +270,19 @@ def root(context, missing=missing, environment=environment):
                     ))
                 l_3_f = missing
                 t_3.append(
-                    '        };\n        r.leave();\n        Ok(v)\n    }\n',
+                    "        };\n        r.leave();\n        Ok(v)\n    }\n\n    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {\n        r.enter()?;\n",
+                )
+                for l_3_f in environment.getattr(l_2_d, 'members'):
+                    _loop_vars = {}
+                    pass
+                    t_3.extend((
+                        '        ',
+                        str(environment.getattr(l_3_f, 'decode_into')),
+                        '\n',
+                    ))
+                l_3_f = missing
+                t_3.append(
+                    '        r.leave();\n        Ok(())\n    }\n',
                 )
                 if environment.getattr(l_2_d, 'key'):
                     pass
@@ -461,4 +473,4 @@ def root(context, missing=missing, environment=environment):
     context.vars['decls'] = l_0_decls = Macro(environment, macro, 'decls', ('m',), False, False, False, context.eval_ctx.autoescape)
 
 blocks = {}
-debug_info = '1=24&2=27&3=32&5=37&6=40&7=44&8=49&9=53&10=60&12=64&13=67&14=71&16=76&18=78&19=81&20=86&21=89&24=94&25=98&27=103&31=111&35=114&36=119&42=127&43=129&46=131&51=135&55=137&56=140&57=145&63=154&64=158&65=160&66=163&67=167&69=172&70=175&71=180&72=183&73=187&75=192&78=201&80=205&83=208&84=213&91=224&92=226&94=228&95=231&96=236&101=242&102=245&103=250&110=257&111=262&117=271&120=275&123=278&124=283&130=290&131=295&138=304&139=307&142=311&143=314&144=318&147=323&148=326&149=329&150=333&152=338&156=346&158=348&162=350&163=352&167=355&168=360&169=363&170=367&171=369&174=372&175=377&184=388&185=393&188=400&189=405&196=413&197=416&201=424&202=429&210=437&213=441&215=446&216=451'
+debug_info = '1=24&2=27&3=32&5=37&6=40&7=44&8=49&9=53&10=60&12=64&13=67&14=71&16=76&18=78&19=81&20=86&21=89&24=94&25=98&27=103&31=111&35=114&36=119&42=127&43=129&46=131&51=135&55=137&56=140&57=145&63=154&64=158&65=160&66=163&67=167&69=172&70=175&71=180&72=183&73=187&75=192&78=201&80=205&83=208&84=213&91=224&92=226&94=228&95=231&96=236&101=242&102=245&103=250&110=257&111=262&120=271&121=276&126=283&129=287&132=290&133=295&139=302&140=307&147=316&148=319&151=323&152=326&153=330&156=335&157=338&158=341&159=345&161=350&165=358&167=360&171=362&172=364&176=367&177=372&178=375&179=379&180=381&183=384&184=389&193=400&194=405&197=412&198=417&205=425&206=428&210=436&211=441&219=449&222=453&224=458&225=463'

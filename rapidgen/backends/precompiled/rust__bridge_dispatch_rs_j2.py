@@ -1,7 +1,7 @@
 # mypy: ignore-errors
 # Template templates/rust/bridge/dispatch.rs.j2, compiled by Jinja2 3.1.6; do not edit.
 # python -m rapidgen.backends.templating --write refreshes it (rapidgen/backends/templating.py).
-KEY = "0dd409ecb1a1e70cb5825f2a796277401d8878330ebc6a1a0862c16523d96028"
+KEY = "8d0db4dd5ea52a2f25e06ab42d087dfcb56e34aa7848ba8601ca16363a1d21d4"
 from jinja2.runtime import LoopContext, Macro, Markup, Namespace, TemplateNotFound, TemplateReference, TemplateRuntimeError, Undefined, escape, identity, internalcode, markup_join, missing, str_join
 name = 'bridge/dispatch.rs.j2'
 
@@ -225,10 +225,10 @@ def root(context, missing=missing, environment=environment):
             yield str(environment.getattr(l_1_s, 'static'))
             yield '.send()\n}\n'
         l_1_loop = l_1_s = missing
-        yield '\nfn decode<T: Cdr>(bytes: &[u8]) -> ::core::result::Result<T, ::std::string::String> {\n    cdr::deserialize(bytes).map_err(|e| e.to_string())\n}\n'
+        yield '\nfn decode<T: Cdr>(bytes: &[u8], into: &mut T) -> ::core::result::Result<(), ::std::string::String> {\n    cdr::deserialize_into(bytes, into).map_err(|e| e.to_string())\n}\n'
         if environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'outputs'):
             pass
-            yield "\nfn encode<T: Cdr>(v: &T) -> ::core::result::Result<::std::vec::Vec<u8>, ::std::string::String> {\n    cdr::serialize(v, cdr::Endianness::Little).map_err(|e| e.to_string())\n}\n\n/// An output sample's header: the asset's names (when given), the time (when not 0).\nfn header_of(hdr: &mut "
+            yield "\nfn encode<T: Cdr>(v: &T, into: &mut ::std::vec::Vec<u8>) -> ::core::result::Result<(), ::std::string::String> {\n    cdr::serialize_into(v, cdr::Endianness::Little, into).map_err(|e| e.to_string())\n}\n\n/// An output sample's header: the asset's names (when given), the time (when not 0).\nfn header_of(hdr: &mut "
             yield str(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'rapid'))
             yield '::Header, name: &str, stamp: i64) {\n    if !name.is_empty() {\n        hdr.src_name = name.into();\n        hdr.asset_name = name.into();\n    }\n    if stamp != 0 {\n        hdr.time_stamp = stamp;\n    }\n}\n'
         if ('position' in context.call(environment.getattr((undefined(name='st') if l_0_st is missing else l_0_st), 'kinds'), inputs=True)):

@@ -49,6 +49,11 @@ def ref(place: str) -> str:
     return place[1:] if place.startswith("*") else "&" + place
 
 
+def mut_ref(place: str) -> str:
+    """A mutable reference to the value at `place`."""
+    return place[1:] if place.startswith("*") else "&mut " + place
+
+
 class TypeMap(TypeSpeller):
     """Needs the model and a function giving a declaration's path from the crate root."""
 
@@ -236,6 +241,40 @@ class TypeMap(TypeSpeller):
         d = self.decl(r)
         assert d is not None
         return f"<{self.path(d.scoped_name)} as {CDR}::Cdr>::decode(r)", True
+
+
+    # -- decode into (a kept value: its strings' and sequences' capacity reused) --------
+    def decode_into(self, t: ir.Type, place: str, what: str) -> str:
+        """A statement reading the value from Reader `r` over the one at `place` (`?`
+        inside): the same reads and checks as `decode`, in the same order."""
+        r = self.real(t)
+        if isinstance(r, ir.Primitive):
+            return f"{place} = {self.decode(t, what)};"
+        w = rust_str(what) if isinstance(r, (ir.String, ir.Sequence, ir.Array)) else ""
+        at = mut_ref(place)
+        if isinstance(r, ir.String):
+            return f"r.get_string_into({at}, {r.bound or 0}, {w})?;"
+        if isinstance(r, ir.Sequence):
+            run = self.run(r.element)
+            if run:
+                name, _, turbofish = run.partition("::")
+                return f"r.get_seq_{name}_into{'::' + turbofish if turbofish else ''}({at}, {r.bound or 0}, {w})?;"
+            e = self.var("e")
+            return (f"r.get_seq_into({at}, {r.bound or 0}, {self.min_size(r.element)}, {w}, "
+                    f"|r, {e}| {{ {self.decode_into(r.element, '*' + e, what)} Ok(()) }}, "
+                    f"{self.decoder(r.element, what)})?;")
+        if isinstance(r, ir.Array):
+            inner = ir.Array(r.element, r.dims[1:]) if len(r.dims) > 1 else r.element
+            run = self.run(inner)
+            if run:
+                fill = f"r.get_{run}({at}, {w})?;"
+            else:
+                e = self.var("e")
+                fill = f"r.get_array_into({at}, |r, {e}| {{ {self.decode_into(inner, '*' + e, what)} Ok(()) }})?;"
+            return f"r.need({self.min_size(r)}, {w})?; {fill}"
+        d = self.decl(r)
+        assert d is not None
+        return f"{CDR}::Cdr::decode_into({at}, r)?;"
 
 
 def float_literal(v: float, rtype: str) -> str:

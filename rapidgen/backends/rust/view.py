@@ -37,6 +37,7 @@ class MemberView:
     default: str  # expression for a hand-written Default
     decode: str
     serde: str = ""  # the member's #[serde(...)] arguments ("" none)
+    decode_into: str = ""  # statement reading the member over self's (capacity reused)
 
 
 @dataclass
@@ -214,7 +215,8 @@ class Builder:
             enc.append(expr + ("?;" if fallible else ";"))
             size.append(self.types.size(m.type, f"self.{rname}"))
             members.append(MemberView(rname, rtype, m.name, default or DEFAULT, self.types.decode(m.type, what),
-                                      self._serde(rname, m.name, m.type)))
+                                      self._serde(rname, m.name, m.type),
+                                      self.types.decode_into(m.type, f"self.{rname}", what)))
         scope.check()
         self.fields[s.scoped_name] = {m.wire: m.name for m in members}
         doc = f"IDL {s.origin} `{s.scoped_name}`"

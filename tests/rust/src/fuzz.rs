@@ -2,12 +2,14 @@
 //! raised, and random bytes go to the decoder of its type. A panic fails the run (exit
 //! 101); so does an allocation the input cannot justify (a counting allocator keeps the
 //! peak of live heap bytes during each decode). The body of each input also goes to the
-//! type's key transcoder (`transcode_key`), under the same rules. Prints
-//! `seeds N decoded N refused N`.
+//! type's key transcoder (`transcode_key`), under the same rules, and to `deserialize_into`
+//! over one value per type kept across all its inputs (whatever the last left in it): the
+//! same outcome as `deserialize` (the same error, or a value encoding to the same bytes),
+//! under the same allocation rule. Prints `seeds N decoded N refused N over N differ N`.
 
 mod common;
 
-use gen::cdr::{deserialize, transcode_key, Cdr, Endianness};
+use gen::cdr::{deserialize, deserialize_into, serialize, transcode_key, Cdr, Endianness};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
@@ -57,19 +59,38 @@ struct Fuzz<'a> {
     decoded: usize,
     refused: usize,
     over: Vec<String>,
+    differ: Vec<String>,
 }
 
 impl Fuzz<'_> {
-    fn feed<T: Cdr>(&mut self, what: &str, data: &[u8]) -> bool {
+    fn feed<T: Cdr>(&mut self, what: &str, data: &[u8], kept: &mut T) -> bool {
         let base = LIVE.load(Relaxed);
         PEAK.store(base, Relaxed);
-        let ok = deserialize::<T>(data).is_ok();
+        let fresh = deserialize::<T>(data);
+        let ok = fresh.is_ok();
         let body = data.get(4..).unwrap_or_default();
         let _ = transcode_key::<T>(body, Endianness::Little, Endianness::Big);
         let _ = transcode_key::<T>(body, Endianness::Big, Endianness::Little);
         let used = PEAK.load(Relaxed) - base;
         if used > allowed(data.len()) {
             self.over.push(format!("{what}: {used} bytes for {} input bytes", data.len()));
+        }
+        // into the kept value: its heap (of earlier inputs) is already live, what it adds is counted
+        let base = LIVE.load(Relaxed);
+        PEAK.store(base, Relaxed);
+        let into = deserialize_into(data, kept);
+        let used = PEAK.load(Relaxed) - base;
+        if used > allowed(data.len()) {
+            self.over.push(format!("{what} (into): {used} bytes for {} input bytes", data.len()));
+        }
+        // compared by encoding (a NaN is not equal to itself)
+        let same = match (&fresh, &into) {
+            (Ok(f), Ok(())) => serialize(f, Endianness::Little).ok() == serialize(kept, Endianness::Little).ok(),
+            (Err(a), Err(b)) => a == b,
+            _ => false,
+        };
+        if !same {
+            self.differ.push(format!("{what}: deserialize {:?}, deserialize_into {into:?}", fresh.as_ref().err()));
         }
         if ok {
             self.decoded += 1;
@@ -83,13 +104,14 @@ impl Fuzz<'_> {
 impl gen::TypeVisitor for Fuzz<'_> {
     fn visit<T: gen::TopicType>(&mut self) {
         let vectors = self.vectors;
+        let mut kept = T::default();
         for v in vectors.iter().filter(|v| v.type_name == T::TYPE_NAME) {
             for seed in [&v.le, &v.be] {
                 self.seeds += 1;
-                assert!(self.feed::<T>(&v.id, seed), "{}: the vector itself is refused", v.id);
+                assert!(self.feed::<T>(&v.id, seed, &mut kept), "{}: the vector itself is refused", v.id);
                 for cut in 0..seed.len() {
                     // a value cut short is always refused (at most 3 bytes of padding may follow one)
-                    assert!(!self.feed::<T>(&v.id, &seed[..cut]), "{}: accepted cut at {cut}", v.id);
+                    assert!(!self.feed::<T>(&v.id, &seed[..cut], &mut kept), "{}: accepted cut at {cut}", v.id);
                 }
                 for _ in 0..self.rounds {
                     let mut m = seed.clone();
@@ -114,7 +136,7 @@ impl gen::TypeVisitor for Fuzz<'_> {
                             m.extend((0..n).map(|_| self.rng.next() as u8));
                         }
                     }
-                    self.feed::<T>(&v.id, &m);
+                    self.feed::<T>(&v.id, &m, &mut kept);
                 }
             }
         }
@@ -124,13 +146,17 @@ impl gen::TypeVisitor for Fuzz<'_> {
 fn main() {
     let rounds = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(200);
     let vectors = common::read_vectors();
-    let mut fuzz = Fuzz { vectors: &vectors, rounds, rng: Rng(0x5eed), seeds: 0, decoded: 0, refused: 0, over: Vec::new() };
+    let mut fuzz = Fuzz { vectors: &vectors, rounds, rng: Rng(0x5eed), seeds: 0, decoded: 0, refused: 0, over: Vec::new(), differ: Vec::new() };
     gen::visit_types(&mut fuzz);
     for o in fuzz.over.iter().take(20) {
         println!("OVER {o}");
     }
-    println!("seeds {} decoded {} refused {} over {}", fuzz.seeds, fuzz.decoded, fuzz.refused, fuzz.over.len());
-    if !fuzz.over.is_empty() {
+    for d in fuzz.differ.iter().take(20) {
+        println!("DIFFER {d}");
+    }
+    println!("seeds {} decoded {} refused {} over {} differ {}", fuzz.seeds, fuzz.decoded, fuzz.refused, fuzz.over.len(),
+             fuzz.differ.len());
+    if !fuzz.over.is_empty() || !fuzz.differ.is_empty() {
         std::process::exit(1);
     }
 }

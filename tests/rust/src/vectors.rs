@@ -1,11 +1,13 @@
 //! Every golden vector decodes from both byte orders to equal values, and re-encodes to
 //! exactly its bytes in both orders; its key bytes go to little-endian and back unchanged
-//! (`transcode_key`); `serialize` allocates its output once, exactly. Prints `ok N` (N
-//! vectors checked).
+//! (`transcode_key`); `serialize` allocates its output once, exactly. One value and one
+//! buffer per type are kept across its vectors (forwards, then backwards: longer values
+//! followed by shorter ones and the reverse): `deserialize_into` it equals `deserialize`,
+//! `serialize_into` it gives `serialize`'s bytes. Prints `ok N` (N vectors checked).
 
 mod common;
 
-use gen::cdr::{deserialize, key_bytes, serialize, transcode_key, Cdr, Endianness, Writer};
+use gen::cdr::{deserialize, deserialize_into, key_bytes, serialize, serialize_into, transcode_key, Cdr, Endianness, Writer};
 use std::collections::HashSet;
 
 struct Check<'a> {
@@ -54,6 +56,22 @@ impl gen::TypeVisitor for Check<'_> {
             })();
             if let Err(e) = result {
                 self.failed.push(format!("{}: {e}", v.id));
+            }
+        }
+        let mut kept = T::default();
+        let mut buf = Vec::new();
+        let of_type: Vec<&common::Vector> = self.vectors.iter().filter(|v| v.type_name == T::TYPE_NAME).collect();
+        for v in of_type.iter().chain(of_type.iter().rev()) {
+            for (bytes, order) in [(&v.le, Endianness::Little), (&v.be, Endianness::Big)] {
+                let fresh = deserialize::<T>(bytes);
+                let into = deserialize_into(bytes, &mut kept);
+                if into.is_err() || fresh.as_ref().ok() != Some(&kept) {
+                    self.failed.push(format!("{}: decode into a kept value: {into:?}\n{kept:?}\n{fresh:?}", v.id));
+                }
+                let encoded = serialize_into(&kept, order, &mut buf);
+                if encoded.is_err() || buf != **bytes {
+                    self.failed.push(format!("{}: serialize_into a kept buffer differs: {encoded:?}", v.id));
+                }
             }
         }
     }

@@ -408,6 +408,14 @@ impl crate::cdr::Cdr for KeyTypePair {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.key, 32, "rapid::KeyTypePair.key")?;
+        crate::cdr::Cdr::decode_into(&mut self.type_, r)?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for KeyTypePair {}
@@ -465,6 +473,15 @@ impl crate::cdr::Cdr for KeyTypeValueTriple {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.key, 32, "rapid::KeyTypeValueTriple.key")?;
+        self.padding = r.get::<i32>()?;
+        crate::cdr::Cdr::decode_into(&mut self.value, r)?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for KeyTypeValueTriple {}
@@ -517,6 +534,14 @@ impl crate::cdr::Cdr for Transform3D {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.need(24, "rapid::Transform3D.xyz")?; r.get_prims::<f64>(&mut self.xyz, "rapid::Transform3D.xyz")?;
+        r.need(36, "rapid::Transform3D.rot")?; r.get_prims::<f32>(&mut self.rot, "rapid::Transform3D.rot")?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for Transform3D {}
@@ -554,6 +579,14 @@ impl crate::cdr::Cdr for NamedFloatSequence {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.name, 16, "rapid::NamedFloatSequence.name")?;
+        r.get_seq_prims_into::<f32>(&mut self.values, 64, "rapid::NamedFloatSequence.values")?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for NamedFloatSequence {}
@@ -590,6 +623,14 @@ impl crate::cdr::Cdr for FloatRange {
         };
         r.leave();
         Ok(v)
+    }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        self.min = r.get::<f32>()?;
+        self.max = r.get::<f32>()?;
+        r.leave();
+        Ok(())
     }
 }
 
@@ -633,6 +674,15 @@ impl crate::cdr::Cdr for FloatRangeValue {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        self.min = r.get::<f32>()?;
+        self.max = r.get::<f32>()?;
+        self.value = r.get::<f32>()?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for FloatRangeValue {}
@@ -669,6 +719,14 @@ impl crate::cdr::Cdr for OptionSetValue {
         };
         r.leave();
         Ok(v)
+    }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        self.index = r.get::<i32>()?;
+        r.get_seq_into(&mut self.options, 16, 5, "rapid::OptionSetValue.options", |r, e7| { r.get_string_into(e7, 32, "rapid::OptionSetValue.options")?; Ok(()) }, |r| r.get_string(32, "rapid::OptionSetValue.options"))?;
+        r.leave();
+        Ok(())
     }
 }
 
@@ -707,6 +765,14 @@ impl crate::cdr::Cdr for NamedFloatRangeValue {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.name, 16, "rapid::NamedFloatRangeValue.name")?;
+        crate::cdr::Cdr::decode_into(&mut self.range, r)?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for NamedFloatRangeValue {}
@@ -743,6 +809,14 @@ impl crate::cdr::Cdr for NamedOptionSetValue {
         };
         r.leave();
         Ok(v)
+    }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.name, 16, "rapid::NamedOptionSetValue.name")?;
+        crate::cdr::Cdr::decode_into(&mut self.option, r)?;
+        r.leave();
+        Ok(())
     }
 }
 
@@ -872,6 +946,17 @@ impl crate::cdr::Cdr for Header {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.src_name, 32, "rapid::Header.srcName")?;
+        r.get_string_into(&mut self.asset_name, 32, "rapid::Header.assetName")?;
+        self.time_stamp = r.get::<i64>()?;
+        self.status_code = r.get::<i32>()?;
+        self.serial = r.get::<i32>()?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -882,10 +967,10 @@ impl crate::cdr::Cdr for Header {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k7 = r.get_string(32, "rapid::Header key srcName")?;
-        w.put_string(&k7, 32, "rapid::Header key srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k8 = r.get_string(32, "rapid::Header key assetName")?;
-        w.put_string(&k8, 32, "rapid::Header key assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k8 = r.get_string(32, "rapid::Header key srcName")?;
+        w.put_string(&k8, 32, "rapid::Header key srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k9 = r.get_string(32, "rapid::Header key assetName")?;
+        w.put_string(&k9, 32, "rapid::Header key assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -921,6 +1006,13 @@ impl crate::cdr::Cdr for Message {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -931,10 +1023,10 @@ impl crate::cdr::Cdr for Message {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k9 = r.get_string(32, "rapid::Message key hdr.srcName")?;
-        w.put_string(&k9, 32, "rapid::Message key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k10 = r.get_string(32, "rapid::Message key hdr.assetName")?;
-        w.put_string(&k10, 32, "rapid::Message key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k10 = r.get_string(32, "rapid::Message key hdr.srcName")?;
+        w.put_string(&k10, 32, "rapid::Message key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k11 = r.get_string(32, "rapid::Message key hdr.assetName")?;
+        w.put_string(&k11, 32, "rapid::Message key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -962,14 +1054,14 @@ impl crate::cdr::Cdr for AccessControlState {
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         w.put_string(&self.controller, 32, "rapid::AccessControlState.controller")?;
-        w.put_seq(&self.requestors, 16, "rapid::AccessControlState.requestors", |w, e11| w.put_string(e11, 32, "rapid::AccessControlState.requestors"))?;
+        w.put_seq(&self.requestors, 16, "rapid::AccessControlState.requestors", |w, e12| w.put_string(e12, 32, "rapid::AccessControlState.requestors"))?;
         Ok(())
     }
 
     fn size(&self, s: &mut crate::cdr::Size) {
         crate::cdr::Cdr::size(&self.hdr, s);
         s.string(&self.controller);
-        s.count(); for e12 in &self.requestors { s.string(e12); }
+        s.count(); for e13 in &self.requestors { s.string(e13); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -983,6 +1075,15 @@ impl crate::cdr::Cdr for AccessControlState {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_string_into(&mut self.controller, 32, "rapid::AccessControlState.controller")?;
+        r.get_seq_into(&mut self.requestors, 16, 5, "rapid::AccessControlState.requestors", |r, e14| { r.get_string_into(e14, 32, "rapid::AccessControlState.requestors")?; Ok(()) }, |r| r.get_string(32, "rapid::AccessControlState.requestors"))?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -993,10 +1094,10 @@ impl crate::cdr::Cdr for AccessControlState {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k13 = r.get_string(32, "rapid::AccessControlState key hdr.srcName")?;
-        w.put_string(&k13, 32, "rapid::AccessControlState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k14 = r.get_string(32, "rapid::AccessControlState key hdr.assetName")?;
-        w.put_string(&k14, 32, "rapid::AccessControlState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k15 = r.get_string(32, "rapid::AccessControlState key hdr.srcName")?;
+        w.put_string(&k15, 32, "rapid::AccessControlState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k16 = r.get_string(32, "rapid::AccessControlState key hdr.assetName")?;
+        w.put_string(&k16, 32, "rapid::AccessControlState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1174,6 +1275,17 @@ impl crate::cdr::Cdr for Ack {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_string_into(&mut self.cmd_id, 64, "rapid::Ack.cmdId")?;
+        crate::cdr::Cdr::decode_into(&mut self.status, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.completed_status, r)?;
+        r.get_string_into(&mut self.message, 128, "rapid::Ack.message")?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 149;
 
@@ -1185,12 +1297,12 @@ impl crate::cdr::Cdr for Ack {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k15 = r.get_string(32, "rapid::Ack key hdr.srcName")?;
-        w.put_string(&k15, 32, "rapid::Ack key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k16 = r.get_string(32, "rapid::Ack key hdr.assetName")?;
-        w.put_string(&k16, 32, "rapid::Ack key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k17 = r.get_string(64, "rapid::Ack key cmdId")?;
-        w.put_string(&k17, 64, "rapid::Ack key cmdId").map_err(|e| r.error(format_args!("{e}")))?;
+        let k17 = r.get_string(32, "rapid::Ack key hdr.srcName")?;
+        w.put_string(&k17, 32, "rapid::Ack key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k18 = r.get_string(32, "rapid::Ack key hdr.assetName")?;
+        w.put_string(&k18, 32, "rapid::Ack key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k19 = r.get_string(64, "rapid::Ack key cmdId")?;
+        w.put_string(&k19, 64, "rapid::Ack key cmdId").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1221,17 +1333,17 @@ impl crate::cdr::Cdr for AgentConfig {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.agent_tags, 16, "rapid::AgentConfig.agentTags", |w, e18| w.put_string(e18, 16, "rapid::AgentConfig.agentTags"))?;
-        w.put_seq(&self.topics, 64, "rapid::AgentConfig.topics", |w, e20| w.put_string(e20, 128, "rapid::AgentConfig.topics"))?;
-        w.put_seq(&self.value_keys, 64, "rapid::AgentConfig.valueKeys", |w, e22| crate::cdr::Cdr::encode(e22, w))?;
+        w.put_seq(&self.agent_tags, 16, "rapid::AgentConfig.agentTags", |w, e20| w.put_string(e20, 16, "rapid::AgentConfig.agentTags"))?;
+        w.put_seq(&self.topics, 64, "rapid::AgentConfig.topics", |w, e23| w.put_string(e23, 128, "rapid::AgentConfig.topics"))?;
+        w.put_seq(&self.value_keys, 64, "rapid::AgentConfig.valueKeys", |w, e26| crate::cdr::Cdr::encode(e26, w))?;
         Ok(())
     }
 
     fn size(&self, s: &mut crate::cdr::Size) {
         crate::cdr::Cdr::size(&self.hdr, s);
-        s.count(); for e19 in &self.agent_tags { s.string(e19); }
-        s.count(); for e21 in &self.topics { s.string(e21); }
-        s.count(); for e23 in &self.value_keys { crate::cdr::Cdr::size(e23, s); }
+        s.count(); for e21 in &self.agent_tags { s.string(e21); }
+        s.count(); for e24 in &self.topics { s.string(e24); }
+        s.count(); for e27 in &self.value_keys { crate::cdr::Cdr::size(e27, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1246,6 +1358,16 @@ impl crate::cdr::Cdr for AgentConfig {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_seq_into(&mut self.agent_tags, 16, 5, "rapid::AgentConfig.agentTags", |r, e22| { r.get_string_into(e22, 16, "rapid::AgentConfig.agentTags")?; Ok(()) }, |r| r.get_string(16, "rapid::AgentConfig.agentTags"))?;
+        r.get_seq_into(&mut self.topics, 64, 5, "rapid::AgentConfig.topics", |r, e25| { r.get_string_into(e25, 128, "rapid::AgentConfig.topics")?; Ok(()) }, |r| r.get_string(128, "rapid::AgentConfig.topics"))?;
+        r.get_seq_into(&mut self.value_keys, 64, 13, "rapid::AgentConfig.valueKeys", |r, e28| { crate::cdr::Cdr::decode_into(e28, r)?; Ok(()) }, <crate::rapid::KeyTypeValueTriple as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -1256,10 +1378,10 @@ impl crate::cdr::Cdr for AgentConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k24 = r.get_string(32, "rapid::AgentConfig key hdr.srcName")?;
-        w.put_string(&k24, 32, "rapid::AgentConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k25 = r.get_string(32, "rapid::AgentConfig key hdr.assetName")?;
-        w.put_string(&k25, 32, "rapid::AgentConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k29 = r.get_string(32, "rapid::AgentConfig key hdr.srcName")?;
+        w.put_string(&k29, 32, "rapid::AgentConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k30 = r.get_string(32, "rapid::AgentConfig key hdr.assetName")?;
+        w.put_string(&k30, 32, "rapid::AgentConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1284,13 +1406,13 @@ impl crate::cdr::Cdr for AgentState {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.values, 64, "rapid::AgentState.values", |w, e26| crate::cdr::Cdr::encode(e26, w))?;
+        w.put_seq(&self.values, 64, "rapid::AgentState.values", |w, e31| crate::cdr::Cdr::encode(e31, w))?;
         Ok(())
     }
 
     fn size(&self, s: &mut crate::cdr::Size) {
         crate::cdr::Cdr::size(&self.hdr, s);
-        s.count(); for e27 in &self.values { crate::cdr::Cdr::size(e27, s); }
+        s.count(); for e32 in &self.values { crate::cdr::Cdr::size(e32, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1303,6 +1425,14 @@ impl crate::cdr::Cdr for AgentState {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_seq_into(&mut self.values, 64, 4, "rapid::AgentState.values", |r, e33| { crate::cdr::Cdr::decode_into(e33, r)?; Ok(()) }, <crate::rapid::ParameterUnion as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -1313,10 +1443,10 @@ impl crate::cdr::Cdr for AgentState {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k28 = r.get_string(32, "rapid::AgentState key hdr.srcName")?;
-        w.put_string(&k28, 32, "rapid::AgentState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k29 = r.get_string(32, "rapid::AgentState key hdr.assetName")?;
-        w.put_string(&k29, 32, "rapid::AgentState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k34 = r.get_string(32, "rapid::AgentState key hdr.srcName")?;
+        w.put_string(&k34, 32, "rapid::AgentState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k35 = r.get_string(32, "rapid::AgentState key hdr.assetName")?;
+        w.put_string(&k35, 32, "rapid::AgentState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1424,7 +1554,7 @@ impl crate::cdr::Cdr for Command {
         w.put_string(&self.cmd_id, 64, "rapid::Command.cmdId")?;
         w.put_string(&self.cmd_src, 32, "rapid::Command.cmdSrc")?;
         w.put_string(&self.subsys_name, 32, "rapid::Command.subsysName")?;
-        w.put_seq(&self.arguments, 16, "rapid::Command.arguments", |w, e30| crate::cdr::Cdr::encode(e30, w))?;
+        w.put_seq(&self.arguments, 16, "rapid::Command.arguments", |w, e36| crate::cdr::Cdr::encode(e36, w))?;
         crate::cdr::Cdr::encode(&self.cmd_action, w)?;
         w.put_string(&self.target_cmd_id, 64, "rapid::Command.targetCmdId")?;
         Ok(())
@@ -1436,7 +1566,7 @@ impl crate::cdr::Cdr for Command {
         s.string(&self.cmd_id);
         s.string(&self.cmd_src);
         s.string(&self.subsys_name);
-        s.count(); for e31 in &self.arguments { crate::cdr::Cdr::size(e31, s); }
+        s.count(); for e37 in &self.arguments { crate::cdr::Cdr::size(e37, s); }
         s.put::<i32>();
         s.string(&self.target_cmd_id);
     }
@@ -1457,6 +1587,20 @@ impl crate::cdr::Cdr for Command {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_string_into(&mut self.cmd_name, 64, "rapid::Command.cmdName")?;
+        r.get_string_into(&mut self.cmd_id, 64, "rapid::Command.cmdId")?;
+        r.get_string_into(&mut self.cmd_src, 32, "rapid::Command.cmdSrc")?;
+        r.get_string_into(&mut self.subsys_name, 32, "rapid::Command.subsysName")?;
+        r.get_seq_into(&mut self.arguments, 16, 4, "rapid::Command.arguments", |r, e38| { crate::cdr::Cdr::decode_into(e38, r)?; Ok(()) }, <crate::rapid::ParameterUnion as crate::cdr::Cdr>::decode)?;
+        crate::cdr::Cdr::decode_into(&mut self.cmd_action, r)?;
+        r.get_string_into(&mut self.target_cmd_id, 64, "rapid::Command.targetCmdId")?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -1467,10 +1611,10 @@ impl crate::cdr::Cdr for Command {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k32 = r.get_string(32, "rapid::Command key hdr.srcName")?;
-        w.put_string(&k32, 32, "rapid::Command key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k33 = r.get_string(32, "rapid::Command key hdr.assetName")?;
-        w.put_string(&k33, 32, "rapid::Command key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k39 = r.get_string(32, "rapid::Command key hdr.srcName")?;
+        w.put_string(&k39, 32, "rapid::Command key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k40 = r.get_string(32, "rapid::Command key hdr.assetName")?;
+        w.put_string(&k40, 32, "rapid::Command key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1501,7 +1645,7 @@ impl crate::cdr::Cdr for CommandDef {
         w.put_string(&self.name, 64, "rapid::CommandDef.name")?;
         w.put_bool(self.abortable);
         w.put_bool(self.suspendable);
-        w.put_seq(&self.parameters, 16, "rapid::CommandDef.parameters", |w, e34| crate::cdr::Cdr::encode(e34, w))?;
+        w.put_seq(&self.parameters, 16, "rapid::CommandDef.parameters", |w, e41| crate::cdr::Cdr::encode(e41, w))?;
         Ok(())
     }
 
@@ -1509,7 +1653,7 @@ impl crate::cdr::Cdr for CommandDef {
         s.string(&self.name);
         s.bytes(1);
         s.bytes(1);
-        s.count(); for e35 in &self.parameters { crate::cdr::Cdr::size(e35, s); }
+        s.count(); for e42 in &self.parameters { crate::cdr::Cdr::size(e42, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1522,6 +1666,16 @@ impl crate::cdr::Cdr for CommandDef {
         };
         r.leave();
         Ok(v)
+    }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.name, 64, "rapid::CommandDef.name")?;
+        self.abortable = r.get_bool()?;
+        self.suspendable = r.get_bool()?;
+        r.get_seq_into(&mut self.parameters, 16, 9, "rapid::CommandDef.parameters", |r, e43| { crate::cdr::Cdr::decode_into(e43, r)?; Ok(()) }, <crate::rapid::KeyTypePair as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
     }
 }
 
@@ -1542,13 +1696,13 @@ impl crate::cdr::Cdr for SubsystemType {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         w.put_string(&self.name, 32, "rapid::SubsystemType.name")?;
-        w.put_seq(&self.commands, 100, "rapid::SubsystemType.commands", |w, e36| crate::cdr::Cdr::encode(e36, w))?;
+        w.put_seq(&self.commands, 100, "rapid::SubsystemType.commands", |w, e44| crate::cdr::Cdr::encode(e44, w))?;
         Ok(())
     }
 
     fn size(&self, s: &mut crate::cdr::Size) {
         s.string(&self.name);
-        s.count(); for e37 in &self.commands { crate::cdr::Cdr::size(e37, s); }
+        s.count(); for e45 in &self.commands { crate::cdr::Cdr::size(e45, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1559,6 +1713,14 @@ impl crate::cdr::Cdr for SubsystemType {
         };
         r.leave();
         Ok(v)
+    }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.name, 32, "rapid::SubsystemType.name")?;
+        r.get_seq_into(&mut self.commands, 100, 11, "rapid::SubsystemType.commands", |r, e46| { crate::cdr::Cdr::decode_into(e46, r)?; Ok(()) }, <crate::rapid::CommandDef as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
     }
 }
 
@@ -1598,6 +1760,14 @@ impl crate::cdr::Cdr for Subsystem {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.name, 32, "rapid::Subsystem.name")?;
+        r.get_string_into(&mut self.subsystem_type_name, 32, "rapid::Subsystem.subsystemTypeName")?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for Subsystem {}
@@ -1621,15 +1791,15 @@ impl crate::cdr::Cdr for CommandConfig {
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
-        w.put_seq(&self.available_subsystem_types, 64, "rapid::CommandConfig.availableSubsystemTypes", |w, e38| crate::cdr::Cdr::encode(e38, w))?;
-        w.put_seq(&self.available_subsystems, 128, "rapid::CommandConfig.availableSubsystems", |w, e40| crate::cdr::Cdr::encode(e40, w))?;
+        w.put_seq(&self.available_subsystem_types, 64, "rapid::CommandConfig.availableSubsystemTypes", |w, e47| crate::cdr::Cdr::encode(e47, w))?;
+        w.put_seq(&self.available_subsystems, 128, "rapid::CommandConfig.availableSubsystems", |w, e50| crate::cdr::Cdr::encode(e50, w))?;
         Ok(())
     }
 
     fn size(&self, s: &mut crate::cdr::Size) {
         crate::cdr::Cdr::size(&self.hdr, s);
-        s.count(); for e39 in &self.available_subsystem_types { crate::cdr::Cdr::size(e39, s); }
-        s.count(); for e41 in &self.available_subsystems { crate::cdr::Cdr::size(e41, s); }
+        s.count(); for e48 in &self.available_subsystem_types { crate::cdr::Cdr::size(e48, s); }
+        s.count(); for e51 in &self.available_subsystems { crate::cdr::Cdr::size(e51, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1643,6 +1813,15 @@ impl crate::cdr::Cdr for CommandConfig {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_seq_into(&mut self.available_subsystem_types, 64, 9, "rapid::CommandConfig.availableSubsystemTypes", |r, e49| { crate::cdr::Cdr::decode_into(e49, r)?; Ok(()) }, <crate::rapid::SubsystemType as crate::cdr::Cdr>::decode)?;
+        r.get_seq_into(&mut self.available_subsystems, 128, 10, "rapid::CommandConfig.availableSubsystems", |r, e52| { crate::cdr::Cdr::decode_into(e52, r)?; Ok(()) }, <crate::rapid::Subsystem as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -1653,10 +1832,10 @@ impl crate::cdr::Cdr for CommandConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k42 = r.get_string(32, "rapid::CommandConfig key hdr.srcName")?;
-        w.put_string(&k42, 32, "rapid::CommandConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k43 = r.get_string(32, "rapid::CommandConfig key hdr.assetName")?;
-        w.put_string(&k43, 32, "rapid::CommandConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k53 = r.get_string(32, "rapid::CommandConfig key hdr.srcName")?;
+        w.put_string(&k53, 32, "rapid::CommandConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k54 = r.get_string(32, "rapid::CommandConfig key hdr.assetName")?;
+        w.put_string(&k54, 32, "rapid::CommandConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1823,7 +2002,7 @@ impl crate::cdr::Cdr for FileAnnounce {
         w.put_string(&self.file_uuid, 64, "rapid::FileAnnounce.fileUuid")?;
         w.put_string(&self.file_locator, 256, "rapid::FileAnnounce.fileLocator")?;
         w.put::<i64>(self.file_size);
-        w.put_seq(&self.meta_data, 16, "rapid::FileAnnounce.metaData", |w, e44| crate::cdr::Cdr::encode(e44, w))?;
+        w.put_seq(&self.meta_data, 16, "rapid::FileAnnounce.metaData", |w, e55| crate::cdr::Cdr::encode(e55, w))?;
         Ok(())
     }
 
@@ -1832,7 +2011,7 @@ impl crate::cdr::Cdr for FileAnnounce {
         s.string(&self.file_uuid);
         s.string(&self.file_locator);
         s.put::<i64>();
-        s.count(); for e45 in &self.meta_data { crate::cdr::Cdr::size(e45, s); }
+        s.count(); for e56 in &self.meta_data { crate::cdr::Cdr::size(e56, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1848,6 +2027,17 @@ impl crate::cdr::Cdr for FileAnnounce {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_string_into(&mut self.file_uuid, 64, "rapid::FileAnnounce.fileUuid")?;
+        r.get_string_into(&mut self.file_locator, 256, "rapid::FileAnnounce.fileLocator")?;
+        self.file_size = r.get::<i64>()?;
+        r.get_seq_into(&mut self.meta_data, 16, 13, "rapid::FileAnnounce.metaData", |r, e57| { crate::cdr::Cdr::decode_into(e57, r)?; Ok(()) }, <crate::rapid::KeyTypeValueTriple as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 149;
 
@@ -1859,12 +2049,12 @@ impl crate::cdr::Cdr for FileAnnounce {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k46 = r.get_string(32, "rapid::FileAnnounce key hdr.srcName")?;
-        w.put_string(&k46, 32, "rapid::FileAnnounce key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k47 = r.get_string(32, "rapid::FileAnnounce key hdr.assetName")?;
-        w.put_string(&k47, 32, "rapid::FileAnnounce key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k48 = r.get_string(64, "rapid::FileAnnounce key fileUuid")?;
-        w.put_string(&k48, 64, "rapid::FileAnnounce key fileUuid").map_err(|e| r.error(format_args!("{e}")))?;
+        let k58 = r.get_string(32, "rapid::FileAnnounce key hdr.srcName")?;
+        w.put_string(&k58, 32, "rapid::FileAnnounce key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k59 = r.get_string(32, "rapid::FileAnnounce key hdr.assetName")?;
+        w.put_string(&k59, 32, "rapid::FileAnnounce key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k60 = r.get_string(64, "rapid::FileAnnounce key fileUuid")?;
+        w.put_string(&k60, 64, "rapid::FileAnnounce key fileUuid").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -1912,9 +2102,9 @@ impl crate::cdr::Cdr for ImageMetadata {
         crate::cdr::Cdr::encode(&self.offset, w)?;
         w.put::<i32>(self.width);
         w.put::<i32>(self.height);
-        w.put_seq(&self.range_settings, 16, "rapid::ImageMetadata.rangeSettings", |w, e49| crate::cdr::Cdr::encode(e49, w))?;
-        w.put_seq(&self.option_settings, 16, "rapid::ImageMetadata.optionSettings", |w, e51| crate::cdr::Cdr::encode(e51, w))?;
-        w.put_seq(&self.extras, 16, "rapid::ImageMetadata.extras", |w, e53| crate::cdr::Cdr::encode(e53, w))?;
+        w.put_seq(&self.range_settings, 16, "rapid::ImageMetadata.rangeSettings", |w, e61| crate::cdr::Cdr::encode(e61, w))?;
+        w.put_seq(&self.option_settings, 16, "rapid::ImageMetadata.optionSettings", |w, e64| crate::cdr::Cdr::encode(e64, w))?;
+        w.put_seq(&self.extras, 16, "rapid::ImageMetadata.extras", |w, e67| crate::cdr::Cdr::encode(e67, w))?;
         Ok(())
     }
 
@@ -1924,9 +2114,9 @@ impl crate::cdr::Cdr for ImageMetadata {
         crate::cdr::Cdr::size(&self.offset, s);
         s.put::<i32>();
         s.put::<i32>();
-        s.count(); for e50 in &self.range_settings { crate::cdr::Cdr::size(e50, s); }
-        s.count(); for e52 in &self.option_settings { crate::cdr::Cdr::size(e52, s); }
-        s.count(); for e54 in &self.extras { crate::cdr::Cdr::size(e54, s); }
+        s.count(); for e62 in &self.range_settings { crate::cdr::Cdr::size(e62, s); }
+        s.count(); for e65 in &self.option_settings { crate::cdr::Cdr::size(e65, s); }
+        s.count(); for e68 in &self.extras { crate::cdr::Cdr::size(e68, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -1943,6 +2133,20 @@ impl crate::cdr::Cdr for ImageMetadata {
         };
         r.leave();
         Ok(v)
+    }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.sensor_name, 32, "rapid::ImageMetadata.sensorName")?;
+        r.get_string_into(&mut self.sensor_type, 32, "rapid::ImageMetadata.sensorType")?;
+        crate::cdr::Cdr::decode_into(&mut self.offset, r)?;
+        self.width = r.get::<i32>()?;
+        self.height = r.get::<i32>()?;
+        r.get_seq_into(&mut self.range_settings, 16, 17, "rapid::ImageMetadata.rangeSettings", |r, e63| { crate::cdr::Cdr::decode_into(e63, r)?; Ok(()) }, <crate::rapid::NamedFloatRangeValue as crate::cdr::Cdr>::decode)?;
+        r.get_seq_into(&mut self.option_settings, 16, 13, "rapid::ImageMetadata.optionSettings", |r, e66| { crate::cdr::Cdr::decode_into(e66, r)?; Ok(()) }, <crate::rapid::NamedOptionSetValue as crate::cdr::Cdr>::decode)?;
+        r.get_seq_into(&mut self.extras, 16, 13, "rapid::ImageMetadata.extras", |r, e69| { crate::cdr::Cdr::decode_into(e69, r)?; Ok(()) }, <crate::rapid::KeyTypeValueTriple as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
     }
 }
 
@@ -2008,6 +2212,16 @@ impl crate::cdr::Cdr for ImageSensorSample {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.meta, r)?;
+        r.get_string_into(&mut self.mime_type, 32, "rapid::ImageSensorSample.mimeType")?;
+        r.get_seq_prims_into::<u8>(&mut self.data, 1048576, "rapid::ImageSensorSample.data")?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -2018,10 +2232,10 @@ impl crate::cdr::Cdr for ImageSensorSample {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k55 = r.get_string(32, "rapid::ImageSensorSample key hdr.srcName")?;
-        w.put_string(&k55, 32, "rapid::ImageSensorSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k56 = r.get_string(32, "rapid::ImageSensorSample key hdr.assetName")?;
-        w.put_string(&k56, 32, "rapid::ImageSensorSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k70 = r.get_string(32, "rapid::ImageSensorSample key hdr.srcName")?;
+        w.put_string(&k70, 32, "rapid::ImageSensorSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k71 = r.get_string(32, "rapid::ImageSensorSample key hdr.assetName")?;
+        w.put_string(&k71, 32, "rapid::ImageSensorSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2065,6 +2279,14 @@ impl crate::cdr::Cdr for ImageSensorState {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.meta, r)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -2075,10 +2297,10 @@ impl crate::cdr::Cdr for ImageSensorState {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k57 = r.get_string(32, "rapid::ImageSensorState key hdr.srcName")?;
-        w.put_string(&k57, 32, "rapid::ImageSensorState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k58 = r.get_string(32, "rapid::ImageSensorState key hdr.assetName")?;
-        w.put_string(&k58, 32, "rapid::ImageSensorState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k72 = r.get_string(32, "rapid::ImageSensorState key hdr.srcName")?;
+        w.put_string(&k72, 32, "rapid::ImageSensorState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k73 = r.get_string(32, "rapid::ImageSensorState key hdr.assetName")?;
+        w.put_string(&k73, 32, "rapid::ImageSensorState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2122,6 +2344,14 @@ impl crate::cdr::Cdr for JointDef {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_string_into(&mut self.frame_name, 128, "rapid::JointDef.frameName")?;
+        r.get_string_into(&mut self.dof, 64, "rapid::JointDef.dof")?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for JointDef {}
@@ -2146,14 +2376,14 @@ impl crate::cdr::Cdr for JointConfig {
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         w.put_string(&self.joint_group_name, 32, "rapid::JointConfig.jointGroupName")?;
-        w.put_seq(&self.joint_definitions, 64, "rapid::JointConfig.jointDefinitions", |w, e59| crate::cdr::Cdr::encode(e59, w))?;
+        w.put_seq(&self.joint_definitions, 64, "rapid::JointConfig.jointDefinitions", |w, e74| crate::cdr::Cdr::encode(e74, w))?;
         Ok(())
     }
 
     fn size(&self, s: &mut crate::cdr::Size) {
         crate::cdr::Cdr::size(&self.hdr, s);
         s.string(&self.joint_group_name);
-        s.count(); for e60 in &self.joint_definitions { crate::cdr::Cdr::size(e60, s); }
+        s.count(); for e75 in &self.joint_definitions { crate::cdr::Cdr::size(e75, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2167,6 +2397,15 @@ impl crate::cdr::Cdr for JointConfig {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_string_into(&mut self.joint_group_name, 32, "rapid::JointConfig.jointGroupName")?;
+        r.get_seq_into(&mut self.joint_definitions, 64, 10, "rapid::JointConfig.jointDefinitions", |r, e76| { crate::cdr::Cdr::decode_into(e76, r)?; Ok(()) }, <crate::rapid::JointDef as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -2177,10 +2416,10 @@ impl crate::cdr::Cdr for JointConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k61 = r.get_string(32, "rapid::JointConfig key hdr.srcName")?;
-        w.put_string(&k61, 32, "rapid::JointConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k62 = r.get_string(32, "rapid::JointConfig key hdr.assetName")?;
-        w.put_string(&k62, 32, "rapid::JointConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k77 = r.get_string(32, "rapid::JointConfig key hdr.srcName")?;
+        w.put_string(&k77, 32, "rapid::JointConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k78 = r.get_string(32, "rapid::JointConfig key hdr.assetName")?;
+        w.put_string(&k78, 32, "rapid::JointConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2251,7 +2490,7 @@ impl crate::cdr::Cdr for JointSample {
         w.put_seq_prims::<f32>(&self.torque, 64, "rapid::JointSample.torque")?;
         w.put_seq_prims::<f32>(&self.temperature, 64, "rapid::JointSample.temperature")?;
         w.put_seq_prims::<i32>(&self.status, 64, "rapid::JointSample.status")?;
-        w.put_seq(&self.aux_float, 16, "rapid::JointSample.auxFloat", |w, e63| crate::cdr::Cdr::encode(e63, w))?;
+        w.put_seq(&self.aux_float, 16, "rapid::JointSample.auxFloat", |w, e79| crate::cdr::Cdr::encode(e79, w))?;
         Ok(())
     }
 
@@ -2264,7 +2503,7 @@ impl crate::cdr::Cdr for JointSample {
         s.count(); s.prims::<f32>(self.torque.len());
         s.count(); s.prims::<f32>(self.temperature.len());
         s.count(); s.prims::<i32>(self.status.len());
-        s.count(); for e64 in &self.aux_float { crate::cdr::Cdr::size(e64, s); }
+        s.count(); for e80 in &self.aux_float { crate::cdr::Cdr::size(e80, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2284,6 +2523,21 @@ impl crate::cdr::Cdr for JointSample {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_seq_prims_into::<f32>(&mut self.angle_pos, 64, "rapid::JointSample.anglePos")?;
+        r.get_seq_prims_into::<f32>(&mut self.angle_vel, 64, "rapid::JointSample.angleVel")?;
+        r.get_seq_prims_into::<f32>(&mut self.angle_acc, 64, "rapid::JointSample.angleAcc")?;
+        r.get_seq_prims_into::<f32>(&mut self.current, 64, "rapid::JointSample.current")?;
+        r.get_seq_prims_into::<f32>(&mut self.torque, 64, "rapid::JointSample.torque")?;
+        r.get_seq_prims_into::<f32>(&mut self.temperature, 64, "rapid::JointSample.temperature")?;
+        r.get_seq_prims_into::<i32>(&mut self.status, 64, "rapid::JointSample.status")?;
+        r.get_seq_into(&mut self.aux_float, 16, 9, "rapid::JointSample.auxFloat", |r, e81| { crate::cdr::Cdr::decode_into(e81, r)?; Ok(()) }, <crate::rapid::NamedFloatSequence as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -2294,10 +2548,10 @@ impl crate::cdr::Cdr for JointSample {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k65 = r.get_string(32, "rapid::JointSample key hdr.srcName")?;
-        w.put_string(&k65, 32, "rapid::JointSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k66 = r.get_string(32, "rapid::JointSample key hdr.assetName")?;
-        w.put_string(&k66, 32, "rapid::JointSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k82 = r.get_string(32, "rapid::JointSample key hdr.srcName")?;
+        w.put_string(&k82, 32, "rapid::JointSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k83 = r.get_string(32, "rapid::JointSample key hdr.assetName")?;
+        w.put_string(&k83, 32, "rapid::JointSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2335,7 +2589,7 @@ impl crate::cdr::Cdr for PositionConfig {
         w.put_string(&self.frame_name, 128, "rapid::PositionConfig.frameName")?;
         crate::cdr::Cdr::encode(&self.pose_encoding, w)?;
         crate::cdr::Cdr::encode(&self.velocity_encoding, w)?;
-        w.put_seq(&self.value_keys, 64, "rapid::PositionConfig.valueKeys", |w, e67| crate::cdr::Cdr::encode(e67, w))?;
+        w.put_seq(&self.value_keys, 64, "rapid::PositionConfig.valueKeys", |w, e84| crate::cdr::Cdr::encode(e84, w))?;
         Ok(())
     }
 
@@ -2344,7 +2598,7 @@ impl crate::cdr::Cdr for PositionConfig {
         s.string(&self.frame_name);
         s.put::<i32>();
         s.put::<i32>();
-        s.count(); for e68 in &self.value_keys { crate::cdr::Cdr::size(e68, s); }
+        s.count(); for e85 in &self.value_keys { crate::cdr::Cdr::size(e85, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2360,6 +2614,17 @@ impl crate::cdr::Cdr for PositionConfig {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_string_into(&mut self.frame_name, 128, "rapid::PositionConfig.frameName")?;
+        crate::cdr::Cdr::decode_into(&mut self.pose_encoding, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.velocity_encoding, r)?;
+        r.get_seq_into(&mut self.value_keys, 64, 13, "rapid::PositionConfig.valueKeys", |r, e86| { crate::cdr::Cdr::decode_into(e86, r)?; Ok(()) }, <crate::rapid::KeyTypeValueTriple as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -2370,10 +2635,10 @@ impl crate::cdr::Cdr for PositionConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k69 = r.get_string(32, "rapid::PositionConfig key hdr.srcName")?;
-        w.put_string(&k69, 32, "rapid::PositionConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k70 = r.get_string(32, "rapid::PositionConfig key hdr.assetName")?;
-        w.put_string(&k70, 32, "rapid::PositionConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k87 = r.get_string(32, "rapid::PositionConfig key hdr.srcName")?;
+        w.put_string(&k87, 32, "rapid::PositionConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k88 = r.get_string(32, "rapid::PositionConfig key hdr.assetName")?;
+        w.put_string(&k88, 32, "rapid::PositionConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2404,7 +2669,7 @@ impl crate::cdr::Cdr for PositionSample {
         crate::cdr::Cdr::encode(&self.hdr, w)?;
         crate::cdr::Cdr::encode(&self.pose, w)?;
         crate::cdr::Cdr::encode(&self.velocity, w)?;
-        w.put_seq(&self.values, 64, "rapid::PositionSample.values", |w, e71| crate::cdr::Cdr::encode(e71, w))?;
+        w.put_seq(&self.values, 64, "rapid::PositionSample.values", |w, e89| crate::cdr::Cdr::encode(e89, w))?;
         Ok(())
     }
 
@@ -2412,7 +2677,7 @@ impl crate::cdr::Cdr for PositionSample {
         crate::cdr::Cdr::size(&self.hdr, s);
         crate::cdr::Cdr::size(&self.pose, s);
         crate::cdr::Cdr::size(&self.velocity, s);
-        s.count(); for e72 in &self.values { crate::cdr::Cdr::size(e72, s); }
+        s.count(); for e90 in &self.values { crate::cdr::Cdr::size(e90, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2427,6 +2692,16 @@ impl crate::cdr::Cdr for PositionSample {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.pose, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.velocity, r)?;
+        r.get_seq_into(&mut self.values, 64, 4, "rapid::PositionSample.values", |r, e91| { crate::cdr::Cdr::decode_into(e91, r)?; Ok(()) }, <crate::rapid::ParameterUnion as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -2437,10 +2712,10 @@ impl crate::cdr::Cdr for PositionSample {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k73 = r.get_string(32, "rapid::PositionSample key hdr.srcName")?;
-        w.put_string(&k73, 32, "rapid::PositionSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k74 = r.get_string(32, "rapid::PositionSample key hdr.assetName")?;
-        w.put_string(&k74, 32, "rapid::PositionSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k92 = r.get_string(32, "rapid::PositionSample key hdr.srcName")?;
+        w.put_string(&k92, 32, "rapid::PositionSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k93 = r.get_string(32, "rapid::PositionSample key hdr.assetName")?;
+        w.put_string(&k93, 32, "rapid::PositionSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2650,6 +2925,15 @@ impl crate::cdr::Cdr for CommandRecord {
         r.leave();
         Ok(v)
     }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.cmd, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.tr_result, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.tr_status, r)?;
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for CommandRecord {}
@@ -2666,12 +2950,12 @@ impl crate::cdr::Cdr for SingleQueue {
     const TYPE_NAME: &'static str = "rapid::SingleQueue";
 
     fn encode(&self, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::EncodeError> {
-        w.put_seq(&self.records, 64, "rapid::SingleQueue.records", |w, e75| crate::cdr::Cdr::encode(e75, w))?;
+        w.put_seq(&self.records, 64, "rapid::SingleQueue.records", |w, e94| crate::cdr::Cdr::encode(e94, w))?;
         Ok(())
     }
 
     fn size(&self, s: &mut crate::cdr::Size) {
-        s.count(); for e76 in &self.records { crate::cdr::Cdr::size(e76, s); }
+        s.count(); for e95 in &self.records { crate::cdr::Cdr::size(e95, s); }
     }
 
     fn decode(r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<Self, crate::cdr::DecodeError> {
@@ -2681,6 +2965,13 @@ impl crate::cdr::Cdr for SingleQueue {
         };
         r.leave();
         Ok(v)
+    }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        r.get_seq_into(&mut self.records, 64, 67, "rapid::SingleQueue.records", |r, e96| { crate::cdr::Cdr::decode_into(e96, r)?; Ok(()) }, <crate::rapid::CommandRecord as crate::cdr::Cdr>::decode)?;
+        r.leave();
+        Ok(())
     }
 }
 
@@ -2735,6 +3026,17 @@ impl crate::cdr::Cdr for QueueState {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.pending, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.active, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.completed, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.sent, r)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -2745,10 +3047,10 @@ impl crate::cdr::Cdr for QueueState {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k77 = r.get_string(32, "rapid::QueueState key hdr.srcName")?;
-        w.put_string(&k77, 32, "rapid::QueueState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k78 = r.get_string(32, "rapid::QueueState key hdr.assetName")?;
-        w.put_string(&k78, 32, "rapid::QueueState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k97 = r.get_string(32, "rapid::QueueState key hdr.srcName")?;
+        w.put_string(&k97, 32, "rapid::QueueState key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k98 = r.get_string(32, "rapid::QueueState key hdr.assetName")?;
+        w.put_string(&k98, 32, "rapid::QueueState key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -2868,6 +3170,16 @@ impl crate::cdr::Cdr for TextMessage {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        crate::cdr::Cdr::decode_into(&mut self.level, r)?;
+        r.get_string_into(&mut self.category, 64, "rapid::TextMessage.category")?;
+        r.get_string_into(&mut self.message, 2048, "rapid::TextMessage.message")?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -2878,10 +3190,10 @@ impl crate::cdr::Cdr for TextMessage {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k79 = r.get_string(32, "rapid::TextMessage key hdr.srcName")?;
-        w.put_string(&k79, 32, "rapid::TextMessage key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k80 = r.get_string(32, "rapid::TextMessage key hdr.assetName")?;
-        w.put_string(&k80, 32, "rapid::TextMessage key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k99 = r.get_string(32, "rapid::TextMessage key hdr.srcName")?;
+        w.put_string(&k99, 32, "rapid::TextMessage key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k100 = r.get_string(32, "rapid::TextMessage key hdr.assetName")?;
+        w.put_string(&k100, 32, "rapid::TextMessage key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }

@@ -51,6 +51,14 @@ pub trait Cdr: Sized {
     const TYPE_NAME: &'static str;
     fn encode(&self, w: &mut Writer) -> ::core::result::Result<(), EncodeError>;
     fn decode(r: &mut Reader<'_>) -> ::core::result::Result<Self, DecodeError>;
+    /// Reads a value over `self`, as `decode` reads it (the same checks, the same errors),
+    /// reusing the capacity `self` holds: a struct's strings refilled, its sequences
+    /// truncated or extended in place, nested structs in place (an enum or a union is
+    /// replaced). On an error `self` holds a mix of old and new members: decode it again.
+    fn decode_into(&mut self, r: &mut Reader<'_>) -> ::core::result::Result<(), DecodeError> {
+        *self = Self::decode(r)?;
+        Ok(())
+    }
     /// Adds the bytes `encode` writes (alignment included) to `s`: `serialize` allocates
     /// its output once, at the exact size.
     fn size(&self, s: &mut Size);
@@ -85,6 +93,22 @@ pub fn serialize<T: Cdr>(value: &T, order: Endianness) -> ::core::result::Result
     Ok(w.into_bytes())
 }
 
+/// `value` with its encapsulation header into `buf` (cleared first; its capacity reused, so
+/// a kept buffer stops allocating once it fits the largest sample). On an error `buf`
+/// holds a partial encoding.
+pub fn serialize_into<T: Cdr>(value: &T, order: Endianness, buf: &mut ::std::vec::Vec<u8>) -> ::core::result::Result<(), EncodeError> {
+    let mut s = Size { pos: 0 };
+    value.size(&mut s);
+    let mut out = ::core::mem::take(buf);
+    out.clear();
+    let _ = out.try_reserve_exact(s.pos.saturating_add(HEADER));
+    out.extend_from_slice(&[0, u8::from(order == Endianness::Little), 0, 0]);
+    let mut w = Writer { out, little: order == Endianness::Little, origin: HEADER };
+    let done = value.encode(&mut w);
+    *buf = w.out;
+    done
+}
+
 /// The key members of `value` in big-endian CDR from offset 0 (no header): the input of
 /// the RTPS key hash (used as is when it fits 16 bytes, else its MD5).
 pub fn key_bytes<T: Cdr>(value: &T) -> ::core::result::Result<::std::vec::Vec<u8>, EncodeError> {
@@ -113,18 +137,34 @@ pub fn transcode_key<T: Cdr>(key: &[u8], from: Endianness, to: Endianness) -> ::
 /// A value from its encapsulated bytes, in either byte order; at most 3 bytes (a writer's
 /// final padding) may follow it.
 pub fn deserialize<T: Cdr>(data: &[u8]) -> ::core::result::Result<T, DecodeError> {
+    let mut r = reader(data)?;
+    let value = T::decode(&mut r)?;
+    if data.len() - r.pos > 3 {
+        return Err(r.error(format_args!("{} bytes after the value", data.len() - r.pos)));
+    }
+    Ok(value)
+}
+
+/// As `deserialize`, over `value` (`Cdr::decode_into`: its capacity reused, the same
+/// checks and errors; on an error `value` is a mix of old and new members).
+pub fn deserialize_into<T: Cdr>(data: &[u8], value: &mut T) -> ::core::result::Result<(), DecodeError> {
+    let mut r = reader(data)?;
+    value.decode_into(&mut r)?;
+    if data.len() - r.pos > 3 {
+        return Err(r.error(format_args!("{} bytes after the value", data.len() - r.pos)));
+    }
+    Ok(())
+}
+
+/// A reader after the encapsulation header, its byte order from it.
+fn reader(data: &[u8]) -> ::core::result::Result<Reader<'_>, DecodeError> {
     let little = match data {
         [0, 0, _, _, ..] => false,
         [0, 1, _, _, ..] => true,
         [_, _, _, _, ..] => return Err(DecodeError { offset: 0, message: "not a CDR_LE or CDR_BE encapsulation header".into() }),
         _ => return Err(DecodeError { offset: 0, message: "shorter than the encapsulation header".into() }),
     };
-    let mut r = Reader { data, pos: HEADER, little, depth: 0 };
-    let value = T::decode(&mut r)?;
-    if data.len() - r.pos > 3 {
-        return Err(r.error(format_args!("{} bytes after the value", data.len() - r.pos)));
-    }
-    Ok(value)
+    Ok(Reader { data, pos: HEADER, little, depth: 0 })
 }
 
 /// A fixed-size number: its size (= alignment) and its bytes in either order, one at a
@@ -140,6 +180,8 @@ pub trait Primitive: Copy {
     fn get_all(bytes: &[u8], v: &mut [Self], little: bool);
     /// `bytes` (a whole number of elements) as a new vector.
     fn get_vec(bytes: &[u8], little: bool) -> ::std::vec::Vec<Self>;
+    /// `bytes` (a whole number of elements) as `v`'s elements (its capacity reused).
+    fn get_refill(bytes: &[u8], v: &mut ::std::vec::Vec<Self>, little: bool);
 }
 
 macro_rules! primitive {
@@ -169,6 +211,10 @@ macro_rules! primitive {
         }
         fn get_vec(bytes: &[u8], _little: bool) -> ::std::vec::Vec<Self> {
             bytes.iter().map(|&b| <$t>::from_le_bytes([b])).collect()
+        }
+        fn get_refill(bytes: &[u8], v: &mut ::std::vec::Vec<Self>, _little: bool) {
+            v.clear();
+            v.extend(bytes.iter().map(|&b| <$t>::from_le_bytes([b])));
         }
     };
     // several bytes: the output zeroed once, then each element's bytes in place
@@ -201,6 +247,16 @@ macro_rules! primitive {
                 chunks.map(|c| <$t>::from_le_bytes(c.try_into().unwrap_or([0; N]))).collect()
             } else {
                 chunks.map(|c| <$t>::from_be_bytes(c.try_into().unwrap_or([0; N]))).collect()
+            }
+        }
+        fn get_refill(bytes: &[u8], v: &mut ::std::vec::Vec<Self>, little: bool) {
+            const N: usize = ::core::mem::size_of::<$t>();
+            v.clear();
+            let chunks = bytes.chunks_exact(N);
+            if little {
+                v.extend(chunks.map(|c| <$t>::from_le_bytes(c.try_into().unwrap_or([0; N]))));
+            } else {
+                v.extend(chunks.map(|c| <$t>::from_be_bytes(c.try_into().unwrap_or([0; N]))));
             }
         }
     };
@@ -513,13 +569,29 @@ impl<'a> Reader<'a> {
     /// A NUL-terminated UTF-8 string of at most `bound` bytes (0: unbounded).
     #[inline]
     pub fn get_string(&mut self, bound: usize, what: &str) -> ::core::result::Result<::std::string::String, DecodeError> {
+        Ok(self.string(bound, what)?.to_owned())
+    }
+
+    /// As `get_string`, into `s` (cleared and refilled: its capacity reused).
+    #[inline]
+    pub fn get_string_into(&mut self, s: &mut ::std::string::String, bound: usize, what: &str) -> ::core::result::Result<(), DecodeError> {
+        let text = self.string(bound, what)?;
+        s.clear();
+        s.push_str(text);
+        Ok(())
+    }
+
+    /// The checked text of a string in the input.
+    #[inline]
+    fn string(&mut self, bound: usize, what: &str) -> ::core::result::Result<&'a str, DecodeError> {
+        let data: &'a [u8] = self.data;
         let at = self.pos;
         let n = self.get_count(0, 1, what)?;
         if n == 0 || (bound != 0 && n - 1 > bound) {
             return Err(string_refused(at, n, bound, what));
         }
         // get_count checked that the n bytes are there, n > 0
-        let (text, nul) = match self.data.get(self.pos..).and_then(|d| d.get(..n)).and_then(|b| b.split_last()) {
+        let (text, nul) = match data.get(self.pos..).and_then(|d| d.get(..n)).and_then(|b| b.split_last()) {
             Some((nul, text)) => (text, *nul),
             None => return Err(self.error(format_args!("{what}: truncated"))),
         };
@@ -528,7 +600,7 @@ impl<'a> Reader<'a> {
         }
         let s = ::core::str::from_utf8(text).map_err(|_| self.error(format_args!("{what}: string is not UTF-8")))?;
         self.pos += n;
-        Ok(s.to_owned())
+        Ok(s)
     }
 
     /// The next `n` elements of `size` bytes (aligned to `size` unless `n` is 0), checked
@@ -563,6 +635,14 @@ impl<'a> Reader<'a> {
         Ok(T::get_vec(bytes, self.little))
     }
 
+    /// As `get_seq_prims`, into `v` (its capacity reused).
+    pub fn get_seq_prims_into<T: Primitive>(&mut self, v: &mut ::std::vec::Vec<T>, bound: usize, what: &str) -> ::core::result::Result<(), DecodeError> {
+        let n = self.get_count(bound, T::SIZE, what)?;
+        let bytes = self.run(n, T::SIZE, what)?;
+        T::get_refill(bytes, v, self.little);
+        Ok(())
+    }
+
     /// Validated booleans (bytes 0 or 1), the first other byte refused at its offset.
     fn bools(&mut self, n: usize, what: &str) -> ::core::result::Result<&'a [u8], DecodeError> {
         let at = self.pos;
@@ -589,6 +669,15 @@ impl<'a> Reader<'a> {
         Ok(self.bools(n, what)?.iter().map(|&b| b != 0).collect())
     }
 
+    /// As `get_seq_bools`, into `v` (its capacity reused).
+    pub fn get_seq_bools_into(&mut self, v: &mut ::std::vec::Vec<bool>, bound: usize, what: &str) -> ::core::result::Result<(), DecodeError> {
+        let n = self.get_count(bound, 1, what)?;
+        let bytes = self.bools(n, what)?;
+        v.clear();
+        v.extend(bytes.iter().map(|&b| b != 0));
+        Ok(())
+    }
+
     /// A sequence: count (checked before allocating), then each element.
     pub fn get_seq<T>(&mut self, bound: usize, min_size: usize, what: &str,
                       mut each: impl FnMut(&mut Self) -> ::core::result::Result<T, DecodeError>)
@@ -599,6 +688,32 @@ impl<'a> Reader<'a> {
             v.push(each(self)?);
         }
         Ok(v)
+    }
+
+    /// As `get_seq`, into `v`: the count checked as there, then the elements `v` keeps read
+    /// over with `into`, those past its length with `each` (reserved only once the count
+    /// is checked), those past the count dropped.
+    pub fn get_seq_into<T>(&mut self, v: &mut ::std::vec::Vec<T>, bound: usize, min_size: usize, what: &str,
+                           mut into: impl FnMut(&mut Self, &mut T) -> ::core::result::Result<(), DecodeError>,
+                           mut each: impl FnMut(&mut Self) -> ::core::result::Result<T, DecodeError>)
+                           -> ::core::result::Result<(), DecodeError> {
+        let n = self.get_count(bound, min_size, what)?;
+        v.truncate(n);
+        for e in v.iter_mut() {
+            into(self, e)?;
+        }
+        v.reserve_exact(n - v.len());
+        while v.len() < n {
+            v.push(each(self)?);
+        }
+        Ok(())
+    }
+
+    /// An array's elements read over those of `v`.
+    pub fn get_array_into<T>(&mut self, v: &mut [T],
+                             mut into: impl FnMut(&mut Self, &mut T) -> ::core::result::Result<(), DecodeError>)
+                             -> ::core::result::Result<(), DecodeError> {
+        v.iter_mut().try_for_each(|e| into(self, e))
     }
 
     /// An array's elements into `v` (already holding N defaults: a fixed size the type,

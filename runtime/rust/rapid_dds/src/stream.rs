@@ -12,8 +12,9 @@
 //! Readers: DEADLINE = the declared deadline, AUTOMATIC LIVELINESS with the declared lease,
 //! best effort, volatile, keep last 1, in the writer's partition (a subscriber of their own).
 //! A Cyclone listener takes each sample on the thread that delivers it: its CDR bytes go into
-//! one buffer kept for the whole run, the generated codec decodes them (it allocates the
-//! sample's strings and sequences: the codec has no decode-into), a sample with a NaN or an
+//! one buffer kept for the whole run, the generated codec decodes them over one sample kept
+//! for the whole run (`cdr::deserialize_into`: strings and sequences reuse their capacity, so
+//! no allocation once the first sample sized them), a sample with a NaN or an
 //! infinity is dropped (`finite`, given per type by the generated glue), the callback gets the
 //! rest. Cyclone's deadline and liveliness listeners (its event thread) only flip the
 //! stream's StreamMonitor and wake the reporting thread, which runs the declared action
@@ -40,8 +41,10 @@ use crate::telemetry;
 
 /// The bridge's log line (`[Asset] text` on stderr).
 pub type Log = Arc<dyn Fn(&str) + Send + Sync>;
-/// A sample's CDR bytes (encapsulation header included) into a value.
-pub type Decode<T> = fn(&[u8]) -> Result<T, String>;
+/// A sample's CDR bytes (encapsulation header included) into a kept value (its capacity reused).
+pub type Decode<T> = fn(&[u8], &mut T) -> Result<(), String>;
+/// A sample's CDR_LE bytes (encapsulation header included) into a kept buffer (cleared first).
+pub type Encode<T> = fn(&T, &mut Vec<u8>) -> Result<(), String>;
 /// Whether every floating-point number of a setpoint is finite.
 pub type Finite<T> = fn(&T) -> bool;
 
@@ -133,6 +136,7 @@ trait Sink: Send {
 
 struct Typed<T, F> {
     buf: Vec<u8>, // the CDR bytes, capacity kept for the whole run
+    sample: T,    // decoded into, capacity kept for the whole run
     decode: Decode<T>,
     finite: Finite<T>,
     callback: F,
@@ -168,8 +172,9 @@ impl<T: Send, F: FnMut(&T) + Send> Sink for Typed<T, F> {
                 }
             }
             let now = Instant::now();
-            let sample = match (self.decode)(&self.buf) {
-                Ok(s) => s,
+            let sample = &mut self.sample;
+            match (self.decode)(&self.buf, sample) {
+                Ok(()) => {}
                 Err(e) => {
                     self.decode_errors += 1;
                     if self.decode_errors == 1 {
@@ -180,7 +185,7 @@ impl<T: Send, F: FnMut(&T) + Send> Sink for Typed<T, F> {
                 }
             };
             let m = &shared.monitors[index];
-            if !(self.finite)(&sample) {
+            if !(self.finite)(sample) {
                 // never handed on, and not a sample that keeps the stream alive
                 let r = m.non_finite_sample(Duration::from_secs_f64(shared.specs[index].deadline_ms / 1000.0), now);
                 if r.lost || r.first_of_run {
@@ -188,7 +193,7 @@ impl<T: Send, F: FnMut(&T) + Send> Sink for Typed<T, F> {
                 }
                 continue;
             }
-            (self.callback)(&sample);
+            (self.callback)(sample);
             // after the callback: a state hook never sees "active" before its sample
             if m.sample(now) {
                 shared.poke();
@@ -280,8 +285,9 @@ impl Drop for StreamQos {
 pub struct OutputStream<T> {
     sample: Mutex<Option<T>>,
     writer: Mutex<Option<Writer>>,
-    encode: fn(&T) -> Result<Vec<u8>, String>,
+    encode: Encode<T>,
     header: fn(&mut T, &str, i64),
+    bytes: Mutex<Vec<u8>>, // the encoding, capacity kept for the whole run
 }
 
 /// The sample, locked (drop it, or call `send`, before `send_<name>()`).
@@ -311,8 +317,8 @@ impl<T: Default> SampleGuard<'_, T> {
 impl<T: Default> OutputStream<T> {
     /// `encode`: the sample's CDR_LE bytes; `header`: sets hdr.srcName and hdr.assetName to
     /// the name given and hdr.timeStamp to the time given (microseconds).
-    pub const fn new(encode: fn(&T) -> Result<Vec<u8>, String>, header: fn(&mut T, &str, i64)) -> Self {
-        OutputStream { sample: Mutex::new(None), writer: Mutex::new(None), encode, header }
+    pub const fn new(encode: Encode<T>, header: fn(&mut T, &str, i64)) -> Self {
+        OutputStream { sample: Mutex::new(None), writer: Mutex::new(None), encode, header, bytes: Mutex::new(Vec::new()) }
     }
 
     /// The sample, to fill in place (kept between sends: sequences keep their capacity).
@@ -335,8 +341,9 @@ impl<T: Default> OutputStream<T> {
     fn write(&self, s: &mut T) -> bool {
         let Some(w) = *self.writer.lock().unwrap_or_else(|e| e.into_inner()) else { return false };
         (self.header)(s, "", convert::now_us());
-        match (self.encode)(s) {
-            Ok(bytes) => w.write(&bytes).is_ok(),
+        let mut bytes = self.bytes.lock().unwrap_or_else(|e| e.into_inner());
+        match (self.encode)(s, &mut bytes) {
+            Ok(()) => w.write(&bytes).is_ok(),
             Err(_) => false,
         }
     }
@@ -592,11 +599,12 @@ impl StreamSet {
     /// Cyclone's delivering thread (keep it short: no lock another thread holds long).
     pub fn read<T, F>(&mut self, index: usize, decode: Decode<T>, finite: Finite<T>, callback: F) -> Result<(), DdsError>
     where
-        T: Send + 'static,
+        T: Default + Send + 'static,
         F: FnMut(&T) + Send + 'static,
     {
         let s = self.spec(index);
-        let sink: Box<dyn Sink> = Box::new(Typed { buf: Vec::with_capacity(4096), decode, finite, callback, decode_errors: 0 });
+        let sink: Box<dyn Sink> =
+            Box::new(Typed { buf: Vec::with_capacity(4096), sample: T::default(), decode, finite, callback, decode_errors: 0 });
         let slot = Box::into_raw(Box::new(Slot { shared: self.shared.clone(), index, sink: Mutex::new(sink) }));
         let fail = |what: &str, ret: i32, slot: *mut Slot| {
             // SAFETY: no reader holds the slot (its creation failed)
@@ -757,7 +765,11 @@ mod tests {
     }
 
     static OUT: OutputStream<Sample> = OutputStream::new(
-        |s| Ok(s.values.iter().flat_map(|x| x.to_le_bytes()).collect()),
+        |s, out| {
+            out.clear();
+            out.extend(s.values.iter().flat_map(|x| x.to_le_bytes()));
+            Ok(())
+        },
         |s, name, stamp| {
             if !name.is_empty() {
                 s.name = name.into();

@@ -163,8 +163,8 @@ impl ::core::convert::From<HandlerSet> for Dispatch {
     }
 }
 
-fn decode<T: Cdr>(bytes: &[u8]) -> ::core::result::Result<T, ::std::string::String> {
-    cdr::deserialize(bytes).map_err(|e| e.to_string())
+fn decode<T: Cdr>(bytes: &[u8], into: &mut T) -> ::core::result::Result<(), ::std::string::String> {
+    cdr::deserialize_into(bytes, into).map_err(|e| e.to_string())
 }
 
 /// Every float of a PositionSample finite (its values' too).

@@ -148,12 +148,12 @@ pub fn send_hand_pose() -> bool {
     HAND_POSE_STREAM.send()
 }
 
-fn decode<T: Cdr>(bytes: &[u8]) -> ::core::result::Result<T, ::std::string::String> {
-    cdr::deserialize(bytes).map_err(|e| e.to_string())
+fn decode<T: Cdr>(bytes: &[u8], into: &mut T) -> ::core::result::Result<(), ::std::string::String> {
+    cdr::deserialize_into(bytes, into).map_err(|e| e.to_string())
 }
 
-fn encode<T: Cdr>(v: &T) -> ::core::result::Result<::std::vec::Vec<u8>, ::std::string::String> {
-    cdr::serialize(v, cdr::Endianness::Little).map_err(|e| e.to_string())
+fn encode<T: Cdr>(v: &T, into: &mut ::std::vec::Vec<u8>) -> ::core::result::Result<(), ::std::string::String> {
+    cdr::serialize_into(v, cdr::Endianness::Little, into).map_err(|e| e.to_string())
 }
 
 /// An output sample's header: the asset's names (when given), the time (when not 0).

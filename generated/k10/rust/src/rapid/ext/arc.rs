@@ -108,10 +108,20 @@ impl crate::cdr::Cdr for GpsConfig {
             hdr: <crate::rapid::Header as crate::cdr::Cdr>::decode(r)?,
             receiver_model: r.get_string(32, "rapid::ext::arc::GpsConfig.receiverModel")?,
             datum: r.get_string(32, "rapid::ext::arc::GpsConfig.datum")?,
-            antenna_offset: { r.need(24, "rapid::ext::arc::GpsConfig.antennaOffset")?; let mut a81: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_prims::<f64>(&mut a81, "rapid::ext::arc::GpsConfig.antennaOffset")?; a81 },
+            antenna_offset: { r.need(24, "rapid::ext::arc::GpsConfig.antennaOffset")?; let mut a101: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_prims::<f64>(&mut a101, "rapid::ext::arc::GpsConfig.antennaOffset")?; a101 },
         };
         r.leave();
         Ok(v)
+    }
+
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        r.get_string_into(&mut self.receiver_model, 32, "rapid::ext::arc::GpsConfig.receiverModel")?;
+        r.get_string_into(&mut self.datum, 32, "rapid::ext::arc::GpsConfig.datum")?;
+        r.need(24, "rapid::ext::arc::GpsConfig.antennaOffset")?; r.get_prims::<f64>(&mut self.antenna_offset, "rapid::ext::arc::GpsConfig.antennaOffset")?;
+        r.leave();
+        Ok(())
     }
 
     const KEYED: bool = true;
@@ -124,10 +134,10 @@ impl crate::cdr::Cdr for GpsConfig {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k82 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.srcName")?;
-        w.put_string(&k82, 32, "rapid::ext::arc::GpsConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k83 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.assetName")?;
-        w.put_string(&k83, 32, "rapid::ext::arc::GpsConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k102 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.srcName")?;
+        w.put_string(&k102, 32, "rapid::ext::arc::GpsConfig key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k103 = r.get_string(32, "rapid::ext::arc::GpsConfig key hdr.assetName")?;
+        w.put_string(&k103, 32, "rapid::ext::arc::GpsConfig key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
@@ -195,6 +205,19 @@ impl crate::cdr::Cdr for GpsSample {
         Ok(v)
     }
 
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        crate::cdr::Cdr::decode_into(&mut self.hdr, r)?;
+        self.latitude = r.get::<f64>()?;
+        self.longitude = r.get::<f64>()?;
+        self.altitude = r.get::<f64>()?;
+        self.hdop = r.get::<f32>()?;
+        self.num_satellites = r.get::<i32>()?;
+        crate::cdr::Cdr::decode_into(&mut self.fix_type, r)?;
+        r.leave();
+        Ok(())
+    }
+
     const KEYED: bool = true;
     const KEY_MAX_SIZE: usize = 77;
 
@@ -205,10 +228,10 @@ impl crate::cdr::Cdr for GpsSample {
     }
 
     fn transcode_key(r: &mut crate::cdr::Reader<'_>, w: &mut crate::cdr::Writer) -> ::core::result::Result<(), crate::cdr::DecodeError> {
-        let k84 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.srcName")?;
-        w.put_string(&k84, 32, "rapid::ext::arc::GpsSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
-        let k85 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.assetName")?;
-        w.put_string(&k85, 32, "rapid::ext::arc::GpsSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k104 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.srcName")?;
+        w.put_string(&k104, 32, "rapid::ext::arc::GpsSample key hdr.srcName").map_err(|e| r.error(format_args!("{e}")))?;
+        let k105 = r.get_string(32, "rapid::ext::arc::GpsSample key hdr.assetName")?;
+        w.put_string(&k105, 32, "rapid::ext::arc::GpsSample key hdr.assetName").map_err(|e| r.error(format_args!("{e}")))?;
         Ok(())
     }
 }
