@@ -50,6 +50,8 @@ class ArmView:
     encode: list[str]  # encode statements
     size_head: str  # size match pattern
     size: str  # size statement (the branch's value; the discriminator's is the same for all)
+    into_head: str = ""  # decode_into: the pattern binding the variant's value as `x` ("" none)
+    into: str = ""  # decode_into: statements reading the branch over `x` (capacity reused)
 
 
 @dataclass
@@ -279,6 +281,10 @@ class Builder:
             size = t.size(m.type, "*x")
             x = "x" if re.search(r"\bx\b", size) else "_"
             carries = c.is_default or len(c.labels) != 1
+            # a branch holding heap (strings, sequences, structs) is read over the value the
+            # variant holds when it is the same variant; a number is simply replaced
+            in_place = not isinstance(t.real(m.type), ir.Primitive) and not isinstance(t.decl(t.real(m.type)), ir.Enum)
+            into = t.decode_into(m.type, "*x", what) if in_place else ""
             self.variants.setdefault(u.scoped_name, {})[u.cases.index(c)] = (vname, carries)
             if carries:
                 types.append((vname, f"{disc_type}, {mtype}"))
@@ -287,11 +293,13 @@ class Builder:
                          else "" if c.is_default else f"!matches!(*d, {pats[id(c)]})")
                 arms.append(ArmView("_" if c.is_default else pats[id(c)], f"Self::{vname}(d, {t.decode(m.type, what)})",
                                     f"Self::{vname}(d, x)", check, vname, [self._disc_enc(u, "*d"), body],
-                                    f"Self::{vname}(_, {x})", size))
+                                    f"Self::{vname}(_, {x})", size, f"Self::{vname}(dx, x)" if into else "",
+                                    f"*dx = d; {into}" if into else ""))
             else:
                 types.append((vname, mtype))
                 arms.append(ArmView(pats[id(c)], f"Self::{vname}({t.decode(m.type, what)})", f"Self::{vname}(x)", "",
-                                    vname, [self._disc_enc(u, pats[id(c)]), body], f"Self::{vname}({x})", size))
+                                    vname, [self._disc_enc(u, pats[id(c)]), body], f"Self::{vname}({x})", size,
+                                    f"Self::{vname}(x)" if into else "", into))
         scope.check()
         if need_none:
             types.append((namer.NO_MEMBER, disc_type))

@@ -2,11 +2,12 @@
 //! reused from a longer sample, then a shorter, then a longer one equals a fresh decode each
 //! time; once it has held the longest, decoding into it allocates nothing (while sequences of
 //! strings or structs keep their length: elements cut off are dropped, so growing back
-//! allocates them again); so does encoding into a kept buffer; a hostile count is refused
-//! with deserialize's error. Prints `ok`.
+//! allocates them again); so does encoding into a kept buffer; a union's string branch is
+//! read in place when the variant stays, replaced when it changes; a hostile count is
+//! refused with deserialize's error. Prints `ok`.
 
 use gen::cdr::{deserialize, deserialize_into, serialize, serialize_into, Endianness};
-use gen::rapid::{JointSample, NamedFloatSequence};
+use gen::rapid::{Command, JointSample, NamedFloatSequence, ParameterUnion};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
@@ -105,5 +106,23 @@ fn main() {
     assert!(into.message.contains("rapid::JointSample.anglePos"), "{into}");
     // and the kept value decodes the next good sample as a fresh one
     check(&mut kept, &short, "short after a refusal");
+
+    // unions: arguments whose variants stay are read in place, changed ones replaced
+    let command = |args: Vec<ParameterUnion>| {
+        let c = Command { cmd_name: "move".into(), cmd_id: "id-1".into(), arguments: args, ..Command::default() };
+        serialize(&c, Endianness::Little).expect("encode")
+    };
+    let strings = command(vec![ParameterUnion::S("a longer text".into()), ParameterUnion::D(1.5), ParameterUnion::S("b".into())]);
+    let swapped = command(vec![ParameterUnion::D(2.5), ParameterUnion::S("c".into()), ParameterUnion::S("d".into())]);
+    let mut kept = Command::default();
+    for (bytes, what) in [(&strings, "strings"), (&swapped, "variants changed"), (&strings, "strings again")] {
+        deserialize_into(bytes, &mut kept).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_eq!(kept, deserialize::<Command>(bytes).expect("decode"), "{what}");
+    }
+    let before = ALLOCS.load(Relaxed);
+    for _ in 0..100 {
+        deserialize_into(&strings, &mut kept).expect("strings");
+    }
+    assert_eq!(ALLOCS.load(Relaxed) - before, 0, "allocations decoding the same variants into a kept Command");
     println!("ok");
 }

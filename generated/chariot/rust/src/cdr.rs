@@ -53,8 +53,9 @@ pub trait Cdr: Sized {
     fn decode(r: &mut Reader<'_>) -> ::core::result::Result<Self, DecodeError>;
     /// Reads a value over `self`, as `decode` reads it (the same checks, the same errors),
     /// reusing the capacity `self` holds: a struct's strings refilled, its sequences
-    /// truncated or extended in place, nested structs in place (an enum or a union is
-    /// replaced). On an error `self` holds a mix of old and new members: decode it again.
+    /// truncated or extended in place, nested structs in place, a union's branch in place
+    /// when the discriminator selects the variant it holds (else replaced, as an enum is).
+    /// On an error `self` holds a mix of old and new members: decode it again.
     fn decode_into(&mut self, r: &mut Reader<'_>) -> ::core::result::Result<(), DecodeError> {
         *self = Self::decode(r)?;
         Ok(())

@@ -340,6 +340,39 @@ impl crate::cdr::Cdr for ParameterUnion {
         r.leave();
         Ok(v)
     }
+
+    #[allow(unreachable_patterns)] // `_` after the only variant, or after every label
+    fn decode_into(&mut self, r: &mut crate::cdr::Reader<'_>) -> ::core::result::Result<(), crate::cdr::DecodeError> {
+        r.enter()?;
+        let d = <crate::rapid::DataType as crate::cdr::Cdr>::decode(r)?;
+        match d {
+            crate::rapid::DataType::RapidBool => *self = Self::B(r.get_bool()?),
+            crate::rapid::DataType::RapidDouble => *self = Self::D(r.get::<f64>()?),
+            crate::rapid::DataType::RapidFloat => *self = Self::F(r.get::<f32>()?),
+            crate::rapid::DataType::RapidInt => *self = Self::I(r.get::<i32>()?),
+            crate::rapid::DataType::RapidLonglong => *self = Self::Ll(r.get::<i64>()?),
+            crate::rapid::DataType::RapidString => match self {
+                Self::S(x) => {
+                    r.get_string_into(x, 128, "rapid::ParameterUnion.s")?;
+                }
+                _ => *self = Self::S(r.get_string(128, "rapid::ParameterUnion.s")?),
+            },
+            crate::rapid::DataType::RapidVec3d => match self {
+                Self::Vec3d(x) => {
+                    r.need(24, "rapid::ParameterUnion.vec3d")?; r.get_prims::<f64>(x, "rapid::ParameterUnion.vec3d")?;
+                }
+                _ => *self = Self::Vec3d({ r.need(24, "rapid::ParameterUnion.vec3d")?; let mut a1: crate::rapid::Vec3d = ::core::default::Default::default(); r.get_prims::<f64>(&mut a1, "rapid::ParameterUnion.vec3d")?; a1 }),
+            },
+            crate::rapid::DataType::RapidMat33f => match self {
+                Self::Mat33f(x) => {
+                    r.need(36, "rapid::ParameterUnion.mat33f")?; r.get_prims::<f32>(x, "rapid::ParameterUnion.mat33f")?;
+                }
+                _ => *self = Self::Mat33f({ r.need(36, "rapid::ParameterUnion.mat33f")?; let mut a2: crate::rapid::Mat33f = ::core::default::Default::default(); r.get_prims::<f32>(&mut a2, "rapid::ParameterUnion.mat33f")?; a2 }),
+            },
+        }
+        r.leave();
+        Ok(())
+    }
 }
 
 impl crate::TopicType for ParameterUnion {}
