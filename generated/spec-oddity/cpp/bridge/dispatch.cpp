@@ -25,6 +25,11 @@ namespace rapid_oddity::bridge {
         if (name == "cancelAll")
             return set_.winch->cancelAll(ctx);
     }
+    if (type == "Abseil") {
+        if (!set_.abseil) return ::rapid_runtime::Result::failed("not implemented");
+        if (name == "lower")
+            return set_.abseil->lower(ctx);
+    }
     return ::rapid_runtime::Result::failed("not implemented");
 }
 

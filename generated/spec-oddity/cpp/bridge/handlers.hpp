@@ -62,6 +62,15 @@ public:
     virtual ::rapid_runtime::Result cancelAll(::rapid_runtime::CommandContext& ctx) = 0;
 };
 
+// Subsystem type Abseil: a rope descender (its type name sorts before AccessControl) (subsystems: Rope)
+class AbseilHandler {
+public:
+    virtual ~AbseilHandler() = default;
+
+    // Abseil/lower: no description
+    virtual ::rapid_runtime::Result lower(::rapid_runtime::CommandContext& ctx) = 0;
+};
+
 // What the bridge runs: one handler per subsystem type (one left empty answers its
 // commands EXEC_FAILED "not implemented"), and hooks called when the bridge has started
 // (publish telemetry of your own: rapid_runtime::dds::Telemetry of
@@ -69,6 +78,7 @@ public:
 struct HandlerSet {
     ::std::unique_ptr<QueueHandler> queue;
     ::std::unique_ptr<WinchHandler> winch;
+    ::std::unique_ptr<AbseilHandler> abseil;
     ::std::function<void(::rapid_runtime::dds::Bridge&)> on_start;
     ::std::function<void()> on_stop;
 };

@@ -24,6 +24,7 @@ namespace {
         {"AccessControl", "AccessControl"},
         {"Queue", "Queue"},
         {"Winch", "Winch"},
+        {"Rope", "Abseil"},
     };
     t.types = {
         {"Admin", {
@@ -65,6 +66,10 @@ namespace {
             }, false, false, false, ""},
             {"cancelAll", {
             }, false, false, false, "lets go of the winch's own pending moves (not the command queue's cancelAll)"},
+        }},
+        {"Abseil", {
+            {"lower", {
+            }, false, false, false, ""},
         }},
     };
     t.access = ::rapid_runtime::AccessSpec{true, {

@@ -25,7 +25,13 @@ ASSET = {
     "partition": "Oddity",
 }
 
-SUBSYSTEMS = {"Admin": "Admin", "AccessControl": "AccessControl", "Queue": "Queue", "Winch": "Winch"}
+SUBSYSTEMS = {
+    "Admin": "Admin",
+    "AccessControl": "AccessControl",
+    "Queue": "Queue",
+    "Winch": "Winch",
+    "Rope": "Abseil",
+}
 
 COMMANDS = {
     "Admin": {
@@ -218,6 +224,16 @@ COMMANDS = {
             "parameters": [],
         },
     },
+    "Abseil": {
+        "lower": {
+            "method": "abseil_lower",
+            "description": "",
+            "abortable": False,
+            "suspendable": False,
+            "standard": False,
+            "parameters": [],
+        },
+    },
 }
 
 ACCESS = {"default": "allow", "rules": [{"source": "Visitor", "allow": ["Admin/echo"]}]}
@@ -320,12 +336,24 @@ CONFIGS = {
                         },
                     ],
                 },
+                {
+                    "name": "Abseil",
+                    "commands": [
+                        {
+                            "name": "lower",
+                            "abortable": False,
+                            "suspendable": False,
+                            "parameters": [],
+                        },
+                    ],
+                },
             ],
             "availableSubsystems": [
                 {"name": "Admin", "subsystemTypeName": "Admin"},
                 {"name": "AccessControl", "subsystemTypeName": "AccessControl"},
                 {"name": "Queue", "subsystemTypeName": "Queue"},
                 {"name": "Winch", "subsystemTypeName": "Winch"},
+                {"name": "Rope", "subsystemTypeName": "Abseil"},
             ],
         },
     },

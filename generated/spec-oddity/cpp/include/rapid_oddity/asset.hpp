@@ -176,6 +176,18 @@ inline ::rapid::CommandConfig config_rapid_command_config() {
                         return v;
                     }()};
                 return v;
+            }(), [] {
+                ::rapid::SubsystemType v;
+                v.name = std::string("Abseil", 6u);
+                v.commands = std::vector<::rapid::CommandDef>{[] {
+                        ::rapid::CommandDef v;
+                        v.name = std::string("lower", 5u);
+                        v.abortable = false;
+                        v.suspendable = false;
+                        v.parameters = std::vector<::rapid::KeyTypePair>{};
+                        return v;
+                    }()};
+                return v;
             }()};
         v.availableSubsystems = std::vector<::rapid::Subsystem>{[] {
                 ::rapid::Subsystem v;
@@ -196,6 +208,11 @@ inline ::rapid::CommandConfig config_rapid_command_config() {
                 ::rapid::Subsystem v;
                 v.name = std::string("Winch", 5u);
                 v.subsystemTypeName = std::string("Winch", 5u);
+                return v;
+            }(), [] {
+                ::rapid::Subsystem v;
+                v.name = std::string("Rope", 4u);
+                v.subsystemTypeName = std::string("Abseil", 6u);
                 return v;
             }()};
         return v;
