@@ -20,9 +20,11 @@ use std::time::Duration;
 
 use rapid_runtime::intake::{Intake, PER_WRITER, SHED_ANSWERS};
 use rapid_runtime::journal::{self, Log};
+use rapid_runtime::configs::{now_seconds, Serials};
 use rapid_runtime::{Journal, Recovered};
 use rapid_runtime::{CommandManager, Context, Handlers, Options, Outbox, Outcome, Value};
 
+use crate::configs::{Configs, SharedSerials};
 use crate::dds::{DdsError, Participant, Side};
 use crate::stream::{Env, Hooks, StreamSet};
 use crate::stream_sim::{Fill, Parts, SimStreams};
@@ -293,15 +295,21 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
     let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;
     let outbox = Arc::new(DdsOutbox::new(&dp, &name, serial, options.window).map_err(|e| e.to_string())?);
 
-    // configs first (transient-local): commanders read the CommandConfig to find the asset
+    // configs first (transient-local): commanders read the CommandConfig to find the asset;
+    // each with the start serial, a new one when the user's code publishes other content
+    // (crate::configs::get(): Configs::publish)
+    let serials: SharedSerials = Arc::new(Mutex::new(Serials::new(Some(serial as i64), Box::new(now_seconds), None)));
     let hdr = convert::header(&name, &name, serial, 0);
     let mut config_writers = BTreeMap::new();
     for (topic, type_name, bytes) in &asset.configs {
         let side = (asset.qos)(topic).unwrap_or(Side { reliable: true, transient_local: true, depth: Some(1) });
         let w = dp.writer(&dp.topic(topic, type_name, true).map_err(|e| e.to_string())?, side).map_err(|e| e.to_string())?;
         w.write(&convert::with_header(bytes, &hdr)?).map_err(|e| format!("{topic}: {e}"))?;
-        config_writers.insert(*topic, w);
+        // (the content without its header: a republication compares the same way)
+        serials.lock().unwrap_or_else(|e| e.into_inner()).update(topic, &convert::with_header(bytes, &Default::default())?);
+        config_writers.insert(topic.to_string(), w);
     }
+    let configs = Arc::new(Configs::new(&name, serials.clone(), config_writers));
 
     let stop = Arc::new(AtomicBool::new(false));
     let body = Arc::new(Mutex::new(Body::default()));
@@ -340,7 +348,7 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
     };
     let sim = if args.simulate {
         let agent_values = stream_set.as_ref().map(|s| s.values());
-        let source = Source { body: body.clone(), name: name.clone(), serial, qos: asset.qos, agent_values,
+        let source = Source { body: body.clone(), name: name.clone(), serials: serials.clone(), qos: asset.qos, agent_values,
                               parts: stream_set.as_ref().map(|_| parts.clone()) };
         Some(telemetry::start(&dp, &tables, source, asset.customs, stop.clone()).map_err(|e| e.to_string())?)
     } else {
@@ -364,6 +372,16 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
         log(&format!("journal: restarted after a crash; {answered} unfinished command(s) answered, {again} final ack(s) written again"));
     }
     let manager = Arc::new(manager);
+    {
+        // a republished config's serial is in the journal before the config goes out
+        let m = Arc::downgrade(&manager);
+        configs.record_with(Arc::new(move |s| {
+            if let Some(m) = m.upgrade() {
+                m.journal_serial(s);
+            }
+        }));
+        configs.install(); // the user's code reaches it from now on
+    }
     if let Some(set) = stream_set.as_mut() {
         set.set_manager(manager.clone());
         set.start().map_err(|e| e.to_string())?;

@@ -10,6 +10,7 @@ pub mod alloc_count;
 pub mod bridge;
 pub mod client;
 pub mod cmd;
+pub mod configs;
 pub mod convert;
 pub mod dds;
 pub mod images;

@@ -1,6 +1,7 @@
 //! Simulated telemetry (`--simulate`), as the Python runtime's simulate.py publishes it: every
 //! declared entry on its topics, each sample's header copying its config's (the asset's name,
-//! the configs' serial) with the time it was made. Position, agent and joint entries at their
+//! its config's serial as it is now: a republished config's new one, `configs.rs`) with the
+//! time it was made. Position, agent and joint entries at their
 //! declared rate (1 Hz without one), values aligned with their config (one per value key, of
 //! its DataType, inside its declared range); images (a synthetic grey picture of the declared
 //! size and MIME type, with the camera's state) at their rate, or every IDLE_PERIOD seconds
@@ -17,6 +18,7 @@ use rapid_runtime::{DataType, Value};
 use rapid_types::cdr::{self, Endianness};
 use rapid_types::rapid;
 
+use crate::configs::SharedSerials;
 use crate::convert;
 use crate::dds::{DdsError, Participant, Side, Writer};
 use crate::images;
@@ -55,7 +57,8 @@ pub struct Source {
     /// the simulated robot's body (bridge::Simulated drives it)
     pub body: Arc<Mutex<Body>>,
     pub name: String,
-    pub serial: i32,
+    /// the configs' serials: a sample carries its entry's config's (the start one without)
+    pub serials: SharedSerials,
     /// the writer side of a topic's QoS profile (the generated asset::topic_qos)
     pub qos: fn(&str) -> Option<Side>,
     /// values merged into AgentState by key (the setpoint streams' state and missed keys)
@@ -78,6 +81,8 @@ enum Kind {
 
 struct Job {
     topic: String,
+    /// the entry's config topic: its serial is the samples'
+    config: Option<String>,
     writer: Writer,
     period: Duration,
     next: Instant,
@@ -159,17 +164,24 @@ struct Publisher {
     parts: Option<Arc<Mutex<Parts>>>,
     body: Arc<Mutex<Body>>,
     name: String,
-    serial: i32,
+    serials: SharedSerials,
     jobs: Vec<Job>,
 }
 
+/// The serial of a sample of an entry whose config is `config`: the config's serial now (the
+/// start serial when the entry has none), as the other runtimes' `serials.of(config)`.
+pub fn serial_of(serials: &SharedSerials, config: Option<&str>) -> i32 {
+    let s = serials.lock().unwrap_or_else(|e| e.into_inner());
+    config.map_or_else(|| s.start(), |c| s.of(c))
+}
+
 impl Publisher {
-    fn header(&self) -> rapid::Header {
-        convert::header(&self.name, &self.name, self.serial, 0)
+    fn header(&self, config: Option<&str>) -> rapid::Header {
+        convert::header(&self.name, &self.name, serial_of(&self.serials, config), 0)
     }
 
-    fn bytes(&self, kind: &mut Kind) -> Result<Vec<u8>, String> {
-        let hdr = self.header();
+    fn bytes(&self, kind: &mut Kind, config: Option<&str>) -> Result<Vec<u8>, String> {
+        let hdr = self.header(config);
         let le = Endianness::Little;
         let enc = |e: cdr::EncodeError| e.to_string();
         match kind {
@@ -260,7 +272,7 @@ impl Publisher {
                 if job.next < now {
                     job.next = now + job.period;
                 }
-                let out = self.bytes(&mut job.kind).and_then(|b| job.writer.write(&b).map_err(|e| e.to_string()));
+                let out = self.bytes(&mut job.kind, job.config.as_deref()).and_then(|b| job.writer.write(&b).map_err(|e| e.to_string()));
                 if let Err(e) = out {
                     // once per topic and message: telemetry may be dropped, the bridge keeps running
                     if reported.insert((job.topic.clone(), e.clone())) {
@@ -289,15 +301,16 @@ pub fn start(
     customs: Vec<Custom>,
     stop: Arc<AtomicBool>,
 ) -> Result<JoinHandle<()>, DdsError> {
-    let mut p = Publisher { agent_values: src.agent_values.clone(), parts: src.parts.clone(), body: src.body.clone(), name: src.name.clone(), serial: src.serial, jobs: Vec::new() };
+    let mut p = Publisher { agent_values: src.agent_values.clone(), parts: src.parts.clone(), body: src.body.clone(), name: src.name.clone(), serials: src.serials.clone(), jobs: Vec::new() };
     let now = Instant::now();
     let mut once = Vec::new();
     let mut joints = 0; // joint entries so far (Parts::joints is by joint entry)
     for t in &asset.telemetry {
         let topic = |role: &str| t.topics.get(role).cloned();
+        let config = topic("config");
         let mut job = |topic: String, type_name: &str, rate: Option<f64>, kind: Kind| -> Result<(), DdsError> {
             let writer = writer(dp, &src, &topic, type_name, true)?;
-            p.jobs.push(Job { topic, writer, period: period(rate, 1.0), next: now, kind });
+            p.jobs.push(Job { topic, config: config.clone(), writer, period: period(rate, 1.0), next: now, kind });
             Ok(())
         };
         match t.kind.as_str() {
@@ -329,8 +342,8 @@ pub fn start(
                     let w = writer(dp, &src, &s, "rapid::TextMessage", true)?;
                     let kind = Kind::Text { category };
                     match t.rate {
-                        Some(r) => p.jobs.push(Job { topic: s, writer: w, period: period(Some(r), 1.0), next: now, kind }),
-                        None => once.push((s, w, kind)),
+                        Some(r) => p.jobs.push(Job { topic: s, config, writer: w, period: period(Some(r), 1.0), next: now, kind }),
+                        None => once.push((s, config, w, kind)),
                     }
                 }
             }
@@ -342,13 +355,14 @@ pub fn start(
         let role = entry.and_then(|t| t.topics.iter().find(|(_, topic)| **topic == c.topic)).map(|(r, _)| r.as_str());
         let w = writer(dp, &src, &c.topic, &c.type_name, c.keyed)?;
         let kind = Kind::Custom(c.make);
+        let config = entry.and_then(|t| t.topics.get("config").cloned());
         match (role, entry) {
-            (Some("config"), _) | (_, None) => once.push((c.topic, w, kind)),
-            (_, Some(t)) => p.jobs.push(Job { topic: c.topic, writer: w, period: period(t.rate, IDLE_PERIOD), next: now, kind }),
+            (Some("config"), _) | (_, None) => once.push((c.topic, config, w, kind)),
+            (_, Some(t)) => p.jobs.push(Job { topic: c.topic, config, writer: w, period: period(t.rate, IDLE_PERIOD), next: now, kind }),
         }
     }
-    for (topic, w, mut kind) in once {
-        let sent = p.bytes(&mut kind).and_then(|b| w.write(&b).map_err(|e| e.to_string()));
+    for (topic, config, w, mut kind) in once {
+        let sent = p.bytes(&mut kind, config.as_deref()).and_then(|b| w.write(&b).map_err(|e| e.to_string()));
         if let Err(e) = sent {
             eprintln!("[{}] simulated telemetry on {topic} not sent: {e}", p.name);
         }
@@ -386,7 +400,8 @@ fn image(
         ..Default::default()
     };
     // the camera's state at start (durable): its size and name before any picture
-    let hdr = convert::header(&p.name, &p.name, p.serial, 0);
+    let config = t.topics.get("config").map(String::as_str);
+    let hdr = p.header(config);
     let st = rapid::ImageSensorState { hdr, meta: meta.clone() };
     match cdr::serialize(&st, Endianness::Little) {
         Ok(b) => state.write(&b)?,
@@ -397,6 +412,7 @@ fn image(
         let mime = if t.mime.is_empty() { "image/jpeg".to_string() } else { t.mime.clone() };
         p.jobs.push(Job {
             topic: sample_topic.clone(),
+            config: config.map(String::from),
             writer,
             period: period(t.rate, IDLE_PERIOD),
             next: now,
@@ -418,4 +434,30 @@ fn takes_pictures(asset: &Asset, subsystem: &str) -> bool {
     t.subsystems.iter().filter(|s| s.name == subsystem).any(|s| {
         t.types.iter().filter(|ty| ty.name == s.type_name).any(|ty| ty.commands.iter().any(|c| picture_command(&c.name)))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rapid_runtime::configs::Serials;
+
+    #[test]
+    fn samples_follow_their_configs_serial() {
+        let at = Arc::new(std::sync::atomic::AtomicI64::new(1000));
+        let clock = at.clone();
+        let serials: SharedSerials = Arc::new(Mutex::new(Serials::new(Some(1000), Box::new(move || clock.load(Ordering::SeqCst)), None)));
+        for topic in ["pos_config", "agent_config"] {
+            serials.lock().unwrap().update(topic, b"computed"); // the start path: the start serial
+        }
+        assert_eq!(serial_of(&serials, Some("pos_config")), 1000);
+        assert_eq!(serial_of(&serials, None), 1000);
+        assert_eq!(serials.lock().unwrap().update("pos_config", b"computed"), (1000, false));
+        assert_eq!(serial_of(&serials, Some("pos_config")), 1000);
+        at.store(1500, Ordering::SeqCst);
+        serials.lock().unwrap().update("pos_config", b"republished");
+        // the republished config's samples carry its new serial; the others keep theirs
+        assert_eq!(serial_of(&serials, Some("pos_config")), 1500);
+        assert_eq!(serial_of(&serials, Some("agent_config")), 1000);
+        assert_eq!(serial_of(&serials, None), 1000);
+    }
 }

@@ -117,4 +117,39 @@ mod tests {
         assert_eq!(s.start(), 1003);
         let _ = std::fs::remove_dir_all(&dir);
     }
+
+    struct Quiet;
+    impl crate::Outbox for Quiet {
+        fn ack(&self, _: &crate::Cmd, _: crate::AckStatus, _: crate::Completion, _: &str) {}
+        fn queue_state(&self, _: i32, _: &[crate::Record], _: &[crate::Record], _: &[crate::Record]) {}
+        fn access_state(&self, _: &str, _: &[String]) {}
+        fn retire(&self, _: &crate::Cmd) {}
+        fn log(&self, _: &str) {}
+    }
+    struct Idle;
+    impl crate::Handlers for Idle {
+        fn execute(&self, _: &crate::Context) -> crate::Outcome {
+            crate::Outcome::Ok(String::new())
+        }
+    }
+
+    #[test]
+    fn a_serial_issued_while_running_is_in_the_managers_journal() {
+        // (the Rust bridge's republished configs: the journal is the manager's by then)
+        let dir = std::env::temp_dir().join(format!("rapid-serials-manager-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let log: Log = Arc::new(|_: &str| {});
+        let (j, _) = Journal::open(&dir, "A", 1, 64, log.clone());
+        let mut j = j.unwrap();
+        j.start(1000);
+        let options = crate::Options { journal: Some(j), ..Default::default() };
+        let m = crate::CommandManager::new(Arc::new(crate::Tables::default()), Arc::new(Idle), Arc::new(Quiet), options).unwrap();
+        m.journal_serial(1500);
+        m.journal_serial(1200); // below the last one: nothing to record
+        drop(m.release_journal()); // a crash: no stop record
+        let (_, rec) = Journal::open(&dir, "A", 1, 64, log);
+        assert_eq!(rec.last_serial, 1500);
+        assert_eq!(restart_serial(None, &rec, 1000), Some(1501));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -474,6 +474,16 @@ impl CommandManager {
         self.shutdown(Some(Duration::ZERO)).0
     }
 
+    /// A config serial issued after the start (a republished config): in the journal, synced,
+    /// before the config goes out (a restart's serials come back above it).
+    pub fn journal_serial(&self, serial: i64) {
+        let mut st = self.inner.lock();
+        if let Some(j) = st.journal.as_mut() {
+            j.serial(serial);
+            j.sync();
+        }
+    }
+
     /// No journal from now on (the bridge closes it, or a test drops it as a crash would);
     /// returns the one there was.
     pub fn release_journal(&self) -> Option<Journal> {
