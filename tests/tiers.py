@@ -62,6 +62,7 @@ NEEDS: dict[str, frozenset[str]] = {k: frozenset(v.split()) for k, v in {
     "tests/rust/test_interop.py": "compiler dds",
     "tests/rust/test_interop_cpp.py": "compiler dds",
     "tests/rust_runtime/test_broken.py": "compiler dds",
+    "tests/rust_runtime/test_config_republish.py": "compiler dds",
     "tests/rust_runtime/test_dds_bridge.py": "compiler dds",
     "tests/rust_runtime/test_interop_client.py": "compiler dds",
     "tests/rust_runtime/test_streams.py": "compiler dds",
