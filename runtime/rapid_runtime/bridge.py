@@ -25,12 +25,11 @@ from rapid_runtime import texts
 from rapid_runtime.ack_wire import AckWire
 from rapid_runtime.ack_writers import AckWriters
 from rapid_runtime.acks import COMPLETED, NOT, clip, valid
-from rapid_runtime.configs import Serials
 from rapid_runtime.dds import Node, ReaderThread, type_class, use_transport
 from rapid_runtime.identity import Identities, IdentitiesError
 from rapid_runtime.images import describe as describe_image
 from rapid_runtime.intake import Intake
-from rapid_runtime.journal import Journal, Recovered, default_dir, restart_serial
+from rapid_runtime.journal import Journal, Recovered, default_dir, start_serials
 from rapid_runtime.manager import COMMAND_WINDOW, SHUTDOWN_TIMEOUT_MS, STOP_TIMEOUT_MS, CommandManager
 from rapid_runtime.security import SecurityUnavailable, enclave_from_environment, use_enclave
 from rapid_runtime.tables import Tables
@@ -109,10 +108,7 @@ class Bridge:
         self.recovered = Recovered()
         if journal is not None:
             self.journal, self.recovered = Journal.open(journal, self.name, domain, command_window, self.log)
-        serial = restart_serial(serial, self.recovered)  # configs come back with a new serial
-        self.serials = Serials(serial, issued=self.journal.serial if self.journal is not None else None)
-        if self.journal is not None:
-            self.journal.start(self.serials.start)
+        self.serials = start_serials(serial, self.recovered, self.journal)  # after a crash: a new serial
         self.node = Node(rapid, qos, domain)
         self.stopped = threading.Event()
         self._stop_done = threading.Event()

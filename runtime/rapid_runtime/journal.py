@@ -44,6 +44,8 @@ import os
 import re
 import time
 import zlib
+
+from rapid_runtime.configs import Serials
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import NamedTuple
@@ -96,6 +98,16 @@ def restart_serial(requested: int | None, recovered: Recovered, now: float | Non
     if requested is not None or recovered.last_serial <= 0:
         return requested
     return max(int(time.time() if now is None else now), recovered.last_serial + 1)
+
+
+def start_serials(requested: int | None, recovered: Recovered, journal: Journal | None) -> Serials:
+    """The configs' serials at a start, as every bridge chooses them: restart_serial's first
+    serial (the start time when it is None), each serial issued recorded in `journal`, which
+    gets the start record too."""
+    serials = Serials(restart_serial(requested, recovered), issued=journal.serial if journal is not None else None)
+    if journal is not None:
+        journal.start(serials.start)
+    return serials
 
 
 def _record(e: Entry) -> dict:

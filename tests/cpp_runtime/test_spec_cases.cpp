@@ -24,7 +24,6 @@
 #include <fnmatch.h>
 
 #include <fstream>
-#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -41,7 +40,6 @@
 #include <rapid_runtime/intake.hpp>
 #include <rapid_runtime/journal.hpp>
 #include <rapid_runtime/manager.hpp>
-#include <rapid_runtime/serials.hpp>
 #include <rapid_runtime/tables.hpp>
 #include <rapid_runtime/value.hpp>
 
@@ -606,15 +604,11 @@ private:
             if (!journals_.back()) throw std::runtime_error("the restart journal cannot be opened in " + journal_dir_);
             o.journal = journals_.back().get();
         }
-        // the configs' serial as the bridge chooses it (dds/src/bridge.cpp): the one asked for,
+        // the configs' serial as the bridge chooses it (start_serials, as dds/src/bridge.cpp): the one asked for,
         // else past the journal's last, else the clock's
         started_ = std::time(nullptr);
         const std::int64_t asked = case_.at("serial").is_null() ? -1 : case_.at("serial").get<std::int64_t>();
-        std::function<void(std::int32_t)> issued;
-        if (o.journal != nullptr) issued = [j = o.journal](std::int32_t s) { j->serial(s); };
-        Serials serials(restart_serial(asked, recovered, started_), {}, std::move(issued));
-        serial_ = serials.start();
-        if (o.journal != nullptr) o.journal->start(serial_);
+        serial_ = start_serials(asked, recovered, o.journal, started_).start();
         managers_.push_back(
             std::make_unique<CommandManager>(tables_, handlers_, out, o));
         if (recovered.crashed) managers_.back()->restore(recovered);

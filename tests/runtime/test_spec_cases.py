@@ -17,8 +17,7 @@ import pytest
 from rapid_runtime.command import Cmd
 from rapid_runtime.handlers import CommandFailed
 from rapid_runtime.intake import Intake
-from rapid_runtime.configs import Serials
-from rapid_runtime.journal import Journal, Recovered, default_dir, restart_serial
+from rapid_runtime.journal import Journal, Recovered, default_dir, start_serials
 from rapid_runtime.manager import COMMAND_WINDOW, CommandManager
 from rapidgen.protocol_cases import load_cases, seed_tables
 
@@ -199,14 +198,10 @@ class Replay:
             folder = default_dir() if self.case["state"] is not None else self.journal_dir
             journal, recovered = Journal.open(folder, self.tables.name, 0, window, self.out.log)
             assert journal is not None, self.out.logs
-        # the configs' serial as the bridge chooses it (rapid_runtime.bridge): the one asked for,
-        # else past the journal's last, else the clock's
+        # the configs' serial as the bridge chooses it (start_serials): the one asked for, else
+        # past the journal's last, else the clock's
         self.started = time.time()
-        serials = Serials(restart_serial(self.case["serial"], recovered or Recovered()),
-                          issued=journal.serial if journal is not None else None)
-        self.serial = serials.start
-        if journal is not None:
-            journal.start(serials.start)
+        self.serial = start_serials(self.case["serial"], recovered or Recovered(), journal).start
         m = CommandManager(self.tables, self.handlers, self.out, journal=journal, on_shutdown=self.out.stop,
                            **self.case["options"])
         if recovered is not None and recovered.crashed:

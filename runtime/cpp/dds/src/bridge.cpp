@@ -55,12 +55,8 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
         journal_ = Journal::open(options.journal, tables.name, domain, options.command_window,
                                  [this](const std::string& text) { log(text); }, recovered_);
     // configs come back with a serial above any used before the crash
-    const std::int64_t serial =
-        restart_serial(breaks_->on("zero-serial") ? 0 : options.serial, recovered_, std::time(nullptr));
-    std::function<void(std::int32_t)> issued;
-    if (journal_) issued = [j = journal_.get()](std::int32_t s) { j->serial(s); };
-    serials_ = Serials(serial, {}, std::move(issued));
-    if (journal_) journal_->start(serials_.start());
+    serials_ = start_serials(breaks_->on("zero-serial") ? 0 : options.serial, recovered_, journal_.get(),
+                             std::time(nullptr));
     NodeOptions node;
     node.domain = domain;
     node.profiles_file = options.profiles_file;

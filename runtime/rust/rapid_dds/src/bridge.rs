@@ -282,10 +282,7 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
     let requested = breaks.on("zero-serial").then_some(0);
     #[cfg(not(feature = "test-breaks"))]
     let requested = None;
-    let serial = journal::restart_serial(requested, &recovered, now).unwrap_or(now);
-    if let Some(j) = journal.as_mut() {
-        j.start(serial);
-    }
+    let serial = journal::start_serial(requested, &recovered, now, journal.as_mut());
     options.journal = journal;
     #[cfg(feature = "test-breaks")]
     {

@@ -65,6 +65,16 @@ pub fn restart_serial(requested: Option<i64>, recovered: &Recovered, now: i64) -
     Some(now.max(recovered.last_serial + 1))
 }
 
+/// The configs' first serial at a start, as every bridge chooses it: restart_serial's, else
+/// `now`; recorded as the start record of `journal` (if any).
+pub fn start_serial(requested: Option<i64>, recovered: &Recovered, now: i64, journal: Option<&mut Journal>) -> i64 {
+    let serial = restart_serial(requested, recovered, now).unwrap_or(now);
+    if let Some(j) = journal {
+        j.start(serial);
+    }
+    serial
+}
+
 /// A JSON value of a journal record: the format holds strings and integers only.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Field {

@@ -425,14 +425,11 @@ fn manager(
         opts.journal = Some(journal.ok_or("the journal did not open (see the log)")?);
         recovered = Some(rec);
     }
-    // the configs' serial as the bridge chooses it (rapid_dds's bridge.rs): the one asked for,
+    // the configs' serial as the bridge chooses it (start_serial, as rapid_dds's bridge.rs): the one asked for,
     // else past the journal's last, else the clock's
     let at = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs() as i64);
     let asked = case["serial"].as_i64();
-    let serial = journal::restart_serial(asked, recovered.as_ref().unwrap_or(&journal::Recovered::default()), at).unwrap_or(at);
-    if let Some(j) = opts.journal.as_mut() {
-        j.start(serial);
-    }
+    let serial = journal::start_serial(asked, recovered.as_ref().unwrap_or(&journal::Recovered::default()), at, opts.journal.as_mut());
     let m = CommandManager::new(tables.clone(), handlers.clone(), gate.clone(), opts)?;
     if let Some(rec) = recovered.filter(|r| r.crashed) {
         m.restore(&rec);
