@@ -40,6 +40,7 @@
 #include <rapid_runtime/intake.hpp>
 #include <rapid_runtime/journal.hpp>
 #include <rapid_runtime/manager.hpp>
+#include <rapid_runtime/serials.hpp>
 #include <rapid_runtime/tables.hpp>
 #include <rapid_runtime/value.hpp>
 

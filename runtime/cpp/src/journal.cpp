@@ -231,14 +231,6 @@ std::int64_t restart_serial(std::int64_t requested, const JournalRecovered& reco
     return std::max(now, recovered.last_serial + 1);
 }
 
-Serials start_serials(std::int64_t requested, const JournalRecovered& recovered, Journal* journal, std::int64_t now) {
-    std::function<void(std::int32_t)> issued;
-    if (journal != nullptr) issued = [journal](std::int32_t s) { journal->serial(s); };
-    Serials serials(restart_serial(requested, recovered, now), {}, std::move(issued));
-    if (journal != nullptr) journal->start(serials.start());
-    return serials;
-}
-
 std::string Journal::default_dir() {
     const char* state = std::getenv("RAPID_STATE_DIR");
     if (state != nullptr && *state) return state;

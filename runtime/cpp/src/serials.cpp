@@ -33,4 +33,12 @@ std::pair<std::int32_t, bool> Serials::update(const std::string& topic, const st
     return {last_, true};
 }
 
+Serials start_serials(std::int64_t requested, const JournalRecovered& recovered, Journal* journal, std::int64_t now) {
+    std::function<void(std::int32_t)> issued;
+    if (journal != nullptr) issued = [journal](std::int32_t s) { journal->serial(s); };
+    Serials serials(restart_serial(requested, recovered, now), {}, std::move(issued));
+    if (journal != nullptr) journal->start(serials.start());
+    return serials;
+}
+
 }  // namespace rapid_runtime

@@ -23,8 +23,6 @@
 #include <string>
 #include <vector>
 
-#include "rapid_runtime/serials.hpp"
-
 namespace rapid_runtime {
 
 struct JournalEntry {
@@ -100,10 +98,5 @@ private:
     bool failing_ = false;
     mutable std::mutex mutex_;  // the public calls; the private ones run under it
 };
-
-// The configs' serials at a start, as every bridge chooses them: restart_serial's first
-// serial (the start time when it is -1), each serial issued recorded in `journal` (none:
-// nullptr), which gets the start record too.
-Serials start_serials(std::int64_t requested, const JournalRecovered& recovered, Journal* journal, std::int64_t now);
 
 }  // namespace rapid_runtime

@@ -11,6 +11,8 @@
 #include <string>
 #include <utility>
 
+#include "rapid_runtime/journal.hpp"
+
 namespace rapid_runtime {
 
 class Serials {
@@ -34,6 +36,11 @@ private:
     std::int32_t last_;
     std::map<std::string, std::pair<std::string, std::int32_t>> topics_;  // topic -> (content, serial)
 };
+
+// The configs' serials at a start, as every bridge chooses them: restart_serial's first
+// serial (the start time when it is -1), each serial issued recorded in `journal` (none:
+// nullptr), which gets the start record too.
+Serials start_serials(std::int64_t requested, const JournalRecovered& recovered, Journal* journal, std::int64_t now);
 
 }  // namespace rapid_runtime
 
