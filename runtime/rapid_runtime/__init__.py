@@ -22,6 +22,7 @@ makes where the protocol is silent):
     ros2        the ROS 2 bridge's handlers and ground node (a package with a ros2: section)
     plain       a decoded sample as JSON-ready data (the tools' one form: spy, monitor)
     thresholds  an agent value's warning/critical level (the monitor and the ROS 2 ground node)
+    idl_support what every generated types package calls (long sequences, DeserializeError)
 
 The protocol logic (everything above `messages`) imports no DDS, so it is tested
 without a network. Depends on cyclonedds and the standard library only.

@@ -10,7 +10,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 SHARED_BACKEND = {"rapidgen.backends", "rapidgen.backends.base", "rapidgen.backends.escape", "rapidgen.backends.naming",
-                  "rapidgen.backends.plausible",
+                  "rapidgen.backends.plausible", "rapidgen.backends.support",
                   "rapidgen.backends.templating", "rapidgen.backends.typewalk"}
 
 

@@ -18,6 +18,7 @@ from rapidgen.backends.base import QOS_LIBRARY, GeneratedFile, Options, check_ou
 from rapidgen.backends.typewalk import Unsupported
 from rapidgen.backends.cpp.view import Builder, PackageView, UnsupportedInput
 from rapidgen.backends.escape import cmake_name, cpp_str
+from rapidgen.backends.support import support_file
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
 
@@ -84,8 +85,8 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
     inc = f"include/{p.package}"
     files = [GeneratedFile("CMakeLists.txt", render("cpp", "CMakeLists.txt.j2", p=p, bridge=asset is not None)),
              GeneratedFile("cmake/Config.cmake.in", render("cpp", "Config.cmake.in.j2", p=p)),
-             GeneratedFile(f"{inc}/cdr.hpp", render("cpp", "cdr.hpp.j2", header=p.header)),
-             GeneratedFile(f"{inc}/dds.hpp", render("cpp", "dds.hpp.j2", header=p.header)),
+             GeneratedFile(f"{inc}/cdr.hpp", support_file("cpp", "cdr.hpp", p.header)),
+             GeneratedFile(f"{inc}/dds.hpp", support_file("cpp", "dds.hpp", p.header)),
              GeneratedFile(f"{inc}/types.hpp", render("cpp", "types.hpp.j2", p=p)),
              GeneratedFile(f"{inc}/topics.hpp", render("cpp", "topics.hpp.j2", p=p)),
              GeneratedFile("src/types.cpp", render("cpp", "types.cpp.j2", p=p))]

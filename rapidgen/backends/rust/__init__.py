@@ -17,6 +17,7 @@ from rapidgen.backends.base import (QOS_LIBRARY, GeneratedFile, Options, check_o
                                    no_companions, notice)
 from rapidgen.backends.escape import crate_name, rust_str
 from rapidgen.backends.rust.view import Builder, CrateView, UnsupportedInput
+from rapidgen.backends.support import support_file
 from rapidgen.backends.templating import render
 from rapidgen.model.ir import Model
 
@@ -81,7 +82,7 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
     """Raises UnsupportedInput when the model uses what the rust target cannot express."""
     c, a = view(model, asset, options)
     files = [GeneratedFile("Cargo.toml", render("rust", "Cargo.toml.j2", c=c)),
-             GeneratedFile("src/cdr.rs", render("rust", "cdr.rs.j2", header=c.header))]
+             GeneratedFile("src/cdr.rs", support_file("rust", "cdr.rs", c.header))]
     for m in c.modules:
         template = "lib.rs.j2" if m.file == "src/lib.rs" else "module.rs.j2"
         files.append(GeneratedFile(m.file, render("rust", template, c=c, m=m, asset=a is not None)))
@@ -89,9 +90,11 @@ def generate(model: Model, asset: "LoadedAsset | None", options: Options) -> lis
         files.append(GeneratedFile("src/asset.rs", render("rust", "asset.rs.j2", c=c, a=a)))
         assert asset is not None
         files += _bridge(asset, c, a)
-    files.append(GeneratedFile("src/dds.rs", render("rust", "dds.rs.j2", c=c, asset=a is not None)))
+    # the fixed glue, then this crate's types made keyed topic types (and the asset's topics)
+    files.append(GeneratedFile("src/dds.rs", support_file("rust", "dds.rs", c.header)
+                               + render("rust", "dds.rs.j2", c=c, asset=a is not None)))
     if c.serde_arrays:
-        files.append(GeneratedFile("src/serde_arrays.rs", render("rust", "serde_arrays.rs.j2", header=c.header)))
+        files.append(GeneratedFile("src/serde_arrays.rs", support_file("rust", "serde_arrays.rs", c.header)))
     check_output(files, asset)
     return sorted(files, key=lambda f: f.path)
 

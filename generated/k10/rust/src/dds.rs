@@ -141,45 +141,6 @@ macro_rules! keyed {
     )*};
 }
 
-keyed!(
-    crate::rapid::ParameterUnion,
-    crate::rapid::KeyTypePair,
-    crate::rapid::KeyTypeValueTriple,
-    crate::rapid::Transform3D,
-    crate::rapid::NamedFloatSequence,
-    crate::rapid::FloatRange,
-    crate::rapid::FloatRangeValue,
-    crate::rapid::OptionSetValue,
-    crate::rapid::NamedFloatRangeValue,
-    crate::rapid::NamedOptionSetValue,
-    crate::rapid::Header,
-    crate::rapid::Message,
-    crate::rapid::AccessControlState,
-    crate::rapid::Ack,
-    crate::rapid::AgentConfig,
-    crate::rapid::AgentState,
-    crate::rapid::Command,
-    crate::rapid::CommandDef,
-    crate::rapid::SubsystemType,
-    crate::rapid::Subsystem,
-    crate::rapid::CommandConfig,
-    crate::rapid::FileAnnounce,
-    crate::rapid::ImageMetadata,
-    crate::rapid::ImageSensorSample,
-    crate::rapid::ImageSensorState,
-    crate::rapid::JointDef,
-    crate::rapid::JointConfig,
-    crate::rapid::JointSample,
-    crate::rapid::PositionConfig,
-    crate::rapid::PositionSample,
-    crate::rapid::CommandRecord,
-    crate::rapid::SingleQueue,
-    crate::rapid::QueueState,
-    crate::rapid::TextMessage,
-    crate::rapid::ext::arc::GpsConfig,
-    crate::rapid::ext::arc::GpsSample,
-);
-
 /// RustDDS's serializer and deserializer adapters for `T`, forwarding to the codec:
 /// samples go out as CDR_LE, either byte order comes in (RustDDS keeps the 4-byte
 /// encapsulation header apart from the body).
@@ -346,6 +307,46 @@ pub fn create_reader<T: TopicType>(subscriber: &Subscriber, topic: &Topic, qos: 
         Reader::NoKey(subscriber.create_datareader_no_key::<T, CdrAdapter<T>>(topic, qos)?)
     })
 }
+
+// Every struct and union of this crate: a keyed RustDDS topic type (the macro above).
+keyed!(
+    crate::rapid::ParameterUnion,
+    crate::rapid::KeyTypePair,
+    crate::rapid::KeyTypeValueTriple,
+    crate::rapid::Transform3D,
+    crate::rapid::NamedFloatSequence,
+    crate::rapid::FloatRange,
+    crate::rapid::FloatRangeValue,
+    crate::rapid::OptionSetValue,
+    crate::rapid::NamedFloatRangeValue,
+    crate::rapid::NamedOptionSetValue,
+    crate::rapid::Header,
+    crate::rapid::Message,
+    crate::rapid::AccessControlState,
+    crate::rapid::Ack,
+    crate::rapid::AgentConfig,
+    crate::rapid::AgentState,
+    crate::rapid::Command,
+    crate::rapid::CommandDef,
+    crate::rapid::SubsystemType,
+    crate::rapid::Subsystem,
+    crate::rapid::CommandConfig,
+    crate::rapid::FileAnnounce,
+    crate::rapid::ImageMetadata,
+    crate::rapid::ImageSensorSample,
+    crate::rapid::ImageSensorState,
+    crate::rapid::JointDef,
+    crate::rapid::JointConfig,
+    crate::rapid::JointSample,
+    crate::rapid::PositionConfig,
+    crate::rapid::PositionSample,
+    crate::rapid::CommandRecord,
+    crate::rapid::SingleQueue,
+    crate::rapid::QueueState,
+    crate::rapid::TextMessage,
+    crate::rapid::ext::arc::GpsConfig,
+    crate::rapid::ext::arc::GpsSample,
+);
 
 /// The asset's topic `name` (one of `asset::TOPICS`) carrying `T`; refused
 /// (`CreateError::BadParameter`) when the asset publishes no such topic or it carries

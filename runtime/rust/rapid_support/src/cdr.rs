@@ -1,4 +1,3 @@
-// {{ header | rust_comment }}
 //! XCDR1 (plain CDR) reader and writer used by the generated encode/decode code. The same
 //! file in every crate rapidgen writes; docs/rust-backend.md describes the rules.
 //!

@@ -1,4 +1,3 @@
-// {{ header | cpp_comment }}
 // XCDR1 reader and writer the generated encode/decode functions call (docs/cpp-backend.md).
 // Every package carries the same copy under the same guard, so two packages can be
 // included in one program.

@@ -1,4 +1,3 @@
-// {{ header | rust_comment }}
 //! serde for the members holding an array longer than 32 elements, the longest serde's own
 //! impls take (feature `serde`): `#[serde(with = "crate::serde_arrays::Arr::<...>")]`,
 //! composed like the member's type (`Arr` an array level, `Seq` a sequence, `Plain` the

@@ -1,4 +1,3 @@
-// {{ header | cpp_comment }}
 // A Fast DDS 2.9 TopicDataType for any generated struct (topics.hpp names one per type).
 // Every package carries the same copy under the same guard.
 #ifndef RAPIDGEN_DDS_SUPPORT_V1
