@@ -1,5 +1,5 @@
 """`pip install .` (not editable) gives a working rapidgen: templates, schemas, the QoS
-library and the RAPID IDL all ship in the wheel. Installed into a fresh venv that reuses
+library, the RAPID IDL and the runtimes' fixed files all ship in the wheel. Installed into a fresh venv that reuses
 this environment's packages, then run from a folder outside the checkout."""
 import shutil
 import subprocess
@@ -47,9 +47,13 @@ def test_installed_wheel_validates_and_generates_outside_the_checkout(tmp_path):
     assert str(ROOT) not in where.stdout, "the test must use the installed wheel, not the checkout"
     validated = run("validate", "r2.yaml")
     assert validated.returncode == 0, validated.stderr
-    generated = run("generate", "r2.yaml", "--lang", "python,qos", "-o", "out")
+    generated = run("generate", "r2.yaml", "--lang", "python,qos,cpp,rust", "-o", "out")
     assert generated.returncode == 0, generated.stderr
     assert (work / "out" / "python" / "pyproject.toml").is_file()
+    # the runtimes' fixed files ship in the wheel too (rapidgen/support): each copy is its source
+    for copy, source in ((next((work / "out" / "cpp" / "include").glob("*/cdr.hpp")), "runtime/cpp/support/cdr.hpp"),
+                         (work / "out" / "rust" / "src" / "cdr.rs", "runtime/rust/rapid_support/src/cdr.rs")):
+        assert copy.read_text().split("\n", 1)[1] == (ROOT / source).read_text()
     assert (work / "out" / "qos" / "cyclonedds" / "local.xml").is_file()
     ir = run("ir", str(ROOT / "specs" / "rapid" / "Ack.idl"), "-I", str(ROOT / "specs" / "rapid"))
     assert ir.returncode == 0 and '"rapid::Ack"' in ir.stdout
