@@ -164,6 +164,36 @@ def report(rows: list[tuple[int, int, dict]], tools: list[Tool]) -> None:
             print(f"  {t.name:<18} {ratio(best(by_n[big][t.name]), best(by_n[small][t.name]))}")
 
 
+def devices_report(python: str, env: dict[str, str], sizes: list[int], repeat: int, seed: int) -> None:
+    """`rapidgen generate` (all four targets) with every speed device, then without each one
+    (RAPIDGEN_WITHOUT, rapidgen.speed_devices), taking turns; and `rapidgen check` on this
+    repository the same way. A device pays when it saves at least a tenth of the run it
+    targets (of the run without it)."""
+    from rapidgen.speed_devices import DEVICES
+
+    def tools(argv: list[str]) -> list[Tool]:
+        return [Tool("every device", argv, env=env),
+                *[Tool(f"without {d}", argv, env=dict(env, RAPIDGEN_WITHOUT=d)) for d in DEVICES]]
+
+    def table(title: str, results: dict) -> None:
+        on = statistics.median(r.seconds for r in results["every device"])
+        print(f"{title}: every device {on * 1000:.0f} ms (median of {repeat})")
+        for d in DEVICES:
+            off = statistics.median(r.seconds for r in results[f"without {d}"])
+            share = (off - on) / off
+            print(f"  without {d:<22} {off * 1000:6.0f} ms  saves {(off - on) * 1000:5.0f} ms = "
+                  f"{share:5.1%} of the run  {'pays' if share >= 0.10 else 'below a tenth'}")
+
+    generate = [python, "-m", "rapidgen", "generate", "{idl}", "-o", "{out}", "--lang", ",".join(TARGETS)]
+    with tempfile.TemporaryDirectory(prefix="bench-codegen-idl-") as tmp:
+        for n in sizes:
+            idl, lines = write_idl(Path(tmp), n, seed)
+            table(f"generate, all four targets, {n} structs ({lines:,} lines)", measure(tools(generate), idl, repeat))
+    check = [python, "-m", "rapidgen", "check"]
+    table("rapidgen check (this repository)", measure(tools(check), REPO, repeat))
+    print("\nRAPIDGEN_WITHOUT names: " + "; ".join(f"{d}: {what}" for d, what in DEVICES.items()))
+
+
 def install() -> None:
     if os.geteuid() != 0:
         sys.exit("--install needs root (it runs apt-get install)")
@@ -185,6 +215,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
                    "DIR REV`): its `generate` of each target and all four as more columns, in the same run")
     p.add_argument("--keep", metavar="DIR", type=Path, help="write the IDL files to DIR and keep them")
     p.add_argument("--install", action="store_true", help="apt-get install cyclonedds-tools fastddsgen first (root)")
+    p.add_argument("--devices", action="store_true", help="instead: what each speed device saves (rapidgen generate "
+                   "without each, rapidgen.speed_devices), at --sizes and for `rapidgen check`")
     args = p.parse_args(argv)
     args.sizes = [int(s) for s in args.sizes.split(",") if s.strip()]
     if args.repeat < 1 or not args.sizes or any(n < 1 for n in args.sizes):
@@ -201,6 +233,11 @@ def main(argv: list[str] | None = None) -> int:
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     if args.jobs is not None:
         env["RAPIDGEN_JOBS"] = str(args.jobs)
+    if args.devices:
+        print(f"machine: {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}; python {sys.version.split()[0]}")
+        devices_report(sys.executable, env, args.sizes, args.repeat, args.seed)
+        print(f"load average after: {os.getloadavg()[0]:.2f}")
+        return 0
     tools = tools_for(sys.executable, env, args.baseline.resolve() if args.baseline else None)
     if args.only:
         wanted = {w.strip() for w in args.only.split(",")}

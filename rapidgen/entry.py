@@ -7,10 +7,12 @@ runs without.
 from __future__ import annotations
 
 from rapidgen import codecache
+from rapidgen.speed_devices import without
 
 
 def main() -> int:
-    codecache.install()
+    if not without("codecache"):
+        codecache.install()
     from rapidgen.cli import main as cli_main
 
     code = cli_main()

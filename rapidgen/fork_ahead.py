@@ -22,6 +22,7 @@ from typing import IO, TYPE_CHECKING
 from rapidgen import backends
 from rapidgen.backends.base import GeneratedFile, GenerationError
 from rapidgen.diagnostics import Diagnostic, DiagnosticSink
+from rapidgen.speed_devices import without
 
 if TYPE_CHECKING:
     from rapidgen.generate import Inputs, Renderer
@@ -31,7 +32,7 @@ def jobs() -> int:
     """How many processes to use: 2 where fork exists, the process may run on two CPUs or
     more and runs no other Python thread (a forked child would get only this one), else 1."""
     text = os.environ.get("RAPIDGEN_JOBS", "").strip()
-    if text.isdigit() and int(text) <= 1:
+    if (text.isdigit() and int(text) <= 1) or without("two-processes"):
         return 1
     if not hasattr(os, "fork"):
         return 1

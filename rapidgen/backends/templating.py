@@ -31,6 +31,7 @@ from typing import Callable, MutableMapping
 import jinja2
 
 from rapidgen.backends import escape
+from rapidgen.speed_devices import without
 
 # Every input string a template prints goes through one of these, or (XML targets) through
 # escape.xml_text, which replaces plain autoescape; rapidgen/backends/escape.py says what
@@ -143,6 +144,8 @@ _KEY_LINE = re.compile(r'^KEY = "([0-9a-f]{64})"$', re.M)
 def precompiled_code(target: str, name: str, source: str):
     """The code object of the template's precompiled module, or None when there is none or
     it was made from another source, settings or Jinja2."""
+    if without("precompiled-templates"):
+        return None
     module = f"{PRECOMPILED_PACKAGE}.{module_name(target, name)}"
     try:
         spec = importlib.util.find_spec(module)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import functools
 
 from rapidgen.packagedata import read_text
+from rapidgen.speed_devices import without
 
 TABLES_FORMAT = 2  # bump when the shape of the tables changes (rapidgen.idl.larkgrammar.build_tables)
 PACKAGED_MODULE = "packaged_tables.py"
@@ -28,6 +29,8 @@ def tables() -> dict:
     try:
         from rapidgen.idl import packaged_tables as packaged
     except ImportError:  # a copy of the package without them
+        packaged = None  # type: ignore[assignment]
+    if without("lalr-tables"):
         packaged = None  # type: ignore[assignment]
     if packaged is not None and packaged.GRAMMAR == grammar_text() and packaged.TABLES.get("format") == TABLES_FORMAT:
         return packaged.TABLES
