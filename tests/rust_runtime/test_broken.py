@@ -1,17 +1,20 @@
 """The conformance suite's broken-asset kinds that the Rust runtime can express, injected into
-K10's generated Rust bridge with `--break KIND` (rapid_runtime's src/breaks.rs, compiled only
-with the cargo feature test-breaks): each makes `rapidgen conform` fail the check it aims at
-and no other, the check the Python kind of that name fails (tests/conformance/broken) and the
-C++ bridge's (tests/cpp_client/test_broken.py). docs/rust-backend.md lists the kinds that
-need the DDS layer.
+K10's generated Rust bridge with `--break KIND` (compiled only with the cargo feature
+test-breaks: rapid_runtime's src/breaks.rs, which lists every kind, and rapid_dds's
+src/breaks.rs for the ack writer, the configs and the simulated telemetry): each makes
+`rapidgen conform` fail the check it aims at and no other, the check the Python kind of that
+name fails (tests/conformance/broken) and the C++ bridge's (tests/cpp_client/test_broken.py).
+docs/rust-backend.md lists the kinds that are not injected (QoS and types).
 
 One feature-enabled build of K10's bridge, in the target folder of the folder's bridges
 (cyclors is not built again; the runtime, its DDS layer and the bridge are), under a package
 name of its own so that the plain `rapid_k10red_bridge` the other tests run stays as it is.
 One bridge per kind (a failure is then the kind's alone), each run the checks of its area
-(--only CMD-, the checks it builds on included): the full suite's judgment of the unbroken
-bridge is test_dds_bridge.py's. The runs wait on discovery and the checks' windows far more
-than they compute, so PARALLEL run at a time, the longest first, on domains 73 and 74.
+(--only CMD-, TEL- or CFG-, the checks it builds on included; every bridge --simulate: the
+telemetry kinds break its simulated telemetry): the full suite's judgment of the unbroken
+bridge is test_dds_bridge.py's. The runs wait on discovery and the checks' windows (rates,
+late judgments) far more than they compute, so PARALLEL run at a time, the longest first, on
+domains 73 and 74.
 
 Each kind's bridge and runner carry a Cyclone domain tag of their own (Discovery/Tag, added
 to K10's loopback configuration): participants with another tag, or none, ignore them and
@@ -44,8 +47,10 @@ DOMAINS = (73, 74)
 PARALLEL = 4
 PACKAGE = "rapid_k10red_bridge_breaks"
 CRASH = "crash-on-bad-input"
-# runs that wait out a command's answer (CMD-14 and CMD-16's 10 s) start first
+# runs that wait out a command's answer (CMD-14 and CMD-16's 10 s) start first, then by area
+# (telemetry runs wait out rates: 4 to 8 s; configs CFG-05's 4 s of watching)
 LONG = (CRASH, "nan-unanswered", "every-20th-lost")
+AREA_ORDER = ("TEL-", "CFG-", "CMD-", "QUE-", "ACC-", "SPEC-")
 LOCAL = ROOT / "generated" / "k10" / "qos" / "cyclonedds" / "local.xml"  # the bridge's built-in `local`
 
 
@@ -128,7 +133,7 @@ def _run(args) -> dict:
 @pytest.fixture(scope="module")
 def broken_runs(broken_bridge, tmp_path_factory):
     out = tmp_path_factory.mktemp("rust-broken")
-    order = sorted(KINDS, key=lambda k: k not in LONG)
+    order = sorted(KINDS, key=lambda k: (k not in LONG, AREA_ORDER.index(_area(KINDS[k]))))
     start, cpu = time.monotonic(), _children_cpu()
     with ThreadPoolExecutor(PARALLEL) as pool:
         jobs = [(k, DOMAINS[i % len(DOMAINS)], broken_bridge, out) for i, k in enumerate(order)]
@@ -141,7 +146,7 @@ def broken_runs(broken_bridge, tmp_path_factory):
 def test_kinds_are_the_conformance_suites():
     """Each Rust kind is a kind of tests/conformance/broken aimed at the same check."""
     from tests.conformance.broken import KINDS as PYTHON_KINDS
-    assert len(KINDS) >= 40
+    assert len(KINDS) >= 56
     assert {k: PYTHON_KINDS.get(k) for k in KINDS} == KINDS
 
 

@@ -29,7 +29,7 @@ use crate::dds::{DdsError, Participant, Side};
 use crate::stream::{Env, Hooks, StreamSet};
 use crate::stream_sim::{Fill, Parts, SimStreams};
 use crate::telemetry::{self, Body, Custom, Source};
-use crate::{convert, tables_json, DdsOutbox};
+use crate::{convert, outbox, tables_json, DdsOutbox};
 use rapid_runtime::stream::StreamSpec;
 
 /// What the generated crate gives the bridge.
@@ -261,6 +261,9 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
     let where_ = args.tables.clone().unwrap_or_else(|| "the built-in tables".into());
     let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{where_}: {e}"))?;
     let tables = tables_json::asset_of(&json).map_err(|e| format!("{where_}: {e}"))?;
+    // what rapid_runtime never sees: the ack writer, the configs, the simulated telemetry
+    #[cfg(feature = "test-breaks")]
+    let dds_breaks = Arc::new(crate::breaks::Breaks::new(breaks.clone(), &tables));
     let domain = args.domain.unwrap_or(tables.tables.domain.max(0) as u32);
     crate::dds::use_transport(asset.transports, &args.transport);
     let name = tables.tables.name.clone();
@@ -290,25 +293,45 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
     }
     let serial = serial as i32;
     let dp = Participant::new(domain, &tables.tables.partition).map_err(|e| e.to_string())?;
-    let outbox = Arc::new(DdsOutbox::new(&dp, &name, serial, options.window).map_err(|e| e.to_string())?);
+    let (ack_topic, ack_side) = (outbox::ACK_TOPIC.to_string(), outbox::ACK_SIDE);
+    #[cfg(feature = "test-breaks")]
+    let (ack_topic, ack_side) = (dds_breaks.ack_topic(&name, &ack_topic), dds_breaks.ack_side(ack_side));
+    let outbox = Arc::new(DdsOutbox::with_acks(&dp, &name, serial, options.window, &ack_topic, ack_side).map_err(|e| e.to_string())?);
 
     // configs first (transient-local): commanders read the CommandConfig to find the asset;
     // each with the start serial, a new one when the user's code publishes other content
     // (crate::configs::get(): Configs::publish)
     let serials: SharedSerials = Arc::new(Mutex::new(Serials::new(Some(serial as i64), Box::new(now_seconds), None)));
-    let hdr = convert::header(&name, &name, serial, 0);
+    let source = name.as_str();
+    #[cfg(feature = "test-breaks")]
+    let source = dds_breaks.config_source(source);
+    let hdr = convert::header(source, &name, serial, 0);
     let mut config_writers = BTreeMap::new();
     for (topic, type_name, bytes) in &asset.configs {
         let side = (asset.qos)(topic).unwrap_or(Side { reliable: true, transient_local: true, depth: Some(1) });
-        let w = dp.writer(&dp.topic(topic, type_name, true).map_err(|e| e.to_string())?, side).map_err(|e| e.to_string())?;
-        w.write(&convert::with_header(bytes, &hdr)?).map_err(|e| format!("{topic}: {e}"))?;
+        #[cfg(feature = "test-breaks")]
+        let (side, bytes) = (dds_breaks.config_side(side), &dds_breaks.config_sample(topic, bytes)?);
         // (the content without its header: a republication compares the same way)
         serials.lock().unwrap_or_else(|e| e.into_inner()).update(topic, &convert::with_header(bytes, &Default::default())?);
+        #[cfg(feature = "test-breaks")]
+        if dds_breaks.config_unpublished(topic) {
+            continue; // (its serial is the start one all the same: its samples carry it)
+        }
+        let w = dp.writer(&dp.topic(topic, type_name, true).map_err(|e| e.to_string())?, side).map_err(|e| e.to_string())?;
+        w.write(&convert::with_header(bytes, &hdr)?).map_err(|e| format!("{topic}: {e}"))?;
         config_writers.insert(topic.to_string(), w);
     }
-    let configs = Arc::new(Configs::new(&name, serials.clone(), config_writers));
+    let configs = Configs::new(&name, serials.clone(), config_writers);
+    #[cfg(feature = "test-breaks")]
+    let configs = configs.with_source(source);
+    let configs = Arc::new(configs);
 
     let stop = Arc::new(AtomicBool::new(false));
+    #[cfg(feature = "test-breaks")]
+    let drift = {
+        let sample = asset.configs.iter().find(|c| c.0 == crate::breaks::DRIFTED).map(|c| c.2.clone());
+        dds_breaks.drift(configs.clone(), sample, stop.clone())
+    };
     let body = Arc::new(Mutex::new(Body::default()));
     // the streams' readers and writers before the telemetry (the simulated AgentState carries
     // their keys); their reporting thread once the command manager exists (stopAllMotion)
@@ -345,8 +368,16 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
     };
     let sim = if args.simulate {
         let agent_values = stream_set.as_ref().map(|s| s.values());
-        let source = Source { body: body.clone(), name: name.clone(), serials: serials.clone(), qos: asset.qos, agent_values,
-                              parts: stream_set.as_ref().map(|_| parts.clone()) };
+        let source = Source {
+            body: body.clone(),
+            name: name.clone(),
+            serials: serials.clone(),
+            qos: asset.qos,
+            agent_values,
+            parts: stream_set.as_ref().map(|_| parts.clone()),
+            #[cfg(feature = "test-breaks")]
+            breaks: Some(dds_breaks.clone()),
+        };
         Some(telemetry::start(&dp, &tables, source, asset.customs, stop.clone()).map_err(|e| e.to_string())?)
     } else {
         None
@@ -419,6 +450,10 @@ pub fn run(asset: Asset, handlers: Arc<dyn Handlers>, streams: Option<Streams>) 
         }
     }
     stop.store(true, Ordering::SeqCst); // (after a signal: the telemetry thread ends too)
+    #[cfg(feature = "test-breaks")]
+    if let Some(d) = drift {
+        let _ = d.join(); // (before the config writers go with the participant)
+    }
     if let Some((sim, _)) = sim_streams {
         sim.stop();
     }

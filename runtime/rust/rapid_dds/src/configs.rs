@@ -24,6 +24,8 @@ pub type Record = Arc<dyn Fn(i64) + Send + Sync>;
 /// The running bridge's config publisher.
 pub struct Configs {
     name: String,
+    /// the configs' hdr.srcName: the asset's name (a test build's config-without-source: empty)
+    source: String,
     serials: SharedSerials,
     /// topic -> its transient-local writer, made at start
     writers: BTreeMap<String, Writer>,
@@ -39,7 +41,13 @@ pub fn get() -> Option<Arc<Configs>> {
 
 impl Configs {
     pub(crate) fn new(name: &str, serials: SharedSerials, writers: BTreeMap<String, Writer>) -> Configs {
-        Configs { name: name.to_string(), serials, writers, record: OnceLock::new() }
+        Configs { name: name.to_string(), source: name.to_string(), serials, writers, record: OnceLock::new() }
+    }
+
+    /// The configs' hdr.srcName (a test build's config-without-source, crate::breaks).
+    #[cfg(feature = "test-breaks")]
+    pub(crate) fn with_source(self, source: &str) -> Configs {
+        Configs { source: source.to_string(), ..self }
     }
 
     /// Makes it the one `get()` gives (once per process: a bridge runs once).
@@ -73,14 +81,29 @@ impl Configs {
     pub(crate) fn publish_with(&self, topic: &str, sample: &[u8], write: impl FnOnce(&[u8]) -> Result<(), String>) -> Result<i32, String> {
         // the header is not content: the same config with another stamp keeps its serial
         let content = convert::with_header(sample, &rapid::Header::default())?;
+        self.put(topic, sample, &content, write)
+    }
+
+    /// serial-drift (a test build's, crate::breaks): the topic's config published again with
+    /// a new serial, its content compared with `salt` added (always "changed").
+    #[cfg(feature = "test-breaks")]
+    pub(crate) fn publish_salted(&self, topic: &str, sample: &[u8], salt: &[u8]) -> Result<i32, String> {
+        let writer = self.writers.get(topic).ok_or_else(|| format!("{topic}: not a config of {}", self.name))?;
+        let mut content = convert::with_header(sample, &rapid::Header::default())?;
+        content.extend_from_slice(salt);
+        self.put(topic, sample, &content, |bytes| writer.write(bytes).map_err(|e| format!("{topic}: {e}")))
+    }
+
+    /// The sample written with a new serial when `content` changed; the serial it has.
+    fn put(&self, topic: &str, sample: &[u8], content: &[u8], write: impl FnOnce(&[u8]) -> Result<(), String>) -> Result<i32, String> {
         // the lock held to the write: two publishers of one topic go out in serial order
         let mut serials = self.serials.lock().unwrap_or_else(|e| e.into_inner());
-        let (serial, changed) = serials.update(topic, &content);
+        let (serial, changed) = serials.update(topic, content);
         if changed {
             if let Some(r) = self.record.get() {
                 r(serial as i64); // on disk before the serial is seen (a restart comes back above it)
             }
-            write(&convert::with_header(sample, &convert::header(&self.name, &self.name, serial, 0))?)?;
+            write(&convert::with_header(sample, &convert::header(&self.source, &self.name, serial, 0))?)?;
         }
         Ok(serial)
     }

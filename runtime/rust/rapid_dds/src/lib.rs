@@ -8,6 +8,8 @@
 #[cfg(feature = "alloc-count")]
 pub mod alloc_count;
 pub mod bridge;
+#[cfg(feature = "test-breaks")]
+pub mod breaks;
 pub mod client;
 pub mod cmd;
 pub mod configs;

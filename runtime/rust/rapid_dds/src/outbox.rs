@@ -117,19 +117,29 @@ pub struct DdsOutbox {
 }
 
 const STATE: Side = Side { reliable: true, transient_local: true, depth: Some(1) };
+/// the Ack topic (5b: plain rapid_ack) and its writers' side: RapidReliableDurableQos, a late
+/// joiner gets each command's last ACK_HISTORY acks
+pub const ACK_TOPIC: &str = "rapid_ack";
+pub const ACK_SIDE: Side = Side { reliable: true, transient_local: true, depth: Some(ACK_HISTORY) };
 
 impl DdsOutbox {
     /// `window`: the manager's command window (Options::window).
     pub fn new(dp: &Participant, name: &str, serial: i32, window: usize) -> Result<DdsOutbox, DdsError> {
+        DdsOutbox::with_acks(dp, name, serial, window, ACK_TOPIC, ACK_SIDE)
+    }
+
+    /// new() with the ack writers' topic and QoS side given (a test build's ack breaks,
+    /// crate::breaks).
+    pub(crate) fn with_acks(dp: &Participant, name: &str, serial: i32, window: usize, topic: &str, side: Side) -> Result<DdsOutbox, DdsError> {
         let md5 = <rapid::Ack as cdr::Cdr>::KEY_MAX_SIZE > 16;
-        let acks = dp.keyed_topic("rapid_ack", "rapid::Ack", ack_key, md5)?;
+        let acks = dp.keyed_topic(topic, "rapid::Ack", ack_key, md5)?;
         let queue = dp.topic("rapid_queue_state", "rapid::QueueState", true)?;
         let access = dp.topic("rapid_accesscontrol_state", "rapid::AccessControlState", true)?;
         Ok(DdsOutbox {
             name: name.into(),
             serial: AtomicI32::new(serial),
             acks: Mutex::new({
-                let make = dp.writers(&acks, Side { reliable: true, transient_local: true, depth: Some(ACK_HISTORY) });
+                let make = dp.writers(&acks, side);
                 let first = Generation { writer: make.make()?, taken: 0, live: 0 };
                 AckWriters {
                     make,

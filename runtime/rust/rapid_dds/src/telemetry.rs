@@ -65,6 +65,9 @@ pub struct Source {
     pub agent_values: Option<AgentValues>,
     /// joint positions and subsystems' own poses the setpoint streams move (stream_sim.rs)
     pub parts: Option<Arc<Mutex<Parts>>>,
+    /// what a test build's --break does to the telemetry (crate::breaks)
+    #[cfg(feature = "test-breaks")]
+    pub breaks: Option<Arc<crate::breaks::Breaks>>,
 }
 
 /// Agent values by key, asked for at each AgentState.
@@ -121,6 +124,20 @@ pub fn plausible(v: &TelemetryValue) -> rapid::ParameterUnion {
     convert::union(&value)
 }
 
+/// A simulated agent value key's value: a battery without a default starts full (a charge at
+/// its maximum, a voltage at 85% of its range), as the Python and C++ simulators' do (a 0 V
+/// battery would be no battery); any other key its plausible value.
+fn initial(v: &TelemetryValue) -> rapid::ParameterUnion {
+    let name = v.name.to_ascii_lowercase();
+    match (v.default.is_none() && name.contains("battery"), v.data_type, v.max) {
+        (true, DataType::Float | DataType::Double, Some(max)) => {
+            let x = if name.contains("charge") { max } else { (max + v.min.unwrap_or(0.0)) * 0.85 };
+            with_number(&plausible(v), x)
+        }
+        _ => plausible(v),
+    }
+}
+
 /// A rotation by `heading` about z in a pose encoding, in Transform3D's nine floats (QUAT:
 /// x, y, z, w; M33: row-major; XYZ and ZYX: the angles in that order; NONE and others: zeros).
 fn rotation(encoding: &str, heading: f64) -> [f32; 9] {
@@ -160,6 +177,8 @@ fn period(rate: Option<f64>, idle: f64) -> Duration {
 }
 
 struct Publisher {
+    #[cfg(feature = "test-breaks")]
+    breaks: Option<Arc<crate::breaks::Breaks>>,
     agent_values: Option<AgentValues>,
     parts: Option<Arc<Mutex<Parts>>>,
     body: Arc<Mutex<Body>>,
@@ -177,7 +196,32 @@ pub fn serial_of(serials: &SharedSerials, config: Option<&str>) -> i32 {
 
 impl Publisher {
     fn header(&self, config: Option<&str>) -> rapid::Header {
-        convert::header(&self.name, &self.name, serial_of(&self.serials, config), 0)
+        #[allow(unused_mut)] // (a test build's breaks change it)
+        let mut h = convert::header(&self.name, &self.name, serial_of(&self.serials, config), 0);
+        #[cfg(feature = "test-breaks")]
+        if let Some(b) = &self.breaks {
+            b.sample_header(&mut h);
+        }
+        h
+    }
+
+    /// Values as they go out (a test build's value breaks, crate::breaks).
+    fn values_out(&self, _keys: &[(String, rapid::ParameterUnion)], values: Vec<rapid::ParameterUnion>) -> Vec<rapid::ParameterUnion> {
+        #[cfg(feature = "test-breaks")]
+        if let Some(b) = &self.breaks {
+            return b.values(_keys, values);
+        }
+        values
+    }
+
+    /// A topic whose writer exists and writes nothing (a test build's position-silent,
+    /// gps-silent); never in a robot's build.
+    fn silent(&self, _topic: &str) -> bool {
+        #[cfg(feature = "test-breaks")]
+        if let Some(b) = &self.breaks {
+            return b.silent(_topic);
+        }
+        false
     }
 
     fn bytes(&self, kind: &mut Kind, config: Option<&str>) -> Result<Vec<u8>, String> {
@@ -193,7 +237,7 @@ impl Publisher {
                     b = Body { xyz, ..Body::default() };
                 }
                 let speed = b.velocity[0].hypot(b.velocity[1]);
-                let values = values
+                let out = values
                     .iter()
                     .map(|(name, v)| match name.as_str() {
                         "speed" => with_number(v, speed),
@@ -201,6 +245,7 @@ impl Publisher {
                         _ => v.clone(),
                     })
                     .collect();
+                let values = self.values_out(values, out);
                 let s = rapid::PositionSample {
                     hdr,
                     pose: rapid::Transform3D { xyz: b.xyz, rot: rotation(encoding, b.heading) },
@@ -211,10 +256,11 @@ impl Publisher {
             }
             Kind::Agent(values) => {
                 let given = self.agent_values.as_ref().map(|f| f()).unwrap_or_default();
-                let values = values
+                let out = values
                     .iter()
                     .map(|(k, v)| given.iter().find(|(g, _)| g == k).map_or_else(|| v.clone(), |(_, x)| convert::union(x)))
                     .collect();
+                let values = self.values_out(values, out);
                 cdr::serialize(&rapid::AgentState { hdr, values }, le).map_err(enc)
             }
             Kind::Joint { positions, fields, entry } => {
@@ -272,6 +318,9 @@ impl Publisher {
                 if job.next < now {
                     job.next = now + job.period;
                 }
+                if self.silent(&job.topic) {
+                    continue;
+                }
                 let out = self.bytes(&mut job.kind, job.config.as_deref()).and_then(|b| job.writer.write(&b).map_err(|e| e.to_string()));
                 if let Err(e) = out {
                     // once per topic and message: telemetry may be dropped, the bridge keeps running
@@ -301,11 +350,25 @@ pub fn start(
     customs: Vec<Custom>,
     stop: Arc<AtomicBool>,
 ) -> Result<JoinHandle<()>, DdsError> {
-    let mut p = Publisher { agent_values: src.agent_values.clone(), parts: src.parts.clone(), body: src.body.clone(), name: src.name.clone(), serials: src.serials.clone(), jobs: Vec::new() };
+    let mut p = Publisher {
+        #[cfg(feature = "test-breaks")]
+        breaks: src.breaks.clone(),
+        agent_values: src.agent_values.clone(),
+        parts: src.parts.clone(),
+        body: src.body.clone(),
+        name: src.name.clone(),
+        serials: src.serials.clone(),
+        jobs: Vec::new(),
+    };
     let now = Instant::now();
     let mut once = Vec::new();
     let mut joints = 0; // joint entries so far (Parts::joints is by joint entry)
-    for t in &asset.telemetry {
+    let entries = &asset.telemetry;
+    #[cfg(feature = "test-breaks")]
+    let slowed = src.breaks.as_ref().and_then(|b| b.telemetry(entries));
+    #[cfg(feature = "test-breaks")]
+    let entries = slowed.as_ref().unwrap_or(entries);
+    for t in entries {
         let topic = |role: &str| t.topics.get(role).cloned();
         let config = topic("config");
         let mut job = |topic: String, type_name: &str, rate: Option<f64>, kind: Kind| -> Result<(), DdsError> {
@@ -323,7 +386,7 @@ pub fn start(
             }
             "agent" => {
                 if let Some(s) = topic("state") {
-                    job(s, "rapid::AgentState", t.rate, Kind::Agent(t.values.iter().map(|v| (v.name.clone(), plausible(v))).collect()))?;
+                    job(s, "rapid::AgentState", t.rate, Kind::Agent(t.values.iter().map(|v| (v.name.clone(), initial(v))).collect()))?;
                 }
             }
             "joint" => {
@@ -351,7 +414,7 @@ pub fn start(
         }
     }
     for c in customs {
-        let entry = asset.telemetry.iter().find(|t| t.topics.iter().any(|(_, topic)| *topic == c.topic));
+        let entry = entries.iter().find(|t| t.topics.iter().any(|(_, topic)| *topic == c.topic));
         let role = entry.and_then(|t| t.topics.iter().find(|(_, topic)| **topic == c.topic)).map(|(r, _)| r.as_str());
         let w = writer(dp, &src, &c.topic, &c.type_name, c.keyed)?;
         let kind = Kind::Custom(c.make);
@@ -362,6 +425,9 @@ pub fn start(
         }
     }
     for (topic, config, w, mut kind) in once {
+        if p.silent(&topic) {
+            continue;
+        }
         let sent = p.bytes(&mut kind, config.as_deref()).and_then(|b| w.write(&b).map_err(|e| e.to_string()));
         if let Err(e) = sent {
             eprintln!("[{}] simulated telemetry on {topic} not sent: {e}", p.name);

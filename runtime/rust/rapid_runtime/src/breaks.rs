@@ -8,8 +8,10 @@
 //! Where each kind is injected: in front of the manager (`intake`, `tables`), on the way out
 //! of it (`outbox`: acks, QueueState, AccessControlState), in the manager's own decisions
 //! (`CommandManager`, through `Options::breaks`) and in the bridge's config serial
-//! (zero-serial). The kinds that need the DDS layer's writers (QoS, topics, configs,
-//! telemetry) are listed in docs/rust-backend.md.
+//! (zero-serial). The kinds of the DDS layer's writers (the ack topic and its durability, the
+//! configs, the simulated telemetry) are listed here too, the one list of the kinds (it
+//! refuses an unknown one; tests/rust_runtime/test_broken.py reads it), and injected by
+//! rapid_dds (its `breaks` module, under its feature test-breaks, which turns this one on).
 
 use std::collections::{BTreeSet, HashSet};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -68,6 +70,25 @@ pub const KINDS: &[(&str, &str)] = &[
     ("queue-state-stale", "QUE-07"),
     // the bridge's config serial (rapid_dds::bridge, through journal::restart_serial)
     ("zero-serial", "CFG-05"),
+    // the DDS layer's (rapid_dds::breaks): the ack writer
+    ("ack-topic-suffixed", "CMD-01"),
+    ("volatile-acks", "CMD-13"),
+    // the configs
+    ("position-config-unpublished", "CFG-01"),
+    ("volatile-config", "CFG-02"),
+    ("wrong-config", "CFG-03"),
+    ("config-without-source", "CFG-04"),
+    ("serial-drift", "CFG-05"),
+    // the simulated telemetry
+    ("position-silent", "TEL-01"),
+    ("wrong-serial", "TEL-02"),
+    ("misaligned-values", "TEL-03"),
+    ("millisecond-stamps", "TEL-04"),
+    ("frozen-stamps", "TEL-04"),
+    ("sample-without-source", "TEL-05"),
+    ("slow-rate", "TEL-06"),
+    ("millivolts", "TEL-07"),
+    ("gps-silent", "TEL-08"),
 ];
 
 /// The exit status of crash-on-bad-input (the C++ kind's).
