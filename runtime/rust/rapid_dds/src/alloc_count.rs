@@ -6,21 +6,32 @@
 //! - [`all_allocs`]: every malloc of the thread, Cyclone DDS's C library included: malloc and
 //!   friends defined here take the place of glibc's for the whole program (as the C++ bench's
 //!   bench/setpoint/alloc_count.cpp), each counts, then calls glibc's own. Rust's allocations
-//!   reach malloc too, so this count includes the first.
+//!   reach malloc too, so this count includes the first;
+//! - [`process_allocs`]: every malloc of every thread (Cyclone's own threads included: its
+//!   receive, event and discovery threads), to see what the per-thread counts miss.
 //!
-//! Both counters are thread-locals without destructors (plain TLS: reading or bumping one
-//! never allocates).
+//! The per-thread counters are thread-locals without destructors (plain TLS: reading or
+//! bumping one never allocates); the process's is one atomic.
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::ffi::c_void;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 thread_local! {
     static RUST: Cell<u64> = const { Cell::new(0) };
     static ALL: Cell<u64> = const { Cell::new(0) };
 }
 
+static PROCESS: AtomicU64 = AtomicU64::new(0);
+
 fn bump(c: &'static std::thread::LocalKey<Cell<u64>>) {
     let _ = c.try_with(|c| c.set(c.get() + 1));
+}
+
+/// A malloc of any kind: this thread's count and the process's.
+fn bump_all() {
+    bump(&ALL);
+    PROCESS.fetch_add(1, Ordering::Relaxed);
 }
 
 /// Rust allocations on this thread so far (with `#[global_allocator] static A: Counting`).
@@ -31,6 +42,11 @@ pub fn rust_allocs() -> u64 {
 /// Every malloc, calloc, realloc and aligned allocation on this thread so far.
 pub fn all_allocs() -> u64 {
     ALL.try_with(|c| c.get()).unwrap_or(0)
+}
+
+/// Every malloc, calloc, realloc and aligned allocation of the process so far (all threads).
+pub fn process_allocs() -> u64 {
+    PROCESS.load(Ordering::Relaxed)
 }
 
 /// The system allocator, counting each allocation and reallocation on the calling thread.
@@ -66,7 +82,7 @@ extern "C" {
 /// malloc's contract (glibc's own does the work).
 #[no_mangle]
 pub unsafe extern "C" fn malloc(n: usize) -> *mut c_void {
-    bump(&ALL);
+    bump_all();
     unsafe { __libc_malloc(n) }
 }
 
@@ -74,7 +90,7 @@ pub unsafe extern "C" fn malloc(n: usize) -> *mut c_void {
 /// calloc's contract.
 #[no_mangle]
 pub unsafe extern "C" fn calloc(n: usize, size: usize) -> *mut c_void {
-    bump(&ALL);
+    bump_all();
     unsafe { __libc_calloc(n, size) }
 }
 
@@ -82,7 +98,7 @@ pub unsafe extern "C" fn calloc(n: usize, size: usize) -> *mut c_void {
 /// realloc's contract.
 #[no_mangle]
 pub unsafe extern "C" fn realloc(p: *mut c_void, n: usize) -> *mut c_void {
-    bump(&ALL);
+    bump_all();
     unsafe { __libc_realloc(p, n) }
 }
 
@@ -90,7 +106,7 @@ pub unsafe extern "C" fn realloc(p: *mut c_void, n: usize) -> *mut c_void {
 /// memalign's contract.
 #[no_mangle]
 pub unsafe extern "C" fn memalign(align: usize, n: usize) -> *mut c_void {
-    bump(&ALL);
+    bump_all();
     unsafe { __libc_memalign(align, n) }
 }
 
@@ -98,7 +114,7 @@ pub unsafe extern "C" fn memalign(align: usize, n: usize) -> *mut c_void {
 /// aligned_alloc's contract.
 #[no_mangle]
 pub unsafe extern "C" fn aligned_alloc(align: usize, n: usize) -> *mut c_void {
-    bump(&ALL);
+    bump_all();
     unsafe { __libc_memalign(align, n) }
 }
 
@@ -106,7 +122,7 @@ pub unsafe extern "C" fn aligned_alloc(align: usize, n: usize) -> *mut c_void {
 /// posix_memalign's contract.
 #[no_mangle]
 pub unsafe extern "C" fn posix_memalign(out: *mut *mut c_void, align: usize, n: usize) -> i32 {
-    bump(&ALL);
+    bump_all();
     let p = unsafe { __libc_memalign(align, n) };
     if p.is_null() {
         return 12; // ENOMEM

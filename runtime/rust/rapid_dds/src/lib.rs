@@ -19,6 +19,7 @@ pub mod images;
 pub mod keyed;
 mod md5;
 pub mod outbox;
+pub mod pooled;
 pub mod stream;
 pub mod stream_sim;
 pub mod tables_json;
