@@ -1,7 +1,7 @@
 """The Rust asset runtime's core (runtime/rust/rapid_runtime, std only, no DDS) replays the
 protocol specification (runtime/spec/cases) as the Python and C++ runtimes do: the cases as
 `rapidgen.protocol_cases` writes them for every driver, the seeds' tables from the Python
-runtime's (rapidgen.protocol_cases.seed_tables) as JSON, `cargo test --release` (the crate's
+runtime's (rapidgen.protocol_cases.seed_tables) as JSON, `cargo test` (the crate's
 unit tests, then tests/spec_cases.rs, which names each failing case by file:line), and the
 restart journal read and written across the Python and Rust runtimes in the same run. The only
 registry crate is serde_json (the driver's), at the version Cargo.lock pins."""
@@ -83,9 +83,10 @@ def test_rust_runtime_replays_every_spec_case(tmp_path, rust_target):
     env.pop("RAPID_SPEC_ONLY", None)
     start = time.monotonic()
     # stdin closed: cargo probes `rustc -` with the inherited stdin
-    res = subprocess.run([cargo(), "test", "--release", "--locked", "--", "--nocapture", "--test-threads=1"],
+    # the dev profile: 6 CPU-s to build against --release's 21, and the cases run in seconds either way
+    res = subprocess.run([cargo(), "test", "--locked", "--", "--nocapture", "--test-threads=1"],
                          cwd=CRATE, capture_output=True, text=True, timeout=1200, env=env, stdin=subprocess.DEVNULL)
-    print(f"\nrust runtime: cargo test --release (build and run) took {time.monotonic() - start:.1f} s")
+    print(f"\nrust runtime: cargo test (build and run) took {time.monotonic() - start:.1f} s")
     failing = [line for line in res.stdout.splitlines() if line.startswith("FAIL ")]
     assert res.returncode == 0 and not failing, "\n".join(failing) + "\n" + res.stdout[-4000:] + res.stderr[-4000:]
     summary = re.search(r"spec cases: (\d+) of (\d+) passed", res.stdout)
