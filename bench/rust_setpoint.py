@@ -13,7 +13,9 @@ Prints, after a warm-up of 1000 samples, what bench/setpoint_stream.py prints (p
 at the reader, the writer's wake-up lateness, end-to-end latency, samples lost, deadlines
 missed) and heap allocations per sample on the reader's callback thread (Cyclone's delivery:
 reception, take, decode, callback) and on the writer's thread (fill, stamp, encode, write),
-twice: Rust's own (the global allocator) and every malloc (Cyclone DDS's C code included).
+twice: Rust's own (the global allocator) and every malloc (Cyclone DDS's C code included); and
+every malloc of each whole process in the window (Cyclone's other threads too), with the
+stream topic's pool of serialized samples as the bridge logs it at stop.
 --cpp runs bench/setpoint_stream.py (the C++ bridges, Fast DDS) right after, for the same
 machine state. Cyclone DDS on loopback with a discovery tag of this run's own. Not a test:
 figures depend on the machine's load (bench/README.md "Setpoint stream, Rust runtime").
@@ -66,15 +68,16 @@ fn realtime_priority() -> bool {
 }
 
 /// arrival (reader) or wake-up (writer) CLOCK_MONOTONIC; arrival CLOCK_REALTIME (reader) or the
-/// planned wake-up (writer); hdr.timeStamp (reader); this thread's Rust and malloc counts; hdr.serial
+/// planned wake-up (writer); hdr.timeStamp (reader); this thread's Rust and malloc counts; hdr.serial;
+/// the whole process's malloc count
 #[derive(Clone, Copy, Default)]
-struct Record(i64, i64, i64, u64, u64, i64);
+struct Record(i64, i64, i64, u64, u64, i64, u64);
 
 fn dump(env: &str, rt: i32, records: &[Record]) {
     let Ok(path) = std::env::var(env) else { return };
     let mut out = format!("rt {rt}\n");
     for r in records {
-        out += &format!("{} {} {} {} {} {}\n", r.0, r.1, r.2, r.3, r.4, r.5);
+        out += &format!("{} {} {} {} {} {} {}\n", r.0, r.1, r.2, r.3, r.4, r.5, r.6);
     }
     let _ = std::fs::write(path, out);
 }
@@ -99,7 +102,7 @@ impl Streams for Bench {
         if *n < records.len() {
             records[*n] = Record(ns_of(libc::CLOCK_MONOTONIC), ns_of(libc::CLOCK_REALTIME), sample.hdr.time_stamp,
                                  rapid_dds::alloc_count::rust_allocs(), rapid_dds::alloc_count::all_allocs(),
-                                 i64::from(sample.hdr.serial));
+                                 i64::from(sample.hdr.serial), rapid_dds::alloc_count::process_allocs());
             *n += 1;
         }
     }
@@ -163,7 +166,7 @@ fn write_setpoints(writing: Arc<AtomicBool>) -> (i32, Vec<Record>) {
         }
         if n < records.len() {
             records[n] = Record(woke, next.tv_sec * 1_000_000_000 + next.tv_nsec, 0, rapid_dds::alloc_count::rust_allocs(),
-                                rapid_dds::alloc_count::all_allocs(), i);
+                                rapid_dds::alloc_count::all_allocs(), i, rapid_dds::alloc_count::process_allocs());
             n += 1;
         }
         i += 1;
@@ -253,6 +256,12 @@ def read(path: Path) -> tuple[int, list[list[int]]]:
     return int(lines[0].split()[1]), [[int(x) for x in line.split()] for line in lines[1:]]
 
 
+def pool_line(log: str) -> str:
+    """The stream's serialized samples as the bridge logs them at stop (rapid_dds pooled.rs)."""
+    m = re.search(r"\] stream setpoints: serialized samples: (.*)", log)
+    return m.group(1) if m else "?"
+
+
 def start(exe: Path, domain: int, env: dict, err: Path) -> subprocess.Popen:
     p = subprocess.Popen([str(exe), "--domain", str(domain), "--no-journal"], env=env, stdout=subprocess.PIPE,
                          stderr=err.open("w"), text=True)
@@ -302,6 +311,8 @@ def main() -> int:
     wake = [(w[0] - w[1]) / 1000 for w in wsteady]
     wn = len(wsteady)
     wrust, wevery = wsteady[-1][3] - wsteady[0][3], wsteady[-1][4] - wsteady[0][4]
+    proc_r, proc_w = steady[-1][6] - steady[0][6], wsteady[-1][6] - wsteady[0][6]
+    secs = (steady[-1][0] - steady[0][0]) / 1e9
     gaps = sum(int((b[0] - a[0]) // DEADLINE_NS) for a, b in zip(steady, steady[1:]))
     missed = [int(m.group(1)) for m in re.finditer(r"stream setpoints: \d+ samples, (\d+) deadlines missed", log)]
     print(f"Rust runtime (Cyclone DDS 0.11 via cyclors, --release): 1 kHz JointSample setpoint stream, 64 joints "
@@ -318,6 +329,9 @@ def main() -> int:
     print(f"  heap allocations per sample  reader callback thread: Rust {rust / n:.3f}, every malloc {every / n:.3f} "
           f"({rust} and {every} in {n}); writer thread: Rust {wrust / wn:.3f}, every malloc {wevery / wn:.3f} "
           f"({wrust} and {wevery} in {wn})")
+    print(f"  whole process, every malloc   reader {proc_r / n:.3f} per sample ({proc_r} in {secs:.1f} s), writer "
+          f"{proc_w / wn:.3f} ({proc_w}): Cyclone's own threads too (discovery, liveliness messages), by time, not "
+          f"by sample; each stream's pool at stop: {pool_line(log)}, {pool_line((out / 'writer.err').read_text())}")
     sys.stdout.flush()
     if args.cpp:
         subprocess.run([sys.executable, str(ROOT / "bench" / "setpoint_stream.py"), "--samples", str(args.samples)],

@@ -75,6 +75,13 @@ def says(text: str, action: str) -> bool:
     return tail == action or (len(text.encode()) == 127 and len(tail) >= 4 and action.startswith(tail))
 
 
+def pools(err: str) -> dict[str, list[int]]:
+    """Each stream's serialized samples as the bridge logs them at stop (rapid_dds pooled.rs):
+    made, reused, freed past the pool, the pool's size, held."""
+    return {m.group(1): [int(x) for x in m.groups()[1:]] for m in re.finditer(
+        r"stream (\w+): serialized samples: (\d+) made, (\d+) reused, (\d+) freed past the pool of (\d+), (\d+) held", err)}
+
+
 def agent_all(state: str):
     return lambda e: "agent" in e and all(e["agent"].get(f"{n}Stream") == state for n in ACTIONS)
 
@@ -181,6 +188,15 @@ def test_loss_actions_non_finite_and_summary(bridges, tmp_path):
         assert set(summary) == set(ACTIONS), err[-2000:]
         assert summary["drive"][2] >= 3 and summary["drive"][3] >= 5, summary  # NaN, pause, kill; the NaN run
         assert summary["arm"][3] == 0 and summary["mast"][2] >= 2, summary
+        # Cyclone's serialized samples came from each topic's free list (a keep-last-1 reader
+        # has a few alive at once, whatever the count), and every one came back when the
+        # reader went (the writers are gone by now)
+        pooled = pools(err)
+        assert set(pooled) == set(ACTIONS), err[-2000:]
+        for name, (made, reused, freed, size, held) in pooled.items():
+            samples, non_finite = summary[name][0], summary[name][3]
+            assert made <= size and made + reused >= samples + non_finite >= 100, (name, pooled[name], summary[name])
+            assert freed == 0 and held == 0 and size == 8, (name, pooled[name])
         assert "panicked" not in err, err[-2000:]
     finally:
         if pilot is not None and pilot.poll() is None:
@@ -210,7 +226,7 @@ def test_generated_stream_glue(bridges):
     assert "fn hand_pose(&self" in (bridges["ws"] / OLD_HANDLERS).with_name("dispatch.rs").read_text(encoding="utf-8")
 
 
-def test_seed_streams_x_arm_2_simulated_drives_robonaut_2(bridges):
+def test_seed_streams_x_arm_2_simulated_drives_robonaut_2(bridges, tmp_path):
     """The seeds' hand pose, Rust to Rust: X-Arm 2's bridge under --simulate writes its output
     stream handPose (500 Hz, from the kept sample), Robonaut 2's bridge without --simulate
     (its committed handlers.rs: no callbacks, samples counted and watched) reads it in
@@ -227,7 +243,8 @@ def test_seed_streams_x_arm_2_simulated_drives_robonaut_2(bridges):
         agent = lambda state: lambda e: "agent" in e and e["agent"].get("handPoseStream") == state  # noqa: E731
         watcher.until(agent("waiting"), 15, "AgentState 'waiting' before any writer")
         writer = subprocess.Popen([str(bridges["xarm2"]), "--simulate", "--domain", str(SEED_DOMAIN), "--no-journal"],
-                                  cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+                                  cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=(tmp_path / "xarm2.err").open("w"),
+                                  text=True)
         assert writer.stdout is not None and "ready" in writer.stdout.readline()
         watcher.until(agent("active"), 15, "AgentState 'active': the simulated X-Arm 2's hand pose arrives")
         # ("recovered" when a loaded machine made the 10 ms deadline pass before the reporter looked)
@@ -250,8 +267,15 @@ def test_seed_streams_x_arm_2_simulated_drives_robonaut_2(bridges):
         assert r2.returncode == 0, err[-2000:]
         m = re.search(r"stream handPose: (\d+) samples, (\d+) deadlines missed, (\d+) losses", err)
         assert m and int(m.group(1)) >= 1 and int(m.group(3)) >= 1, err[-2000:]
+        # both sides' serialized samples from their topic's free list
+        read = pools(err)["handPose"]
+        assert read[0] <= read[3] and read[0] + read[1] >= int(m.group(1)), read
+        writer.terminate()
+        assert writer.wait(timeout=20) == 0
+        wrote = pools((tmp_path / "xarm2.err").read_text(encoding="utf-8"))["handPose"]
+        assert wrote[0] <= wrote[3] and wrote[0] + wrote[1] >= int(m.group(1)) and wrote[2] == 0, wrote
     finally:
-        if writer is not None:
+        if writer is not None and writer.poll() is None:
             os.kill(writer.pid, signal.SIGCONT)
             writer.kill()
             writer.wait()

@@ -56,17 +56,21 @@ pub struct Counting;
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         bump(&RUST);
+        // SAFETY: the caller's layout, as GlobalAlloc::alloc requires
         unsafe { System.alloc(layout) }
     }
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
         bump(&RUST);
+        // SAFETY: as alloc
         unsafe { System.alloc_zeroed(layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
         bump(&RUST);
+        // SAFETY: ptr came from this allocator (System underneath) with layout
         unsafe { System.realloc(ptr, layout, new_size) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: as realloc
         unsafe { System.dealloc(ptr, layout) }
     }
 }
@@ -83,6 +87,7 @@ extern "C" {
 #[no_mangle]
 pub unsafe extern "C" fn malloc(n: usize) -> *mut c_void {
     bump_all();
+    // SAFETY: glibc's own malloc, the caller's contract unchanged
     unsafe { __libc_malloc(n) }
 }
 
@@ -91,6 +96,7 @@ pub unsafe extern "C" fn malloc(n: usize) -> *mut c_void {
 #[no_mangle]
 pub unsafe extern "C" fn calloc(n: usize, size: usize) -> *mut c_void {
     bump_all();
+    // SAFETY: as malloc
     unsafe { __libc_calloc(n, size) }
 }
 
@@ -99,6 +105,7 @@ pub unsafe extern "C" fn calloc(n: usize, size: usize) -> *mut c_void {
 #[no_mangle]
 pub unsafe extern "C" fn realloc(p: *mut c_void, n: usize) -> *mut c_void {
     bump_all();
+    // SAFETY: p came from this malloc family (glibc's underneath)
     unsafe { __libc_realloc(p, n) }
 }
 
@@ -107,6 +114,7 @@ pub unsafe extern "C" fn realloc(p: *mut c_void, n: usize) -> *mut c_void {
 #[no_mangle]
 pub unsafe extern "C" fn memalign(align: usize, n: usize) -> *mut c_void {
     bump_all();
+    // SAFETY: as malloc
     unsafe { __libc_memalign(align, n) }
 }
 
@@ -115,6 +123,7 @@ pub unsafe extern "C" fn memalign(align: usize, n: usize) -> *mut c_void {
 #[no_mangle]
 pub unsafe extern "C" fn aligned_alloc(align: usize, n: usize) -> *mut c_void {
     bump_all();
+    // SAFETY: as malloc
     unsafe { __libc_memalign(align, n) }
 }
 
@@ -123,10 +132,12 @@ pub unsafe extern "C" fn aligned_alloc(align: usize, n: usize) -> *mut c_void {
 #[no_mangle]
 pub unsafe extern "C" fn posix_memalign(out: *mut *mut c_void, align: usize, n: usize) -> i32 {
     bump_all();
+    // SAFETY: as malloc
     let p = unsafe { __libc_memalign(align, n) };
     if p.is_null() {
         return 12; // ENOMEM
     }
+    // SAFETY: out is the caller's pointer to fill (posix_memalign's contract)
     unsafe { *out = p };
     0
 }
