@@ -1,7 +1,7 @@
 """Text from inputs and from the wire, made safe to show: one printable line, everything
 else as a backslash escape. A leaf every stage may import (the terminal tools, reports,
 describe, the back ends' comments); rapid_runtime/untrusted.py keeps the robot's copy,
-held to the same answers by tests/security/test_live_helpers.py."""
+held to the same answers by tests/hostile/test_live_helpers.py."""
 from __future__ import annotations
 
 SHORT = {"\\": "\\\\", "\n": "\\n", "\t": "\\t", "\r": "\\r"}

@@ -9,7 +9,7 @@ RAPID topic, with any bytes. Two rules hold for everything the runtime reads:
 
 rapidgen's live tools take through this same GuardedReader (the tools may import the
 runtime; the runtime imports nothing of the compiler: a robot installs it alone);
-visible() is held to rapidgen.textsafe's by tests/security/test_live_helpers.py.
+visible() is held to rapidgen.textsafe's by tests/hostile/test_live_helpers.py.
 """
 from __future__ import annotations
 

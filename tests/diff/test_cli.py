@@ -144,7 +144,7 @@ def test_against_a_revision(capsys, tmp_path, monkeypatch):
 def test_long_chain_of_renamed_types_is_bounded(tmp_path):
     """Regression: 3,000 structs each holding the previous, all renamed, once overflowed
     Python's recursion comparing nested fingerprints (an internal error)."""
-    from tests.security.limits import run_rapidgen
+    from tests.hostile.limits import run_rapidgen
 
     def chain(prefix: str) -> str:
         decls = [f"struct {prefix}0 {{ long a; }};"]

@@ -334,7 +334,7 @@ def test_a_simulated_drive_moves_the_reported_position(bridges):
 
 
 def test_the_intake_survives_fuzzed_and_undecodable_commands(bridges):
-    """A rogue on the partition writes 2000 mutated Commands (tests/security/rogue.py, seeded:
+    """A rogue on the partition writes 2000 mutated Commands (tests/hostile/rogue.py, seeded:
     Cyclone's own writer keys and sends several hundred of them), then 20 whose cmdId is
     invalid UTF-8: the bridge does not panic, drops what the codec refuses and logs that once
     per writer, and still answers a valid command."""
@@ -347,7 +347,7 @@ def test_the_intake_survives_fuzzed_and_undecodable_commands(bridges):
         line = bridge.lines.get(timeout=30)
         assert line and "ready" in line, f"{line!r} {bridge.err[-20:]}"
         for mode, n in (("fuzz", "2000"), ("bad-command", "20")):
-            res = subprocess.run([sys.executable, "-m", "tests.security.rogue", mode, str(pydir), "rapid_k10red",
+            res = subprocess.run([sys.executable, "-m", "tests.hostile.rogue", mode, str(pydir), "rapid_k10red",
                                   str(DOMAIN), "5", n], cwd=ROOT, capture_output=True, text=True, timeout=240,
                                  env=rogue_env)
             assert res.returncode == 0 and f"rogue done {n}" in res.stdout, res.stdout[-2000:] + res.stderr[-2000:]

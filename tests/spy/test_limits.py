@@ -1,6 +1,6 @@
 """spy's rules for untrusted data, without a network: JSON without NaN/Infinity, the caps on
 what a reader keeps, discovery samples dropped alone, partition names capped, the text
-view of a huge config. The live tier is tests/security/test_live_spy.py."""
+view of a huge config. The live tier is tests/hostile/test_live_spy.py."""
 from __future__ import annotations
 
 import json

@@ -26,7 +26,7 @@ def test_entries_name_real_files_and_known_marks():
 def test_the_most_specific_entry_wins():
     assert needs("tests/cdr/test_layout.py::test_x") == frozenset()
     assert needs("tests/cdr/test_cyclone.py::test_x[param]") == {"dds"}
-    assert needs("tests/security/test_writer.py::test_kill_at_every_mutation_leaves_exactly_old_or_new_output[a]") \
+    assert needs("tests/hostile/test_writer.py::test_kill_at_every_mutation_leaves_exactly_old_or_new_output[a]") \
         == {"slow"}
-    assert needs("tests/security/test_writer.py::test_other") == frozenset()
+    assert needs("tests/hostile/test_writer.py::test_other") == frozenset()
     assert needs("tests/nowhere/test_x.py") is None

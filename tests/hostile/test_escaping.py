@@ -33,7 +33,7 @@ from rapidgen.backends.base import Options, UnwritableCharacter
 from rapidgen.diagnostics import DiagnosticSink
 from rapidgen.qos.spec import default_library
 from tests.helpers import rapidgen
-from tests.security.limits import run_python
+from tests.hostile.limits import run_python
 
 ROOT = Path(__file__).resolve().parents[2]
 RAPID = str(ROOT / "specs" / "rapid")

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from rapid_runtime.untrusted import visible as runtime_visible
 from rapidgen.textsafe import visible as tool_visible
 from tests.runtime.live import ROOT, SEEDS, env_for, python_dir
-from tests.security.measure import FORBIDDEN
+from tests.hostile.measure import FORBIDDEN
 
 
 @settings(max_examples=500)
@@ -32,7 +32,7 @@ def test_runtime_visible_bounds_a_line():
 
 def test_the_guarded_reader_keeps_the_good_and_drops_the_bad_as_the_bridge_and_the_tools_use_it():
     pydir, package = python_dir("k10"), SEEDS["k10"]
-    res = subprocess.run([sys.executable, "-m", "tests.security.guard_probe", str(pydir), package, "34"], cwd=ROOT,
+    res = subprocess.run([sys.executable, "-m", "tests.hostile.guard_probe", str(pydir), package, "34"], cwd=ROOT,
                          env=env_for(pydir, package), capture_output=True, text=True, timeout=60)
     assert res.returncode == 0, res.stderr[-3000:]
     out = json.loads(res.stdout.splitlines()[-1])

@@ -3,7 +3,7 @@ and as the tools do (deduping republished bytes, "tool") on one real Cyclone dom
 same good and bad samples by a rogue writer in this process; prints what each delivered and
 dropped as JSON.
 
-    python -m tests.security.guard_probe PYDIR PACKAGE DOMAIN"""
+    python -m tests.hostile.guard_probe PYDIR PACKAGE DOMAIN"""
 import json
 import sys
 import time
@@ -16,7 +16,7 @@ def main() -> int:
     from cyclonedds.topic import Topic
 
     from rapid_runtime.untrusted import GuardedReader
-    from tests.security.rogue import Rogue
+    from tests.hostile.rogue import Rogue
 
     r = Rogue(pydir, package, domain)
     sub = Subscriber(r.dp, qos=Qos(Policy.Partition([r.partition])))

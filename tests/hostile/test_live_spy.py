@@ -1,6 +1,6 @@
 """`rapidgen spy` against hostile network data (issue 19), on real Cyclone over loopback: a
-healthy K10Red bridge plus a rogue participant (tests/security/rogue_spy.py), DDS domains
-10-19 (one per test). Each spy run is a child measured by tests.security.measure: it ends
+healthy K10Red bridge plus a rogue participant (tests/hostile/rogue_spy.py), DDS domains
+10-19 (one per test). Each spy run is a child measured by tests.hostile.measure: it ends
 with its normal verdict (exit 0), its output has no control byte from the wire, JSON parses
 with a strict parser, and its peak memory stays under the caps docs/spy.md documents
 (generous margins; never time)."""
@@ -15,7 +15,7 @@ import pytest
 
 from tests.conformance.harness import DESCRIPTORS
 from tests.runtime.live import ROOT, SEEDS, BridgeProcess, env_for, python_dir
-from tests.security.measure import RAPIDGEN, Measured, assert_clean, run_measured, strict_json
+from tests.hostile.measure import RAPIDGEN, Measured, assert_clean, run_measured, strict_json
 
 pytest.importorskip("cyclonedds")
 
@@ -31,7 +31,7 @@ def network(domain: int, mode: str, arg: str = ""):
     """A healthy K10Red bridge and a rogue in `mode`; yields the rogue's participant GUID
     once its first samples are written."""
     bridge = BridgeProcess(python_dir("k10"), SEEDS["k10"], domain)
-    rogue = subprocess.Popen([sys.executable, "-m", "tests.security.rogue_spy", mode, str(python_dir("k10")),
+    rogue = subprocess.Popen([sys.executable, "-m", "tests.hostile.rogue_spy", mode, str(python_dir("k10")),
                               SEEDS["k10"], str(domain), "120", arg], cwd=ROOT, env=ENV, stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True)
     try:

@@ -24,7 +24,7 @@ from pathlib import Path
 import pytest
 
 from tests.runtime.live import ROOT, SEEDS, BridgeProcess, env_for, python_dir
-from tests.security.measure import RAPIDGEN, assert_clean, run_measured, strict_json, strict_xml
+from tests.hostile.measure import RAPIDGEN, assert_clean, run_measured, strict_json, strict_xml
 
 pytest.importorskip("cyclonedds")
 
@@ -43,7 +43,7 @@ def _scenario(mode: str, out: Path) -> dict:
     try:
         bridge.wait_ready()
         if mode != "none":
-            rogue = subprocess.Popen([sys.executable, "-m", "tests.security.rogue_conform", mode, str(pydir), package,
+            rogue = subprocess.Popen([sys.executable, "-m", "tests.hostile.rogue_conform", mode, str(pydir), package,
                                       str(domain), "600"], cwd=ROOT, env=env, stdout=subprocess.PIPE,
                                      stderr=subprocess.STDOUT, text=True)
             _wait_line(rogue, "rogue writing")

@@ -14,7 +14,7 @@ import tomllib
 import xml.dom.minidom
 from pathlib import Path
 
-from tests.security.limits import run_python, run_rapidgen
+from tests.hostile.limits import run_python, run_rapidgen
 
 ROOT = Path(__file__).resolve().parents[2]
 PAYLOAD = '""";open("pwned","w");"""'

@@ -1,5 +1,5 @@
 """Hostile network data against a real bridge and `rapidgen cmd` (Cyclone on loopback,
-domains 30-39): a rogue participant in K10Red's partition (tests/security/rogue.py) sends
+domains 30-39): a rogue participant in K10Red's partition (tests/hostile/rogue.py) sends
 what DDS lets anyone on the domain send. After each attack the bridge still answers valid
 commands, says once in its log what it dropped and from whom, and prints no control byte;
 `rapidgen cmd` ends with its normal verdict, escaped, within a memory cap.
@@ -14,7 +14,7 @@ import sys
 import time
 
 from tests.runtime.live import ROOT, SEEDS, BridgeProcess, env_for, python_dir
-from tests.security.measure import RAPIDGEN, assert_clean, run_measured
+from tests.hostile.measure import RAPIDGEN, assert_clean, run_measured
 
 PYDIR, PACKAGE = python_dir("k10"), SEEDS["k10"]
 DESCRIPTOR = str(ROOT / "specs" / "assets" / "k10.yaml")
@@ -27,7 +27,7 @@ BRIDGE_CAP_MIB = 200
 
 
 def rogue(mode: str, domain: int, seconds: float = 5.0, arg: str = "", **env: str) -> subprocess.Popen:
-    proc = subprocess.Popen([sys.executable, "-m", "tests.security.rogue", mode, str(PYDIR), PACKAGE, str(domain),
+    proc = subprocess.Popen([sys.executable, "-m", "tests.hostile.rogue", mode, str(PYDIR), PACKAGE, str(domain),
                              str(seconds), arg], cwd=ROOT, env=dict(ENV, **env), stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     assert proc.stdout is not None

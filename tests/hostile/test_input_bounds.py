@@ -8,7 +8,7 @@ import re
 
 import pytest
 
-from tests.security.limits import run_python, run_rapidgen
+from tests.hostile.limits import run_python, run_rapidgen
 
 MEM, CPU = 1024, 20  # MiB of address space, CPU seconds: a fence, never a timing assertion
 

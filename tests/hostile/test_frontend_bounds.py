@@ -1,7 +1,7 @@
 """Hostile IDL inputs end quickly with a located error (issue 8: front-end resource bounds).
 
 Each input is built here, in tmp_path, and run through `rapidgen ir` in a child bounded
-by tests/security/limits.py: a case that needs more memory or CPU than the fence is
+by tests/hostile/limits.py: a case that needs more memory or CPU than the fence is
 killed, which fails the test. Each must exit 1 with file:line:col and its code.
 """
 from __future__ import annotations
@@ -10,7 +10,7 @@ import re
 
 import pytest
 
-from tests.security.limits import run_rapidgen
+from tests.hostile.limits import run_rapidgen
 
 MiB = 1024 * 1024
 MEM, CPU = 1024, 20

@@ -1,8 +1,8 @@
-"""Rogue modes aimed at `rapidgen conform` (tests/security/test_live_conform.py): a second
+"""Rogue modes aimed at `rapidgen conform` (tests/hostile/test_live_conform.py): a second
 participant in the asset's partition, next to a healthy bridge, writing what the runner
-reads (acks, configs, telemetry, states). Built on tests/security/rogue.py's Rogue:
+reads (acks, configs, telemetry, states). Built on tests/hostile/rogue.py's Rogue:
 
-    python -m tests.security.rogue_conform MODE PYDIR PACKAGE DOMAIN [SECONDS] [ARG]
+    python -m tests.hostile.rogue_conform MODE PYDIR PACKAGE DOMAIN [SECONDS] [ARG]
 
 Prints "rogue ready" once its participant exists, "rogue writing" once discovery had its time,
 runs MODE for SECONDS (or until terminated) and prints "rogue done N" (N samples written).
@@ -24,7 +24,7 @@ import os
 import sys
 import time
 
-from tests.security.rogue import EVIL, Rogue
+from tests.hostile.rogue import EVIL, Rogue
 
 SHORT_EVIL = "\x1b]0;pwned\x07\x1b[2J\x9b31m\u202e"  # fits a String32 (22 bytes)
 

@@ -2,7 +2,7 @@
 asset's partition and writes any RAPID topic with any bytes (what DDS lets anyone on the
 domain do without DDS Security). Runs as its own process, like a real stranger:
 
-    python -m tests.security.rogue MODE PYDIR PACKAGE DOMAIN [SECONDS] [ARG]
+    python -m tests.hostile.rogue MODE PYDIR PACKAGE DOMAIN [SECONDS] [ARG]
 
 Prints "rogue ready" once its writers exist (discovery is left to the caller: sleep or
 wait for matches), then "rogue done N" after it has written N samples. Modes are in MODES.

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import struct
 
-from tests.security.limits import run_python
+from tests.hostile.limits import run_python
 
 MEM, CPU = 1024, 20  # MiB, CPU seconds
 

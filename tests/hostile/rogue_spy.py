@@ -1,7 +1,7 @@
-"""A rogue participant for `rapidgen spy`'s live hostile-data tests (tests/security/test_live_spy.py),
-built on tests/security/rogue.py's Rogue; runs as its own process:
+"""A rogue participant for `rapidgen spy`'s live hostile-data tests (tests/hostile/test_live_spy.py),
+built on tests/hostile/rogue.py's Rogue; runs as its own process:
 
-    python -m tests.security.rogue_spy MODE PYDIR PACKAGE DOMAIN [SECONDS] [ARG]
+    python -m tests.hostile.rogue_spy MODE PYDIR PACKAGE DOMAIN [SECONDS] [ARG]
 
 Prints "rogue ready GUID" (its participant's) once it is up, "rogue written N" after its
 first samples are written (durable ones stay on the network for late joiners), then keeps
@@ -23,7 +23,7 @@ import os
 import sys
 import time
 
-from tests.security.rogue import EVIL, Rogue
+from tests.hostile.rogue import EVIL, Rogue
 
 SHORT_EVIL = "\x1b]0;pw\x07\x1b[2J\x9b\u202e"  # for String32 fields (EVIL is longer than 32 bytes)
 

@@ -21,7 +21,7 @@ from rapidgen import writer
 from rapidgen.backends.base import GeneratedFile as F
 from rapidgen.diagnostics import DiagnosticSink
 from rapidgen.generate import load_inputs, render, write_outputs
-from tests.security.limits import run_rapidgen
+from tests.hostile.limits import run_rapidgen
 
 ROOT = Path(__file__).resolve().parents[2]
 K10 = str(ROOT / "specs" / "assets" / "k10.yaml")
