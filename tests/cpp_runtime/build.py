@@ -117,7 +117,7 @@ def runtime_dir(factory) -> Path:
     def make() -> Path:
         needs_toolchain()
         out = base(factory) / "runtime"
-        configure(ROOT / "runtime" / "cpp", out)
+        configure(ROOT / "runtime" / "cpp", out, *UNITY)
         build(out)
         return out
     return _once(factory, "runtime", make)  # type: ignore[no-any-return]
@@ -128,8 +128,9 @@ def runtime_dir(factory) -> Path:
 # is the Debug flags themselves (compile CPU: the ASan/UBSan runtime 43.0 -> 33.8 s, the TSan
 # runtime and suites 69.0 -> 50.6 s; docs/testing.md).
 SAN_DEBUG = "-DCMAKE_CXX_FLAGS_DEBUG=-g1"
-# The sanitized runtimes' core as one translation unit: under TSan 17.7 -> 13.4 s, under
-# ASan/UBSan 35.8 -> 30.1 s (docs/testing.md, "Where CI time goes").
+# Each target as one translation unit: the runtime's core under TSan 17.7 -> 13.4 CPU-s, under
+# ASan/UBSan 35.8 -> 30.1, at -O1 17.3 -> 12.0; the logic and fault suites 33.5 -> 27.4
+# (docs/testing.md, "Where CI time goes").
 UNITY = ["-DCMAKE_UNITY_BUILD=ON", "-DCMAKE_UNITY_BUILD_BATCH_SIZE=0"]
 # ASan/UBSan builds: GCC 12's -Wmaybe-uninitialized misfires on <regex> and <functional> under
 # the sanitizers. RAPID_RUNTIME_TEST_BREAKS: one sanitized runtime serves the fault suite and

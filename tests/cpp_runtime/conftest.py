@@ -18,7 +18,7 @@ def runtime_build(tmp_path_factory) -> Path:
     def make() -> Path:
         runtime = B.runtime_dir(tmp_path_factory)
         out = B.base(tmp_path_factory) / "tests"
-        B.configure(B.HERE, out, f"-Drapid_runtime_cpp_DIR={runtime}", *B.table_dirs(tmp_path_factory))
+        B.configure(B.HERE, out, f"-Drapid_runtime_cpp_DIR={runtime}", *B.UNITY, *B.table_dirs(tmp_path_factory))
         B.build(out, "logic", "faults")
         return out
     return B.once(tmp_path_factory, "runtime-tests", make)  # type: ignore[no-any-return]
@@ -37,7 +37,7 @@ def _tsan(runtime_build: Path, tmp_path_factory) -> Path:
     B.run(["cmake", "-S", str(B.ROOT / "runtime" / "cpp"), "-B", str(base / "runtime"), "-DCMAKE_BUILD_TYPE=Debug",
            *B.UNITY, *flags])
     B.build(base / "runtime")
-    B.run(["cmake", "-S", str(B.HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *flags,
+    B.run(["cmake", "-S", str(B.HERE), "-B", str(base / "tests"), "-DCMAKE_BUILD_TYPE=Debug", *B.UNITY, *flags,
            f"-Drapid_runtime_cpp_DIR={base / 'runtime'}", *B.table_dirs(tmp_path_factory)])
     B.build(base / "tests", "logic", "faults")  # (the fault-injecting handlers' suite beside it)
     return base / "tests" / "logic"

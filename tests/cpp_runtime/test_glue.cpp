@@ -18,9 +18,9 @@ namespace k10 = rapid_k10red::bridge;
 
 namespace {
 
-class Camera final : public k10::PanTiltCameraHandler {
+class GlueCamera final : public k10::PanTiltCameraHandler {
 public:
-    explicit Camera(std::vector<std::string>& log) : log_(log) {}
+    explicit GlueCamera(std::vector<std::string>& log) : log_(log) {}
     Result pointCamera(CommandContext& ctx, float pan, float tilt) override {
         log_.push_back(ctx.subsystem() + " point " + std::to_string(pan) + " " + std::to_string(tilt));
         return Result::ok("pointed");
@@ -74,7 +74,7 @@ Result run(k10::Dispatch& d, const std::string& sub, const std::string& name, st
 TEST(Glue, ArgumentsReachTheTypedMethodsInOrder) {
     std::vector<std::string> log;
     k10::HandlerSet set;
-    set.pan_tilt_camera = std::make_unique<Camera>(log);
+    set.pan_tilt_camera = std::make_unique<GlueCamera>(log);
     set.mobility = std::make_unique<Mobility>(log);
     k10::Dispatch d(std::move(set));
     EXPECT_EQ(run(d, "PanCam", "pointCamera", {Value(0.5f), Value(-0.25f)}).message, "pointed");

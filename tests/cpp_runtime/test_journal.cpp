@@ -37,9 +37,9 @@ using namespace std::chrono_literals;
 
 namespace {
 
-constexpr auto WAIT = 10s;
-const std::string OP = "RapidWorkbench";
-const std::string ASSET = "K10Red";
+constexpr auto JWAIT = 10s;
+const std::string JOP = "RapidWorkbench";
+const std::string JASSET = "K10Red";
 constexpr int DOMAIN = 5;
 
 std::string temp_dir() {
@@ -98,7 +98,7 @@ std::string step_of(const std::string& path, const std::string& id) {
     return last;
 }
 
-struct Ack {
+struct JournalAck {
     AckStatus status;
     Completion completion;
     std::string message;
@@ -140,16 +140,16 @@ public:
             if (a.status == AckStatus::Completed) return true;
         return false;
     }
-    Ack final_(const std::string& id) {
+    JournalAck final_(const std::string& id) {
         std::unique_lock<std::mutex> lock(mutex);
-        EXPECT_TRUE(changed.wait_for(lock, WAIT, [&] { return has_final(id); })) << id << ": no final ack";
+        EXPECT_TRUE(changed.wait_for(lock, JWAIT, [&] { return has_final(id); })) << id << ": no final ack";
         for (const auto& a : acks[id])
             if (a.status == AckStatus::Completed) return a;
         return {AckStatus::Queued, Completion::Not, ""};
     }
     void until(const std::string& id, AckStatus status) {
         std::unique_lock<std::mutex> lock(mutex);
-        EXPECT_TRUE(changed.wait_for(lock, WAIT, [&] {
+        EXPECT_TRUE(changed.wait_for(lock, JWAIT, [&] {
             for (const auto& a : acks[id])
                 if (a.status == status) return true;
             return false;
@@ -163,7 +163,7 @@ public:
     Journal* journal = nullptr;
     std::mutex mutex;
     std::condition_variable changed;
-    std::map<std::string, std::vector<Ack>> acks;
+    std::map<std::string, std::vector<JournalAck>> acks;
     std::vector<std::string> problems;
     std::vector<std::string> logs;
 };
@@ -188,9 +188,9 @@ public:
         std::lock_guard<std::mutex> lock(mutex);
         return ran;
     }
-    // The runs once there are n (or WAIT passed): a handler starts just after its EXECUTING ack.
+    // The runs once there are n (or JWAIT passed): a handler starts just after its EXECUTING ack.
     std::vector<std::string> runs(std::size_t n) {
-        for (auto end = std::chrono::steady_clock::now() + WAIT; std::chrono::steady_clock::now() < end;) {
+        for (auto end = std::chrono::steady_clock::now() + JWAIT; std::chrono::steady_clock::now() < end;) {
             if (runs().size() >= n) break;
             std::this_thread::sleep_for(1ms);
         }
@@ -203,29 +203,29 @@ public:
     std::vector<std::string> early;  // started before the journal said "running"
 };
 
-Cmd make(const std::string& id, const std::string& sub, const std::string& name, std::vector<Value> args = {},
+Cmd journal_cmd(const std::string& id, const std::string& sub, const std::string& name, std::vector<Value> args = {},
          QueueAction action = QueueAction::Bypass) {
     Cmd c;
     c.cmd_id = id;
-    c.cmd_src = OP;
+    c.cmd_src = JOP;
     c.subsystem = sub;
     c.name = name;
     c.args = std::move(args);
     c.action = action;
     c.src_name = "ground";
-    c.asset_name = ASSET;
+    c.asset_name = JASSET;
     c.serial = 7;
     return c;
 }
 
 Cmd point(const std::string& id, QueueAction action = QueueAction::Append) {
-    return make(id, "PanCam", "pointCamera", {Value(0.1f), Value(0.0f)}, action);
+    return journal_cmd(id, "PanCam", "pointCamera", {Value(0.1f), Value(0.0f)}, action);
 }
 
 // One bridge's life on a journal folder: the journal opened (recovered), the manager on it.
 struct Life {
     explicit Life(const std::string& dir, std::size_t window = 64) {
-        journal = Journal::open(dir, ASSET, DOMAIN, window, [this](const std::string& t) { out.log(t); }, recovered);
+        journal = Journal::open(dir, JASSET, DOMAIN, window, [this](const std::string& t) { out.log(t); }, recovered);
         EXPECT_NE(journal, nullptr);
         out.journal = journal.get();
         handlers.journal_path = journal ? journal->path() : "";
@@ -239,7 +239,7 @@ struct Life {
         manager.reset();
     }
     std::string control(const std::string& id) {
-        manager->receive(make(id, "AccessControl", "requestControl"));
+        manager->receive(journal_cmd(id, "AccessControl", "requestControl"));
         EXPECT_EQ(out.final_(id).completion, Completion::Ok);
         return id;
     }
@@ -259,9 +259,9 @@ TEST(ManagerJournal, EveryAckAndHandlerStartComesAfterTheSyncOfItsStep) {
     auto& m = *life.manager;
     m.receive(point("run"));  // QUEUED, EXECUTING (handler blocks)
     m.receive(point("next"));  // QUEUED behind it
-    m.receive(make("fast", "K10Native", "nativeCommand", {Value(std::string("go"))}));  // beside the queue
-    m.receive(make("gone", "Admin", "noOp", {}, QueueAction::Delete));  // BAD_SYNTAX: no target
-    Cmd del = make("del", "Admin", "noOp", {}, QueueAction::Delete);
+    m.receive(journal_cmd("fast", "K10Native", "nativeCommand", {Value(std::string("go"))}));  // beside the queue
+    m.receive(journal_cmd("gone", "Admin", "noOp", {}, QueueAction::Delete));  // BAD_SYNTAX: no target
+    Cmd del = journal_cmd("del", "Admin", "noOp", {}, QueueAction::Delete);
     del.target = "next";
     m.receive(del);
     life.out.until("run", AckStatus::Executing);
@@ -287,7 +287,7 @@ TEST(ManagerJournal, ABatchOfWaitingCommandsCostsOneSync) {
     const std::size_t before = life.journal->syncs();
     {
         Intake intake(*life.manager, [](const std::string&) {});
-        for (int i = 0; i < 40; ++i) intake.offer(make("n" + std::to_string(i), "Admin", "noOp"), "w1");
+        for (int i = 0; i < 40; ++i) intake.offer(journal_cmd("n" + std::to_string(i), "Admin", "noOp"), "w1");
         intake.start();  // 40 waiting: a batch of 32, then one of 8
         for (int i = 0; i < 40; ++i) EXPECT_EQ(life.out.final_("n" + std::to_string(i)).completion, Completion::Ok);
     }
@@ -298,12 +298,12 @@ TEST(ManagerJournal, ABatchOfWaitingCommandsCostsOneSync) {
 
 TEST(ManagerJournal, AfterACrashTheUnfinishedAreAnsweredAndNothingRunsTwice) {
     std::string dir = temp_dir(), crashed = temp_dir(), again = temp_dir();
-    const std::string file = Journal::file_name(ASSET, DOMAIN);
+    const std::string file = Journal::file_name(JASSET, DOMAIN);
     {
         Life life(dir);
         EXPECT_FALSE(life.recovered.crashed);
         life.control("ctl");
-        life.manager->receive(make("done", "PanCam", "takePicture", {Value(std::string("left")), Value(0.0f)}));
+        life.manager->receive(journal_cmd("done", "PanCam", "takePicture", {Value(std::string("left")), Value(0.0f)}));
         EXPECT_EQ(life.out.final_("done").completion, Completion::Ok);
         life.manager->receive(point("running"));
         life.manager->receive(point("waiting"));
@@ -321,7 +321,7 @@ TEST(ManagerJournal, AfterACrashTheUnfinishedAreAnsweredAndNothingRunsTwice) {
     auto [answered, rewritten] = life.manager->restore(life.recovered);
     EXPECT_EQ(answered, 2u);
     EXPECT_EQ(rewritten, 2u);  // ctl's and done's final acks
-    Ack running = life.out.final_("running"), waiting = life.out.final_("waiting"), done = life.out.final_("done");
+    JournalAck running = life.out.final_("running"), waiting = life.out.final_("waiting"), done = life.out.final_("done");
     EXPECT_EQ(running.completion, Completion::ExecFailed);
     EXPECT_EQ(running.message, RESTARTED_RUNNING);
     EXPECT_EQ(waiting.completion, Completion::Canceled);
@@ -354,7 +354,7 @@ TEST(ManagerJournal, AfterACrashTheUnfinishedAreAnsweredAndNothingRunsTwice) {
     // the answers were journaled first: a second crash now finds them finished
     write_file(again + "/" + file, read_file(crashed + "/" + file));
     JournalRecovered rec;
-    auto j = Journal::open(again, ASSET, DOMAIN, 64, [](const std::string&) {}, rec);
+    auto j = Journal::open(again, JASSET, DOMAIN, 64, [](const std::string&) {}, rec);
     ASSERT_TRUE(j && rec.crashed);
     ASSERT_EQ(rec.unfinished.size(), 1u);  // fresh, running now
     EXPECT_EQ(rec.unfinished[0].cmd_id, "fresh");
@@ -366,15 +366,15 @@ TEST(ManagerJournal, AfterACrashTheUnfinishedAreAnsweredAndNothingRunsTwice) {
 
 TEST(ManagerJournal, ADamagedJournalIsReportedOnceSetAsideAndItsSoundLinesServe) {
     std::string dir = temp_dir();
-    const std::string path = dir + "/" + Journal::file_name(ASSET, DOMAIN);
+    const std::string path = dir + "/" + Journal::file_name(JASSET, DOMAIN);
     {
         JournalRecovered rec;
-        auto j = Journal::open(dir, ASSET, DOMAIN, 64, [](const std::string&) {}, rec);
+        auto j = Journal::open(dir, JASSET, DOMAIN, 64, [](const std::string&) {}, rec);
         ASSERT_TRUE(j);
         j->start(100);
-        j->note(JournalEntry{"a", "ground", ASSET, 7, 'q', "", ""});
-        j->note(JournalEntry{"b", "ground", ASSET, 7, 'q', "", ""});
-        j->note(JournalEntry{"b", "ground", ASSET, 7, 'x', "", ""});
+        j->note(JournalEntry{"a", "ground", JASSET, 7, 'q', "", ""});
+        j->note(JournalEntry{"b", "ground", JASSET, 7, 'q', "", ""});
+        j->note(JournalEntry{"b", "ground", JASSET, 7, 'x', "", ""});
         j->sync();
         j->close(false);  // no stop record: a crash
     }
@@ -405,7 +405,7 @@ TEST(ManagerJournal, ADamagedJournalIsReportedOnceSetAsideAndItsSoundLinesServe)
     life.journal->close(false);
     JournalRecovered rec;
     std::vector<std::string> logs;
-    auto j = Journal::open(dir, ASSET, DOMAIN, 64, [&](const std::string& t) { logs.push_back(t); }, rec);
+    auto j = Journal::open(dir, JASSET, DOMAIN, 64, [&](const std::string& t) { logs.push_back(t); }, rec);
     EXPECT_TRUE(j && logs.empty() && rec.unfinished.empty());  // sound now: nothing reported again
 }
 
@@ -416,7 +416,7 @@ TEST(ManagerJournal, ACleanStopAnswersPendingAndRunningAndTheNextStartBeginsAfre
         life.control("ctl");
         life.manager->receive(point("running"));
         life.manager->receive(point("waiting"));
-        life.manager->receive(make("beside", "Mobility", "simpleMove",
+        life.manager->receive(journal_cmd("beside", "Mobility", "simpleMove",
                                    {Value(std::string("SITE")), Value(Vec3d{1.0, 2.0, 0.0})}));
         life.out.until("running", AckStatus::Executing);
         life.out.until("waiting", AckStatus::Queued);
@@ -438,7 +438,7 @@ TEST(ManagerJournal, ACleanStopAnswersPendingAndRunningAndTheNextStartBeginsAfre
         EXPECT_EQ(life.out.count("waiting"), 2u);
     }
     JournalRecovered rec;
-    auto j = Journal::open(dir, ASSET, DOMAIN, 64, [](const std::string&) {}, rec);
+    auto j = Journal::open(dir, JASSET, DOMAIN, 64, [](const std::string&) {}, rec);
     ASSERT_TRUE(j);
     EXPECT_FALSE(rec.crashed);
     EXPECT_TRUE(rec.unfinished.empty() && rec.finished.empty());
@@ -449,7 +449,7 @@ TEST(ManagerJournal, ConfigSerialsComeBackAboveTheHighestRecorded) {
     std::int64_t now = 1000;
     {
         JournalRecovered rec;
-        auto j = Journal::open(dir, ASSET, DOMAIN, 64, [](const std::string&) {}, rec);
+        auto j = Journal::open(dir, JASSET, DOMAIN, 64, [](const std::string&) {}, rec);
         ASSERT_TRUE(j);
         Serials serials(restart_serial(-1, rec, now), [&] { return now; }, [&](std::int32_t s) { j->serial(s); });
         j->start(serials.start());
@@ -459,7 +459,7 @@ TEST(ManagerJournal, ConfigSerialsComeBackAboveTheHighestRecorded) {
         j->close(false);  // a crash: no sync after the last serial (a kill -9 keeps what was written)
     }
     JournalRecovered rec;
-    auto j = Journal::open(dir, ASSET, DOMAIN, 64, [](const std::string&) {}, rec);
+    auto j = Journal::open(dir, JASSET, DOMAIN, 64, [](const std::string&) {}, rec);
     ASSERT_TRUE(j);
     EXPECT_EQ(rec.last_serial, 1002);
     EXPECT_EQ(restart_serial(-1, rec, now), 1003);  // the clock has not moved past it
