@@ -7,7 +7,8 @@ on timing when the machine is busy (docs/testing.md, "Under load").
 The hog is HOGS processes spinning at normal priority (on a 2-core machine one hog takes
 half of it). Each run is `bash scripts/test -m "dds or netns" -p no:cacheprovider` (its
 builds are made in every run, as in CI); the script prints per run: wall seconds, passed,
-failed, the failed test ids, and the load average at its end. Exit 0 when no run failed.
+failed, the failed test ids, and the load average at its end; each run's whole output is kept
+(--logs). Exit 0 when no run failed.
 Never part of CI (a full run is about 3 x 15 minutes)."""
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -39,7 +41,12 @@ def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--runs", type=int, default=3)
     p.add_argument("--hogs", type=int, default=1)
+    p.add_argument("--logs", type=Path, help="where each run's pytest output goes (run-N.log; default: a new "
+                   "temporary folder, printed)")
     args, extra = p.parse_known_args()
+    logs = args.logs or Path(tempfile.mkdtemp(prefix="live-under-load-"))
+    logs.mkdir(parents=True, exist_ok=True)
+    print(f"each run's output: {logs}/run-N.log", flush=True)
     extra = [a for a in extra if a != "--"]
     hogs = [multiprocessing.Process(target=_spin, daemon=True) for _ in range(args.hogs)]
     for h in hogs:
@@ -50,6 +57,7 @@ def main() -> int:
             t0 = time.monotonic()
             res = subprocess.run(["bash", "scripts/test", "-m", "dds or netns", "-p", "no:cacheprovider", "-q",
                                   *extra], cwd=ROOT, capture_output=True, text=True)
+            (logs / f"run-{run}.log").write_text(res.stdout + res.stderr, encoding="utf-8")
             passed, failed, ids = _summary(res.stdout + res.stderr)
             bad += failed or (res.returncode != 0)
             print(f"run {run}: {time.monotonic() - t0:.0f} s, {passed} passed, {failed} failed, "
