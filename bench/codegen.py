@@ -189,6 +189,8 @@ def devices_report(python: str, env: dict[str, str], sizes: list[int], repeat: i
         for n in sizes:
             idl, lines = write_idl(Path(tmp), n, seed)
             table(f"generate, all four targets, {n} structs ({lines:,} lines)", measure(tools(generate), idl, repeat))
+        k10 = REPO / "specs" / "assets" / "k10.yaml"  # a robot's descriptor: the QoS library is read
+        table("generate, K10's descriptor, all four targets", measure(tools(generate), k10, repeat))
     check = [python, "-m", "rapidgen", "check"]
     table("rapidgen check (this repository)", measure(tools(check), REPO, repeat))
     print("\nRAPIDGEN_WITHOUT names: " + "; ".join(f"{d}: {what}" for d, what in DEVICES.items()))
