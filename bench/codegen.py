@@ -165,10 +165,11 @@ def report(rows: list[tuple[int, int, dict]], tools: list[Tool]) -> None:
 
 
 def devices_report(python: str, env: dict[str, str], sizes: list[int], repeat: int, seed: int) -> None:
-    """`rapidgen generate` (all four targets) with every speed device, then without each one
-    (RAPIDGEN_WITHOUT, rapidgen.speed_devices), taking turns; and `rapidgen check` on this
-    repository the same way. A device pays when it saves at least a tenth of the run it
-    targets (of the run without it)."""
+    """Runs with every speed device, then without each one (RAPIDGEN_WITHOUT,
+    rapidgen.speed_devices), taking turns: `generate` of all four targets and `ir` (the front
+    end alone) at each size, `generate` of K10's descriptor (all four targets; the qos target
+    alone), `rapidgen check` on this repository. A device pays when it saves at least a tenth
+    of the run it targets (of the run without it)."""
     from rapidgen.speed_devices import DEVICES
 
     def tools(argv: list[str]) -> list[Tool]:
@@ -184,15 +185,17 @@ def devices_report(python: str, env: dict[str, str], sizes: list[int], repeat: i
             print(f"  without {d:<22} {off * 1000:6.0f} ms  saves {(off - on) * 1000:5.0f} ms = "
                   f"{share:5.1%} of the run  {'pays' if share >= 0.10 else 'below a tenth'}")
 
-    generate = [python, "-m", "rapidgen", "generate", "{idl}", "-o", "{out}", "--lang", ",".join(TARGETS)]
+    rapidgen = [python, "-m", "rapidgen"]
+    generate = [*rapidgen, "generate", "{idl}", "-o", "{out}", "--lang", ",".join(TARGETS)]
     with tempfile.TemporaryDirectory(prefix="bench-codegen-idl-") as tmp:
         for n in sizes:
             idl, lines = write_idl(Path(tmp), n, seed)
             table(f"generate, all four targets, {n} structs ({lines:,} lines)", measure(tools(generate), idl, repeat))
+            table(f"ir (the front end alone), {n} structs", measure(tools([*rapidgen, "ir", "{idl}"]), idl, repeat))
         k10 = REPO / "specs" / "assets" / "k10.yaml"  # a robot's descriptor: the QoS library is read
         table("generate, K10's descriptor, all four targets", measure(tools(generate), k10, repeat))
-    check = [python, "-m", "rapidgen", "check"]
-    table("rapidgen check (this repository)", measure(tools(check), REPO, repeat))
+        table("generate, K10's descriptor, qos alone", measure(tools([*generate[:-1], "qos"]), k10, repeat))
+    table("rapidgen check (this repository)", measure(tools([*rapidgen, "check"]), REPO, repeat))
     print("\nRAPIDGEN_WITHOUT names: " + "; ".join(f"{d}: {what}" for d, what in DEVICES.items()))
 
 
