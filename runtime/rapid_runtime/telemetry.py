@@ -71,18 +71,12 @@ def zero(dtype: str) -> object:
 
 
 class Rate:
-    """Whether a sample is due at the declared rate (Hz; None: only on change). A late
-    wake-up owes the samples it missed: they are due back to back until the schedule is
-    caught up, so the declared rate holds on average on a busy machine (a 500 Hz topic woken
-    a few milliseconds late lost a sample each time). Further behind than CATCH_UP_S, the
-    backlog is dropped and the schedule starts again from now."""
-
-    CATCH_UP_S = 0.2
+    """Whether a sample is due at the declared rate (Hz; None: only on change)."""
 
     def __init__(self, hz: float | None, clock=time.monotonic) -> None:
         self.period = 1.0 / hz if hz else None
         self.clock = clock
-        self.next = clock()  # (the first sample is due at once)
+        self.next = 0.0
 
     def due(self) -> bool:
         if self.period is None:
@@ -90,7 +84,7 @@ class Rate:
         now = self.clock()
         if now < self.next:
             return False
-        self.next = (now if now - self.next > self.CATCH_UP_S else self.next) + self.period
+        self.next = max(self.next + self.period, now)
         return True
 
 

@@ -182,26 +182,3 @@ def test_synthetic_refuses_what_it_cannot_paint():
     with pytest.raises(images.ImageError):
         images.synthetic("image/png", 0, 10)
     assert images.describe(b"not a picture") is None and images.describe(b"\xff\xd8\xff") is None
-
-
-def test_a_rate_owes_the_samples_a_late_wake_up_missed():
-    from rapid_runtime.telemetry import Rate
-    now = [100.0]
-    r = Rate(4, clock=lambda: now[0])  # a 0.25 s period (exact in binary)
-    r.CATCH_UP_S = 1.0
-    assert r.due() and not r.due()  # the first at once, then not before its period
-    now[0] = 100.125
-    assert not r.due()
-    now[0] = 100.875  # woken late: the samples of 100.25, 100.5 and 100.75 are owed
-    assert [r.due() for _ in range(4)] == [True, True, True, False]
-    now[0] = 101.0
-    assert r.due() and not r.due()  # back on the schedule
-    now[0] = 106.0  # a stall past CATCH_UP_S: the backlog is dropped, the schedule restarts
-    assert r.due() and not r.due()
-    now[0] = 106.25
-    assert r.due() and not r.due()
-
-
-def test_a_rate_of_none_is_never_due():
-    from rapid_runtime.telemetry import Rate
-    assert not Rate(None).due()
