@@ -250,8 +250,6 @@ def main(argv: list[str] | None = None) -> int:
                  or t.name.startswith("baseline ") and "baseline" in wanted]
     stale = subprocess.run([sys.executable, "-m", "rapidgen.backends.templating", "--check"], cwd=REPO, env=env,
                            capture_output=True, text=True)
-    qos_stale = subprocess.run([sys.executable, "-m", "rapidgen.qos", "--check"], cwd=REPO, env=env,
-                               capture_output=True, text=True)
     load_before = os.getloadavg()
     rows, loads = [], []
     with tempfile.TemporaryDirectory(prefix="bench-codegen-idl-") as tmp:
@@ -280,9 +278,6 @@ def main(argv: list[str] | None = None) -> int:
     if stale.returncode != 0:
         print("\nnote: some precompiled templates are stale, so those are compiled on every run "
               "(python -m rapidgen.backends.templating --write):\n  " + stale.stdout.strip().replace("\n", "\n  "))
-    if qos_stale.returncode != 0:
-        print("\nnote: rapidgen/qos/packaged.py is stale (or missing), so the QoS library's YAML is parsed on "
-              "every run (python -m rapidgen.qos --write)")
     print(f"\n{GOALS}")
     if args.keep:
         print(f"\nIDL files kept in {args.keep}")

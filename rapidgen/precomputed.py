@@ -1,6 +1,6 @@
 """`--write | --check` of a module the package ships precomputed from another of its files
-(rapidgen/qos/packaged.py from the QoS library's YAML, rapidgen/idl/packaged_tables.py from
-the IDL grammar): a stale one still works (it is not used), only slower."""
+(rapidgen/idl/packaged_tables.py from the IDL grammar): a stale one still works (it is not
+used), only slower."""
 from __future__ import annotations
 
 import argparse

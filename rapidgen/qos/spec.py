@@ -21,7 +21,6 @@ from typing import TYPE_CHECKING
 
 from rapidgen.diagnostics import DiagnosticSink, SourceLoc, did_you_mean
 from rapidgen.packagedata import read_text
-from rapidgen.speed_devices import without
 
 if TYPE_CHECKING:
     import jsonschema
@@ -228,18 +227,10 @@ def default_library() -> QosSpec:
     tests/qos/test_spec.py's, not every run's (the file is part of the package); the
     semantic checks still run.
 
-    Read through its precomputed form (rapidgen/qos/packaged.py, see packaged_module_text)
-    when that was made from the very text read now: no YAML parser imported or run (about
-    0.035 s of each `generate` with the qos target). Otherwise (the YAML edited since) it
-    is parsed as before: the result is the same object either way."""
-    text = _packaged_text()
-    if without("qos-packaged"):
-        return _parse_packaged(text)
-    try:
-        from rapidgen.qos import packaged
-    except ImportError:  # a copy of the package without it: parse the YAML
-        return _parse_packaged(text)
-    return packaged.library() if packaged.SOURCE == text else _parse_packaged(text)
+    Parsed on each run that needs it: a precomputed form saved about 1.5% of a `generate`
+    with the qos target (bench/codegen.py --devices), below the tenth a speed device must
+    pay to be kept (docs/ci.md, "Speed"), and was removed."""
+    return _parse_packaged(_packaged_text())
 
 
 def _packaged_text() -> str:
@@ -438,48 +429,4 @@ def ordered(spec: QosSpec) -> list[Profile]:
                 break
     return out
 
-
-# ---------------------------------------------------------------- the packaged library, precomputed
-
-PACKAGED_MODULE = "packaged.py"  # beside this file
-
-
-def _code(value: object) -> str:
-    """Python source that evaluates to value (the library's dataclasses, SourceLoc, tuples
-    and plain scalars)."""
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        args = ", ".join(f"{f.name}={_code(getattr(value, f.name))}" for f in dataclasses.fields(value))
-        return f"{type(value).__name__}({args})"
-    if isinstance(value, SourceLoc):
-        return f"SourceLoc{tuple(value)!r}"
-    if isinstance(value, tuple):
-        return "(" + "".join(f"{_code(v)}, " for v in value) + ")"
-    if value is None or isinstance(value, (bool, int, float, str)):
-        return repr(value)
-    raise TypeError(f"no source form for {type(value).__name__}")
-
-
-def packaged_module_text(text: str | None = None) -> str:
-    """rapidgen/qos/packaged.py: the packaged library's text and the QosSpec parsed from it,
-    as Python (its bytecode cached like any module's)."""
-    text = _packaged_text() if text is None else text
-    spec = _parse_packaged(text)
-    names = sorted({type(v).__name__ for v in _objects(spec)})
-    return ("# mypy: ignore-errors\n"
-            "# The packaged QoS library (rapidgen/qos/rapid.yaml) as parsed by rapidgen.qos.spec; do not edit.\n"
-            "# python -m rapidgen.qos --write refreshes it; a stale copy is ignored (the YAML is parsed).\n"
-            f"SOURCE = {text!r}\n\n\n"
-            "def library():\n"
-            f"    from rapidgen.qos.spec import {', '.join(names)}, SourceLoc\n\n"
-            f"    return {_code(spec)}\n")
-
-
-def _objects(value: object):
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        yield value
-        for f in dataclasses.fields(value):
-            yield from _objects(getattr(value, f.name))
-    elif isinstance(value, tuple) and not isinstance(value, SourceLoc):
-        for v in value:
-            yield from _objects(v)
 

@@ -12,7 +12,6 @@ import pytest
 from rapidgen import fork_ahead, speed_devices
 from rapidgen.backends import templating
 from rapidgen.idl import grammar
-from rapidgen.qos import spec
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -43,22 +42,11 @@ def test_the_switch_reaches_each_device(monkeypatch):
     monkeypatch.setenv("RAPIDGEN_WITHOUT", "")
     assert templating.precompiled_code("rust", "Cargo.toml.j2", source) is not None
     packaged_tables = grammar.tables()
-    monkeypatch.setenv("RAPIDGEN_WITHOUT", "precompiled-templates, lalr-tables,qos-packaged,two-processes")
+    monkeypatch.setenv("RAPIDGEN_WITHOUT", "precompiled-templates, lalr-tables,two-processes")
     assert templating.precompiled_code("rust", "Cargo.toml.j2", source) is None
     built = grammar.tables()
     assert built is not packaged_tables and built == packaged_tables  # built by lark, the same tables
     assert fork_ahead.jobs() == 1
-    parsed = []
-    parse = spec._parse_packaged
-    monkeypatch.setattr(spec, "_parse_packaged", lambda text: parsed.append(text) or parse(text))
-    for switch, parses in (("", 0), ("qos-packaged", 1)):
-        monkeypatch.setenv("RAPIDGEN_WITHOUT", switch)
-        spec.default_library.cache_clear()
-        try:
-            assert spec.default_library() == parse(spec._packaged_text())
-        finally:
-            spec.default_library.cache_clear()
-        assert len(parsed) == parses, switch
 
 
 def test_an_unknown_device_is_a_programming_error():
