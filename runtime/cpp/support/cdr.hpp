@@ -1,6 +1,6 @@
 // XCDR1 reader and writer the generated encode/decode functions call (docs/cpp-backend.md).
 // Every package carries the same copy under the same guard, so two packages can be
-// included in one program.
+// included in one program. Its source is rapidgen's runtime/cpp/support/cdr.hpp: edit it there.
 #ifndef RAPIDGEN_CDR_SUPPORT_V1
 #define RAPIDGEN_CDR_SUPPORT_V1
 

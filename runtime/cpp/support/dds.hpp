@@ -1,5 +1,6 @@
 // A Fast DDS 2.9 TopicDataType for any generated struct (topics.hpp names one per type).
-// Every package carries the same copy under the same guard.
+// Every package carries the same copy under the same guard. Its source is rapidgen's
+// runtime/cpp/support/dds.hpp: edit it there.
 #ifndef RAPIDGEN_DDS_SUPPORT_V1
 #define RAPIDGEN_DDS_SUPPORT_V1
 

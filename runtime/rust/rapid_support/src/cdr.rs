@@ -1,5 +1,6 @@
 //! XCDR1 (plain CDR) reader and writer used by the generated encode/decode code. The same
-//! file in every crate rapidgen writes; docs/rust-backend.md describes the rules.
+//! file in every crate rapidgen writes (its source: rapidgen's runtime/rust/rapid_support/src,
+//! where it is edited); docs/rust-backend.md describes the rules.
 //!
 //! Decoding treats its input as hostile: every read is bounds-checked, every count is
 //! checked against the type's bound and the bytes left before anything is allocated,
