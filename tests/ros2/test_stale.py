@@ -127,12 +127,17 @@ def test_kill_9_of_the_ros2_node_stops_the_samples_and_says_so(tmp_path):
             restarted = time.monotonic()
             rover = _start(ns, python, rover_args, tmp_path / "rover2.log", env, tmp_path)
             procs.append(rover)
-            watch.until(lambda: {f"{POSITION} source back", f"{AGENT} source back"} <= set(watch.texts(restarted))
+            # Both entries come back in one round, so their two TextMessages go out back to back,
+            # and rapid_textmessage is RAPID's RapidReliableDurableQos: KEEP_LAST 1. A reader the
+            # load slows down may be handed only the newer one (seen in CI). The agent's
+            # stale_telemetry key, emptied, says both are back; each text is said at most once.
+            back = {f"{POSITION} source back", f"{AGENT} source back"}
+            watch.until(lambda: back & set(watch.texts(restarted))
                         and any(ln["values"][1] == "" for ln in watch.of(AGENT, restarted)),
-                        "both sources said back, stale_telemetry empty")
+                        "a source said back, stale_telemetry empty")
             watch.until(lambda: len(watch.of(POSITION, restarted)) >= 10, "position samples again")
             texts = watch.texts(restarted)
-            assert texts.count(f"{POSITION} source back") == 1 and texts.count(f"{AGENT} source back") == 1, texts
+            assert all(texts.count(b) <= 1 for b in back), texts
             fresh = watch.of(POSITION, restarted)
             assert fresh[-1]["stamp"] > late[-1]["stamp"] if late else True
             assert len({ln["stamp"] for ln in fresh}) >= 5  # advancing again
