@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 
-from rapidgen.conform.model import RECOMMENDED, REQUIRED, Unsupported, check, expect
+from rapidgen.conform.model import RECOMMENDED, REQUIRED, Blocked, Unsupported, check, expect
 
 RATE_TOLERANCE = 0.25  # measured over loopback in a Python reader; 5b: telemetry may be dropped
 MIN_WINDOW = 3.0  # s of samples before a rate is judged
@@ -59,12 +59,19 @@ def _published(s, pubs):
 
 
 def _paired(s):
-    """(publication, its config's topic, the latest config, the samples) per paired topic."""
+    """(publication, its config's topic, the latest config, the samples) per paired topic. Each
+    config is awaited (CFG-02 may not have run, and on a loaded machine it can come after
+    TEL-01's samples): a topic skipped for want of its config would pass its check unjudged."""
     for p in _topics(s):
         cfg = s.facts.config_of(p["topic"])
-        got = s.client.samples(p["topic"])
-        if cfg and got and s.latest(cfg) is not None:
-            yield p, cfg, s.latest(cfg), got
+        if not cfg:
+            continue
+        latest = s.latest(cfg, timeout=s.timeout)
+        if latest is None:
+            raise Blocked(f"no {cfg} received (CFG-02)")
+        got = s.client.wait_sample(p["topic"], s.allow(MATCH_WAIT))
+        if got:  # (none at all is TEL-01's finding)
+            yield p, cfg, latest, got
 
 
 # A sample and its config travel on two topics: around a config republished with a new
