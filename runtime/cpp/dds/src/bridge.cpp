@@ -1,5 +1,6 @@
 #include "rapid_runtime/dds/bridge.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <iostream>
@@ -74,6 +75,7 @@ Bridge::Bridge(const Tables& tables, Handlers& handlers, BridgeOptions options)
     }
     ManagerOptions m;
     m.window = options.command_window;
+    ack_generation_ = ack_generation_size(options.command_window);
     m.stop_timeout_ms = options.stop_timeout_ms;
     m.shutdown_timeout_ms = options.shutdown_timeout_ms;
     m.on_shutdown = [this] { request_stop(); };
@@ -100,6 +102,7 @@ std::int32_t Bridge::serial_of(const std::string& config_topic) const {
 void Bridge::start() {
     if (!tables_.subsystems.empty()) {
         // The ack writer exists before the command reader: commanders wait to match both.
+        // One writer per generation of commands (ack_writers.hpp), each with this QoS.
         const std::string topic = breaks_->on("ack-topic-suffixed") ? "rapid_ack-" + tables_.name : ACK_TOPIC;
         const bool durable = !breaks_->on("volatile-acks");
         // Off a slow link, a heartbeat every 5 ms (node.hpp): a commander that joins late gets the
@@ -107,15 +110,26 @@ void Bridge::start() {
         // ACKNACK: a new rapid_cmd's first ack took 22-108 ms with 100 ms, 11-33 ms with 5 ms
         // (bench/README.md). Heartbeats go out only while acks are unacknowledged.
         const std::uint32_t heartbeat_ns = node_->on_link() ? 100'000'000 : COMMAND_HEARTBEAT_NS;
-        acks_ = node_->writer<::rapid::Ack>(topic, "RapidReliableDurableQos", [durable, heartbeat_ns](DataWriterQos& q) {
-            if (!durable) q.durability().kind = VOLATILE_DURABILITY_QOS;
-            // an ack a commander missed is sent again within the heartbeat (Fast DDS's: 3 s)
-            q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, heartbeat_ns);
-            quiet_nack_suppression(q);
-            q.history().kind = KEEP_LAST_HISTORY_QOS;
-            q.history().depth = ACK_HISTORY;
-            q.resource_limits().max_samples_per_instance = ACK_HISTORY;
-        });
+        auto make = [this, topic, durable, heartbeat_ns] {
+            return node_->new_writer<::rapid::Ack>(topic, "RapidReliableDurableQos", [durable, heartbeat_ns](DataWriterQos& q) {
+                if (!durable) q.durability().kind = VOLATILE_DURABILITY_QOS;
+                // an ack a commander missed is sent again within the heartbeat (Fast DDS's: 3 s)
+                q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, heartbeat_ns);
+                quiet_nack_suppression(q);
+                q.history().kind = KEEP_LAST_HISTORY_QOS;
+                q.history().depth = ACK_HISTORY;
+                q.resource_limits().max_samples_per_instance = ACK_HISTORY;
+            });
+        };
+        auto destroy = [this](DataWriter* w) {
+            try {
+                node_->delete_writer(w);
+            } catch (const std::exception& e) {  // a writer kept is memory, not a failure
+                log(std::string("an old ack writer not deleted: ") + e.what());
+            }
+        };
+        std::lock_guard<std::mutex> lock(ack_mutex_);
+        acks_ = std::make_unique<AckWriters<DataWriter*>>(make, ack_generation_, destroy);
     }
     manager_->publish_states();
     if (tables_.subsystems.empty()) return;
@@ -194,8 +208,19 @@ void Bridge::stop() {
         std::size_t abandoned = manager_->abandon();
         if (abandoned) log("stopping: " + std::to_string(abandoned) + " unfinished command(s) answered");
     }
-    // the last acks (shutdown's own, the unfinished ones') reach their readers
-    if (acks_ != nullptr) acks_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(2, 0));
+    // the last acks (shutdown's own, the unfinished ones') reach their readers: 2 s in all
+    std::vector<DataWriter*> ack_writers;
+    {
+        std::lock_guard<std::mutex> lock(ack_mutex_);
+        if (acks_ != nullptr) ack_writers = acks_->writers();
+    }
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    for (DataWriter* w : ack_writers) {
+        const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(until - std::chrono::steady_clock::now());
+        if (left.count() <= 0) break;
+        w->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(static_cast<std::int32_t>(left.count() / 1'000'000'000),
+                                                                   static_cast<std::uint32_t>(left.count() % 1'000'000'000)));
+    }
     if (manager_ && manager_->release_journal() != nullptr)
         journal_->close(true);  // every command answered: the next start begins afresh
     handlers_running_ = manager_ ? manager_->handlers_running() : 0;
@@ -205,6 +230,10 @@ void Bridge::stop() {
     }
     manager_.reset();  // cancels what runs, joins the handlers
     intake_.reset();
+    {
+        std::lock_guard<std::mutex> lock(ack_mutex_);
+        acks_.reset();  // (its thread joined; the live writers go with the node)
+    }
     node_.reset();
 }
 
@@ -213,23 +242,23 @@ void Bridge::stop() {
 void Bridge::ack(const Cmd& cmd, AckStatus status, Completion completed, const std::string& message) {
     std::lock_guard<std::mutex> lock(ack_mutex_);
     if (acks_ == nullptr) return;
-    auto write = [this](const Cmd& c, AckStatus s, Completion done, const std::string& text) {
+    // the generation is the command's (a test build's broken acks go through it too)
+    DataWriter* writer = acks_->writer_for(ack_key(cmd.src_name, cmd.asset_name, cmd.cmd_id));
+    auto write = [this, writer](const Cmd& c, AckStatus s, Completion done, const std::string& text) {
         fill_ack(ack_, c, s, done, text);
-        if (!acks_->write(&ack_)) log("ack of '" + c.cmd_id + "' not written");
+        if (!writer->write(&ack_)) log("ack of '" + c.cmd_id + "' not written");
     };
     if (breaks_->any()) breaks_->ack(cmd, status, completed, message, write);
     else write(cmd, status, completed, message);
 }
 
 void Bridge::retire(const Cmd& cmd) {
-    // Unregister the command's ack instance (its key: the command's header names and
-    // cmdId): the writer drops its history once readers have acknowledged.
+    // Its instance is not unregistered (Fast DDS would free its acks on the receive thread,
+    // one linear search of the writer's history each): its generation's writer is deleted,
+    // history and all, once every command it took is retired (ack_writers.hpp).
     std::lock_guard<std::mutex> lock(ack_mutex_);
     if (acks_ == nullptr) return;
-    ::rapid::Ack key;
-    fill_ack(key, cmd, AckStatus::Completed, Completion::Not, "");
-    if (acks_->unregister_instance(&key, HANDLE_NIL) != ReturnCode_t::RETCODE_OK)
-        log("acks of '" + cmd.cmd_id + "' not unregistered");
+    acks_->retire(ack_key(cmd.src_name, cmd.asset_name, cmd.cmd_id));
 }
 
 void Bridge::queue_state(int code, const std::vector<Record>& pending, const std::vector<Record>& active,

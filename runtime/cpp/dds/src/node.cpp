@@ -120,6 +120,11 @@ DataWriter* Node::make_writer(Topic* topic, const std::string& profile, const Wr
     return w;
 }
 
+void Node::delete_writer(DataWriter* writer) {
+    if (publisher_->delete_datawriter(writer) != ReturnCode_t::RETCODE_OK)
+        throw DdsError("cannot delete a writer of " + writer->get_topic()->get_name());
+}
+
 DataReader* Node::make_reader(Topic* topic, const std::string& profile, const ReaderTweak& tweak,
                               DataReaderListener* listener) {
     DataReaderQos qos;

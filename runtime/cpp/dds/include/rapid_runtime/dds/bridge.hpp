@@ -28,6 +28,7 @@
 #include <rapid_runtime/manager.hpp>
 #include <rapid_runtime/serials.hpp>
 
+#include "ack_writers.hpp"
 #include "messages.hpp"
 #include "node.hpp"
 
@@ -169,7 +170,9 @@ private:
     Serials serials_;
     mutable std::mutex config_mutex_;
     std::unique_ptr<Node> node_;  // before the manager: written to until the manager is gone
-    eprosima::fastdds::dds::DataWriter* acks_ = nullptr;
+    // The ack writers' generations (ack_writers.hpp), made at start(); null once stopped.
+    std::unique_ptr<AckWriters<eprosima::fastdds::dds::DataWriter*>> acks_;
+    std::size_t ack_generation_ = ACK_GENERATION_MIN;  // commands per ack writer
     std::mutex ack_mutex_;
     ::rapid::Ack ack_;  // one sample, reused for every ack
     std::unique_ptr<CommandManager> manager_;

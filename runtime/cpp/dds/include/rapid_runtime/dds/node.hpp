@@ -85,6 +85,22 @@ public:
         return w;
     }
 
+    // A writer of the topic of its own (not the topic's shared one: the ack writers'
+    // generations, ack_writers.hpp), deleted with delete_writer() or with the node. Both
+    // leave the node's lock free while Fast DDS makes or deletes the writer (writer()'s
+    // lookups on the command path do not wait for them).
+    template <class T>
+    eprosima::fastdds::dds::DataWriter* new_writer(const std::string& topic, const std::string& profile,
+                                                   const WriterTweak& tweak = {}) {
+        eprosima::fastdds::dds::Topic* t = nullptr;
+        {
+            std::lock_guard<std::recursive_mutex> lock(mutex_);
+            t = make_topic<T>(topic);
+        }
+        return make_writer(t, profile, tweak);
+    }
+    void delete_writer(eprosima::fastdds::dds::DataWriter* writer);
+
     // A new reader of the topic; with a listener, it hears data_available only (on Fast
     // DDS's receive thread, from the reader's creation: no sample comes before it).
     template <class T>
