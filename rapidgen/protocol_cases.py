@@ -32,9 +32,9 @@ SEEDS = {"k10": ("k10", "rapid_k10red"), "chariot": ("chariot", "rapid_chariot")
          "robonaut2": ("robonaut2", "rapid_robonaut2"), "oddity": ("spec-oddity", "rapid_oddity")}
 DEFAULT_SOURCE = "RapidWorkbench"
 # steps only a driver can take (a live runner cannot make a handler return, restart the asset or
-# fill its door); a case with expectations it cannot see (serial, files) is offline only; others
+# fill its door); a case with expectations it cannot see (serial, files, journal_file, log_count) is offline only; others
 # it cannot see (calls, retired, log, no_log, pending, order, stopped) it skips
-OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse", "offer", "open"}
+OFFLINE_ONLY = {"release", "idle", "restart", "shutdown", "refuse", "offer", "open", "refused", "disk"}
 # a journal record's keys in the order the runtimes write them (docs/runtime.md, "Restarts")
 RECORD_KEYS = ("k", "id", "src", "asset", "serial", "c", "m")
 # what names the journal's default folder, in the order the runtimes read them
@@ -90,7 +90,22 @@ def _typed(args: list, types: list[str], where: SourceLoc) -> list[dict]:
     return out
 
 
-def _ack(text: str) -> dict:
+def _text(value) -> str:
+    """A text of a case: a string, or `{json: '"..."'}` for one YAML text cannot hold (the
+    project's YAML reader refuses control characters): a JSON string literal, escapes and all."""
+    if isinstance(value, dict):
+        try:
+            text = json.loads(value["json"])
+        except json.JSONDecodeError as exc:
+            raise CaseError(f"`json: {value['json']}` is not a JSON string: {exc.msg}") from None
+        if not isinstance(text, str):
+            raise CaseError(f"`json: {value['json']}` is not a JSON string")
+        return text
+    return value
+
+
+def _ack(text) -> dict:
+    text = _text(text)
     head, sep, message = text.partition(": ")
     status, _, completion = head.partition(" ")
     prefix = bool(sep) and message.endswith("*")
@@ -102,8 +117,8 @@ def _handler(h) -> dict:
     if isinstance(h, str):
         return {"kind": h, "text": "", "texts": []}
     (kind, value), = h.items()
-    return {"kind": kind, "text": value if isinstance(value, str) else "",
-            "texts": value if isinstance(value, list) else []}
+    return {"kind": kind, "text": "" if isinstance(value, list) else _text(value),
+            "texts": [_text(v) for v in value] if isinstance(value, list) else []}
 
 
 def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
@@ -112,59 +127,97 @@ def _steps(case: dict, seed: str, source: str, doc, path: tuple) -> list[dict]:
     for i, step in enumerate(case["steps"]):
         (op, body), = step.items()
         where = doc.loc((*path, "steps", i))
-        if op == "restart" and "door" in case:  # (a door serves one manager: the drivers do not rebuild it)
-            raise CaseError(f"{where}: a case with a `door:` cannot restart the asset")
-        if op in ("offer", "open") and "door" not in case:
-            raise CaseError(f"{where}: `{op}` needs the case's `door:` (the door the commands are offered at)")
-        if op in ("send", "refuse", "offer"):
-            sub, _, cname = body.get("cmd", "Admin/noOp").partition("/")
-            src = body.get("src", source)
-            s = {"op": op, "id": body["id"], "src": src, "src_name": body.get("src_name", src), "subsystem": sub,
-                 "name": cname, "asset": body.get("asset", name)}
-            if op == "offer":
-                s["writer"] = body["writer"]
-            if op in ("send", "offer"):
-                s.update(args=_typed(body.get("args", []), _params(seed, sub, cname), where),
-                         action=body.get("action", "QUEUE_BYPASS"), target=body.get("target", ""),
-                         handler=_handler(body.get("handler", "ok")))
-            else:
-                s.update(args=[], action="QUEUE_BYPASS", target="", why=body.get("why", "bridge busy"))
-            if "times" in body:  # the same command n times, cmdIds <id>-1 ... <id>-n
-                out.extend({**s, "id": f"{body['id']}-{k}"} for k in range(1, body["times"] + 1))
-            else:
-                out.append(s)
-        elif op == "acks":
-            for cid, acks in body.items():
-                out.append({"op": "acks", "id": cid, "acks": [_ack(a) for a in acks]})
-        elif op == "release":
-            out.append({"op": op, "id": body})
-        elif op == "shutdown":
-            out.append({"op": op, "timeout_ms": body.get("timeout_ms", -1)})
-        elif op == "restart":  # kill -9, or (`clean`) a clean stop, then a start on the journal
-            out.append({"op": op, "clean": body == "clean"})
-        elif op in ("idle", "open"):
-            out.append({"op": op})
-        elif op == "queue":
-            out.append({"op": op, **{k: body[k] for k in ("code", "pending", "active", "completed", "statuses") if k in body}})
-        elif op == "control":
-            out.append({"op": op, **{k: body[k] for k in ("controller", "requestors") if k in body}})
-        elif op == "calls":
-            out.append({"op": op, "calls": [{"id": c[0], "values": c[1]} for c in body]})
-        elif op in ("retired", "pending"):
-            out.append({"op": op, "ids": body})
-        elif op in ("log", "no_log"):
-            out.append({"op": op, "text": body})
-        elif op == "order":
-            out.append({"op": op, "ids": body})
-        elif op == "stopped":
-            out.append({"op": op, "count": body})
-        elif op == "serial":  # the configs' serial since the latest start: a number, or the clock's seconds then
-            out.append({"op": op, "clock": body == "clock", "value": 0 if body == "clock" else body})
-        elif op == "files":
-            if not any(k in case for k in ("journal", "state")) and not any("restart" in st for st in case["steps"]):
-                raise CaseError(f"{where}: `files` needs a journal folder (the case's `journal:`, `state:` or a restart)")
-            out.append({"op": op, "names": body})
+        try:
+            out.extend(_step(op, body, case, seed, source, name, where))
+        except CaseError as exc:
+            if str(exc).startswith("`json"):  # (a text's: located here)
+                raise CaseError(f"{where}: {exc}") from None
+            raise
     return out
+
+
+def _step(op: str, body, case: dict, seed: str, source: str, name: str, where: SourceLoc) -> list[dict]:
+    out: list[dict] = []
+    if op == "restart" and "door" in case:  # (a door serves one manager: the drivers do not rebuild it)
+        raise CaseError(f"{where}: a case with a `door:` cannot restart the asset")
+    if op in ("offer", "open") and "door" not in case:
+        raise CaseError(f"{where}: `{op}` needs the case's `door:` (the door the commands are offered at)")
+    if op in ("send", "refuse", "offer"):
+        sub, _, cname = body.get("cmd", "Admin/noOp").partition("/")
+        src = body.get("src", source)
+        s = {"op": op, "id": body["id"], "src": src, "src_name": body.get("src_name", src), "subsystem": sub,
+             "name": cname, "asset": body.get("asset", name)}
+        if op == "offer":
+            s["writer"] = body["writer"]
+        if op in ("send", "offer"):
+            s.update(args=_typed(body.get("args", []), _params(seed, sub, cname), where),
+                     action=body.get("action", "QUEUE_BYPASS"), target=body.get("target", ""),
+                     handler=_handler(body.get("handler", "ok")))
+        else:
+            s.update(args=[], action="QUEUE_BYPASS", target="", why=body.get("why", "bridge busy"))
+        if "times" in body:  # the same command n times, cmdIds <id>-1 ... <id>-n
+            out.extend({**s, "id": f"{body['id']}-{k}"} for k in range(1, body["times"] + 1))
+        else:
+            out.append(s)
+    elif op == "acks":
+        for cid, acks in body.items():
+            out.append({"op": "acks", "id": cid, "acks": [_ack(a) for a in acks]})
+    elif op == "release":
+        out.append({"op": op, "id": body})
+    elif op == "shutdown":
+        out.append({"op": op, "timeout_ms": body.get("timeout_ms", -1)})
+    elif op == "restart":  # kill -9, or (`clean`) a clean stop, then a start on the journal
+        out.append({"op": op, "clean": body == "clean"})
+    elif op in ("idle", "open"):
+        out.append({"op": op})
+    elif op == "queue":
+        out.append({"op": op, **{k: body[k] for k in ("code", "pending", "active", "completed", "statuses") if k in body}})
+    elif op == "control":
+        out.append({"op": op, **{k: body[k] for k in ("controller", "requestors") if k in body}})
+    elif op == "calls":
+        out.append({"op": op, "calls": [{"id": c[0], "values": c[1]} for c in body]})
+    elif op in ("retired", "pending"):
+        out.append({"op": op, "ids": body})
+    elif op in ("log", "no_log"):
+        out.append({"op": op, "text": body})
+    elif op == "log_count":
+        out.append({"op": op, "text": body["text"], "count": body["count"]})
+    elif op == "disk":  # the journal's fdatasync fails (EIO) from here, or works again
+        if not any(k in case for k in ("journal", "state")) and not any("restart" in st for st in case["steps"]):
+            raise CaseError(f"{where}: `disk` needs a journal (the case's `journal:`, `state:` or a restart)")
+        out.append({"op": op, "failing": body == "failing"})
+    elif op == "order":
+        out.append({"op": op, "ids": body})
+    elif op == "stopped":
+        out.append({"op": op, "count": body})
+    elif op == "serial":  # the configs' serial since the latest start: a number, or the clock's seconds then
+        out.append({"op": op, "clock": body == "clock", "value": 0 if body == "clock" else body})
+    elif op == "files":
+        if not any(k in case for k in ("journal", "state")) and not any("restart" in st for st in case["steps"]):
+            raise CaseError(f"{where}: `files` needs a journal folder (the case's `journal:`, `state:` or a restart)")
+        out.append({"op": op, "names": body})
+    elif op == "refused":  # the asset does not start: its manager refuses the case's options
+        if len(case["steps"]) != 1:
+            raise CaseError(f"{where}: `refused` is a case's only step (the asset never started)")
+        out.append({"op": op, "text": body})
+    elif op == "journal_file":
+        if not any(k in case for k in ("journal", "state")) and not any("restart" in st for st in case["steps"]):
+            raise CaseError(f"{where}: `journal_file` needs a journal (the case's `journal:`, `state:` or a restart)")
+        out.append({"op": op, "file": journal_file_name(name), "mode": body.get("mode"), "tail": body.get("tail", False),
+                    "lines": None if "lines" not in body else
+                    [[journal_field(k, _text(v)) for k, v in line.items()] for line in body["lines"]]})
+    return out
+
+
+def journal_field(key: str, value) -> str:
+    """A record's field as the runtimes write it in a journal line (`"m":"a\\u0001"`): what a
+    `journal_file` expectation looks for in a line, between `{` or `,` and `,` or `}`."""
+    return json.dumps({key: value}, separators=(",", ":"), ensure_ascii=True)[1:-1]
+
+
+def journal_file_name(asset: str) -> str:
+    """The journal's file name on domain 0 (docs/runtime.md, "Restarts"; each runtime's file_name)."""
+    return "".join(c if c.isascii() and (c.isalnum() or c in "_.-") else "_" for c in asset)[:64] + "-domain0.journal"
 
 
 def journal_line(record: dict) -> str:
@@ -181,9 +234,8 @@ def _journal(case: dict, seed: str, source: str) -> dict | None:
     if "journal" not in case and "journal_new" not in case:
         return None
     name = case.get("asset_name", seed_tables(seed).name)
-    file = "".join(c if c.isascii() and (c.isalnum() or c in "_.-") else "_" for c in name)[:64]
     new = _journal_text(case["journal_new"], name, source) if "journal_new" in case else None
-    return {"file": f"{file}-domain0.journal", "text": _journal_text(case.get("journal", []), name, source), "new": new}
+    return {"file": journal_file_name(name), "text": _journal_text(case.get("journal", []), name, source), "new": new}
 
 
 def _journal_text(entries: list, name: str, source: str) -> str:
@@ -240,7 +292,7 @@ def _live(case: dict, steps: list[dict]) -> bool:
         return False
     for s in steps:
         # (records' statuses, completed records: the runner compares the pending and active cmdIds only)
-        if s["op"] in OFFLINE_ONLY or s["op"] in ("serial", "files") or "statuses" in s or "completed" in s:
+        if s["op"] in OFFLINE_ONLY or s["op"] in ("serial", "files", "journal_file", "log_count") or "statuses" in s or "completed" in s:
             return False
         # a scripted handler, a QueueAction outside the enumeration (a typed DDS writer cannot send
         # it), another header srcName than cmdSrc: what a runner cannot make an asset do or send
@@ -271,6 +323,10 @@ def load_file(path: Path) -> list[dict]:
         seed = case.get("asset", data.get("asset", "k10"))
         source = case.get("source", data.get("source", DEFAULT_SOURCE))
         steps = _steps(case, seed, source, doc, path_)
+        low = [k for k, v in case.get("options", {}).items() if v < 1]
+        if low and steps[0]["op"] != "refused":
+            raise CaseError(f"{doc.loc((*path_, 'options', low[0]))}: {low[0]} {case['options'][low[0]]}: "
+                            f"at least 1, or the case expects it `refused`")
         journal = _journal(case, seed, source)
         if journal is not None and "\r" in journal["text"] + (journal["new"] or ""):  # (the runtimes' line splitting differs there)
             raise CaseError(f"{doc.loc((*path_, 'journal'))}: a journal line holds a carriage return")

@@ -14,14 +14,20 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fnmatch.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#include <sys/stat.h>
 
 #include <fstream>
 #include <map>
@@ -57,6 +63,19 @@ const ::rapid_runtime::Tables& tables();
 }
 namespace rapid_oddity::bridge {
 const ::rapid_runtime::Tables& tables();
+}
+
+// A case's `disk: failing` makes the journal's fdatasync fail (EIO) until `disk: ok`: this
+// definition stands in for libc's in this program (the runtime is linked in statically).
+namespace {
+std::atomic<bool> disk_failing{false};
+}
+extern "C" int fdatasync(int fd) {
+    if (disk_failing.load()) {
+        errno = EIO;
+        return -1;
+    }
+    return static_cast<int>(::syscall(SYS_fdatasync, fd));
 }
 
 using namespace rapid_runtime;
@@ -462,6 +481,7 @@ public:
         }
     }
     ~Replay() {  // the door closes, every handler returns, then the asset shuts down (Python's close())
+        disk_failing.store(false);
         intake_.reset();
         {
             std::lock_guard<std::mutex> lock(seen_.mutex);
@@ -530,6 +550,28 @@ public:
             std::lock_guard<std::mutex> lock(seen_.mutex);
             for (const auto& line : seen_.logs)
                 if (line.find(text) != std::string::npos) return fail("no log line with '" + text + "'", line);
+        } else if (op == "log_count") {  // (waits for that many, then no more)
+            const std::string text = s.at("text").get<std::string>();
+            const std::size_t want = s.at("count").get<std::size_t>();
+            auto count = [&] {
+                return static_cast<std::size_t>(std::count_if(seen_.logs.begin(), seen_.logs.end(),
+                                                              [&](const std::string& line) { return line.find(text) != std::string::npos; }));
+            };
+            auto last = [&] {
+                auto from = seen_.logs.size() > 10 ? seen_.logs.end() - 10 : seen_.logs.begin();
+                return show(std::vector<std::string>(from, seen_.logs.end()));
+            };
+            if (!until(std::to_string(want) + " log lines with '" + text + "'", [&] { return count() >= want; }, last)) return false;
+            std::string shown;
+            {
+                std::lock_guard<std::mutex> lock(seen_.mutex);
+                if (count() == want) return true;
+                shown = last();
+            }
+            return fail(std::to_string(want) + " log lines with '" + text + "'", shown);
+        } else if (op == "disk") {
+            disk_failing.store(s.at("failing").get<bool>());
+            return true;
         } else if (op == "log") {
             const std::string text = s.at("text").get<std::string>();
             return until("a log line with '" + text + "'", [&] {
@@ -557,6 +599,8 @@ public:
                         std::to_string(serial_));
         } else if (op == "files") {
             return expect_files(s.at("names").get<std::vector<std::string>>());
+        } else if (op == "journal_file") {
+            return expect_journal_file(s);
         } else {
             return fail("a step this driver knows", "step '" + op + "'");
         }
@@ -580,6 +624,61 @@ private:
         for (const auto& p : patterns)
             ok = ok && std::any_of(names.begin(), names.end(), [&](const std::string& n) { return match(p, n); });
         return ok || fail("the journal folder holding " + show(patterns), show(names));
+    }
+
+    // The journal file's mode, and its lines: each a sound record (its newline, its CRC) holding
+    // the fields given, spelled as the runtimes write them, between `{` or `,` and `,` or `}`
+    // (checked at once: the steps before it waited for what they describe).
+    bool expect_journal_file(const json& s) {
+        const std::string path = journal_dir_ + "/" + s.at("file").get<std::string>();
+        if (!s.at("mode").is_null()) {
+            struct stat st {};
+            char mode[8] = "none";
+            if (::stat(path.c_str(), &st) == 0) std::snprintf(mode, sizeof mode, "0%03o", static_cast<unsigned>(st.st_mode & 0777));
+            if (s.at("mode").get<std::string>() != mode) return fail("the journal's mode " + s.at("mode").get<std::string>(), mode);
+        }
+        if (s.at("lines").is_null()) return true;
+        std::ifstream in(path, std::ios::binary);
+        std::string raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::vector<std::string> lines;
+        for (std::size_t pos = 0; pos < raw.size();) {
+            std::size_t nl = raw.find('\n', pos);
+            std::size_t end = nl == std::string::npos ? raw.size() : nl + 1;
+            lines.push_back(raw.substr(pos, end - pos));
+            pos = end;
+        }
+        const auto& want = s.at("lines");
+        if (s.at("tail").get<bool>() && lines.size() > want.size())  // (the file's last lines only)
+            lines.erase(lines.begin(), lines.end() - static_cast<std::ptrdiff_t>(want.size()));
+        bool ok = lines.size() == want.size();
+        for (std::size_t i = 0; ok && i < lines.size(); ++i) {
+            const std::string& line = lines[i];
+            ok = line.size() >= 11 && line.back() == '\n' && line[8] == ' ';
+            if (!ok) break;
+            const std::string body = line.substr(9, line.size() - 10);
+            char crc[16];
+            std::snprintf(crc, sizeof crc, "%08x", static_cast<unsigned>(crc32_of(body)));
+            ok = line.compare(0, 8, crc) == 0;
+            for (const auto& f : want[i]) {
+                const std::string field = f.get<std::string>();
+                bool found = false;
+                for (const char* a : {"{", ","})
+                    for (const char* b : {",", "}"}) found = found || body.find(a + field + b) != std::string::npos;
+                ok = ok && found;
+            }
+        }
+        return ok || fail("the journal's lines holding " + want.dump(),
+                          json(lines).dump(-1, ' ', false, json::error_handler_t::replace));
+    }
+
+    // zlib's CRC-32 (the journal's), computed here rather than by the runtime under test
+    static std::uint32_t crc32_of(const std::string& data) {
+        std::uint32_t c = 0xFFFFFFFFu;
+        for (unsigned char b : data) {
+            c ^= b;
+            for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+        }
+        return c ^ 0xFFFFFFFFu;
     }
 
     static std::string temp_dir() {
@@ -796,6 +895,17 @@ class Case : public ::testing::TestWithParam<CaseRef> {};
 
 TEST_P(Case, Replays) {
     const json& c = GetParam().get();
+    const json& first = c.at("steps").at(0);
+    if (first.at("op") == "refused") {  // (its only step: the manager refuses the case's options)
+        const std::string text = first.at("text").get<std::string>();
+        try {
+            Replay replay(c);
+            ADD_FAILURE() << where(c) << ": expected the options refused (" << text << "); the asset started";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << where(c) << ": refused with " << e.what();
+        }
+        return;
+    }
     try {
         Replay replay(c);
         for (const auto& s : c.at("steps"))

@@ -5,11 +5,13 @@ the same cases (tests/cpp_runtime/test_spec_cases.cpp)."""
 from __future__ import annotations
 
 import copy
+import errno
 import fnmatch
 import math
 import os
 import threading
 import time
+import zlib
 from pathlib import Path
 
 import pytest
@@ -302,6 +304,12 @@ class Replay:
         elif op == "log":
             self.until(f"a log line with {s['text']!r}", lambda: any(s["text"] in line for line in out.logs),
                        lambda: out.logs[-10:])
+        elif op == "log_count":  # (waits for that many, then no more)
+            count = lambda: sum(s["text"] in line for line in out.logs)  # noqa: E731
+            self.until(f"{s['count']} log lines with {s['text']!r}", lambda: count() >= s["count"], lambda: out.logs[-10:])
+            assert count() == s["count"], f"{self.case['name']!r}: {count()} log lines with {s['text']!r}: {out.logs[-10:]}"
+        elif op == "disk":
+            self.disk.failing = s["failing"]
         elif op == "no_log":  # (at this step: what came before it has been waited for)
             with out.cond:
                 found = [line for line in out.logs if s["text"] in line]
@@ -322,6 +330,17 @@ class Replay:
             ok = len(names) == len(s["names"]) and all(any(fnmatch.fnmatchcase(n, p) for p in s["names"]) for n in names) \
                 and all(any(fnmatch.fnmatchcase(n, p) for n in names) for p in s["names"])
             assert ok, f"{self.case['name']!r}: the journal folder holds {names}, not {s['names']}"
+        elif op == "journal_file":  # (at this step: what came before it has been waited for)
+            path = self.journal_dir / s["file"]
+            if s["mode"] is not None:
+                mode = f"0{path.stat().st_mode & 0o777:03o}"
+                assert mode == s["mode"], f"{self.case['name']!r}: the journal's mode is {mode}, not {s['mode']}"
+            if s["lines"] is not None:
+                lines = path.read_bytes().splitlines(keepends=True)
+                if s["tail"]:  # (the file's last lines only)
+                    lines = lines[max(0, len(lines) - len(s["lines"])):]
+                assert journal_lines_match(lines, s["lines"]), \
+                    f"{self.case['name']!r}: the journal holds {[ln.decode(errors='replace') for ln in lines]}, not {s['lines']}"
         else:
             raise AssertionError(f"unknown step {op}")
 
@@ -335,6 +354,33 @@ class Replay:
         self.m.shutdown(2.0)
 
 
+class Disk:
+    """The journal's disk for a case's `disk` steps: its fdatasync fails (EIO) while `failing`."""
+
+    def __init__(self) -> None:
+        self.failing = False
+        self.real = os.fdatasync
+
+    def fdatasync(self, fd: int) -> None:
+        if self.failing:
+            raise OSError(errno.EIO, os.strerror(errno.EIO))
+        self.real(fd)
+
+
+def journal_lines_match(lines: list[bytes], want: list[list[str]]) -> bool:
+    """Each line a sound record (its newline, its CRC) holding the fields `want` spells, between
+    `{` or `,` and `,` or `}` (the order of a record's keys is not compared)."""
+    if len(lines) != len(want):
+        return False
+    for raw, fields in zip(lines, want):
+        if not raw.endswith(b"\n") or raw[8:9] != b" " or f"{zlib.crc32(raw[9:-1]):08x}".encode() != raw[:8]:
+            return False
+        body = raw[9:-1].decode("ascii", errors="replace")
+        if not all(any(f"{a}{f}{b}" in body for a in "{," for b in ",}") for f in fields):
+            return False
+    return True
+
+
 @pytest.mark.parametrize("case", CASES, ids=[f"{c['file'][:-5]}:{c['name']}" for c in CASES])
 def test_case(case, tmp_path, monkeypatch):
     if case["state"] is not None:  # (the journal's default folder named by these, in tmp_path)
@@ -342,11 +388,21 @@ def test_case(case, tmp_path, monkeypatch):
             monkeypatch.delenv(var, raising=False)
         for var, rel in case["state"]["set"].items():
             monkeypatch.setenv(var, str(tmp_path / rel))
+    if case["steps"][0]["op"] == "refused":  # (its only step: the manager refuses the options)
+        with pytest.raises(ValueError) as refused:
+            Replay(case, tmp_path)
+        assert case["steps"][0]["text"] in str(refused.value), f"{case['name']!r}: refused with {refused.value}"
+        return
+    disk = Disk()
+    if any(s["op"] == "disk" for s in case["steps"]):
+        monkeypatch.setattr(os, "fdatasync", disk.fdatasync)
     replay = Replay(case, tmp_path)
+    replay.disk = disk
     try:
         for s in case["steps"]:
             replay.step(s)
     finally:
+        disk.failing = False
         replay.close()
 
 

@@ -151,7 +151,7 @@ private:
         while (i_ < t_.size()) {
             char c = t_[i_++];
             if (c == '"') return true;
-            if (static_cast<unsigned char>(c) < 0x20) return false;
+            if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x80) return false;  // (a line is ASCII)
             if (c != '\\') { out += c; continue; }
             if (i_ >= t_.size()) return false;
             char e = t_[i_++];

@@ -187,6 +187,33 @@ impl Handlers for Scripted {
     }
 }
 
+// ---- the disk ------------------------------------------------------------------------------------
+
+/// A case's `disk: failing` makes the journal's fdatasync (File::sync_data) fail with EIO until
+/// `disk: ok`: this definition stands in for libc's in this program (std and the runtime are
+/// linked into it statically, and call fdatasync by that name).
+static DISK_FAILING: AtomicBool = AtomicBool::new(false);
+
+extern "C" {
+    fn syscall(number: std::os::raw::c_long, ...) -> std::os::raw::c_long;
+    fn __errno_location() -> *mut std::os::raw::c_int;
+}
+
+#[no_mangle]
+pub extern "C" fn fdatasync(fd: std::os::raw::c_int) -> std::os::raw::c_int {
+    if DISK_FAILING.load(Ordering::SeqCst) {
+        // SAFETY: errno is this thread's
+        unsafe { *__errno_location() = 5 }; // EIO
+        return -1;
+    }
+    #[cfg(target_arch = "x86_64")]
+    const SYS_FDATASYNC: std::os::raw::c_long = 75;
+    #[cfg(target_arch = "aarch64")]
+    const SYS_FDATASYNC: std::os::raw::c_long = 83;
+    // SAFETY: the fdatasync system call on a descriptor the caller owns
+    unsafe { syscall(SYS_FDATASYNC, fd) as std::os::raw::c_int }
+}
+
 // ---- the cases' JSON ----------------------------------------------------------------------------------
 
 fn s(j: &Json, key: &str) -> String {
@@ -444,14 +471,52 @@ struct Start {
     at: i64,
 }
 
-/// A file name matched by a pattern whose `*` stands for any run of characters.
+/// Each line a sound record (its newline, its CRC) holding the fields given, spelled as the
+/// runtimes write them, between `{` or `,` and `,` or `}` (the order of its keys not compared).
+fn journal_lines_match(lines: &[&[u8]], want: &[Json]) -> bool {
+    lines.len() == want.len()
+        && lines.iter().zip(want).all(|(line, fields)| {
+            line.len() >= 11 && line.ends_with(b"\n") && line[8] == b' ' && {
+                let body = &line[9..line.len() - 1];
+                line[..8] == *format!("{:08x}", journal::crc32(body)).as_bytes() && {
+                    let body = String::from_utf8_lossy(body);
+                    strings(fields).iter().all(|f| ["{", ","].iter().any(|a| [",", "}"].iter().any(|b| body.contains(&format!("{a}{f}{b}")))))
+                }
+            }
+        })
+}
+
+/// A file name matched by a pattern as fnmatch reads one (the other drivers' matcher): `*` any
+/// run of characters, `?` one, `[0-9]` one in a set of characters and ranges.
 fn glob(pattern: &str, name: &str) -> bool {
-    match pattern.split_once('*') {
-        None => pattern == name,
-        Some((head, rest)) => {
-            name.starts_with(head) && (0..=name.len() - head.len()).any(|k| name.is_char_boundary(head.len() + k) && glob(rest, &name[head.len() + k..]))
+    fn chars(p: &[char], n: &[char]) -> bool {
+        match p.first() {
+            None => n.is_empty(),
+            Some('*') => (0..=n.len()).any(|k| chars(&p[1..], &n[k..])),
+            Some('?') => !n.is_empty() && chars(&p[1..], &n[1..]),
+            Some('[') if p.iter().skip(2).any(|c| *c == ']') => {
+                let close = 2 + p.iter().skip(2).position(|c| *c == ']').unwrap_or(0);
+                let set = &p[1..close];
+                let inside = |c: char| {
+                    let (mut i, mut hit) = (0, false);
+                    while i < set.len() {
+                        if i + 2 < set.len() && set[i + 1] == '-' {
+                            hit |= (set[i]..=set[i + 2]).contains(&c);
+                            i += 3;
+                        } else {
+                            hit |= set[i] == c;
+                            i += 1;
+                        }
+                    }
+                    hit
+                };
+                !n.is_empty() && inside(n[0]) && chars(&p[close + 1..], &n[1..])
+            }
+            Some(c) => n.first() == Some(c) && chars(&p[1..], &n[1..]),
         }
     }
+    let (p, n): (Vec<char>, Vec<char>) = (pattern.chars().collect(), name.chars().collect());
+    chars(&p, &n)
 }
 
 impl<'a> Replay<'a> {
@@ -673,6 +738,18 @@ impl<'a> Replay<'a> {
                     |r| format!("{:?}", r.m.pending_ids()),
                 )?;
             }
+            // (waits for that many, then no more)
+            "log_count" => {
+                let text = s(st, "text");
+                let want = st["count"].as_u64().unwrap_or(0) as usize;
+                let count = |r: &Replay| r.peek(|s| s.logs.iter().filter(|l| l.contains(&text)).count());
+                let last = |r: &Replay| r.peek(|s| format!("{:?}", &s.logs[s.logs.len().saturating_sub(10)..]));
+                self.until(format!("{want} log lines with {text:?}"), |r| count(r) >= want, last)?;
+                if count(self) != want {
+                    return Err(format!("expected {want} log lines with {text:?}; seen {}", last(self)));
+                }
+            }
+            "disk" => DISK_FAILING.store(st["failing"].as_bool().unwrap_or(false), Ordering::SeqCst),
             "log" => {
                 let text = s(st, "text");
                 self.until(
@@ -727,12 +804,35 @@ impl<'a> Replay<'a> {
                     return Err(format!("expected the journal folder holding {patterns:?}; seen {names:?}"));
                 }
             }
+            "journal_file" => {
+                // (checked at once: the steps before it waited for what they describe)
+                let path = self.journal_dir.as_ref().map(|d| d.join(s(st, "file"))).unwrap_or_default();
+                if let Some(want) = st["mode"].as_str() {
+                    use std::os::unix::fs::PermissionsExt;
+                    let mode = std::fs::metadata(&path).map_or("none".to_string(), |m| format!("0{:03o}", m.permissions().mode() & 0o777));
+                    if mode != want {
+                        return Err(format!("expected the journal's mode {want}; seen {mode}"));
+                    }
+                }
+                if let Some(want) = st["lines"].as_array() {
+                    let raw = std::fs::read(&path).unwrap_or_default();
+                    let mut lines: Vec<&[u8]> = raw.split_inclusive(|b| *b == b'\n').collect();
+                    if st["tail"].as_bool().unwrap_or(false) && lines.len() > want.len() {
+                        lines.drain(..lines.len() - want.len()); // (the file's last lines only)
+                    }
+                    if !journal_lines_match(&lines, want) {
+                        let seen: Vec<String> = lines.iter().map(|l| String::from_utf8_lossy(l).into_owned()).collect();
+                        return Err(format!("expected the journal's lines holding {want:?}; seen {seen:?}"));
+                    }
+                }
+            }
             other => return Err(format!("unknown step {other}")),
         }
         Ok(())
     }
 
     fn close(self) {
+        DISK_FAILING.store(false, Ordering::SeqCst);
         if let Some(door) = &self.intake {
             door.stop();
         }
@@ -755,6 +855,19 @@ fn s_of(j: &Json, key: &str) -> String {
 }
 
 fn run_case(case: &Json, tables: Arc<Tables>, n: usize) -> Result<(), String> {
+    let first = &case["steps"][0];
+    if s(first, "op") == "refused" {
+        // (its only step: the manager refuses the case's options)
+        let text = s(first, "text");
+        return match Replay::new(case, tables, n) {
+            Ok(replay) => {
+                replay.close();
+                Err(format!("expected the options refused ({text}); the asset started"))
+            }
+            Err(e) if e.contains(&text) => Ok(()),
+            Err(e) => Err(format!("expected the options refused ({text}); refused with {e}")),
+        };
+    }
     let mut replay = Replay::new(case, tables, n)?;
     let mut result = Ok(());
     for (i, st) in case["steps"].as_array().into_iter().flatten().enumerate() {
