@@ -328,7 +328,8 @@ class Client:
 
     def stop(self) -> None:
         self.stopping.set()
-        self._thread.join(timeout=5)
+        if self._thread.ident is not None:  # (started: find_asset starts it, found or not)
+            self._thread.join(timeout=5)
 
     # ---- what was not judged -------------------------------------------------------------------
     def dropped(self) -> list[str]:

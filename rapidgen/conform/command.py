@@ -102,8 +102,6 @@ def _motion_line(motion: dict[str, list], allow: bool) -> str:
 
 
 def _run(args, bindings, chosen, motion: dict[str, list] | None = None) -> int:
-    from rapidgen.conform import report as R
-    from rapidgen.conform.runner import passed, run_checks
     from rapidgen.conform.session import Session
 
     domain = bindings.tables["ASSET"].get("domain", 0) if args.domain is None else args.domain
@@ -120,6 +118,16 @@ def _run(args, bindings, chosen, motion: dict[str, list] | None = None) -> int:
               "(it writes the asset's commands and reads all its topics: the deployment must grant its source "
               f"command and audit on the asset; docs/secure.md): {exc}", file=sys.stderr)
         return 1
+    try:
+        return _judge(args, session, domain, chosen, allow, t0)
+    finally:  # our participant deleted before the interpreter ends (rapidgen/live/teardown.py)
+        session.delete()
+
+
+def _judge(args, session, domain: int, chosen, allow: bool, t0: float) -> int:
+    from rapidgen.conform import report as R
+    from rapidgen.conform.runner import passed, run_checks
+
     name, partition = visible(session.asset), visible(session.facts.partition)
     print(f"rapidgen conform: looking for asset {name} (partition {partition}) in domain {domain} "
           f"via {visible(os.environ.get('CYCLONEDDS_URI', 'Cyclone defaults'))}"
@@ -131,7 +139,6 @@ def _run(args, bindings, chosen, motion: dict[str, list] | None = None) -> int:
         else:
             print(f"rapidgen conform: no participant with {name}'s topics in partition {partition} "
                   f"on domain {domain} (is the asset running, on this domain and transport?)", file=sys.stderr)
-        session.close()
         return 1
     print(f"found {name}: {len(session.endpoints())} endpoints of participant "
           f"{', '.join(map(session.participant_text, sorted(session.asset_participants)))}; "

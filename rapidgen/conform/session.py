@@ -34,6 +34,7 @@ class Session:
         from cyclonedds.domain import DomainParticipant
 
         from rapidgen.live.discovery import Discovery
+        from rapidgen.live.teardown import delete_participant
         self.b = bindings
         self.facts = AssetFacts(bindings.tables)
         self.asset = self.facts.name
@@ -41,10 +42,14 @@ class Session:
         self.rtt = rtt  # the link's round trip (--rtt): every wait allows for it (allow())
         self.timeout = self.allow(timeout)
         self.participant = DomainParticipant(domain)
-        self.discovery = Discovery(self.participant)
-        self._births_reader = BuiltinDataReader(self.participant, BuiltinTopicDcpsParticipant)
+        try:
+            self.discovery = Discovery(self.participant)
+            self._births_reader = BuiltinDataReader(self.participant, BuiltinTopicDcpsParticipant)
+            self.client = Client(bindings, self.participant, self.asset)
+        except BaseException:  # e.g. DDS Security refusing the command writer: no half-made participant left
+            delete_participant(self.participant)
+            raise
         self.births: dict[str, int] = {}  # participant GUID -> its announced creation time (ns)
-        self.client = Client(bindings, self.participant, self.asset)
         self.secured_as = secured_as
         self.source = secured_as or self.facts.runner_source()
         self.asset_participants: set[str] = set()
@@ -515,7 +520,17 @@ class Session:
         return self.controller(0.0) != who
 
     def close(self) -> None:
+        """Stop taking samples: the reports' counts are final from here (notes() still reads
+        discovery)."""
         self.client.stop()
+
+    def delete(self) -> None:
+        """Stop, then delete our participant and all in it now (rapidgen/live/teardown.py: left
+        to interpreter exit, a secured domain's threads outlived OpenSSL: SIGSEGV at exit).
+        Nothing is read after this."""
+        from rapidgen.live.teardown import delete_participant
+        self.client.stop()
+        delete_participant(self.participant)
 
     # ---- what was not judged ------------------------------------------------------------------
     def participant_text(self, key: str) -> str:
