@@ -9,6 +9,7 @@ import datetime
 import io
 import json
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -46,6 +47,14 @@ def secure(*args: str) -> subprocess.CompletedProcess:
 def secure_process(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "rapidgen", "secure", *args], capture_output=True, text=True,
                           cwd=ROOT, timeout=120)
+
+
+def exited(rc: int, code: int, what: object) -> None:
+    """The process ended itself with `code`; a negative rc is the signal that killed it (a
+    SIGSEGV at exit printed nothing wrong before it: rapidgen/live/teardown.py)."""
+    if rc < 0:
+        pytest.fail(f"killed by {signal.Signals(-rc).name} ({rc}) instead of exiting {code}: {what}")
+    assert rc == code, what
 
 
 def write_deployment(folder: Path, text: str = DEPLOYMENT) -> Path:
