@@ -182,10 +182,10 @@ def _step(op: str, body, case: dict, seed: str, source: str, name: str, where: S
         out.append({"op": op, "text": body})
     elif op == "log_count":
         out.append({"op": op, "text": body["text"], "count": body["count"]})
-    elif op == "disk":  # the journal's fdatasync fails (EIO) from here, or works again
+    elif op == "disk":  # from here the journal's fdatasync fails (EIO), or its writes (ENOSPC), or neither
         if not any(k in case for k in ("journal", "state")) and not any("restart" in st for st in case["steps"]):
             raise CaseError(f"{where}: `disk` needs a journal (the case's `journal:`, `state:` or a restart)")
-        out.append({"op": op, "failing": body == "failing"})
+        out.append({"op": op, "failing": body == "failing", "full": body == "full"})
     elif op == "order":
         out.append({"op": op, "ids": body})
     elif op == "stopped":

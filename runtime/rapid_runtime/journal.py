@@ -165,6 +165,7 @@ class Journal:
         self.lines = 0  # in the file now
         self.unsynced = False
         self.syncs = 0
+        self.unwritten: OSError | None = None  # a record's write refused (a full disk) since the last sync
 
     # ---- opening and recovery -------------------------------------------------------------------
     @classmethod
@@ -278,6 +279,9 @@ class Journal:
         self.syncs += 1
         if self.lines > COMPACT_FACTOR * self.window + len(self.live) + 16:
             self._rewrite([])
+        if self.unwritten is not None:
+            exc, self.unwritten = self.unwritten, None
+            raise exc
 
     def close(self, clean: bool) -> None:
         """clean: every command was answered; the next start begins afresh."""
@@ -289,7 +293,10 @@ class Journal:
             os.close(self.fd)
 
     def _append(self, rec: dict) -> None:
-        os.write(self.fd, _line(rec))  # O_APPEND: a kill -9 loses nothing written; a power cut, what was not synced
+        try:
+            os.write(self.fd, _line(rec))  # O_APPEND: a kill -9 loses nothing written; a power cut, what was not synced
+        except OSError as exc:  # a full disk: the command is answered all the same (as in C++ and Rust);
+            self.unwritten = exc  # sync() raises it, and the manager says so
         self.lines += 1
         self.unsynced = True
 

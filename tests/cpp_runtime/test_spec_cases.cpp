@@ -65,17 +65,36 @@ namespace rapid_oddity::bridge {
 const ::rapid_runtime::Tables& tables();
 }
 
-// A case's `disk: failing` makes the journal's fdatasync fail (EIO) until `disk: ok`: this
-// definition stands in for libc's in this program (the runtime is linked in statically).
+// A case's `disk: failing` makes the journal's fdatasync fail (EIO), `disk: full` its writes to
+// a journal file (ENOSPC), until `disk: ok`: these definitions stand in for libc's in this
+// program (the runtime is linked in statically).
 namespace {
 std::atomic<bool> disk_failing{false};
+std::atomic<bool> disk_full{false};
+
+bool journal_fd(int fd) {
+    char link[64];
+    char target[4096];
+    std::snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
+    const ssize_t n = ::readlink(link, target, sizeof target);
+    return n > 0 && std::string(target, static_cast<std::size_t>(n)).find(".journal") != std::string::npos;
 }
+}  // namespace
+
 extern "C" int fdatasync(int fd) {
     if (disk_failing.load()) {
         errno = EIO;
         return -1;
     }
     return static_cast<int>(::syscall(SYS_fdatasync, fd));
+}
+
+extern "C" ssize_t write(int fd, const void* data, size_t size) {
+    if (disk_full.load() && journal_fd(fd)) {
+        errno = ENOSPC;
+        return -1;
+    }
+    return ::syscall(SYS_write, fd, data, size);
 }
 
 using namespace rapid_runtime;
@@ -482,6 +501,7 @@ public:
     }
     ~Replay() {  // the door closes, every handler returns, then the asset shuts down (Python's close())
         disk_failing.store(false);
+        disk_full.store(false);
         intake_.reset();
         {
             std::lock_guard<std::mutex> lock(seen_.mutex);
@@ -571,6 +591,7 @@ public:
             return fail(std::to_string(want) + " log lines with '" + text + "'", shown);
         } else if (op == "disk") {
             disk_failing.store(s.at("failing").get<bool>());
+            disk_full.store(s.at("full").get<bool>());
             return true;
         } else if (op == "log") {
             const std::string text = s.at("text").get<std::string>();

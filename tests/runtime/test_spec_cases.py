@@ -309,7 +309,7 @@ class Replay:
             self.until(f"{s['count']} log lines with {s['text']!r}", lambda: count() >= s["count"], lambda: out.logs[-10:])
             assert count() == s["count"], f"{self.case['name']!r}: {count()} log lines with {s['text']!r}: {out.logs[-10:]}"
         elif op == "disk":
-            self.disk.failing = s["failing"]
+            self.disk.failing, self.disk.full = s["failing"], s["full"]
         elif op == "no_log":  # (at this step: what came before it has been waited for)
             with out.cond:
                 found = [line for line in out.logs if s["text"] in line]
@@ -355,16 +355,27 @@ class Replay:
 
 
 class Disk:
-    """The journal's disk for a case's `disk` steps: its fdatasync fails (EIO) while `failing`."""
+    """The journal's disk for a case's `disk` steps: its fdatasync fails (EIO) while `failing`,
+    a write to a journal file (`*.journal*`) fails (ENOSPC) while `full`."""
 
     def __init__(self) -> None:
-        self.failing = False
-        self.real = os.fdatasync
+        self.failing = self.full = False
+        self.real_fdatasync, self.real_write = os.fdatasync, os.write
 
     def fdatasync(self, fd: int) -> None:
         if self.failing:
             raise OSError(errno.EIO, os.strerror(errno.EIO))
-        self.real(fd)
+        self.real_fdatasync(fd)
+
+    def write(self, fd: int, data) -> int:
+        if self.full:
+            try:
+                journal = ".journal" in os.readlink(f"/proc/self/fd/{fd}")
+            except OSError:
+                journal = False
+            if journal:
+                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return self.real_write(fd, data)
 
 
 def journal_lines_match(lines: list[bytes], want: list[list[str]]) -> bool:
@@ -396,13 +407,14 @@ def test_case(case, tmp_path, monkeypatch):
     disk = Disk()
     if any(s["op"] == "disk" for s in case["steps"]):
         monkeypatch.setattr(os, "fdatasync", disk.fdatasync)
+        monkeypatch.setattr(os, "write", disk.write)
     replay = Replay(case, tmp_path)
     replay.disk = disk
     try:
         for s in case["steps"]:
             replay.step(s)
     finally:
-        disk.failing = False
+        disk.failing = disk.full = False
         replay.close()
 
 

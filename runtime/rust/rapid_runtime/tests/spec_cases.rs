@@ -189,10 +189,30 @@ impl Handlers for Scripted {
 
 // ---- the disk ------------------------------------------------------------------------------------
 
-/// A case's `disk: failing` makes the journal's fdatasync (File::sync_data) fail with EIO until
-/// `disk: ok`: this definition stands in for libc's in this program (std and the runtime are
-/// linked into it statically, and call fdatasync by that name).
+/// A case's `disk: failing` makes the journal's fdatasync (File::sync_data) fail with EIO, `disk:
+/// full` its writes to a journal file with ENOSPC, until `disk: ok`: these definitions stand in
+/// for libc's in this program (std and the runtime are linked into it statically, and call
+/// fdatasync and write by those names).
 static DISK_FAILING: AtomicBool = AtomicBool::new(false);
+static DISK_FULL: AtomicBool = AtomicBool::new(false);
+
+#[cfg(target_arch = "x86_64")]
+const SYS_WRITE: std::os::raw::c_long = 1;
+#[cfg(target_arch = "aarch64")]
+const SYS_WRITE: std::os::raw::c_long = 64;
+
+#[no_mangle]
+pub extern "C" fn write(fd: std::os::raw::c_int, data: *const std::os::raw::c_void, size: usize) -> isize {
+    if DISK_FULL.load(Ordering::SeqCst)
+        && std::fs::read_link(format!("/proc/self/fd/{fd}")).is_ok_and(|p| p.to_string_lossy().contains(".journal"))
+    {
+        // SAFETY: errno is this thread's
+        unsafe { *__errno_location() = 28 }; // ENOSPC
+        return -1;
+    }
+    // SAFETY: the write system call with the caller's descriptor and buffer
+    unsafe { syscall(SYS_WRITE, fd, data, size) as isize }
+}
 
 extern "C" {
     fn syscall(number: std::os::raw::c_long, ...) -> std::os::raw::c_long;
@@ -749,7 +769,10 @@ impl<'a> Replay<'a> {
                     return Err(format!("expected {want} log lines with {text:?}; seen {}", last(self)));
                 }
             }
-            "disk" => DISK_FAILING.store(st["failing"].as_bool().unwrap_or(false), Ordering::SeqCst),
+            "disk" => {
+                DISK_FAILING.store(st["failing"].as_bool().unwrap_or(false), Ordering::SeqCst);
+                DISK_FULL.store(st["full"].as_bool().unwrap_or(false), Ordering::SeqCst);
+            }
             "log" => {
                 let text = s(st, "text");
                 self.until(
@@ -833,6 +856,7 @@ impl<'a> Replay<'a> {
 
     fn close(self) {
         DISK_FAILING.store(false, Ordering::SeqCst);
+        DISK_FULL.store(false, Ordering::SeqCst);
         if let Some(door) = &self.intake {
             door.stop();
         }
