@@ -271,7 +271,8 @@ class Journal:
         return e
 
     def sync(self) -> None:
-        """Make what was written durable (before the acks that promise it); compact when due."""
+        """Make what was written durable (before the acks that promise it); compact when due.
+        Raises OSError: a refused sync or compaction, or a record's write refused since the last one."""
         if not self.unsynced:
             return
         os.fdatasync(self.fd)
