@@ -1,11 +1,12 @@
 """`rapidgen conform` refused by DDS Security leaves no DDS behind when it returns, and ends
 with its own exit code (rapidgen/live/teardown.py).
 
-Before, the refused run's participant sat in reference cycles until the interpreter's last
-collection, or past it: beside a secured bridge, under load, about 2 runs in 100 ended with
-SIGSEGV (-11) after the refusal (Cyclone's receive thread calling OpenSSL after its exit
-handler). The crash needs that race; what makes it possible does not: Cyclone's threads still
-running once the command has returned. tests/secure/refused_exit.py runs the command in its
+Before, the refused run's participant sat in reference cycles, and cyclonedds-python's
+__del__ deletes nothing for an entity the cyclic collector frees: the participant's threads
+ran until the process ended, and beside a secured bridge, under load, about 2 runs in 100
+ended with SIGSEGV (-11) after the refusal (Cyclone's receive thread calling OpenSSL after
+its exit handler). The crash needs that race; what makes it possible does not: Cyclone's
+threads still running once the command has returned. tests/secure/refused_exit.py runs the command in its
 own process (a private network namespace, the suite's DOMAIN) and says which threads are left.
 The secured bridge beside a refused run: test_python_tools_secured.py."""
 from __future__ import annotations
