@@ -654,11 +654,15 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None, module: st
     else:
         handlers = make_handlers()
     journal = None if args.no_journal else (args.journal or str(default_dir()))
+    bridge = None
     try:
         bridge = Bridge(tables, rapid, handlers, qos, domain=args.domain, command_window=args.command_window,
                         journal=journal, stop_timeout_ms=args.stop_timeout,
-                        shutdown_timeout_ms=args.shutdown_timeout, identities=identities).start()
+                        shutdown_timeout_ms=args.shutdown_timeout, identities=identities)
+        bridge.start()
     except DDSException as exc:  # with an enclave: the security plugins refused it
+        if bridge is not None:  # its participant deleted now, not left to exit (teardown.py)
+            bridge.node.close()
         if enclave is None:
             raise
         print(f"bridge: DDS Security refused this participant's keystore ({enclave}): {exc}; Cyclone's own "
@@ -681,4 +685,5 @@ def main(asset_tables, rapid, make_handlers, package: str, argv=None, module: st
         print(f"bridge: {left} handler thread(s) still running; exiting without them", file=sys.stderr, flush=True)
         sys.stderr.flush()
         os._exit(0)
+    bridge.node.close()  # before the interpreter ends: its threads outlived OpenSSL's exit handler (teardown.py)
     return 0

@@ -33,6 +33,13 @@ class Commander:
         (seen: a joiner's first 23 of 60 finals lost when the reader took them first)."""
         self.rapid, self.asset, self.source = rapid, asset, source
         self.node = Node(rapid, qos, domain)
+        try:
+            self._start(rapid, follow)
+        except BaseException:  # e.g. DDS Security refusing the command topic: no participant left running
+            self.node.close()
+            raise
+
+    def _start(self, rapid, follow: Iterable[str]) -> None:
         # a burst of commands over a slow link fills the writer's history until the asset
         # acknowledges (a round trip): the profile's 100 ms then failed a write with TIMEOUT
         # (200 rounds across the lunar link); it waits for room instead, as the C++ client
@@ -117,4 +124,6 @@ class Commander:
             return list(self.acks.get(cmd_id, ()))
 
     def close(self) -> None:
+        """Stop reading acks and delete the participant (dds.Node.close()): nothing is used after."""
         self._reader.stop()
+        self.node.close()

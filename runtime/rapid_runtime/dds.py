@@ -16,6 +16,7 @@ from cyclonedds.sub import DataReader, Subscriber
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
+from rapid_runtime.teardown import delete_participant
 from rapid_runtime.untrusted import GuardedReader
 
 
@@ -44,8 +45,12 @@ class Node:
     def __init__(self, rapid, qos, domain: int) -> None:
         self.rapid, self.qos = rapid, qos
         self.participant = DomainParticipant(domain)
-        self.publisher = Publisher(self.participant, qos=qos.publisher())
-        self.subscriber = Subscriber(self.participant, qos=qos.subscriber())
+        try:
+            self.publisher = Publisher(self.participant, qos=qos.publisher())
+            self.subscriber = Subscriber(self.participant, qos=qos.subscriber())
+        except BaseException:  # no half-made participant left running (close())
+            self.close()
+            raise
         self._topics: dict[str, Topic] = {}
         self._writers: dict[str, DataWriter] = {}
         self._lock = threading.Lock()
@@ -102,6 +107,13 @@ class Node:
                 w.wait_for_acks(duration(seconds=left))
             except Exception:  # a reader that left without acknowledging; cyclonedds 11 raises oddly here
                 pass
+
+    def close(self) -> None:
+        """Delete the participant and everything in it now (teardown.py: left to the garbage
+        collector, its domain's threads outlive the interpreter; under DDS Security that
+        crashed the process at exit). Stop the reader threads first; nothing is used after.
+        Idempotent; a Node whose creation failed has closed itself."""
+        delete_participant(self.participant)
 
     @staticmethod
     def delete(entity) -> None:
