@@ -107,6 +107,7 @@ def run_cmd(args, sink: DiagnosticSink) -> int:
 
 
 def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
+    from cyclonedds.core import DDSException
     from rapid_runtime.acks import COMPLETED, OK
     from rapid_runtime.commander import Commander
     from rapid_runtime.dds import use_transport
@@ -142,8 +143,16 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
         return 1
     domain = tables.domain if args.domain is None else args.domain
     # a DELETE/INSERT/REPLACE target's acks kept from the start (its history comes on match)
-    commander = Commander(asset.rapid, qos, tables.name, args.source, domain,
-                          follow=(args.target,) if args.target else ())
+    try:  # (a refused Commander has deleted its participant itself)
+        commander = Commander(asset.rapid, qos, tables.name, args.source, domain,
+                              follow=(args.target,) if args.target else ())
+    except DDSException as exc:  # what DDS Security refused, said plainly
+        if not args.enclave or "SECURITY" not in str(exc):
+            raise
+        print(f"rapidgen cmd: DDS Security refused what the command needs with the enclave {visible(args.enclave)} "
+              "(it writes the asset's commands and reads their acks: the deployment must grant its source "
+              f"command on the asset; docs/secure.md): {visible(str(exc))}", file=sys.stderr)
+        return 1
     try:
         origin = "descriptor"
         if not args.from_descriptor:
@@ -194,7 +203,7 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
         if args.no_wait:
             return 0 if final[0] != COMPLETED or final[1] == OK else 1
         return 0 if final[:2] == (COMPLETED, OK) else 1
-    finally:
+    finally:  # reader stopped, participant deleted before the interpreter ends (rapid_runtime/teardown.py)
         commander.close()
 
 

@@ -62,6 +62,7 @@ def run_live(args) -> int:
         from rapidgen.record.derived import DerivedWriter
         from rapidgen.record.recorder import Recorder
         from rapidgen.textsafe import visible
+        rec = None
         try:
             roles: dict[str, str] = {}
             rec = Recorder(domain, bindings, None, _schema_finder(models), live, roles)
@@ -69,6 +70,8 @@ def run_live(args) -> int:
             for b in bindings[1:]:
                 rec.declared(b.qos, b.tables["ASSET"].get("partition", b.tables["ASSET"]["name"]))
         except Exception as exc:  # Cyclone refused to start
+            if rec is not None:  # its participant deleted now (rapidgen/live/teardown.py)
+                rec.close()
             error.append(f"cannot join DDS domain {domain}: {visible(str(exc))[:300]}")
             ready.set()
             return
@@ -113,6 +116,7 @@ async def _serve(server: FoxgloveServer, args, domain: int, pump, stop: threadin
     except OSError as exc:
         await runner.cleanup()
         stop.set()
+        await asyncio.get_running_loop().run_in_executor(None, thread.join, 10)  # the recorder closed (pump)
         print(f"rapidgen monitor: cannot serve on {visible(args.bind)}:{args.foxglove}: {exc.strerror or exc}",
               file=sys.stderr)
         return 1

@@ -176,6 +176,7 @@ def _record(args, bindings, models, domain: int, partitions: set[str] | None, ou
     stop = threading.Event()
     old = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
     sink = Sink(output, metadata, f"rapidgen {__version__}", args.split_size, args.split_seconds, attachments)
+    rec = None
     try:
         rec = Recorder(domain, bindings, partitions, _schema_finder(models), sink, roles)
         if getattr(args, "foxglove", False):
@@ -185,6 +186,8 @@ def _record(args, bindings, models, domain: int, partitions: set[str] | None, ou
             rec.declared(b.qos, b.tables["ASSET"].get("partition", b.tables["ASSET"]["name"]))
     except Exception as exc:  # Cyclone refused to start (a bad CYCLONEDDS_URI, no interface)
         sink.close()
+        if rec is not None:  # its participant deleted now (rapidgen/live/teardown.py)
+            rec.close()
         for s, h in old.items():
             signal.signal(s, h)
         print(f"rapidgen record: cannot join domain {domain}: {visible(str(exc))[:300]}", file=sys.stderr)

@@ -51,8 +51,13 @@ class Recorder:
         from cyclonedds.domain import DomainParticipant
 
         from rapidgen.live.discovery import Discovery
+        from rapidgen.live.teardown import delete_participant
         self.dp: DomainParticipant | None = DomainParticipant(domain)
-        self.discovery = Discovery(self.dp)
+        try:
+            self.discovery = Discovery(self.dp)
+        except BaseException:  # no half-made participant left running (close())
+            delete_participant(self.dp)
+            raise
         self.bindings, self.partitions, self.schema_of, self.sink, self.roles = \
             bindings, partitions, schema_of, sink, roles
         self.streams: dict[tuple[str, str, bool, bool], Stream] = {}
@@ -192,7 +197,11 @@ class Recorder:
         return self.dp
 
     def close(self) -> None:
+        """Delete our participant and all in it now (rapidgen/live/teardown.py: left to the
+        collector, its domain's threads outlived the interpreter). Nothing is taken after."""
+        from rapidgen.live.teardown import delete_participant
         self.streams.clear()
         self._topics.clear()
         self._subscribers.clear()
-        self.dp = None
+        dp, self.dp = self.dp, None
+        delete_participant(dp)

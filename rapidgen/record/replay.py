@@ -134,10 +134,14 @@ class Replayer:
         return self.dp
 
     def close(self) -> None:
+        """Delete our participant and all in it now (rapidgen/live/teardown.py: left to the
+        collector, its domain's threads outlived the interpreter). Nothing is sent after."""
+        from rapidgen.live.teardown import delete_participant
         self._topics.clear()
         self._publishers.clear()
         self.plan.outs.clear()
-        self.dp = None
+        dp, self.dp = self.dp, None
+        delete_participant(dp)
 
 
 def in_window(plan: Plan, log_time: int) -> bool:

@@ -150,13 +150,18 @@ class Watcher:
         from cyclonedds.domain import DomainParticipant
 
         from rapidgen.live.discovery import Discovery
+        from rapidgen.live.teardown import delete_participant
         self.domain = domain
         self.bindings = bindings
         self.partitions = partitions or []
         self.declared = set(self.partitions) | set(declared or [])
         self.topics = topics
         self.dp: DomainParticipant | None = DomainParticipant(domain)
-        self.discovery = Discovery(self.dp)
+        try:
+            self.discovery = Discovery(self.dp)
+        except BaseException:  # no half-made participant left running (close())
+            delete_participant(self.dp)
+            raise
         self.streams: dict[tuple[str, str, bool, bool], Stream] = {}
         self.undecodable: set[tuple[str, str]] = set()  # (topic, type name) we have no type for
         self.read_partitions: set[str] = set()  # partitions we read (declared ones and up to MAX_PARTITIONS)
@@ -386,5 +391,9 @@ class Watcher:
         return out
 
     def close(self) -> None:
+        """Delete our participant and all in it now (rapidgen/live/teardown.py: left to the
+        collector, its domain's threads outlived the interpreter). Nothing is read after."""
+        from rapidgen.live.teardown import delete_participant
         self.streams.clear()
-        self.dp = None
+        dp, self.dp = self.dp, None
+        delete_participant(dp)

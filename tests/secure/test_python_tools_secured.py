@@ -10,9 +10,10 @@ an enclave of a `rapidgen secure` keystore, in a private network namespace (only
 - `rapidgen spy echo --enclave RapidWorkbench` (granted watch) reads K10's positions; without
   an enclave, nothing.
 - Without an enclave, or with one the deployment did not grant commanding K10Red (Outsider:
-  watch only; Conformance: audit only), nothing runs: cmd finds no asset; conform finds none
-  or says that DDS Security refused its command writer (its topic, for Outsider). Each exits 1
-  itself: a refused conform once died at exit with SIGSEGV (test_conform_teardown.py)."""
+  watch only; Conformance: audit only), nothing runs: cmd finds no asset, or (Outsider) says
+  that DDS Security refused its command topic; conform finds none or says that DDS Security
+  refused its command writer (its topic, for Outsider). Each exits 1 itself: a refused
+  conform once died at exit with SIGSEGV (test_conform_teardown.py, test_tools_teardown.py)."""
 from __future__ import annotations
 
 import sys
@@ -82,22 +83,23 @@ def test_conform_without_a_command_grant_is_refused_plainly(secured, name):
     assert "Traceback" not in case["stderr"] and "Fatal Python error" not in case["stderr"], case
 
 
-CMD_REFUSED = ("rapidgen cmd with a watch-only enclave: DDS Security refusing its topic ends it as an internal "
-               "error (exit 3, 'please report this'), not a plain refusal with exit 1 (rapidgen/cmd)")
-
-
-@pytest.mark.parametrize("name", ["cmd_no_enclave", "conform_no_enclave",
-                                  pytest.param("cmd_watch_only", marks=pytest.mark.xfail(strict=True,
-                                                                                        reason=CMD_REFUSED))])
+@pytest.mark.parametrize("name", ["cmd_no_enclave", "conform_no_enclave"])
 def test_without_a_grant_the_tools_find_no_asset(secured, name):
     case = secured["cases"][name]
     exited(case["rc"], 1, case)  # found nothing: 1, not a signal
     assert "COMPLETED OK" not in case["stdout"] and "every required check passed" not in case["stdout"], case
 
 
-def test_cmd_with_a_watch_only_enclave_sends_nothing_and_is_not_killed(secured):
+def test_cmd_with_a_watch_only_enclave_is_refused_plainly(secured):
+    """DDS Security refuses Outsider the command topic: said as conform says it, exit 1 (it
+    was an internal error, exit 3, 'please report this'); its participant deleted, beside the
+    secured bridge, before it exits (test_tools_teardown.py)."""
     case = secured["cases"]["cmd_watch_only"]
-    assert case["rc"] > 0, case  # (a negative rc: the signal that killed it)
+    exited(case["rc"], 1, case)
+    assert "rapidgen cmd: DDS Security refused what the command needs with the enclave" in case["stderr"], case
+    assert "docs/secure.md" in case["stderr"], case
+    assert "internal error" not in case["stderr"] and "Traceback" not in case["stderr"] \
+        and "Fatal Python error" not in case["stderr"], case
     assert "COMPLETED OK" not in case["stdout"], case
 
 
