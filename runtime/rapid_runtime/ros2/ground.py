@@ -200,5 +200,6 @@ def main(asset_tables: ModuleType, rapid: ModuleType, ros2_map: Any, package: st
     executor.shutdown(timeout_sec=1.0)
     ros_node.destroy_node()
     rclpy.try_shutdown()
+    node.close()  # the DDS participant deleted now, not left to exit (rapid_runtime/teardown.py)
     print("ros2_ground stopped", flush=True)
     return 0
