@@ -21,7 +21,8 @@ def _tree(folder: Path) -> dict[str, bytes]:
 
 
 def _generate(out: Path, without: str) -> dict[str, bytes]:
-    env = {"PATH": "/usr/bin:/bin", "RAPIDGEN_WITHOUT": without, "HOME": str(out.parent)}
+    """The generated tree; each run has a home of its own (OUT-home: the code cache's folder)."""
+    env = {"PATH": "/usr/bin:/bin", "RAPIDGEN_WITHOUT": without, "HOME": str(out.with_name(out.name + "-home"))}
     res = subprocess.run([sys.executable, "-m", "rapidgen", "generate", "specs/assets/k10.yaml", "-o", str(out),
                           "--lang", "python,cpp,rust,qos"], cwd=REPO, env=env, capture_output=True, text=True,
                          timeout=120)
@@ -34,6 +35,9 @@ def test_the_output_is_the_same_without_each_device(tmp_path):
     assert len(every) > 50
     for device in speed_devices.DEVICES:
         assert _generate(tmp_path / device, device) == every, device
+        # the code cache is written by every run but the one without it
+        cache = list((tmp_path / f"{device}-home" / ".cache" / "rapidgen").glob("dataclass-code.*"))
+        assert bool(cache) == (device != "codecache"), (device, cache)
 
 
 def test_the_switch_reaches_each_device(monkeypatch):
