@@ -45,13 +45,16 @@ def main() -> int:
 
     def poll(show: bool = True) -> None:
         for c in commands.take(N=256):
-            if not show:  # the operator's own request is not the run's
+            # (an instance's state: conform deletes its writer as it ends, which unregisters)
+            if not show or not isinstance(c, rapid.Command):  # (the operator's own request is not the run's)
                 continue
             args = [getattr(a, "value", None) for a in c.arguments]
             print(json.dumps({"src": c.cmdSrc, "subsystem": c.subsysName, "name": c.cmdName,
                               "args": [list(a) if isinstance(a, (list, tuple)) else a for a in args]},
                              default=str), flush=True)
         for s in state.take(N=64):
+            if not isinstance(s, rapid.AccessControlState):
+                continue
             with lock:
                 latest[0] = s.controller
 
