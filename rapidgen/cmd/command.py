@@ -7,7 +7,7 @@ import sys
 import time
 
 from rapidgen.argtypes import domain_id
-from rapidgen.live.dds import add_enclave_argument, use_enclave
+from rapidgen.live.dds import add_enclave_argument, security_refusal, use_enclave
 from rapidgen.cmd.arguments import complete
 from rapidgen.cmd.dictionary import live_config, merged_tables
 from rapidgen.cmd.line import CMDLINE, CmdLine, did_you_mean, report
@@ -147,11 +147,11 @@ def _run(args, line: CmdLine, sink: DiagnosticSink) -> int:
         commander = Commander(asset.rapid, qos, tables.name, args.source, domain,
                               follow=(args.target,) if args.target else ())
     except DDSException as exc:  # what DDS Security refused, said plainly
-        if not args.enclave or "SECURITY" not in str(exc):
+        refused = security_refusal("cmd", "command", args.enclave, exc,
+                                   "it writes the asset's commands and reads their acks", "command")
+        if refused is None:
             raise
-        print(f"rapidgen cmd: DDS Security refused what the command needs with the enclave {visible(args.enclave)} "
-              "(it writes the asset's commands and reads their acks: the deployment must grant its source "
-              f"command on the asset; docs/secure.md): {visible(str(exc))}", file=sys.stderr)
+        print(refused, file=sys.stderr)
         return 1
     try:
         origin = "descriptor"

@@ -8,7 +8,7 @@ import os
 import sys
 import time
 from rapidgen.argtypes import domain_id
-from rapidgen.live.dds import add_enclave_argument
+from rapidgen.live.dds import add_enclave_argument, security_refusal
 from rapidgen.cmd.timing import round_trip
 from rapidgen.textsafe import visible
 
@@ -112,11 +112,11 @@ def _run(args, bindings, chosen, motion: dict[str, list] | None = None) -> int:
                           rtt=args.rtt, motion=motion, allow_motion=allow,
                           secured_as=os.path.basename(os.path.normpath(args.enclave)) if args.enclave else None)
     except Exception as exc:  # cyclonedds' DDSException: what DDS Security refused, said plainly
-        if not args.enclave or "SECURITY" not in str(exc):
+        refused = security_refusal("conform", "runner", args.enclave, exc,
+                                   "it writes the asset's commands and reads all its topics", "command and audit")
+        if refused is None:
             raise
-        print(f"rapidgen conform: DDS Security refused what the runner needs with the enclave {visible(args.enclave)} "
-              "(it writes the asset's commands and reads all its topics: the deployment must grant its source "
-              f"command and audit on the asset; docs/secure.md): {exc}", file=sys.stderr)
+        print(refused, file=sys.stderr)
         return 1
     try:
         return _judge(args, session, domain, chosen, allow, t0)

@@ -60,3 +60,16 @@ def use_enclave(enclave: str) -> None:
     except SecurityUnavailable as exc:
         print(f"rapidgen: --enclave: {exc}", file=sys.stderr)
         raise SystemExit(1) from None
+
+
+def security_refusal(tool: str, needs: str, enclave: str | None, exc: Exception, does: str, grant: str) -> str | None:
+    """The line a live tool prints when DDS Security refused it an entity with `enclave`
+    (cyclonedds' DDSException names the refusal NOT_ALLOWED_BY_SECURITY), else None: the
+    exception is not a refusal and goes on."""
+    from rapidgen.textsafe import visible
+
+    if not enclave or "SECURITY" not in str(exc):
+        return None
+    return (f"rapidgen {tool}: DDS Security refused what the {needs} needs with the enclave {visible(enclave)} "
+            f"({does}: the deployment must grant its source {grant} on the asset; docs/secure.md): "
+            f"{visible(str(exc))}")
