@@ -44,6 +44,10 @@ DOMAIN_FASTDDS_EXCHANGE = {        # test_fastdds: local exchange, one per profi
 LIVE_DOMAINS = [DOMAIN_CYCLONE_LOCAL, DOMAIN_FASTDDS_QOS, DOMAIN_TCP, DOMAIN_UDP_WAN, DOMAIN_NEGATIVE_TCP,
                 *DOMAIN_FASTDDS_EXCHANGE.values()]
 assert len(set(LIVE_DOMAINS)) == len(LIVE_DOMAINS) and all(60 <= d <= 79 for d in LIVE_DOMAINS), LIVE_DOMAINS
+# qos_probe echo's COUNT when it should answer every ping until its SECONDS end: an echo written
+# before its writer matched the pinger's reader is lost (volatile), so an echo that stopped at the
+# pinger's own count could leave the pinger one short
+ECHO_ALL = "100000"
 
 
 def render(spec, asset_path: str | None) -> dict[str, str]:

@@ -12,7 +12,8 @@ import subprocess
 
 import pytest
 
-from tests.qos.conftest import DOMAIN_FASTDDS_EXCHANGE, DOMAIN_FASTDDS_QOS, ROVER, render, variant, write_tree
+from tests.qos.conftest import (DOMAIN_FASTDDS_EXCHANGE, DOMAIN_FASTDDS_QOS, ECHO_ALL, ROVER, render, variant,
+                                write_tree)
 from tests.qos.test_spec import SECTION_6, expected
 
 PARTICIPANTS = ["rapid_local", "rapid_lan", "rapid_wan", "rapid_wan_tcp", "rapid_wan_tcp_server"]
@@ -93,7 +94,7 @@ def test_broken_xml_is_refused(probe, rover_files, tmp_path):
 def test_local_exchange_between_two_fastdds_programs(probe, rover_dir, procs, profile):
     xml = str(rover_dir / "fastdds" / "rapid_qos_profiles.xml")
     domain = str(DOMAIN_FASTDDS_EXCHANGE[profile])  # its own domain, so its own RTPS ports
-    echo = procs.start("echo", [str(probe), "echo", xml, domain, "rapid_local", profile, "15", "3"], timeout=25)
+    echo = procs.start("echo", [str(probe), "echo", xml, domain, "rapid_local", profile, "15", ECHO_ALL], timeout=25)
     assert procs.wait_for(echo, "ready", 10), procs.log(echo)
     ping = procs.start("ping", [str(probe), "ping", xml, domain, "rapid_local", profile, "15", "3"], timeout=25)
     assert procs.wait(ping, 25) == 0, procs.log(ping) + procs.log(echo)
